@@ -1,0 +1,164 @@
+"""Mass matrix variants: consistent, row-sum lumped, and singular (paper eqs 1-4).
+
+The singular mass moves each contact shape function onto its neighbours,
+
+.. math::
+
+    N_{j,m} = N_j + \\sum_{c} w_{cj} N_c \\quad (j \\notin \\mathcal{C}), \\qquad
+    N_{c,m} = 0 \\quad (c \\in \\mathcal{C}),
+
+i.e. :math:`\\mathbf N_m = \\mathbf N \\mathbf R` with the redistribution matrix
+:math:`\\mathbf R` (row c holds the weights :math:`w_{cj}`, non-contact rows are unit rows).
+Then :math:`\\mathbf M_{m} = \\mathbf R^T \\mathbf M \\mathbf R` (eq 1, left) and its
+row-sum lumped form :math:`\\int \\rho \\mathbf N_m` (eq 1, right). Weights summing to one
+keep the translational mass; weights in [0, 1] keep the lumped form non-negative.
+
+The paper's quadratic element (eqs 2-4) with contact at node 3 sends :math:`\\gamma_s` of
+:math:`N_3` to the far node 1 and :math:`1-\\gamma_s` to the neighbour node 2:
+
+>>> R = redistribution_matrix(3, contact_weights(3, "top", sympy.Rational(1, 2)))
+>>> R
+Matrix([
+[  1, 0, 0],
+[  0, 1, 0],
+[1/2, 1/2, 0]])
+
+Works on sympy matrices (exact) and on numpy / scipy.sparse arrays alike.
+
+References
+----------
+A. Tkachuk, M. Matzen, R. Kolman, M. Bischoff, "Singular mass matrices for isogeometric
+finite element analysis of dynamic contact", eqs (1)-(4).
+"""
+from __future__ import annotations
+
+import warnings
+from collections.abc import Mapping
+
+import numpy as np
+import sympy
+
+from .errors import IndefiniteMassWarning, InputError
+
+__all__ = [
+    "MASS_VARIANTS",
+    "CONTACT_SETS",
+    "contact_weights",
+    "redistribution_matrix",
+    "mass_variant",
+    "row_sum_lump",
+]
+
+MASS_VARIANTS = ("consistent", "lumped", "singular", "singular-lumped")
+CONTACT_SETS = ("top", "bottom", "both")
+
+
+def contact_weights(n: int, contact: str = "top", gamma_s=0) -> dict[int, dict[int, object]]:
+    """Weights of the paper's redistribution across ``n`` control points through the thickness.
+
+    A contact point sends ``1 - gamma_s`` to its nearest neighbour inward and ``gamma_s``
+    to the next one (paper eqs 2-3: for n = 3 the next one is the far surface).
+    ``contact`` is ``"top"`` (index n-1), ``"bottom"`` (index 0) or ``"both"``.
+
+    >>> contact_weights(3, "top", 0)
+    {2: {1: 1}}
+    """
+    if contact not in CONTACT_SETS:
+        raise InputError(f"contact must be one of {', '.join(CONTACT_SETS)}; got {contact!r}")
+    if isinstance(gamma_s, bool) or not (0 <= gamma_s <= 1):
+        raise InputError(f"gamma_s must lie in [0, 1], got {gamma_s!r}")
+    if n < 3:
+        raise InputError(f"n (control points through the thickness) must be >= 3, got {n}")
+    top = {n - 1: {n - 2: 1 - gamma_s, n - 3: gamma_s}}
+    bottom = {0: {1: 1 - gamma_s, 2: gamma_s}}
+    weights = {"top": top, "bottom": bottom, "both": {**bottom, **top}}[contact]
+    return {c: {j: w for j, w in ws.items() if w != 0} for c, ws in weights.items()}
+
+
+def redistribution_matrix(
+    n: int,
+    weights: Mapping[int, Mapping[int, object]],
+    *,
+    allow_negative: bool = False,
+    tol: float = 1e-12,
+) -> sympy.Matrix:
+    """Matrix ``R`` with ``N_m = N R`` for contact points ``weights.keys()``.
+
+    Parameters
+    ----------
+    n : int
+        Number of basis functions.
+    weights : mapping ``{contact index c: {neighbour index j: w_cj}}``
+        Each contact function's weights must target non-contact functions and sum to one.
+    allow_negative : bool
+        Weights outside [0, 1] raise :class:`InputError` unless this is set; then they give
+        an :class:`IndefiniteMassWarning` (the lumped singular mass loses definiteness).
+    """
+    contact = set(weights)
+    if not contact:
+        raise InputError("the contact set must hold at least one control point")
+    if any(not (0 <= c < n) for c in contact):
+        raise InputError(f"contact indices must lie in [0, {n - 1}], got {sorted(contact)}")
+    if len(contact) == n:
+        raise InputError("at least one control point must stay out of the contact set")
+    R = sympy.eye(n)
+    for c, ws in weights.items():
+        if not ws:
+            raise InputError(f"contact point {c} has no redistribution weights")
+        bad = [j for j in ws if j in contact or not (0 <= j < n)]
+        if bad:
+            raise InputError(
+                f"weights of contact point {c} must target non-contact indices in [0, {n - 1}], "
+                f"got {bad}")
+        total = sum(ws.values())
+        if abs(float(total) - 1) > tol:
+            raise InputError(
+                f"weights of contact point {c} must sum to 1 (translational mass), got {total}")
+        outside = [w for w in ws.values() if not (0 <= w <= 1)]
+        if outside:
+            msg = f"weights of contact point {c} must lie in [0, 1], got {outside}"
+            if not allow_negative:
+                raise InputError(msg)
+            warnings.warn(msg + ": the lumped singular mass is indefinite", IndefiniteMassWarning,
+                          stacklevel=2)
+        R[c, c] = 0
+        for j, w in ws.items():
+            R[c, j] = sympy.nsimplify(w) if isinstance(w, float) else w
+    return R
+
+
+def row_sum_lump(M):
+    """Diagonal matrix of row sums of ``M`` (sympy, numpy or scipy.sparse in, same kind out)."""
+    if isinstance(M, sympy.MatrixBase):
+        return sympy.diag(*[sum(M.row(i)) for i in range(M.rows)])
+    import scipy.sparse as sp
+
+    if sp.issparse(M):
+        return sp.diags(np.asarray(M.sum(axis=1)).ravel()).tocsr()
+    return np.diag(np.asarray(M).sum(axis=1))
+
+
+def mass_variant(M, variant: str, R=None):
+    """Mass matrix of ``variant`` from the consistent mass ``M`` and redistribution ``R``.
+
+    ``"consistent"``: M; ``"lumped"``: row sums of M; ``"singular"``: R^T M R (eq 1 left);
+    ``"singular-lumped"``: row sums of R^T M R (eq 1 right).
+    """
+    if variant not in MASS_VARIANTS:
+        raise InputError(f"mass must be one of {', '.join(MASS_VARIANTS)}; got {variant!r}")
+    if variant == "consistent":
+        return M
+    if variant == "lumped":
+        return row_sum_lump(M)
+    if R is None:
+        raise InputError(f"mass variant {variant!r} needs a redistribution matrix R")
+    if isinstance(M, sympy.MatrixBase):
+        R = sympy.Matrix(R)
+        Mm = R.T * M * R
+    else:
+        import scipy.sparse as sp
+
+        if not sp.issparse(R):
+            R = np.asarray(R, dtype=float)
+        Mm = R.T @ M @ R
+    return Mm if variant == "singular" else row_sum_lump(Mm)

@@ -17,11 +17,8 @@ The paper's quadratic element (eqs 2-4) with contact at node 3 sends :math:`\\ga
 :math:`N_3` to the far node 1 and :math:`1-\\gamma_s` to the neighbour node 2:
 
 >>> R = redistribution_matrix(3, contact_weights(3, "top", sympy.Rational(1, 2)))
->>> R
-Matrix([
-[  1, 0, 0],
-[  0, 1, 0],
-[1/2, 1/2, 0]])
+>>> R.tolist()
+[[1, 0, 0], [0, 1, 0], [1/2, 1/2, 0]]
 
 Works on sympy matrices (exact) and on numpy / scipy.sparse arrays alike.
 

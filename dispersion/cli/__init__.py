@@ -1,0 +1,54 @@
+"""Command line: ``dispersion series | branches | ring | reproduce | bench``.
+
+A thin layer over the API. Each subcommand lives in its own module exposing
+``register(subparsers)``, which adds the parser and sets ``func(args) -> int``.
+Errors the toolkit raises on purpose print one line to stderr: exit status 2 for bad
+input (:class:`~dispersion.errors.InputError`), 1 for other toolkit errors.
+"""
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+
+from ..errors import DispersionError, InputError
+
+_SUBCOMMANDS = ("series", "branches", "ring", "reproduce", "bench")
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message):  # one line, exit 2, like InputError
+        self.exit(2, f"{self.prog}: error: {message}\n")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(prog="dispersion", description=__doc__.splitlines()[0])
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
+    for name in _SUBCOMMANDS:
+        try:
+            module = importlib.import_module(f".{name}", __name__)
+        except ModuleNotFoundError as exc:
+            if exc.name != f"{__name__}.{name}":
+                raise
+            continue
+        module.register(sub)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = build_parser().parse_args(argv)
+    try:
+        return int(args.func(args) or 0)
+    except InputError as exc:
+        print(f"dispersion {args.command}: error: {exc}", file=sys.stderr)
+        return 2
+    except DispersionError as exc:
+        print(f"dispersion {args.command}: {type(exc).__name__}: {exc}", file=sys.stderr)
+        return 1
+    except KeyboardInterrupt:
+        print("dispersion: interrupted", file=sys.stderr)
+        return 130
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

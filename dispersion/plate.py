@@ -1,0 +1,331 @@
+"""Plane-strain plate patch of B-splines: stiffness, mass and dynamic stiffness K - Omega^2 M.
+
+The plate occupies :math:`-h \\le y \\le h`; units are dimensionless with :math:`h = 1`,
+:math:`\\mu = 1`, :math:`\\rho = 1` (so :math:`c_T = 1`, :math:`\\Omega = \\omega h / c_T`,
+:math:`\\kappa = k h`). Through the thickness, ``n`` open B-splines of degree ``p`` carry the
+displacement; along x either
+
+* ``model="x-exact"``: :math:`u = U(y) e^{i k x}` (semi-discrete in the thickness only), or
+* ``model="bloch"``: uniform :math:`C^{p-1}` B-splines of element length :math:`b = r h` and
+  one Bloch-periodic column of control points, phase :math:`\\theta = \\kappa r`.
+
+The x-direction enters only through three per-unit-length functions of :math:`\\kappa`,
+
+.. math::
+
+    m = \\sum_L c^{00}_L \\cos L\\theta, \\quad
+    s = -\\frac{2}{r} \\sum_{L>0} c^{10}_L \\sin L\\theta, \\quad
+    d = \\frac{1}{r^2} \\sum_L c^{11}_L \\cos L\\theta
+
+(Bloch sums of the cardinal B-spline Gram integrals :math:`c^{ab}_L`); the x-exact model
+has :math:`m = 1, s = \\kappa, d = \\kappa^2`. With the thickness integrals
+:math:`Y_{ab} = \\int N^{(a)} N^{(b)T} dy`, and the y-displacements scaled by i so that the
+pencil is real symmetric,
+
+.. math::
+
+    K = \\begin{bmatrix} (\\lambda + 2\\mu) d Y_{00} + \\mu m Y_{11} & s(\\lambda Y_{01} - \\mu Y_{10}) \\\\
+        \\cdot & (\\lambda + 2\\mu) m Y_{11} + \\mu d Y_{00} \\end{bmatrix}, \\qquad
+    M = m_x \\begin{bmatrix} M_y & 0 \\\\ 0 & M_y \\end{bmatrix},
+
+with :math:`M_y` the thickness mass of the chosen variant (:mod:`dispersion.mass`) and
+:math:`m_x = m` (consistent in x) or 1 (lumped variants).
+
+>>> patch = plate_patch()
+>>> patch.Y["00"].tolist()
+[[2/5, 1/5, 1/15], [1/5, 4/15, 1/5], [1/15, 1/5, 2/5]]
+
+References
+----------
+A. Tkachuk et al., section 2 and Figure 2 (left). J. A. Cottrell, A. Reali, Y. Bazilevs,
+T. J. R. Hughes, "Isogeometric analysis of structural vibrations", CMAME 195 (2006) 5257-5296.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from functools import lru_cache
+
+import numpy as np
+import sympy
+
+from . import bspline
+from .errors import InputError, check_nu, check_positive, check_positive_int
+from .mass import MASS_VARIANTS, contact_weights, mass_variant, redistribution_matrix
+
+__all__ = [
+    "MODELS",
+    "PlatePatch",
+    "plate_patch",
+    "thickness_matrices",
+    "bloch_coefficients",
+    "x_functions",
+    "lame",
+    "stiffness_terms",
+    "dynamic_stiffness",
+    "numeric_pencil",
+    "mirror_bases",
+]
+
+MODELS = ("x-exact", "bloch")
+_y = sympy.Symbol("y")
+
+
+@lru_cache(maxsize=None)
+def thickness_matrices(p: int, n: int) -> dict[str, sympy.Matrix]:
+    """Exact :math:`Y_{ab} = \\int_{-1}^{1} N^{(a)}_i N^{(b)}_j dy` for ``n`` open B-splines of degree p."""
+    kv = bspline.open_knot_vector(p, n - p, -1, 1)
+    Y = {k: sympy.zeros(n, n) for k in ("00", "01", "10", "11")}
+    for (a, b), polys, active in bspline.basis_polynomials(kv, _y, local=False):
+        ders = [[sympy.Poly(f, _y) for f in polys], [sympy.Poly(f, _y).diff(_y) for f in polys]]
+        for key, Ymat in Y.items():
+            da, db = int(key[0]), int(key[1])
+            for i, gi in zip(active, ders[da]):
+                for j, gj in zip(active, ders[db]):
+                    prim = (gi * gj).integrate()
+                    Ymat[i, j] += prim.eval(b) - prim.eval(a)
+    return Y
+
+
+@lru_cache(maxsize=None)
+def bloch_coefficients(p: int) -> dict[str, dict[int, sympy.Rational]]:
+    """Gram integrals :math:`c^{ab}_L = \\int N_0^{(a)} N_L^{(b)} d\\xi` of the unit cardinal B-spline.
+
+    >>> bloch_coefficients(1)["00"]
+    {-1: 1/6, 0: 2/3, 1: 1/6}
+    """
+    u = sympy.Symbol("u")
+    pieces = [sympy.Poly(f, u) for f in bspline.cardinal_pieces(p, u)]
+    ders = [pieces, [f.diff(u) for f in pieces]]
+    out = {}
+    for key in ("00", "10", "11"):
+        da, db = int(key[0]), int(key[1])
+        coeffs = {}
+        for L in range(-p, p + 1):
+            total = sympy.Integer(0)
+            for j in range(p + 1):
+                if 0 <= j - L <= p:
+                    prim = (ders[da][j] * ders[db][j - L]).integrate()
+                    total += prim.eval(1) - prim.eval(0)
+            coeffs[L] = total
+        out[key] = coeffs
+    return out
+
+
+def lame(nu) -> dict[str, object]:
+    """Lame constants over :math:`\\mu` in plane strain: ``{"L": lambda, "M": mu, "L2M": lambda + 2 mu}``."""
+    lam = 2 * nu / (1 - 2 * nu)
+    return {"L": lam, "M": sympy.Integer(1) if isinstance(nu, sympy.Basic) else 1.0,
+            "L2M": lam + 2}
+
+
+@dataclass(frozen=True)
+class PlatePatch:
+    """The representative patch: basis data, mass variant and derived matrices (exact)."""
+
+    p: int
+    n: int
+    model: str
+    r: object
+    mass: str
+    R: sympy.Matrix | None
+    Y: dict = field(repr=False)
+    My: sympy.Matrix = field(repr=False)
+    x_lumped: bool = False
+
+    @property
+    def massless(self) -> tuple[int, ...]:
+        """DOF indices (order u_x 0..n-1, u_y 0..n-1) whose mass rows vanish identically."""
+        zero = [i for i in range(self.n) if all(v == 0 for v in self.My.row(i))]
+        return tuple(zero + [self.n + i for i in zero])
+
+    @property
+    def symmetric(self) -> bool:
+        """True if the mass keeps the mirror symmetry y -> -y of the patch."""
+        n = self.n
+        J = sympy.Matrix(n, n, lambda i, j: 1 if i + j == n - 1 else 0)
+        return J * self.My * J == self.My
+
+
+def plate_patch(
+    p: int = 2,
+    n: int = 3,
+    model: str = "x-exact",
+    r=None,
+    mass: str = "consistent",
+    contact: str = "top",
+    gamma_s=0,
+    weights=None,
+    *,
+    allow_negative: bool = False,
+) -> PlatePatch:
+    """Build the plate patch for ``model`` and the ``mass`` variant.
+
+    Parameters
+    ----------
+    p, n : int
+        Degree and number of control points through the thickness (``n >= p + 1``).
+    model : ``"x-exact"`` or ``"bloch"``
+    r : number, sympy expression or None
+        Aspect ratio b/h of the Bloch model (None: kept as the symbol ``r``). Unused for x-exact.
+    mass : ``"consistent"``, ``"lumped"``, ``"singular"``, ``"singular-lumped"``
+    contact, gamma_s :
+        Contact set and the paper's weight (see :func:`dispersion.mass.contact_weights`).
+    weights : mapping, optional
+        General redistribution weights ``{c: {j: w}}``; overrides ``contact``/``gamma_s``.
+    """
+    p = check_positive_int("degree p", p)
+    n = check_positive_int("control points n", n)
+    if n < p + 1:
+        raise InputError(f"control points n must be >= p + 1 = {p + 1}, got {n}")
+    if model not in MODELS:
+        raise InputError(f"model must be one of {', '.join(MODELS)}; got {model!r}")
+    if mass not in MASS_VARIANTS:
+        raise InputError(f"mass must be one of {', '.join(MASS_VARIANTS)}; got {mass!r}")
+    if model == "bloch":
+        if r is None:
+            r = sympy.Symbol("r", positive=True)
+        elif not isinstance(r, sympy.Symbol):
+            check_positive("aspect ratio r", r)
+            r = sympy.nsimplify(r)
+    else:
+        r = None
+    Y = thickness_matrices(p, n)
+    R = None
+    if mass.startswith("singular"):
+        if weights is None:
+            weights = contact_weights(n, contact, gamma_s)
+        R = redistribution_matrix(n, weights, allow_negative=allow_negative)
+    My = mass_variant(Y["00"], mass, R)
+    return PlatePatch(p, n, model, r, mass, R, Y, My, x_lumped=mass.endswith("lumped"))
+
+
+def x_functions(patch: PlatePatch, kappa) -> dict[str, object]:
+    """The per-unit-length x-functions ``m, s, d`` (and ``mx``, the mass factor) at ``kappa``.
+
+    ``kappa`` may be a sympy expression or a numpy array; trig functions follow its kind.
+    """
+    numeric = not isinstance(kappa, sympy.Basic)
+    cos, sin = (np.cos, np.sin) if numeric else (sympy.cos, sympy.sin)
+    if patch.model == "x-exact":
+        one = np.ones_like(kappa, dtype=float) if numeric else sympy.Integer(1)
+        out = {"m": one, "s": kappa, "d": kappa**2}
+    else:
+        c = bloch_coefficients(patch.p)
+        r = float(patch.r) if numeric else patch.r
+        th = kappa * r
+        conv = float if numeric else (lambda v: v)
+        out = {
+            "m": sum(conv(v) * cos(L * th) for L, v in c["00"].items()),
+            "s": -2 / r * sum(conv(c["10"][L]) * sin(L * th) for L in range(1, patch.p + 1)),
+            "d": sum(conv(v) * cos(L * th) for L, v in c["11"].items()) / r**2,
+        }
+    out["mx"] = (np.ones_like(out["m"]) if numeric else sympy.Integer(1)) if patch.x_lumped \
+        else out["m"]
+    return out
+
+
+def stiffness_terms(patch: PlatePatch) -> list[tuple[str, str, sympy.Matrix]]:
+    """K as ``[(material, xfunc, B)]``: :math:`K = \\sum` material(nu) * xfunc(kappa) * B.
+
+    ``material`` in {"L2M", "M", "L"} (see :func:`lame`), ``xfunc`` in {"m", "s", "d"}.
+    This single list defines K for the symbolic, series and numeric code paths.
+    """
+    Y, n = patch.Y, patch.n
+    Z = sympy.zeros(n, n)
+
+    def blocks(a, b, c, d):
+        return sympy.Matrix(sympy.BlockMatrix([[a, b], [c, d]]))
+
+    return [
+        ("L2M", "d", blocks(Y["00"], Z, Z, Z)),
+        ("M", "m", blocks(Y["11"], Z, Z, Z)),
+        ("L2M", "m", blocks(Z, Z, Z, Y["11"])),
+        ("M", "d", blocks(Z, Z, Z, Y["00"])),
+        ("L", "s", blocks(Z, Y["01"], Y["01"].T, Z)),
+        ("M", "s", -blocks(Z, Y["10"], Y["10"].T, Z)),
+    ]
+
+
+def mass_block(patch: PlatePatch) -> sympy.Matrix:
+    """Constant part of M: ``diag(M_y, M_y)``; the full mass is ``mx(kappa)`` times this."""
+    return sympy.diag(patch.My, patch.My)
+
+
+def dynamic_stiffness(patch: PlatePatch, kappa=None, Omega=None, nu=None) -> sympy.Matrix:
+    """Exact :math:`K_{dyn}(\\kappa, \\Omega) = K - \\Omega^2 M` (sympy; symbols by default).
+
+    >>> Kd = dynamic_stiffness(plate_patch())
+    >>> Kd.is_symmetric()
+    True
+    """
+    kappa = sympy.Symbol("kappa") if kappa is None else kappa
+    Omega = sympy.Symbol("Omega") if Omega is None else Omega
+    nu = sympy.Symbol("nu") if nu is None else check_nu(nu)
+    kappa = sympy.sympify(kappa)
+    mat, xf = lame(nu), x_functions(patch, kappa)
+    K = sum((mat[m] * xf[f] * B for m, f, B in stiffness_terms(patch)), sympy.zeros(2 * patch.n))
+    return K - Omega**2 * xf["mx"] * mass_block(patch)
+
+
+def numeric_pencil(patch: PlatePatch, nu: float, kappa) -> tuple[np.ndarray, np.ndarray]:
+    """Float stacks ``K, M`` of shape ``(len(kappa), 2n, 2n)``, built from :func:`stiffness_terms`.
+
+    >>> K, M = numeric_pencil(plate_patch(), 0.3, [0.0, 0.5])
+    >>> K.shape, bool(np.allclose(K, K.transpose(0, 2, 1)))
+    ((2, 6, 6), True)
+    """
+    nu = float(check_nu(nu))
+    kappa = np.atleast_1d(np.asarray(kappa, dtype=float))
+    if not np.all(np.isfinite(kappa)):
+        raise InputError("kappa must be finite")
+    if patch.model == "bloch" and isinstance(patch.r, sympy.Symbol):
+        raise InputError("aspect ratio r must be a number for numeric evaluation")
+    mat, xf = lame(nu), x_functions(patch, kappa)
+    K = np.zeros((kappa.size, 2 * patch.n, 2 * patch.n))
+    for m, f, B in stiffness_terms(patch):
+        K += mat[m] * xf[f][:, None, None] * np.array(B, dtype=float)
+    M = xf["mx"][:, None, None] * np.array(mass_block(patch), dtype=float)
+    return K, M
+
+
+def mirror_bases(patch: PlatePatch) -> dict[str, np.ndarray] | None:
+    """Orthonormal bases of the symmetric ("S") and antisymmetric ("A") DOF subspaces.
+
+    S: u_x even and u_y odd in y; A: the reverse. ``None`` if the mass breaks the symmetry.
+    """
+    if not patch.symmetric:
+        return None
+    return {k: np.array(v, dtype=float) for k, v in _mirror_bases_exact(patch.n).items()}
+
+
+@lru_cache(maxsize=None)
+def _mirror_bases_exact(n: int) -> dict[str, sympy.Matrix]:
+    """Exact (unnormalised -> normalised) mirror bases, shape (2n, n) each."""
+    half = n // 2
+
+    def even():
+        cols = []
+        for i in range(half):
+            v = sympy.zeros(n, 1)
+            v[i] = v[n - 1 - i] = 1 / sympy.sqrt(2)
+            cols.append(v)
+        if n % 2:
+            v = sympy.zeros(n, 1)
+            v[half] = 1
+            cols.append(v)
+        return sympy.Matrix.hstack(*cols)
+
+    def odd():
+        cols = []
+        for i in range(half):
+            v = sympy.zeros(n, 1)
+            v[i], v[n - 1 - i] = 1 / sympy.sqrt(2), -1 / sympy.sqrt(2)
+            cols.append(v)
+        return sympy.Matrix.hstack(*cols) if cols else sympy.zeros(n, 0)
+
+    E, O = even(), odd()
+    Zx, Zy = sympy.zeros(n, O.cols), sympy.zeros(n, E.cols)
+    return {
+        "S": sympy.Matrix(sympy.BlockMatrix([[E, Zx], [sympy.zeros(n, E.cols), O]])),
+        "A": sympy.Matrix(sympy.BlockMatrix([[O, Zy], [sympy.zeros(n, O.cols), E]])),
+    }

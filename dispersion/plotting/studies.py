@@ -1,0 +1,94 @@
+"""Figures of the studies beyond the paper (:mod:`dispersion.report.studies`).
+
+Each ``plot_*`` takes the study's plain data (lists/dicts as stored in ``studies.json``) and
+``ax=None``, and returns the Axes; ``figure_*`` lay several out on one pyplot-free
+:class:`matplotlib.figure.Figure`.
+
+>>> rows = [{"gamma_s": g, "S0": {"4": -g}, "A0": {"6": g}, "S0_error": [g / 10],
+...          "A0_error": [g / 20]} for g in (0.0, 0.5, 1.0)]
+>>> fig = figure_gamma(rows, kappas=[0.5])
+>>> len(fig.axes)
+2
+"""
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+
+
+def _axes(ax):
+    if ax is None:
+        from matplotlib.figure import Figure
+
+        ax = Figure(figsize=(5, 3.5), layout="constrained").add_subplot()
+    return ax
+
+
+def plot_gamma_coefficients(rows: Sequence[dict], ax=None):
+    """Leading error-carrying coefficients of Omega^2 against gamma_s (S0 k^4, A0 k^6)."""
+    ax = _axes(ax)
+    g = [row["gamma_s"] for row in rows]
+    for branch, power, style in (("S0", "4", "o-"), ("A0", "6", "s--")):
+        vals = [row[branch].get(power, np.nan) for row in rows]
+        ax.plot(g, vals, style, label=f"{branch}: coefficient of $\\kappa^{power}$")
+    ax.axhline(0.0, color="0.6", lw=0.8)
+    ax.set_xlabel(r"redistribution weight $\gamma_s$")
+    ax.set_ylabel(r"coefficient of $\Omega^2$ series")
+    ax.legend(fontsize="small")
+    return ax
+
+
+def plot_gamma_errors(rows: Sequence[dict], kappas: Sequence[float], ax=None):
+    """|relative error| of the S0 and A0 frequencies against gamma_s, one line per kappa."""
+    ax = _axes(ax)
+    g = [row["gamma_s"] for row in rows]
+    for i, k in enumerate(kappas):
+        for branch, style in (("S0", "o-"), ("A0", "s--")):
+            err = [abs(row[f"{branch}_error"][i]) for row in rows]
+            ax.semilogy(g, err, style, label=f"{branch}, $\\kappa$ = {k}")
+    ax.set_xlabel(r"redistribution weight $\gamma_s$")
+    ax.set_ylabel(r"$|\Omega^h - \Omega| / \Omega$")
+    ax.legend(fontsize="small")
+    return ax
+
+
+def figure_gamma(rows: Sequence[dict], kappas: Sequence[float]):
+    """Two panels: series coefficients and branch errors against gamma_s."""
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(10, 3.8), layout="constrained")
+    left, right = fig.subplots(1, 2)
+    plot_gamma_coefficients(rows, ax=left)
+    plot_gamma_errors(rows, kappas, ax=right)
+    fig.suptitle(r"Singular mass (top contact): effect of the redistribution weight $\gamma_s$")
+    return fig
+
+
+def plot_series_departure(data: dict, branch: str, ax=None):
+    """Relative deviation of truncated series from the numeric branch against kappa."""
+    ax = _axes(ax)
+    kappa = np.asarray(data["kappa_grid"])
+    styles = {"exact": "-", "consistent": "--", "singular": ":"}
+    for row in data["radius"]:
+        if row["branch"] != branch:
+            continue
+        dev = np.maximum(np.asarray(row["deviation"], dtype=float), 1e-17)
+        ax.loglog(kappa, dev, styles.get(row["mass"], "-."),
+                  label=f"{row['mass']}, to $\\kappa^{{{row['order']}}}$")
+    ax.axhline(data["tol"], color="k", lw=0.8)
+    ax.set_xlabel(r"$\kappa = kh$")
+    ax.set_ylabel(r"$|\Omega_{series} - \Omega| / \Omega$")
+    ax.set_title(f"{branch}: truncated series vs numeric branch")
+    ax.legend(fontsize="x-small", ncol=2)
+    return ax
+
+
+def figure_radius(data: dict):
+    """Two panels (S0, A0) of :func:`plot_series_departure`."""
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(10, 4), layout="constrained")
+    for ax, branch in zip(fig.subplots(1, 2), ("S0", "A0")):
+        plot_series_departure(data, branch, ax=ax)
+    return fig

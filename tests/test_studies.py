@@ -1,0 +1,117 @@
+"""Tests of dispersion/report/studies.py (studies beyond the paper) and its plots."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import scipy.linalg
+
+from dispersion.errors import InputError
+from dispersion.plate import numeric_pencil, plate_patch
+from dispersion.report import studies
+
+NU = 0.3
+
+
+def _finite_generalized(K, M):
+    """Finite Omega of one pencil by scipy's QZ (independent of the condensation)."""
+    w = scipy.linalg.eigvals(K, M)
+    w = w[np.isfinite(w)]
+    w = w[np.abs(w) < 1e8].real
+    return np.sort(np.sqrt(np.clip(w, 0, None)))
+
+
+@pytest.mark.parametrize("mass", ["consistent", "lumped", "singular", "singular-lumped"])
+def test_condensation_keeps_exactly_the_finite_roots(mass):
+    patch = plate_patch(2, 3, "bloch", 2, mass=mass, contact="top", gamma_s=0.5)
+    kappa = np.array([0.3, 1.1])
+    W = studies.condensed_frequencies(patch, NU, kappa)
+    # singular masses: 2 massless DOFs (u_x, u_y of the top point) -> 6 - 2 finite branches
+    assert W.shape == (2, 6 - len(patch.massless))
+    K, M = numeric_pencil(patch, NU, kappa)
+    for i in range(kappa.size):
+        np.testing.assert_allclose(W[i], _finite_generalized(K[i], M[i]), rtol=1e-8)
+
+
+def test_exact_branch_matches_eqs_14_15_at_small_kappa():
+    # Reference: the long-wave series of the paper, eqs (14) and (15) (Amirkulova 2011),
+    # truncated after kappa^6; the neglected term is O(kappa^8).
+    k = np.array([0.02, 0.05])
+    nu = NU
+    s0 = 2 / (1 - nu) * k**2 - 2 * nu**2 / (3 * (1 - nu) ** 3) * k**4 \
+        + 2 * nu**2 * (7 * nu**2 + 10 * nu - 6) / (45 * (1 - nu) ** 5) * k**6
+    a0 = 2 / (3 * (1 - nu)) * k**4 + 2 * (7 * nu - 17) / (45 * (1 - nu) ** 2) * k**6
+    np.testing.assert_allclose(studies.exact_branch("S", k, nu) ** 2, s0, rtol=1e-9)
+    rel = np.abs(studies.exact_branch("A", k, nu) ** 2 / a0 - 1)
+    # A0 starts at kappa^4, so the O(kappa^8) remainder is a kappa^4 relative error
+    assert rel[1] < 1e-4
+    assert 3.5 < np.log(rel[1] / rel[0]) / np.log(k[1] / k[0]) < 4.5
+
+
+def test_branch_frequencies_converge_to_exact_with_a_rate():
+    # Both discrete S0 and A0 tend to the exact branches as kappa -> 0, with a relative
+    # error that falls at least like kappa^2 (the S0 series of CMM first differs at
+    # kappa^6 per eq 17, so the relative Omega error is O(kappa^4)).
+    patch = plate_patch(2, 3, "bloch", 2, mass="consistent")
+    k = np.array([0.1, 0.05])
+    num = studies.branch_frequencies(patch, NU, k)
+    for branch in ("S0", "A0"):
+        err = np.abs(num[branch] / studies.exact_branch(branch[0], k, NU) - 1)
+        assert err[1] < err[0] < 1e-2
+        rate = np.log(err[0] / err[1]) / np.log(2)
+        assert rate > 1.9, (branch, rate)
+
+
+def test_branch_frequencies_without_mirror_symmetry_agree_with_blocks():
+    # With gamma_s chosen so the mass stays symmetric ("both" surfaces), the block solve and
+    # the ordering rule used for non-symmetric masses must pick the same S0 and A0.
+    patch = plate_patch(2, 3, "bloch", 2, mass="consistent")
+    k = np.array([0.2, 0.4])
+    blocks = studies.branch_frequencies(patch, NU, k)
+    W = studies.condensed_frequencies(patch, NU, k)
+    np.testing.assert_allclose(blocks["A0"], W[:, 0], rtol=1e-9)
+    np.testing.assert_allclose(blocks["S0"], W[:, 1], rtol=1e-9)
+
+
+def test_critical_time_step_properties():
+    dt = {m: studies.critical_time_step(2, 3, m, 2, NU, n_theta=33)
+          for m in ("consistent", "lumped", "singular")}
+    # Row-sum lumping lowers the highest frequency: larger stable step than CMM
+    # (Cottrell et al. 2006, sec. 5; Hughes, The Finite Element Method, sec. 9.3).
+    assert dt["lumped"] > dt["consistent"]
+    # Independent computation: 2 / largest finite generalized eigenvalue at the zone edge
+    # and zone centre, by QZ; the grid maximum includes both, so it can only be larger.
+    for mass, value in dt.items():
+        patch = plate_patch(2, 3, "bloch", 2, mass=mass, contact="top")
+        K, M = numeric_pencil(patch, NU, [0.0, np.pi / 2])
+        wmax = max(_finite_generalized(K[i], M[i]).max() for i in range(2))
+        assert value <= 2 / wmax + 1e-12
+    # a finer zone grid can only find a higher maximum frequency
+    fine = studies.critical_time_step(2, 3, "consistent", 2, NU, n_theta=129)
+    assert fine <= dt["consistent"] + 1e-12
+    with pytest.raises(InputError, match="n_theta"):
+        studies.critical_time_step(n_theta=1)
+
+
+def test_series_helpers():
+    k = np.array([0.1, 0.2, 0.4])
+    assert studies.series_frequency({2: 4.0, 4: 100.0}, k, order=2) == pytest.approx(2 * k)
+    # departure: relative deviation 0, 0.05, 0.2 -> first above 0.1 at kappa = 0.4
+    ref = np.ones(3)
+    assert studies.departure_kappa(k, ref, [1.0, 1.05, 1.2], 0.1) == 0.4
+    assert studies.departure_kappa(k, ref, ref, 0.1) is None
+    import sympy
+
+    nu = sympy.Symbol("nu")
+    assert studies.order_of_accuracy({2: 2 / (1 - nu), 4: nu}, {2: 2 / (1 - nu), 4: 0}) == 4
+    assert studies.order_of_accuracy({2: (1 - nu**2) / (1 + nu)}, {2: 1 - nu}) is None
+
+
+def test_gamma_figure_draws_every_weight():
+    from dispersion.plotting.studies import figure_gamma
+
+    rows = [{"gamma_s": g, "S0": {"4": -g}, "A0": {"6": g}, "S0_error": [0.1 + g],
+             "A0_error": [0.2 + g]} for g in (0.0, 0.5, 1.0)]
+    fig = figure_gamma(rows, kappas=[0.5])
+    coeff_ax, err_ax = fig.axes
+    assert [len(line.get_xdata()) for line in coeff_ax.get_lines()[:2]] == [3, 3]
+    assert len(err_ax.get_lines()) == 2

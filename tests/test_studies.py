@@ -115,3 +115,43 @@ def test_gamma_figure_draws_every_weight():
     coeff_ax, err_ax = fig.axes
     assert [len(line.get_xdata()) for line in coeff_ax.get_lines()[:2]] == [3, 3]
     assert len(err_ax.get_lines()) == 2
+
+
+def test_orders_of_accuracy_match_the_paper_claims():
+    # Paper, end of section 2: with p = 2, n = 3 the A0 error term is kappa^6 for CMM (eq 18
+    # vs eq 15) and for the singular mass (eq 20 vs 15); S0 errs at kappa^6 with CMM (eq 17
+    # vs 14) but already at kappa^4 with the singular mass (eq 19 vs 14): "4th vs 2nd order".
+    cmm = studies._order_case((2, 3, "consistent"), order=6)
+    sing = studies._order_case((2, 3, "singular"), order=6)
+    assert (cmm["S0_order"], cmm["A0_order"]) == (6, 6)
+    assert (sing["S0_order"], sing["A0_order"]) == (4, 6)
+    # the leading coefficients are the exact ones (eqs 14-15 at nu = 0.3)
+    nu = 0.3
+    for row in (cmm, sing):
+        assert row["S0"]["2"] == pytest.approx(2 / (1 - nu))
+        assert row["A0"]["4"] == pytest.approx(2 / (3 * (1 - nu)))
+
+
+def test_gamma_case_series_agrees_with_its_numeric_branch():
+    # one quantity two ways: the series' Omega at small kappa vs the patch's eigenvalue
+    res = studies._gamma_case(0.5, order=6, kappas=(0.05, 0.1))
+    patch = plate_patch(2, 3, "bloch", 2, mass="singular", contact="top", gamma_s=0.5)
+    num = studies.branch_frequencies(patch, NU, [0.05])
+    for branch in ("S0", "A0"):
+        coeffs = {int(j): v for j, v in res[branch].items()}
+        series = studies.series_frequency(coeffs, [0.05])
+        # truncation after kappa^6 leaves a relative remainder O(kappa^4) (A0) or O(kappa^6)
+        assert series[0] == pytest.approx(num[branch][0], rel=5e-5)
+        assert len(res[f"{branch}_error"]) == 2
+
+
+def test_quick_report_writes_what_it_links(tmp_path):
+    import re
+
+    md = studies.report(tmp_path, quick=True)
+    links = re.findall(r"\]\(([^)]+)\)", md)
+    assert {"studies.json", "studies_gamma.png", "studies_radius.png"} <= set(links)
+    for link in links:
+        assert (tmp_path / link).stat().st_size > 0
+    for heading in ("(a)", "(b)", "(c)"):
+        assert f"### {heading}" in md

@@ -116,7 +116,7 @@ def redistribution_matrix(
             msg = f"weights of contact point {c} must lie in [0, 1], got {outside}"
             if not allow_negative:
                 raise InputError(msg)
-            warnings.warn(msg + ": the lumped singular mass is indefinite", IndefiniteMassWarning,
+            warnings.warn(msg + ": the lumped singular mass may be indefinite", IndefiniteMassWarning,
                           stacklevel=2)
         R[c, c] = 0
         for j, w in ws.items():

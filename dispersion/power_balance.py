@@ -45,7 +45,10 @@ from . import plate as _plate
 from .errors import DispersionError, InputError, check_nu, check_positive_int
 from .rayleigh_lamb import frequency_function
 
-__all__ = ["BRANCHES", "discrete_series", "exact_series", "series_from_characteristic"]
+__all__ = [
+    "BRANCHES", "discrete_series", "exact_series", "exact_leading_balance",
+    "series_from_characteristic",
+]
 
 BRANCHES = {"S0": ("S", 1), "A0": ("A", 2)}
 NU = sympy.Symbol("nu")
@@ -97,14 +100,8 @@ def _det(rows: list[list], D: int):
     return minors.get((1 << n) - 1, rows[0][0].ring.zero)
 
 
-def series_from_characteristic(build, sigma: int, order: int, setup: _Setup,
-                               factor: bool = True) -> dict[int, sympy.Expr]:
-    """Solve ``build(D) = F(t, t^sigma w) mod t^(D+1) = 0`` for the branch Omega^2 ~ kappa^(2 sigma).
-
-    ``build(D)`` returns F as an element of ``setup.ring`` truncated at t^D. Returns
-    ``{power of kappa: coefficient}`` up to kappa^order.
-    """
-    N = order // 2 - sigma  # corrections beyond the leading coefficient
+def _balance(build, N: int, setup: _Setup) -> list[dict]:
+    """Coefficients Q_k(w), k = 0..N, of F(t, t^sigma w) = t^m sum_k Q_k(w) t^k, in the field."""
     D = N + 2
     while True:
         F = build(D)
@@ -117,7 +114,6 @@ def series_from_characteristic(build, sigma: int, order: int, setup: _Setup,
         if m + N <= D:
             break
         D = m + N
-    # Q_k(w) = [t^(m+k)] F as polynomials in w with coefficients in the field
     K = setup.field
     Q = [dict() for _ in range(N + 1)]
     for mon, c in F.items():
@@ -129,6 +125,19 @@ def series_from_characteristic(build, sigma: int, order: int, setup: _Setup,
             if e:
                 val *= img**e
         Q[k][mon[1]] = Q[k].get(mon[1], K.zero) + val
+    return Q
+
+
+def series_from_characteristic(build, sigma: int, order: int, setup: _Setup,
+                               factor: bool = True) -> dict[int, sympy.Expr]:
+    """Solve ``build(D) = F(t, t^sigma w) mod t^(D+1) = 0`` for the branch Omega^2 ~ kappa^(2 sigma).
+
+    ``build(D)`` returns F as an element of ``setup.ring`` truncated at t^D. Returns
+    ``{power of kappa: coefficient}`` up to kappa^order.
+    """
+    N = order // 2 - sigma  # corrections beyond the leading coefficient
+    Q = _balance(build, N, setup)
+    K = setup.field
     w0 = _leading_root(Q[0], setup)
     # Taylor shift at w0: Qs[j][k] = [delta^j t^k] Q(t, w0 + delta)
     deg = max((max(q) for q in Q if q), default=0)
@@ -226,6 +235,16 @@ def exact_series(branch: str, order: int, nu=None, form: str = "standard") -> di
     {4: 2/3, 6: -34/45}
     """
     kind, sigma, order = _check_order(branch, order)
+    if nu is not None:
+        check_nu(nu)
+    setup, build = _exact_characteristic(kind, sigma, form)
+    series = series_from_characteristic(build, sigma, order, setup, factor=False)
+    g_of_nu = (1 - 2 * NU) / (2 * (1 - NU))
+    series = {k: sympy.factor(v.subs(_G, g_of_nu)) for k, v in series.items()}
+    return _substitute_nu(series, nu)
+
+
+def _exact_characteristic(kind: str, sigma: int, form: str):
     # Work over QQ[g] with g = (c_T/c_L)^2 = (1 - 2 nu)/(2 (1 - nu)): polynomial arithmetic
     # only; the map nu <-> g is an involution, so nu = (1 - 2 g)/(2 (1 - g)) at the end.
     setup = _setup(("g",), (_G,), lambda g: (g,))
@@ -236,10 +255,24 @@ def exact_series(branch: str, order: int, nu=None, form: str = "standard") -> di
         S = lambda z: _entire_series(z, "S", D)
         return _trunc(frequency_function(kind, t, t**sigma * w, None, C, S, form, ratio=g), D)
 
-    series = series_from_characteristic(build, sigma, order, setup, factor=False)
-    g_of_nu = (1 - 2 * NU) / (2 * (1 - NU))
-    series = {k: sympy.factor(v.subs(_G, g_of_nu)) for k, v in series.items()}
-    return _substitute_nu(series, nu)
+    return setup, build
+
+
+def exact_leading_balance(branch: str, form: str = "standard") -> sympy.Expr:
+    """Leading balance q0(w) of the Rayleigh-Lamb equation for Omega^2 = w kappa^(2 sigma).
+
+    Its non-zero roots are the admissible leading coefficients; used by the errata to show
+    that the printed eq (13) has no A0 branch and a wrong S0 speed.
+
+    >>> sympy.factor(exact_leading_balance("S0"))
+    w*(nu*w - w + 2)/(nu - 1)
+    """
+    kind, sigma, _ = _check_order(branch, 2 * BRANCHES[branch][1])
+    setup, build = _exact_characteristic(kind, sigma, form)
+    q0 = _balance(build, 0, setup)[0]
+    w = sympy.Symbol("w")
+    expr = sum(c.as_expr(_G) * w**e for e, c in q0.items())
+    return sympy.factor(expr.subs(_G, (1 - 2 * NU) / (2 * (1 - NU))))
 
 
 # --------------------------------------------------------------------------- discrete plate
@@ -352,6 +385,8 @@ def discrete_series(
     -2/(3*(nu - 1))
     """
     kind, sigma, order = _check_order(branch, order)
+    if nu is not None:
+        check_nu(nu)
     patch = _plate.plate_patch(p, n, model, r, mass, contact, gamma_s, weights)
     if split is None:
         split = patch.symmetric

@@ -221,8 +221,8 @@ def cutoff_frequencies(kind: str, nu: float, omega_max: float) -> list[tuple[flo
     plus S0 and A0 at :math:`\\Omega = 0` (family ``"0"``). Coinciding cut-offs (e.g. the
     symmetric ones at :math:`\\nu = 1/3`, where :math:`c_L = 2 c_T`) are listed twice.
 
-    >>> [round(w, 6) for w, _ in cutoff_frequencies("A", 0.3, 4.0)]
-    [0.0, 1.570796, 2.935321]
+    >>> [round(w, 6) for w, _ in cutoff_frequencies("A", 0.3, 6.0)]
+    [0.0, 1.570796, 4.712389, 5.877382]
     """
     nu = float(check_nu(nu))
     check_positive("omega_max", omega_max)
@@ -290,7 +290,8 @@ def _illinois(f, a, b, fa, fb, rtol: float, max_iter: int = 100):
         if idx.size == 0:
             break
         A, B, FA, FB = a[idx], b[idx], fa[idx], fb[idx]
-        c = (A * FB - B * FA) / (FB - FA)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            c = (A * FB - B * FA) / (FB - FA)
         bad = ~((c > np.minimum(A, B)) & (c < np.maximum(A, B)))
         c = np.where(bad, 0.5 * (A + B), c)
         fc = f(idx, c)
@@ -309,12 +310,51 @@ def _illinois(f, a, b, fa, fb, rtol: float, max_iter: int = 100):
     return 0.5 * (a + b), active
 
 
-def _scan_roots(kind, kappa, nu, omega_top, step, rtol, max_depth):
-    """All roots of G in (0, omega_top] for every kappa: list of arrays, and failures."""
+def _scan_roots(kind, kappa, nu, omega_top, step, rtol, max_depth, max_passes=6):
+    """All roots of G in (0, omega_top] for every kappa: list of arrays, and failures.
+
+    Continuation safeguard: the roots found at each kappa's neighbours (and the midpoints
+    between them) are added as samples, until no pass finds a new root.
+    """
     grid = np.arange(0.0, omega_top + step, step)
     ki = np.repeat(np.arange(kappa.size), grid.size)
     w = np.tile(grid, kappa.size)
     g = deflated_frequency_function(kind, kappa[ki], w, nu)
+    count = None
+    for _ in range(max_passes):
+        per_k, failures, ki, w, g = _refine_and_solve(kind, kappa, nu, ki, w, g, rtol, max_depth)
+        new_count = np.array([r.size for r in per_k])
+        if count is not None and np.array_equal(new_count, count):
+            break
+        count = new_count
+        seeds_k, seeds_w = [], []
+        for i in range(kappa.size):
+            for nb in (i - 1, i + 1):
+                if 0 <= nb < kappa.size and per_k[nb].size:
+                    r = per_k[nb]
+                    extra = np.concatenate([r, 0.5 * (r[1:] + r[:-1])])
+                    seeds_w.append(extra[extra <= omega_top])
+                    seeds_k.append(np.full(seeds_w[-1].size, i))
+        if not seeds_k:
+            break
+        new_k, new_w = np.concatenate(seeds_k), np.concatenate(seeds_w)
+        new_g = deflated_frequency_function(kind, kappa[new_k], new_w, nu)
+        ki, w, g = _merge((ki, w, g), (new_k, new_w, new_g))
+    else:
+        failures.append((kind, float(kappa[0]), "continuation passes did not settle"))
+    return per_k, failures
+
+
+def _merge(old, new):
+    """Union of two sample sets (kappa index, Omega, G), sorted, duplicates dropped."""
+    ki, w, g = (np.concatenate(v) for v in zip(old, new))
+    order = np.lexsort((w, ki))
+    ki, w, g = ki[order], w[order], g[order]
+    keep = np.concatenate([[True], (np.diff(w) != 0) | (np.diff(ki) != 0)])
+    return ki[keep], w[keep], g[keep]
+
+
+def _refine_and_solve(kind, kappa, nu, ki, w, g, rtol, max_depth):
     failures = []
     for depth in range(max_depth + 1):
         same_k = ki[1:-1] == ki[:-2]
@@ -350,9 +390,7 @@ def _scan_roots(kind, kappa, nu, omega_top, step, rtol, max_depth):
         ])
         new_k = np.concatenate([np.repeat(ki[j], frac.size), np.repeat(ki[j], frac.size)])
         new_g = deflated_frequency_function(kind, kappa[new_k], new_w, nu)
-        ki, w, g = (np.concatenate(v) for v in ((ki, new_k), (w, new_w), (g, new_g)))
-        order = np.lexsort((w, ki))
-        ki, w, g = ki[order], w[order], g[order]
+        ki, w, g = _merge((ki, w, g), (new_k, new_w, new_g))
     # brackets: sign changes between neighbours at the same kappa, plus exact zeros
     same = ki[1:] == ki[:-1]
     change = same & (np.sign(g[1:]) != np.sign(g[:-1])) & (g[:-1] != 0)
@@ -371,7 +409,7 @@ def _scan_roots(kind, kappa, nu, omega_top, step, rtol, max_depth):
     order = np.lexsort((roots, kk))
     roots, kk = roots[order], kk[order]
     per_k = np.split(roots, np.searchsorted(kk, np.arange(1, kappa.size)))
-    return per_k, failures
+    return per_k, failures, ki, w, g
 
 
 def trace_branches(
@@ -419,7 +457,7 @@ def trace_branches(
     >>> sorted(br.omega)
     ['A0', 'A1', 'S0', 'S1', 'S2']
     >>> bool(br.omega["S2"][0] == math.pi), round(float(br.omega["A0"][1]), 12)
-    (True, 0.651308429091)
+    (True, 0.650345159155)
 
     References
     ----------

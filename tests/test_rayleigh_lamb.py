@@ -1,0 +1,194 @@
+"""Exact Rayleigh-Lamb branches: numeric twin, deflation, cut-offs, tracing accuracy."""
+from __future__ import annotations
+
+import math
+
+import mpmath
+import numpy as np
+import pytest
+
+from dispersion.errors import InputError
+from dispersion.rayleigh_lamb import (
+    cutoff_frequencies,
+    deflated_frequency_function,
+    frequency_function,
+    numeric_frequency_function,
+    speed_ratio_squared,
+    trace_branches,
+)
+
+mpmath.mp.dps = 40
+
+
+def mp_C(z):
+    return mpmath.cos(mpmath.sqrt(z))
+
+
+def mp_S(z):
+    return mpmath.sinc(mpmath.sqrt(z))
+
+
+def mp_F(kind, kappa, Omega, nu):
+    """The defining equation (frequency_function) in 40-digit arithmetic."""
+    F = frequency_function(kind, mpmath.mpf(kappa) ** 2, Omega**2, mpmath.mpf(nu), mp_C, mp_S)
+    return mpmath.re(F)
+
+
+def mp_root(kind, kappa, Omega0, nu):
+    """High-precision root of F/Omega^2 near Omega0 (independent of the float tracer)."""
+    def f(W):
+        return mp_F(kind, kappa, W, nu) / W**2
+
+    x0 = mpmath.mpf(Omega0)
+    r = mpmath.findroot(f, (x0 * (1 - mpmath.mpf("1e-9")), x0 * (1 + mpmath.mpf("1e-9"))),
+                        solver="anderson", verify=False)
+    # certify: a sign change within 1e-25 relative brackets the root
+    assert f(r * (1 - mpmath.mpf("1e-25"))) * f(r * (1 + mpmath.mpf("1e-25"))) < 0
+    return r
+
+
+@pytest.mark.parametrize("kind", ["S", "A"])
+def test_numeric_twin_and_deflation_match_the_definition(kind):
+    # Omega^2 G = F at points covering small/large kappa and evanescent P, Q < 0
+    rng = np.random.default_rng(1)
+    pts = list(zip(rng.uniform(0, 12, 25), rng.uniform(0, 8, 25))) + [(0.05, 0.002), (15, 0.1)]
+    for kappa, Omega in pts:
+        ref = mp_F(kind, kappa, mpmath.mpf(Omega), 0.3)
+        F = float(numeric_frequency_function(kind, kappa, Omega, 0.3))
+        G = float(deflated_frequency_function(kind, kappa, Omega, 0.3))
+        # rounding is relative to the size of the terms: |a|^2 + 4 k^2 (|P| + |Q|) times cosh^2
+        k2, W2 = kappa**2, Omega**2
+        terms = ((W2 - 2 * k2) ** 2 + 4 * k2 * 2 * (k2 + W2)) * math.cosh(math.sqrt(k2 + W2)) ** 2
+        assert abs(F - float(ref)) <= 1e-13 * terms
+        assert abs(W2 * G - float(ref)) <= 1e-13 * terms
+    # where deflation matters: near A0 at small kappa, G keeps full relative accuracy
+    for kappa, Omega in [(0.05, 0.002), (0.01, 1e-4), (0.2, 0.03)]:
+        ref = mp_F(kind, kappa, mpmath.mpf(Omega), 0.3) / mpmath.mpf(Omega) ** 2
+        G = float(deflated_frequency_function(kind, kappa, Omega, 0.3))
+        assert abs(G - float(ref)) <= 1e-13 * abs(float(ref))
+
+
+def test_cutoffs_closed_forms():
+    # kappa = 0: F_S = Omega^4 C(s Omega^2) S(Omega^2), F_A = Omega^4 S(s Omega^2) C(Omega^2)
+    nu = 0.3
+    s = speed_ratio_squared(nu)
+    for kind in "SA":
+        for w, fam in cutoff_frequencies(kind, nu, 12.0)[1:]:
+            G = mp_F(kind, 0, mpmath.mpf(w), nu) / mpmath.mpf(w) ** 4
+            assert abs(G) < 1e-13
+            ratio = w / math.pi if fam == "T" else w * math.sqrt(s) / math.pi
+            twice = 2 * ratio
+            assert abs(twice - round(twice)) < 1e-12
+            # symmetric: shear at m*pi, stretch at odd multiples of pi/2 (Rose 2004 ch. 8)
+            expect_odd = (kind == "S") == (fam == "L")
+            assert (round(twice) % 2 == 1) == expect_odd
+
+
+def test_traced_roots_match_mpmath_to_1e12():
+    nu = 0.3
+    kappa = np.array([1e-3, 0.01, 0.1, 0.5, 1.0, 2.0, 3.7, 6.0])
+    br = trace_branches(nu, kappa, 6.0)
+    assert br.failures == []
+    checked = 0
+    for label, omega in br.omega.items():
+        for k, w in zip(kappa, omega):
+            if np.isnan(w):
+                continue
+            ref = mp_root(label[0], k, w, nu)
+            assert abs(w - float(ref)) <= 1e-12 * float(ref), (label, k)
+            checked += 1
+    assert checked > 30
+
+
+def test_s0_series_small_kappa():
+    # paper eq (14): Omega^2 = 2/(1-nu) k^2 - 2 nu^2/(3 (1-nu)^3) k^4 + O(k^6)
+    nu = 0.3
+    kappa = np.array([0.01, 0.02, 0.04])
+    w2 = trace_branches(nu, kappa, 1.0, kinds=("S",)).omega["S0"] ** 2
+    series = 2 / (1 - nu) * kappa**2 - 2 * nu**2 / (3 * (1 - nu) ** 3) * kappa**4
+    rem = np.abs(w2 - series) / kappa**6
+    assert np.all(rem < 1.0)  # remainder is O(k^6): eq (14)'s next coefficient is ~0.02
+
+
+def test_series_against_power_balance():
+    pb = pytest.importorskip("dispersion.power_balance")
+    nu = 0.3
+    kappa = np.array([0.005, 0.01])  # truncation after k^8: relative remainder ~ k^6
+    br = trace_branches(nu, kappa, 1.0)
+    for label in ("S0", "A0"):
+        coef = pb.exact_series(label, 8, nu=nu)
+        series = sum(float(c) * kappa**k for k, c in coef.items())
+        assert np.allclose(br.omega[label] ** 2, series, rtol=1e-9, atol=0)
+
+
+def test_rayleigh_wave_limit():
+    # S0 and A0 tend to the Rayleigh wave: Omega/kappa -> xi with
+    # (2 - xi^2)^2 = 4 sqrt(1 - xi^2) sqrt(1 - s xi^2)   (Rayleigh 1885), solved here in mpmath
+    nu = 0.3
+    s = speed_ratio_squared(nu)
+    xi = mpmath.findroot(
+        lambda x: (2 - x**2) ** 2 - 4 * mpmath.sqrt(1 - x**2) * mpmath.sqrt(1 - s * x**2), 0.9)
+    xi = mpmath.re(xi)
+    kappa = np.array([30.0])  # the S0/A0 split decays like exp(-2 kappa sqrt(1 - xi^2))
+    br = trace_branches(nu, kappa, 28.0)
+    for label in ("S0", "A0"):
+        assert abs(br.omega[label][0] / kappa[0] - float(xi)) < 1e-7
+    # A0 approaches from below, S0 from above
+    assert br.omega["A0"][0] < float(xi) * 30 < br.omega["S0"][0]
+
+
+def test_veering_pair_resolved():
+    # nu = 0.1: S1 and S2 veer near kappa ~ 4.25, Omega ~ 6.3 with a gap ~ 0.17; a scan
+    # step of 0.5 cannot see the pair unaided, the dip refinement must find both roots
+    nu = 0.1
+    kappa = np.linspace(4.0, 4.5, 26)
+    coarse = trace_branches(nu, kappa, 8.0, step=0.5)
+    fine = trace_branches(nu, kappa, 8.0, step=0.005)
+    assert coarse.failures == [] and fine.failures == []
+    assert sorted(coarse.omega) == sorted(fine.omega)
+    for label in coarse.omega:
+        assert np.allclose(coarse.omega[label], fine.omega[label], rtol=1e-13, equal_nan=True)
+    gap = coarse.omega["S2"] - coarse.omega["S1"]
+    assert np.all(gap > 0) and gap.min() < 0.25
+    i = int(np.argmin(gap))
+    for label in ("S1", "S2"):
+        w = coarse.omega[label][i]
+        assert abs(w - float(mp_root("S", kappa[i], w, nu))) < 1e-12 * w
+
+
+def test_coincident_cutoffs_at_nu_one_third():
+    # nu = 1/3: c_L = 2 c_T, stretch cut-off pi/(2 sqrt s) = pi = first shear cut-off
+    nu = 1 / 3
+    cuts = [w for w, _ in cutoff_frequencies("S", nu, 3.5)]
+    assert len(cuts) == 3 and abs(cuts[1] - math.pi) < 1e-14 and abs(cuts[2] - math.pi) < 1e-14
+    kappa = np.array([0.0, 0.02, 0.05, 0.1])
+    br = trace_branches(nu, kappa, 3.5, kinds=("S",))
+    assert br.failures == []
+    assert br.omega["S1"][0] == br.omega["S2"][0] == cuts[1]
+    for i in range(1, kappa.size):
+        w1, w2 = br.omega["S1"][i], br.omega["S2"][i]
+        assert w1 < w2
+        for w in (w1, w2):
+            assert abs(w - float(mp_root("S", kappa[i], w, nu))) < 1e-12 * w
+
+
+@pytest.mark.parametrize(
+    "kwargs",
+    [
+        dict(nu=0.3, kappa=[], omega_max=1.0),
+        dict(nu=0.3, kappa=[0.1, float("nan")], omega_max=1.0),
+        dict(nu=0.3, kappa=[-1.0], omega_max=1.0),
+        dict(nu=0.3, kappa=[1.0], omega_max=0.0),
+        dict(nu=0.3, kappa=[1.0], omega_max=float("inf")),
+        dict(nu=0.7, kappa=[1.0], omega_max=1.0),
+    ],
+)
+def test_bad_input(kwargs):
+    with pytest.raises(InputError):
+        trace_branches(**kwargs)
+
+
+def test_unresolvable_pair_is_reported_not_hidden():
+    # at nu = 1/3 and kappa = 1e-9 the S1/S2 split is ~1e-18: below float resolution
+    br = trace_branches(1 / 3, [1e-9], 3.5, kinds=("S",), max_depth=3)
+    assert br.failures and br.failures[0][0] == "S"

@@ -48,7 +48,8 @@ def register(subparsers) -> None:
     )
     parser.add_argument("--out", default="reports", help="output directory (default: reports)")
     parser.add_argument(
-        "--quick", action="store_true", help="quick subset (coarser grids, lower orders), as CI runs"
+        "--quick", action="store_true",
+        help="quick subset (coarser grids, lower orders), as CI runs",
     )
     parser.add_argument(
         "--jobs", type=int, default=None, help="worker processes for sweeps (default: CPU count)"

@@ -345,7 +345,8 @@ def _markdown(d: dict, quick: bool) -> str:
               "Order = lowest power of kappa at which the discrete Omega^2 series differs from "
               "the exact Rayleigh-Lamb series (eqs 14-15); '> N' means they agree up to the "
               "highest power computed, N.", "",
-              "| p | n | mass | S0 order | A0 order | S0 k^4 | A0 k^6 |", "|---|---|---|---|---|---|---|"]
+              "| p | n | mass | S0 order | A0 order | S0 k^4 | A0 k^6 |",
+              "|---|---|---|---|---|---|---|"]
     for row in d["orders"]:
         s0, a0 = (f"> {row['order']}" if row[f"{b}_order"] is None else row[f"{b}_order"]
                   for b in ("S0", "A0"))

@@ -1,0 +1,161 @@
+"""Power-balance series: paper eqs 14-20 derived, and checked by independent computations."""
+import mpmath
+import numpy as np
+import pytest
+import sympy
+
+from dispersion.errors import DispersionError, InputError
+from dispersion.plate import dynamic_stiffness, plate_patch
+from dispersion.power_balance import discrete_series, exact_series
+
+nu = sympy.Symbol("nu")
+SING = dict(mass="singular", contact="top", gamma_s=0)
+BLOCH2 = dict(model="bloch", r=2)
+
+
+def same(a, b):
+    return sympy.cancel(sympy.together(a - b)) == 0
+
+
+def test_eq14_exact_s0():
+    s = exact_series("S0", 6)
+    assert same(s[2], 2 / (1 - nu))                                                  # eq 14
+    assert same(s[4], -2 * nu**2 / (3 * (1 - nu) ** 3))                              # eq 14
+    assert same(s[6], 2 * nu**2 * (7 * nu**2 + 10 * nu - 6) / (45 * (1 - nu) ** 5))  # eq 14
+
+
+def test_eq15_exact_a0():
+    s = exact_series("A0", 6)
+    assert same(s[4], 2 / (3 * (1 - nu)))                            # eq 15
+    assert same(s[6], 2 * (7 * nu - 17) / (45 * (1 - nu) ** 2))      # eq 15
+
+
+def test_exact_a0_leading_term_is_kirchhoff_plate():
+    # classical plate: omega^2 = D k^4 / (rho 2h), D = E (2h)^3 / (12 (1 - nu^2)),
+    # in units h = c_T = 1: Omega^2 = 2/(3(1 - nu)) kappa^4 (Rose 2004, ch. 8)
+    assert same(exact_series("A0", 4)[4], sympy.Rational(2, 3) / (1 - nu))
+
+
+def test_exact_series_against_mpmath_root():
+    # independent: solve the tan-form Rayleigh-Lamb equation (Rose 2004) at kappa = 0.1, 40 digits
+    mpmath.mp.dps = 40
+    k, v = mpmath.mpf("0.1"), mpmath.mpf("0.3")
+    g = (1 - 2 * v) / (2 * (1 - v))
+    for branch, order in (("S0", 16), ("A0", 16)):
+        ser = exact_series(branch, order + 2, nu=sympy.Rational(3, 10))
+        nxt = ser.pop(order + 2)
+        W0 = sum(mpmath.mpf(sympy.Rational(c).p) / sympy.Rational(c).q * k**p for p, c in ser.items())
+
+        def f(W):
+            p, q = mpmath.sqrt(g * W - k**2), mpmath.sqrt(W - k**2)
+            a = (q**2 - k**2) ** 2
+            if branch == "S0":  # p may be imaginary; the products below are real
+                val = a * mpmath.cos(p) * mpmath.sin(q) / q + 4 * k**2 * p * mpmath.sin(p) * mpmath.cos(q)
+            else:
+                val = a * mpmath.sin(p) / p * mpmath.cos(q) + 4 * k**2 * q * mpmath.cos(p) * mpmath.sin(q)
+            return mpmath.re(val)
+
+        W = mpmath.findroot(f, W0)
+        # the truncation error is the next term, a_18 kappa^18 (itself from the series)
+        assert abs((W - W0) / (float(nxt) * k ** (order + 2)) - 1) < 0.1
+
+
+def test_eq17_eq18_consistent_mass_bloch_square_elements():
+    s, a = discrete_series("S0", 6, **BLOCH2), discrete_series("A0", 6, **BLOCH2)
+    assert same(s[2], 2 / (1 - nu)) and same(s[4], -2 * nu**2 / (3 * (1 - nu) ** 3))  # eq 17
+    printed6 = -(2 * nu**6 - 18 * nu**5 + nu**4 + 10 * nu**2 - 6 * nu + 1) / (
+        45 * (1 - nu) ** 5 * (1 - 2 * nu))
+    assert same(s[6], -2 * printed6)  # eq 17 kappa^6: derived = -2 x printed (errata)
+    assert same(a[4], 2 / (3 * (1 - nu)))                                  # eq 18
+    assert same(a[6], (2 * nu**2 + 8 * nu - 29) / (45 * (1 - nu) ** 2))   # eq 18
+
+
+def test_eq19_eq20_singular_mass_bloch_square_elements():
+    s, a = discrete_series("S0", 4, **BLOCH2, **SING), discrete_series("A0", 6, **BLOCH2, **SING)
+    assert same(s[2], 2 / (1 - nu))                                                     # eq 19
+    assert same(s[4], +2 * (41 * nu**2 - 10 * nu - 35) / (45 * (1 - nu) ** 3))  # eq 19, sign flipped
+    assert same(a[4], 2 / (3 * (1 - nu)))                                   # eq 20
+    assert same(a[6], (2 * nu**2 - 16 * nu - 25) / (45 * (1 - nu) ** 2))   # eq 20
+
+
+def _numeric_omega2(patch, branch, kval, nuval, guess):
+    """Root of det K_dyn near ``guess`` at 40 digits (independent of the series engine)."""
+    mpmath.mp.dps = 40
+    k, W = sympy.symbols("k W")
+    Kd = dynamic_stiffness(patch, k, sympy.sqrt(W), sympy.Rational(nuval))
+    f = sympy.lambdify((k, W), Kd, "mpmath")
+    return mpmath.findroot(lambda w: mpmath.det(mpmath.matrix(f(kval, w))), mpmath.mpf(guess))
+
+
+@pytest.mark.parametrize("eq,branch,kw,power", [("17", "S0", {}, 6), ("19", "S0", SING, 4)])
+def test_disputed_terms_against_high_precision_eigenvalue(eq, branch, kw, power):
+    # (W(kappa) - sum_{j < power} a_j kappa^j) / kappa^power -> a_power as kappa -> 0:
+    # the derived coefficient fits, the printed one (Omega^2 table in dispersion.errata) does not
+    from dispersion.errata import PRINTED
+    patch = plate_patch(**BLOCH2, **kw)
+    ser = discrete_series(branch, power + 2, **BLOCH2, **kw, nu=sympy.Rational(3, 10))
+    printed = PRINTED[eq][1][power].subs(nu, sympy.Rational(3, 10))
+    kval = mpmath.mpf("0.01")
+    guess = sum(float(c) * 0.01**p for p, c in ser.items())
+    W = _numeric_omega2(patch, branch, kval, "0.3", guess)
+    lower = sum(mpmath.mpf(float(c)) * kval**p for p, c in ser.items() if p < power)
+    fitted = (W - lower) / kval**power
+    tol = 10 * abs(float(ser[power + 2])) * float(kval) ** 2
+    assert abs(fitted - float(ser[power])) < tol
+    assert abs(fitted - float(printed)) > 100 * tol
+
+
+def test_nu_zero_s0_is_the_quadratic_spline_bar():
+    # nu = 0 decouples u_x = const: Omega^2 = 2 d/m, the 1D quadratic-spline bar, whose closed
+    # form from the stencils above is 20 (1 - c)(2 + c) / (16 + 13 c + c^2), c = cos(kappa r),
+    # per element length squared (Cottrell et al. 2006, sec. 3)
+    k = sympy.Symbol("kappa")
+    c = sympy.cos(2 * k)
+    bar = 2 * 20 * (1 - c) * (2 + c) / (4 * (16 + 13 * c + c**2))
+    taylor = sympy.series(bar, k, 0, 12).removeO()
+    ser = discrete_series("S0", 10, **BLOCH2, nu=0)
+    assert all(sympy.simplify(taylor.coeff(k, p) - ser[p]) == 0 for p in ser)
+    assert discrete_series("S0", 8, nu=0) == {2: 2, 4: 0, 6: 0, 8: 0}  # x-exact: Omega^2 = 2 kappa^2
+
+
+def test_split_and_full_determinant_agree():
+    for branch in ("S0", "A0"):
+        assert discrete_series(branch, 8, split=True) == discrete_series(branch, 8, split=False)
+
+
+def test_symbolic_aspect_ratio_specialises_to_numeric():
+    for branch in ("S0", "A0"):
+        sym = discrete_series(branch, 6, model="bloch")
+        num = discrete_series(branch, 6, model="bloch", r=2)
+        r = sympy.Symbol("r", positive=True)
+        assert all(same(sym[p].subs(r, 2), num[p]) for p in num)
+
+
+@pytest.mark.parametrize("mass,first_error", [("consistent", 6), ("lumped", 4), ("singular", 4)])
+def test_order_of_first_error_term(mass, first_error):
+    # paper, end of sec. 2: S0 error starts at kappa^6 for CMM, kappa^4 for the singular mass
+    ex = exact_series("S0", 8)
+    ds = discrete_series("S0", 8, **BLOCH2, mass=mass)
+    diff = [p for p in ds if not same(ds[p], ex[p])]
+    assert min(diff) == first_error
+
+
+def test_higher_degree_and_more_control_points_converge_to_exact_leading_terms():
+    ex = exact_series("A0", 6)
+    for p, n in [(2, 4), (3, 4), (3, 5)]:
+        a = discrete_series("A0", 6, p=p, n=n, model="x-exact")
+        assert same(a[4], ex[4])
+
+
+def test_printed_eq13_has_no_a0_branch():
+    with pytest.raises(DispersionError, match="no unique simple non-zero root"):
+        exact_series("A0", 6, form="printed")
+
+
+def test_bad_input():
+    with pytest.raises(InputError, match="order"):
+        discrete_series("A0", 2)
+    with pytest.raises(InputError, match="branch"):
+        exact_series("S1", 4)
+    with pytest.raises(InputError, match="nu must lie"):
+        exact_series("S0", 4, nu=-2)

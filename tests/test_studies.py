@@ -165,3 +165,31 @@ def test_bar_case_singular_mass_is_insensitive_to_the_contact_modification():
     std = studies._bar_case(("standard", "singular"), n_elements=10)
     assert kane["energy_change_percent"] == pytest.approx(std["energy_change_percent"], abs=1e-9)
     assert abs(kane["energy_change_percent"]) < 1.0
+
+
+def test_exact_branch_against_an_independent_bracket_and_bisect():
+    # Independent computation: the first sign change of the entire-function frequency
+    # equation (dispersion.rayleigh_lamb.frequency_function, Rose 2004 ch. 8) on a fine
+    # Omega grid, closed by Brent's method.
+    from scipy.optimize import brentq
+
+    from dispersion.rayleigh_lamb import frequency_function
+
+    def C(z):
+        return np.cos(np.emath.sqrt(z)).real
+
+    def S(z):
+        return np.sinc(np.emath.sqrt(z) / np.pi).real
+
+    for kind in ("S", "A"):
+        for k in (0.5, 1.0, 1.5):
+            def f(w):
+                return frequency_function(kind, k * k, np.asarray(w) ** 2, NU, C, S)
+
+            grid = np.linspace(1e-6, 3 * k + 0.1, 4000)
+            vals = f(grid)
+            i = np.nonzero(np.sign(vals[:-1]) != np.sign(vals[1:]))[0][0]
+            ref = brentq(f, grid[i], grid[i + 1], xtol=1e-15, rtol=1e-14)
+            assert studies.exact_branch(kind, [k], NU)[0] == pytest.approx(ref, rel=1e-11)
+    with pytest.raises(InputError, match="kind"):
+        studies.exact_branch("X", [0.1], NU)

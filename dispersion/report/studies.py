@@ -47,12 +47,11 @@ from pathlib import Path
 
 import numpy as np
 import sympy
-from scipy.optimize import brentq
 
-from ..errors import ConvergenceError, check_nu, check_positive, check_positive_int
+from ..errors import ConvergenceError, InputError, check_nu, check_positive, check_positive_int
 from ..io import save_figure, write_text
 from ..plate import mirror_bases, numeric_pencil, plate_patch
-from ..rayleigh_lamb import frequency_function
+from ..rayleigh_lamb import trace_branches
 from ..sweep import parallel_map
 
 __all__ = [
@@ -139,41 +138,28 @@ def critical_time_step(
     return float(2.0 / condensed_frequencies(patch, nu, theta / float(r)).max())
 
 
-def _C(z):
-    return np.cos(np.emath.sqrt(z)).real
-
-
-def _S(z):
-    return np.sinc(np.emath.sqrt(z) / np.pi).real
-
-
-def exact_branch(kind: str, kappa, nu: float, n_scan: int = 4000) -> np.ndarray:
+def exact_branch(kind: str, kappa, nu: float) -> np.ndarray:
     """Exact S0 (``kind="S"``) or A0 (``"A"``) :math:`\\Omega` of Rayleigh-Lamb at ``kappa``.
 
-    The lowest positive root of the entire-function frequency equation
-    (:func:`dispersion.rayleigh_lamb.frequency_function`): a sign scan on
-    :math:`0 < \\Omega \\le 3\\kappa + 0.1` then Brent's method to 1e-14.
+    The lowest root of the symmetry class ``kind``, from the branch tracer
+    :func:`dispersion.rayleigh_lamb.trace_branches` (which reports, never hides, a root it
+    could not certify: that becomes a :class:`~dispersion.errors.ConvergenceError` here).
 
     >>> round(float(exact_branch("S", [0.05], 0.3)[0]) ** 2 / 0.05**2, 3)  # eq 14: ~2/(1-nu)
     2.857
     """
+    if kind not in ("S", "A"):
+        raise InputError(f"kind must be 'S' or 'A', got {kind!r}")
     nu = float(check_nu(nu))
-    out = []
-    for k in np.atleast_1d(np.asarray(kappa, dtype=float)):
-        check_positive("kappa", k)
-        f = functools.partial(_rl, kind, k * k, nu)
-        grid = np.linspace(1e-6 * k, 3 * k + 0.1, n_scan)
-        vals = f(grid)
-        sign_change = np.nonzero(np.sign(vals[:-1]) != np.sign(vals[1:]))[0]
-        if sign_change.size == 0:
-            raise ConvergenceError(f"no {kind}0 root found at kappa = {k}")
-        i = sign_change[0]
-        out.append(brentq(f, grid[i], grid[i + 1], xtol=1e-15, rtol=1e-14))
-    return np.array(out)
-
-
-def _rl(kind, kappa2, nu, Omega):
-    return frequency_function(kind, kappa2, np.asarray(Omega) ** 2, nu, _C, _S)
+    kappa = np.atleast_1d(np.asarray(kappa, dtype=float))
+    # S0 and A0 lie below the line Omega = sqrt(2/(1-nu)) kappa < 2 kappa for nu < 1/2
+    traced = trace_branches(nu, kappa, omega_max=2.0 * float(kappa.max()) + 0.1, kinds=(kind,))
+    if traced.failures:
+        raise ConvergenceError(f"exact {kind}0 branch not certified: {traced.failures[0]}")
+    omega = traced.omega[f"{kind}0"]
+    if not np.all(np.isfinite(omega)):
+        raise ConvergenceError(f"exact {kind}0 branch missing at some kappa in {kappa}")
+    return omega
 
 
 # --------------------------------------------------------------------------- series

@@ -1,0 +1,255 @@
+"""Discrete dispersion branches of the plate patch: all finite roots of det(K - Omega^2 M) = 0.
+
+For each :math:`\\kappa` of a grid the pencil :math:`(K, M)` of
+:func:`dispersion.plate.numeric_pencil` is solved in one batched call: massless DOFs
+(singular masses, :attr:`PlatePatch.massless`) are condensed out by the Schur complement
+of K, *by construction* (their eigenvalues are infinite), then
+:math:`M_{rr} = L L^T` and :math:`\\Omega^2 = \\operatorname{eig}(L^{-1} \\hat K L^{-T})`,
+
+.. math::
+
+    \\hat K = K_{rr} - K_{rm} K_{mm}^{-1} K_{mr}, \\qquad
+    \\det(\\hat K - \\Omega^2 M_{rr}) = 0.
+
+Where the mass keeps the mirror symmetry y -> -y (:func:`dispersion.plate.mirror_bases`),
+the pencil splits into a symmetric and an antisymmetric block and the branches are labelled
+``S0, S1, ...`` and ``A0, A1, ...`` in increasing :math:`\\Omega` (within a block they cannot
+cross). Otherwise the symmetry is ``"mixed"``: a branch is labelled by the dominant mirror
+parity of its mode shape, and the label says so. The Bloch model is periodic in
+:math:`\\kappa` with period :math:`2\\pi/r`; beyond the zone edge :math:`\\pi/r` its branches are
+the folded ones.
+
+>>> from dispersion.plate import plate_patch
+>>> br = discrete_branches(plate_patch(), 0.3, [0.5, 1.0])
+>>> sorted(br.omega), br.symmetry["S0"]
+(['A0', 'A1', 'A2', 'S0', 'S1', 'S2'], 'S')
+
+References
+----------
+A. Tkachuk et al., section 2, eq (16) and Figure 2. G. H. Golub, C. F. Van Loan, *Matrix
+computations*, 4th ed., section 8.7 (symmetric-definite pencils).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .errors import InputError, check_nu
+from .plate import PlatePatch, mirror_bases, numeric_pencil
+
+__all__ = [
+    "DiscreteBranches",
+    "pencil_frequencies",
+    "discrete_branches",
+    "relative_error",
+    "fitted_order",
+    "predicted_error",
+    "congruence",
+]
+
+
+@dataclass
+class DiscreteBranches:
+    """Discrete branches on a kappa grid.
+
+    ``omega[label]`` has one entry per kappa (NaN where that branch does not exist there);
+    ``symmetry[label]`` is ``"S"``, ``"A"`` or ``"mixed"``; ``zone_edge`` is :math:`\\pi/r`
+    for the Bloch model (None for x-exact).
+    """
+
+    kappa: np.ndarray
+    omega: dict[str, np.ndarray]
+    symmetry: dict[str, str]
+    zone_edge: float | None = None
+
+
+def _condense(K, M, massless):
+    n = K.shape[-1]
+    m = np.asarray(sorted(massless), dtype=int)
+    r = np.setdiff1d(np.arange(n), m)
+    if m.size == 0:
+        return K, M, r, m
+    Krr, Krm = K[:, r][:, :, r], K[:, r][:, :, m]
+    Kmm = K[:, m][:, :, m]
+    Khat = Krr - Krm @ np.linalg.solve(Kmm, np.swapaxes(Krm, 1, 2))
+    return Khat, M[:, r][:, :, r], r, m
+
+
+def pencil_frequencies(K, M, massless=(), vectors: bool = False):
+    """Finite :math:`\\Omega \\ge 0` of the batched pencils, ascending, shape ``(m, n - len(massless))``.
+
+    ``massless`` lists DOFs whose mass rows and columns vanish identically; they are
+    condensed, so no infinite eigenvalue is ever formed. With ``vectors=True`` also the
+    mode shapes in all DOFs, shape ``(m, n, n_finite)``.
+
+    >>> K = np.array([[[2.0, -1.0], [-1.0, 2.0]]]); M = np.array([[[1.0, 0.0], [0.0, 0.0]]])
+    >>> pencil_frequencies(K, M, massless=(1,)).round(6).tolist()   # 2 - 1/2 = 1.5
+    [[1.224745]]
+    """
+    K, M = np.asarray(K, dtype=float), np.asarray(M, dtype=float)
+    Kh, Mr, r, m = _condense(K, M, massless)
+    scale = _common_shape(Mr)
+    try:
+        if scale is not None:  # M(kappa) = scale(kappa) * M0: one factorisation for the grid
+            Li = np.linalg.inv(np.linalg.cholesky(Mr[0]))
+            A = congruence(Li, Kh) / scale[:, None, None]
+            Li = np.broadcast_to(Li / np.sqrt(scale)[:, None, None], Mr.shape)
+        else:
+            Li = np.linalg.inv(np.linalg.cholesky(Mr))
+            A = Li @ Kh @ np.swapaxes(Li, 1, 2)
+    except np.linalg.LinAlgError:
+        raise InputError("mass matrix is not positive definite on the DOFs with mass") from None
+    A = 0.5 * (A + np.swapaxes(A, 1, 2))
+    if not vectors:
+        lam = np.linalg.eigvalsh(A)
+        return np.sqrt(np.clip(lam, 0, None))  # rounding only: K is positive semi-definite
+    lam, Y = np.linalg.eigh(A)
+    X = np.empty((K.shape[0], K.shape[1], lam.shape[1]))
+    Xr = np.swapaxes(Li, 1, 2) @ Y
+    X[:, r] = Xr
+    if m.size:
+        Kmm = K[:, m][:, :, m]
+        X[:, m] = -np.linalg.solve(Kmm, K[:, m][:, :, r] @ Xr)
+    return np.sqrt(np.clip(lam, 0, None)), X
+
+
+def congruence(T, K):
+    """:math:`T K_i T^T` for a constant T and a stack K, as one matrix product.
+
+    >>> T = np.array([[1.0, 1.0]]); congruence(T, np.eye(2)[None]).tolist()
+    [[[2.0]]]
+    """
+    T, K = np.asarray(T, dtype=float), np.asarray(K, dtype=float)
+    k, n = T.shape
+    return (K.reshape(K.shape[0], n * n) @ np.kron(T, T).T).reshape(K.shape[0], k, k)
+
+
+def _common_shape(M):
+    """``s`` with ``M[i] == s[i] * M[0]`` to rounding, or None."""
+    if M.shape[0] == 0 or M.shape[1] == 0:
+        return None
+    d = np.diagonal(M[0])
+    i0 = int(np.argmax(d))
+    if d[i0] <= 0:
+        return None
+    s = M[:, i0, i0] / d[i0]
+    if np.any(s <= 0):
+        return None
+    if np.max(np.abs(M - s[:, None, None] * M[0])) <= 1e-14 * np.max(np.abs(M)):
+        return s
+    return None
+
+
+def _geometric_mirror(n: int) -> np.ndarray:
+    """Mirror y -> -y on the DOFs: u_x even, u_y odd (J on x, -J on y)."""
+    J = np.fliplr(np.eye(n))
+    return np.block([[J, np.zeros((n, n))], [np.zeros((n, n)), -J]])
+
+
+def _check_kappa(kappa) -> np.ndarray:
+    kappa = np.atleast_1d(np.asarray(kappa, dtype=float))
+    if kappa.ndim != 1 or kappa.size == 0:
+        raise InputError("kappa must be a non-empty 1-d array")
+    if not np.all(np.isfinite(kappa)) or np.any(kappa < 0):
+        raise InputError("kappa must be finite and >= 0")
+    return kappa
+
+
+def discrete_branches(patch: PlatePatch, nu: float, kappa) -> DiscreteBranches:
+    """All finite discrete branches of ``patch`` on the grid ``kappa`` (see module docstring).
+
+    Parameters
+    ----------
+    patch : PlatePatch
+        From :func:`dispersion.plate.plate_patch` (numeric aspect ratio for the Bloch model).
+    nu : float
+        Poisson's ratio in (-1, 0.5).
+    kappa : array_like
+        :math:`\\kappa = kh \\ge 0`.
+    """
+    nu = float(check_nu(nu))
+    kappa = _check_kappa(kappa)
+    K, M = numeric_pencil(patch, nu, kappa)
+    zone = math.pi / float(patch.r) if patch.model == "bloch" else None
+    massless = set(patch.massless)
+    omega, symmetry = {}, {}
+    bases = mirror_bases(patch)
+    if bases is not None:
+        for kind in ("S", "A"):
+            E = bases[kind]
+            support = [set(np.flatnonzero(np.abs(E[:, j]) > 0)) for j in range(E.shape[1])]
+            ml = tuple(j for j, s in enumerate(support) if s <= massless)
+            if any(s & massless and not s <= massless for s in support):
+                raise InputError("mirror basis mixes massless and massive DOFs")
+            Kb, Mb = congruence(E.T, K), congruence(E.T, M)
+            W = pencil_frequencies(Kb, Mb, ml)
+            for j in range(W.shape[1]):
+                omega[f"{kind}{j}"], symmetry[f"{kind}{j}"] = W[:, j], kind
+        return DiscreteBranches(kappa, omega, symmetry, zone)
+    W, X = pencil_frequencies(K, M, tuple(massless), vectors=True)
+    P = _geometric_mirror(patch.n)
+    sym_part = 0.5 * (X + P @ X)
+    frac = np.sum(sym_part**2, axis=1) / np.sum(X**2, axis=1)
+    is_s = frac >= 0.5
+    rank_s = np.cumsum(is_s, axis=1) - 1
+    rank_a = np.cumsum(~is_s, axis=1) - 1
+    for kind, mask, rank in (("S", is_s, rank_s), ("A", ~is_s, rank_a)):
+        for j in range(int(mask.sum(axis=1).max(initial=0))):
+            sel = mask & (rank == j)
+            has = sel.any(axis=1)
+            vals = np.full(kappa.size, np.nan)
+            vals[has] = W[has][sel[has]]
+            omega[f"{kind}{j}"], symmetry[f"{kind}{j}"] = vals, "mixed"
+    return DiscreteBranches(kappa, omega, symmetry, zone)
+
+
+def relative_error(discrete: DiscreteBranches, exact) -> dict[str, np.ndarray]:
+    """:math:`|\\Omega^h - \\Omega| / \\Omega` per label present in both (S0 with S0, ...).
+
+    ``exact`` is a :class:`dispersion.rayleigh_lamb.ExactBranches` on the same grid.
+    Points with :math:`\\Omega = 0` give NaN.
+    """
+    if not np.array_equal(discrete.kappa, exact.kappa):
+        raise InputError("discrete and exact branches must share the kappa grid")
+    out = {}
+    for label, w in discrete.omega.items():
+        if label in exact.omega:
+            ref = exact.omega[label]
+            with np.errstate(divide="ignore", invalid="ignore"):
+                out[label] = np.where(ref > 0, np.abs(w - ref) / ref, np.nan)
+    return out
+
+
+def fitted_order(kappa, error) -> float:
+    """Least-squares slope q of :math:`\\log e = q \\log \\kappa + c` over finite positive points.
+
+    >>> k = np.array([0.01, 0.02, 0.04]); round(fitted_order(k, 3 * k**4), 12)
+    4.0
+    """
+    kappa, error = np.asarray(kappa, dtype=float), np.asarray(error, dtype=float)
+    ok = (kappa > 0) & (error > 0) & np.isfinite(error)
+    if ok.sum() < 2:
+        raise InputError("need at least two points with kappa > 0 and a positive error")
+    return float(np.polyfit(np.log(kappa[ok]), np.log(error[ok]), 1)[0])
+
+
+def predicted_error(branch: str, nu: float, order: int = 10, **patch_kwargs) -> tuple[int, float]:
+    """Leading term of the relative error of :math:`\\Omega` from the series of the core issue.
+
+    With :math:`\\Omega_h^2 - \\Omega^2 = \\delta \\kappa^m + \\dots` (``discrete_series`` minus
+    ``exact_series``) and :math:`\\Omega^2 = c \\kappa^l + \\dots`, the relative error of
+    :math:`\\Omega` is :math:`\\tfrac{\\delta}{2c} \\kappa^{m-l}`. Returns ``(m - l, delta / 2c)``.
+    """
+    from .power_balance import discrete_series, exact_series
+
+    d = discrete_series(branch, order, nu=nu, **patch_kwargs)
+    e = exact_series(branch, order, nu=nu)
+    lead = min(k for k, v in e.items() if v != 0)
+    diff = {k: float(d.get(k, 0)) - float(e.get(k, 0)) for k in sorted(set(d) | set(e))}
+    nonzero = [k for k, v in diff.items() if abs(v) > 1e-14 * max(1.0, abs(float(e.get(k, 1))))]
+    if not nonzero:
+        raise InputError(f"no error term up to kappa^{order}; raise order")
+    m = nonzero[0]
+    return m - lead, diff[m] / (2 * float(e[lead]))

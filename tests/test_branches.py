@@ -1,0 +1,127 @@
+"""Discrete branches: batched pencil solve, condensation, symmetry, order of accuracy."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import scipy.linalg
+
+from dispersion.branches import (
+    discrete_branches,
+    fitted_order,
+    pencil_frequencies,
+    predicted_error,
+    relative_error,
+)
+from dispersion.errors import InputError
+from dispersion.plate import numeric_pencil, plate_patch
+from dispersion.rayleigh_lamb import trace_branches
+
+NU = 0.3
+
+
+def _scipy_reference(K, M):
+    """Finite generalized eigenvalues one point at a time (scipy QZ), infinite ones dropped."""
+    out = []
+    for Ki, Mi in zip(K, M):
+        lam = scipy.linalg.eig(Ki, Mi, right=False, homogeneous_eigvals=True)
+        a, b = lam
+        finite = np.abs(b) > 1e-9 * np.abs(a)  # reference only: QZ gives (a, b) pairs
+        out.append(np.sort(np.sqrt(np.abs((a[finite] / b[finite]).real))))
+    return out
+
+
+@pytest.mark.parametrize("mass", ["consistent", "lumped", "singular", "singular-lumped"])
+@pytest.mark.parametrize("model", ["x-exact", "bloch"])
+def test_batched_frequencies_match_pointwise_qz(mass, model):
+    patch = plate_patch(mass=mass, model=model, r=0.5)
+    kappa = np.array([0.0, 0.3, 1.1, 2.5, 7.0])
+    K, M = numeric_pencil(patch, NU, kappa)
+    W = pencil_frequencies(K, M, patch.massless)
+    ref = _scipy_reference(K, M)
+    assert W.shape == (kappa.size, 2 * patch.n - len(patch.massless))
+    for w, r in zip(W, ref):
+        assert r.size == w.size  # condensation removes exactly the infinite eigenvalues
+        assert np.allclose(w, r, rtol=1e-8, atol=1e-7)
+
+
+def test_condensation_is_exact_schur_complement():
+    # 2x2: K = [[2, -1], [-1, 2]], M = diag(1, 0): det(K - w^2 M) = 3 - 2 w^2 = 0
+    K = np.array([[[2.0, -1.0], [-1.0, 2.0]]])
+    M = np.array([[[1.0, 0.0], [0.0, 0.0]]])
+    assert np.allclose(pencil_frequencies(K, M, (1,)), np.sqrt(1.5), rtol=1e-15)
+
+
+def test_symmetric_split_equals_full_spectrum():
+    patch = plate_patch(mass="consistent")
+    kappa = np.linspace(0.1, 4, 7)
+    br = discrete_branches(patch, NU, kappa)
+    K, M = numeric_pencil(patch, NU, kappa)
+    full = pencil_frequencies(K, M)
+    split = np.sort(np.column_stack([br.omega[k] for k in sorted(br.omega)]), axis=1)
+    assert np.allclose(split, full, rtol=1e-12)
+    assert set(br.symmetry.values()) == {"S", "A"}
+
+
+def test_mass_breaking_symmetry_is_mixed():
+    br = discrete_branches(plate_patch(mass="singular", contact="top"), NU, [0.5])
+    assert set(br.symmetry.values()) == {"mixed"}
+    assert len(br.omega) == 4  # paper section 2: two S-like and two A-like branches
+
+
+def test_cmm_has_six_branches_singular_four():
+    # paper section 2: three symmetric and three antisymmetric branches for CMM
+    br = discrete_branches(plate_patch(), NU, [1.0])
+    assert sorted(br.omega) == ["A0", "A1", "A2", "S0", "S1", "S2"]
+
+
+def test_cutoffs_converge_with_refinement():
+    # at kappa = 0 the exact S1 cut-off is pi/(2 sqrt s) (thickness stretch, Rose 2004)
+    exact = trace_branches(NU, [0.0], 4.0)
+    errs = []
+    for n in (3, 5, 9):
+        br = discrete_branches(plate_patch(p=2, n=n), NU, [0.0])
+        errs.append(abs(br.omega["A1"][0] - exact.omega["A1"][0]))
+    assert errs[0] > errs[1] > errs[2]
+
+
+def test_bloch_is_periodic_in_kappa():
+    r = 0.5
+    patch = plate_patch(model="bloch", r=r)
+    k = np.array([0.7, 0.7 + 2 * np.pi / r])
+    br = discrete_branches(patch, NU, k)
+    assert br.zone_edge == pytest.approx(np.pi / r)
+    for w in br.omega.values():
+        assert w[0] == pytest.approx(w[1], rel=1e-10)
+
+
+@pytest.mark.parametrize("mass", ["consistent", "singular", "lumped"])
+@pytest.mark.parametrize("branch", ["S0", "A0"])
+def test_fitted_order_matches_series(mass, branch):
+    pytest.importorskip("dispersion.power_balance")
+    kappa = np.geomspace(0.04, 0.16, 5)
+    if (mass, branch) == ("singular", "A0"):
+        # leading coefficient only ~0.007: the next term takes over sooner, fit closer to 0
+        kappa = np.geomspace(0.01, 0.04, 5)
+    d = discrete_branches(plate_patch(mass=mass), NU, kappa)
+    e = trace_branches(NU, kappa, 8.0)
+    err = relative_error(d, e)[branch]
+    q, coef = predicted_error(branch, NU, mass=mass)
+    assert abs(fitted_order(kappa, err) - q) < 0.1
+    # leading coefficient from discrete_series - exact_series, eq (14)-(20) machinery
+    assert err[0] / kappa[0] ** q == pytest.approx(abs(coef), rel=0.05)
+
+
+def test_paper_claim_s0_order_cmm_vs_singular():
+    # paper section 2: S0 error 4th order for CMM vs 2nd for the singular mass
+    kappa = np.geomspace(0.04, 0.16, 5)
+    e = trace_branches(NU, kappa, 4.0)
+    q_cmm = fitted_order(kappa, relative_error(discrete_branches(plate_patch(), NU, kappa), e)["S0"])
+    sing = discrete_branches(plate_patch(mass="singular"), NU, kappa)
+    q_sing = fitted_order(kappa, relative_error(sing, e)["S0"])
+    assert abs(q_cmm - 4) < 0.1 and abs(q_sing - 2) < 0.1
+
+
+@pytest.mark.parametrize("kappa", [[], [np.nan], [-1.0], [[0.1, 0.2]]])
+def test_bad_kappa(kappa):
+    with pytest.raises(InputError):
+        discrete_branches(plate_patch(), NU, kappa)

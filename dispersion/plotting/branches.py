@@ -27,7 +27,7 @@ def _axes(ax, size=(5.5, 4.0)):
     return ax
 
 
-def plot_exact(exact, ax=None, color="k", label="exact (Rayleigh-Lamb)"):
+def plot_exact(exact, ax=None, color="k", label="exact Rayleigh-Lamb (S solid, A dashed)"):
     """Exact branches: S solid, A dashed, one legend entry."""
     ax = _axes(ax)
     first = True
@@ -51,8 +51,9 @@ def plot_discrete(discrete, ax=None, color="C0", label="discrete", marker="o", e
         filled = name[0] == "S"
         ax.plot(discrete.kappa[::every], w[::every], ls="none", marker=marker, ms=3.5,
                 color=color, mfc=color if filled else "none",
-                label=(label + (" (S/A by dominant parity: mass breaks the mirror)" if mixed
-                                else "")) if first else None)
+                label=(label + (" (S filled, A open; by dominant parity, the mass breaks "
+                                "the mirror)" if mixed else " (S filled, A open)"))
+                if first else None)
         first = False
     if discrete.zone_edge is not None:
         plot_zone_edge(discrete.zone_edge, ax)
@@ -92,14 +93,17 @@ def figure2(exact, discretes: Sequence[tuple[str, object, Mapping]], title: str 
     """
     from matplotlib.figure import Figure
 
-    fig = Figure(figsize=(11, 4.4), layout="constrained")
+    fig = Figure(figsize=(11, 5.0), layout="constrained")
     ax, ax_err = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1.3, 1]})
     plot_exact(exact, ax)
     for i, (name, d, errors) in enumerate(discretes):
         plot_discrete(d, ax, color=f"C{i}", label=name, marker="os^v"[i % 4])
-        plot_errors(d.kappa, {k: v for k, v in errors.items() if k in ("S0", "A0", "S1", "A1")},
-                    ax_err, prefix=f"{name} ")
-    ax.legend(fontsize="small", loc="upper left")
+        # the exact partner of a Bloch branch exists only inside the first zone
+        inside = d.kappa <= (d.zone_edge if d.zone_edge is not None else np.inf)
+        plot_errors(d.kappa[inside], {k: v[inside] for k, v in errors.items()
+                                      if k in ("S0", "A0", "A1")}, ax_err, prefix=f"{name} ")
+    fig.legend(*ax.get_legend_handles_labels(), loc="outside lower center", ncol=3,
+               fontsize="small")
     ax_err.legend(fontsize="x-small", ncol=2)
     ax_err.set_title("error against the exact partner branch", fontsize="small")
     if title:

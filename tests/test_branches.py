@@ -125,3 +125,13 @@ def test_paper_claim_s0_order_cmm_vs_singular():
 def test_bad_kappa(kappa):
     with pytest.raises(InputError):
         discrete_branches(plate_patch(), NU, kappa)
+
+
+def test_report_quick_writes_linked_files(tmp_path):
+    import re
+
+    from dispersion.report.branches import report
+
+    md = report(tmp_path, quick=True)
+    links = re.findall(r"\]\(([^)]+)\)", md)
+    assert links and all((tmp_path / link).is_file() for link in links)

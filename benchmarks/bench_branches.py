@@ -1,0 +1,144 @@
+"""Benchmark of the dispersion branches (issue 3): batched vs per-point, tracer vs naive scan.
+
+Run:  python benchmarks/bench_branches.py [--quick] [--out DIR]
+
+Prints tables with ratios and peak memory (tracemalloc, numpy allocations included);
+with ``--out`` also writes the speed-vs-accuracy chart and the rows as JSON.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import time
+import tracemalloc
+from pathlib import Path
+
+import numpy as np
+import scipy.linalg
+from scipy.optimize import brentq
+
+from dispersion.branches import discrete_branches
+from dispersion.plate import numeric_pencil, plate_patch
+from dispersion.rayleigh_lamb import numeric_frequency_function, trace_branches
+from dispersion.report.branches import measure_discrete, measure_tracer, mpmath_check
+
+NU = 0.3
+
+
+def timed(func, *args, repeat=3, **kwargs):
+    best, out = np.inf, None
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        out = func(*args, **kwargs)
+        best = min(best, time.perf_counter() - t0)
+    return best, out
+
+
+def peak_mib(func, *args, **kwargs) -> float:
+    tracemalloc.start()
+    func(*args, **kwargs)
+    peak = tracemalloc.get_traced_memory()[1]
+    tracemalloc.stop()
+    return peak / 2**20
+
+
+def per_point_eig(patch, kappa):
+    """The plain baseline: one scipy.linalg.eig (QZ) per kappa, infinite roots dropped."""
+    K, M = numeric_pencil(patch, NU, kappa)
+    out = []
+    for Ki, Mi in zip(K, M):
+        a, b = scipy.linalg.eig(Ki, Mi, right=False, homogeneous_eigvals=True)
+        fin = np.abs(b) > 1e-12 * np.abs(a)
+        out.append(np.sort(np.sqrt(np.abs((a[fin] / b[fin]).real))))
+    return out
+
+
+def naive_scan(kappa, omega_max, step=0.01):
+    """Bracket on a uniform Omega grid, bisect (brentq) each sign change of F, per kappa."""
+    roots = {}
+    grid = np.arange(step, omega_max + step, step)
+    for kind in "SA":
+        for i, k in enumerate(kappa):
+            f = numeric_frequency_function(kind, k, grid, NU)
+            idx = np.flatnonzero(np.sign(f[1:]) != np.sign(f[:-1]))
+            rs = [brentq(lambda w: float(numeric_frequency_function(kind, k, w, NU)),
+                         grid[j], grid[j + 1], xtol=1e-15, rtol=8.9e-16) for j in idx]
+            roots[(kind, i)] = [r for r in rs if r <= omega_max]
+    return roots
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--quick", action="store_true")
+    ap.add_argument("--out", type=Path)
+    args = ap.parse_args()
+
+    n_batch = 20_000 if args.quick else 100_000
+    n_loop = 500 if args.quick else 2_000
+    print(f"## Discrete branches, paper patch p=2 n=3 (6x6 pencil), nu={NU}")
+    print(f"{'case':34s} {'points':>8s} {'time s':>8s} {'points/s':>10s} {'ratio':>7s} {'peak MiB':>9s}")
+    for model, mass in (("x-exact", "consistent"), ("bloch", "consistent"),
+                        ("bloch", "singular"), ("x-exact", "lumped")):
+        patch = plate_patch(model=model, r=0.5, mass=mass)
+        kb = np.linspace(0, 10, n_batch)
+        tb, _ = timed(discrete_branches, patch, NU, kb)
+        kl = np.linspace(0, 10, n_loop)
+        tl, _ = timed(per_point_eig, patch, kl, repeat=1)
+        rb, rl = n_batch / tb, n_loop / tl
+        mem = peak_mib(discrete_branches, patch, NU, kb)
+        print(f"{model + ' ' + mass + ' batched':34s} {n_batch:8d} {tb:8.3f} {rb:10.0f} "
+              f"{rb / rl:7.1f} {mem:9.1f}")
+        print(f"{model + ' ' + mass + ' scipy eig loop':34s} {n_loop:8d} {tl:8.3f} {rl:10.0f} "
+              f"{1.0:7.1f} {'':>9s}")
+
+    print("\n## Rayleigh-Lamb: all branches with Omega <= 6, kappa in [0, 10]")
+    k = np.linspace(0, 10, 1000)
+    tt, br = timed(trace_branches, NU, k, 6.0)
+    err = mpmath_check(br, count=20 if args.quick else 60)
+    mem = peak_mib(trace_branches, NU, k, 6.0)
+    n_naive = 100 if args.quick else 1000
+    kn = np.linspace(0, 10, n_naive)[1:]
+    tn, naive = timed(naive_scan, kn, 6.0, repeat=1)
+    ref = trace_branches(NU, kn, 6.0)
+    ref_roots = {(kind, i): [v[i] for lab, v in ref.omega.items()
+                             if lab[0] == kind and np.isfinite(v[i])]
+                 for kind in "SA" for i in range(kn.size)}
+    missed = sum(len(ref_roots[key]) - len(rs) for key, rs in naive.items())
+    naive_err = max((abs(a - b) / b for key, rs in naive.items()
+                     if len(rs) == len(ref_roots[key]) for a, b in zip(rs, ref_roots[key])),
+                    default=float("nan"))
+    n_roots = sum(int(np.isfinite(v).sum()) for v in br.omega.values())
+    print(f"tracer: {k.size} kappa, {n_roots} roots, {tt:.3f} s, max rel. error vs mpmath "
+          f"(40 digits, sampled) {err:.1e}, failures {len(br.failures)}, peak {mem:.1f} MiB")
+    print(f"naive scan (step 0.01 + brentq on F): {kn.size} kappa, {tn:.3f} s "
+          f"= {tn / kn.size * k.size:.2f} s per 1000 kappa; ratio "
+          f"{tn / kn.size * k.size / tt:.1f}x; roots it missed: {missed}; max rel. deviation "
+          f"from the tracer where it found all: {naive_err:.1e}")
+
+    print("\n## Speed vs accuracy")
+    tr_rows = measure_tracer(k, repeat=1 if args.quick else 3)
+    for r in tr_rows:
+        print(f"tracer step={r['step']:<5} rtol={r['rtol']:<7g} time {r['time_s']:.3f} s  "
+              f"max rel err {r['error']:.1e}  failures {r['failures']}")
+    d_rows = measure_discrete(np.linspace(0, 5, 5000 if args.quick else 20000),
+                              repeat=1 if args.quick else 3)
+    for r in d_rows:
+        print(f"discrete p={r['p']} n={r['n']:<2d} {r['mass']:11s} {r['points_per_s']:9.0f} pts/s"
+              f"  max rel err S0/A0 (kappa<=1) {r['error']:.1e}")
+    if args.out:
+        from matplotlib.figure import Figure
+
+        from dispersion.io import save_figure, write_text
+        from dispersion.plotting.branches import plot_speed_accuracy
+
+        fig = Figure(figsize=(10, 4), layout="constrained")
+        a1, a2 = fig.subplots(1, 2)
+        plot_speed_accuracy(tr_rows, a1)
+        plot_speed_accuracy(d_rows, a2)
+        save_figure(fig, args.out / "bench_branches.png", dpi=130)
+        write_text(args.out / "bench_branches.json",
+                   json.dumps({"tracer": tr_rows, "discrete": d_rows}, indent=2) + "\n")
+
+
+if __name__ == "__main__":
+    main()

@@ -61,8 +61,10 @@ def naive_scan(kappa, omega_max, step=0.01):
         for i, k in enumerate(kappa):
             f = numeric_frequency_function(kind, k, grid, NU)
             idx = np.flatnonzero(np.sign(f[1:]) != np.sign(f[:-1]))
-            rs = [brentq(lambda w: float(numeric_frequency_function(kind, k, w, NU)),
-                         grid[j], grid[j + 1], xtol=1e-15, rtol=8.9e-16) for j in idx]
+            def f1(w, kind=kind, k=k):
+                return float(numeric_frequency_function(kind, k, w, NU))
+
+            rs = [brentq(f1, grid[j], grid[j + 1], xtol=1e-15, rtol=8.9e-16) for j in idx]
             roots[(kind, i)] = [r for r in rs if r <= omega_max]
     return roots
 
@@ -76,7 +78,8 @@ def main() -> None:
     n_batch = 20_000 if args.quick else 100_000
     n_loop = 500 if args.quick else 2_000
     print(f"## Discrete branches, paper patch p=2 n=3 (6x6 pencil), nu={NU}")
-    print(f"{'case':34s} {'points':>8s} {'time s':>8s} {'points/s':>10s} {'ratio':>7s} {'peak MiB':>9s}")
+    print(f"{'case':34s} {'points':>8s} {'time s':>8s} {'points/s':>10s} {'ratio':>7s} "
+          f"{'peak MiB':>9s}")
     for model, mass in (("x-exact", "consistent"), ("bloch", "consistent"),
                         ("bloch", "singular"), ("x-exact", "lumped")):
         patch = plate_patch(model=model, r=0.5, mass=mass)

@@ -41,12 +41,12 @@ from .plate import PlatePatch, mirror_bases, numeric_pencil
 
 __all__ = [
     "DiscreteBranches",
-    "pencil_frequencies",
-    "discrete_branches",
-    "relative_error",
-    "fitted_order",
-    "predicted_error",
     "congruence",
+    "discrete_branches",
+    "fitted_order",
+    "pencil_frequencies",
+    "predicted_error",
+    "relative_error",
 ]
 
 
@@ -78,7 +78,7 @@ def _condense(K, M, massless):
 
 
 def pencil_frequencies(K, M, massless=(), vectors: bool = False):
-    """Finite :math:`\\Omega \\ge 0` of the batched pencils, ascending, shape ``(m, n - len(massless))``.
+    """Finite :math:`\\Omega \\ge 0` of batched pencils, ascending, shape ``(m, n - n_massless)``.
 
     ``massless`` lists DOFs whose mass rows and columns vanish identically; they are
     condensed, so no infinite eigenvalue is ever formed. With ``vectors=True`` also the

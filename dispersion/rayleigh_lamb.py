@@ -39,14 +39,14 @@ import numpy as np
 from .errors import InputError, check_nu, check_positive
 
 __all__ = [
-    "frequency_function",
-    "speed_ratio_squared",
-    "cos_sqrt",
-    "sinc_sqrt",
-    "numeric_frequency_function",
-    "deflated_frequency_function",
-    "cutoff_frequencies",
     "ExactBranches",
+    "cos_sqrt",
+    "cutoff_frequencies",
+    "deflated_frequency_function",
+    "frequency_function",
+    "numeric_frequency_function",
+    "sinc_sqrt",
+    "speed_ratio_squared",
     "trace_branches",
 ]
 

@@ -46,7 +46,7 @@ for mass in ("consistent", "singular"):
     d = discrete_branches(plate_patch(model="bloch", r=r, mass=mass), nu, kappa)
     results.append((mass, d, relative_error(d, exact)))
 fig = figure2(exact, results, title=f"nu = {nu}, Bloch model r = {r}")
-fig
+fig  # noqa: B018
 
 # %% [markdown]
 # Order of accuracy: the fitted slope of the relative error of Omega at small kappa against

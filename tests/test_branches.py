@@ -115,7 +115,8 @@ def test_paper_claim_s0_order_cmm_vs_singular():
     # paper section 2: S0 error 4th order for CMM vs 2nd for the singular mass
     kappa = np.geomspace(0.04, 0.16, 5)
     e = trace_branches(NU, kappa, 4.0)
-    q_cmm = fitted_order(kappa, relative_error(discrete_branches(plate_patch(), NU, kappa), e)["S0"])
+    cmm = discrete_branches(plate_patch(), NU, kappa)
+    q_cmm = fitted_order(kappa, relative_error(cmm, e)["S0"])
     sing = discrete_branches(plate_patch(mass="singular"), NU, kappa)
     q_sing = fitted_order(kappa, relative_error(sing, e)["S0"])
     assert abs(q_cmm - 4) < 0.1 and abs(q_sing - 2) < 0.1

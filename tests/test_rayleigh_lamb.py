@@ -175,12 +175,12 @@ def test_coincident_cutoffs_at_nu_one_third():
 @pytest.mark.parametrize(
     "kwargs",
     [
-        dict(nu=0.3, kappa=[], omega_max=1.0),
-        dict(nu=0.3, kappa=[0.1, float("nan")], omega_max=1.0),
-        dict(nu=0.3, kappa=[-1.0], omega_max=1.0),
-        dict(nu=0.3, kappa=[1.0], omega_max=0.0),
-        dict(nu=0.3, kappa=[1.0], omega_max=float("inf")),
-        dict(nu=0.7, kappa=[1.0], omega_max=1.0),
+        {"nu": 0.3, "kappa": [], "omega_max": 1.0},
+        {"nu": 0.3, "kappa": [0.1, float("nan")], "omega_max": 1.0},
+        {"nu": 0.3, "kappa": [-1.0], "omega_max": 1.0},
+        {"nu": 0.3, "kappa": [1.0], "omega_max": 0.0},
+        {"nu": 0.3, "kappa": [1.0], "omega_max": float("inf")},
+        {"nu": 0.7, "kappa": [1.0], "omega_max": 1.0},
     ],
 )
 def test_bad_input(kwargs):

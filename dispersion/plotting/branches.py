@@ -15,8 +15,14 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 
-__all__ = ["plot_exact", "plot_discrete", "plot_zone_edge", "plot_errors", "figure2",
-           "plot_speed_accuracy"]
+__all__ = [
+    "figure2",
+    "plot_discrete",
+    "plot_errors",
+    "plot_exact",
+    "plot_speed_accuracy",
+    "plot_zone_edge",
+]
 
 
 def _axes(ax, size=(5.5, 4.0)):

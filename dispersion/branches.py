@@ -36,7 +36,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import InputError, check_nu
+from .errors import InputError, check_nu, check_positive_int
 from .plate import PlatePatch, mirror_bases, numeric_pencil
 
 __all__ = [
@@ -157,7 +157,8 @@ def _check_kappa(kappa) -> np.ndarray:
     return kappa
 
 
-def discrete_branches(patch: PlatePatch, nu: float, kappa) -> DiscreteBranches:
+def discrete_branches(patch: PlatePatch, nu: float, kappa, chunk: int = 20000,
+                      progress=None) -> DiscreteBranches:
     """All finite discrete branches of ``patch`` on the grid ``kappa`` (see module docstring).
 
     Parameters
@@ -168,11 +169,31 @@ def discrete_branches(patch: PlatePatch, nu: float, kappa) -> DiscreteBranches:
         Poisson's ratio in (-1, 0.5).
     kappa : array_like
         :math:`\\kappa = kh \\ge 0`.
+    chunk : int
+        Kappa points per batched solve (bounds the memory).
+    progress : callable, optional
+        Called with the number of kappa points finished after each chunk.
     """
     nu = float(check_nu(nu))
     kappa = _check_kappa(kappa)
-    K, M = numeric_pencil(patch, nu, kappa)
+    chunk = check_positive_int("chunk", chunk)
     zone = math.pi / float(patch.r) if patch.model == "bloch" else None
+    parts = []
+    for lo in range(0, kappa.size, chunk):
+        parts.append(_branches_block(patch, nu, kappa[lo:lo + chunk]))
+        if progress is not None:
+            progress(min(chunk, kappa.size - lo))
+    symmetry = {}
+    for _, sym in parts:
+        symmetry.update(sym)
+    sizes = [min(chunk, kappa.size - lo) for lo in range(0, kappa.size, chunk)]
+    omega = {lab: np.concatenate([om.get(lab, np.full(m, np.nan))
+                                  for (om, _), m in zip(parts, sizes)]) for lab in symmetry}
+    return DiscreteBranches(kappa, omega, symmetry, zone)
+
+
+def _branches_block(patch: PlatePatch, nu: float, kappa: np.ndarray):
+    K, M = numeric_pencil(patch, nu, kappa)
     massless = set(patch.massless)
     omega, symmetry = {}, {}
     bases = mirror_bases(patch)
@@ -187,7 +208,7 @@ def discrete_branches(patch: PlatePatch, nu: float, kappa) -> DiscreteBranches:
             W = pencil_frequencies(Kb, Mb, ml)
             for j in range(W.shape[1]):
                 omega[f"{kind}{j}"], symmetry[f"{kind}{j}"] = W[:, j], kind
-        return DiscreteBranches(kappa, omega, symmetry, zone)
+        return omega, symmetry
     W, X = pencil_frequencies(K, M, tuple(massless), vectors=True)
     P = _geometric_mirror(patch.n)
     sym_part = 0.5 * (X + P @ X)
@@ -202,7 +223,7 @@ def discrete_branches(patch: PlatePatch, nu: float, kappa) -> DiscreteBranches:
             vals = np.full(kappa.size, np.nan)
             vals[has] = W[has][sel[has]]
             omega[f"{kind}{j}"], symmetry[f"{kind}{j}"] = vals, "mixed"
-    return DiscreteBranches(kappa, omega, symmetry, zone)
+    return omega, symmetry
 
 
 def relative_error(discrete: DiscreteBranches, exact) -> dict[str, np.ndarray]:

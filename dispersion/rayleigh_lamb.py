@@ -36,7 +36,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .errors import InputError, check_nu, check_positive
+from .errors import InputError, check_nu, check_positive, check_positive_int
 
 __all__ = [
     "ExactBranches",
@@ -421,6 +421,8 @@ def trace_branches(
     step: float = 0.05,
     rtol: float = 1e-15,
     max_depth: int = 12,
+    chunk: int = 2000,
+    progress=None,
 ) -> ExactBranches:
     """Every exact Rayleigh-Lamb branch with :math:`\\Omega \\le \\Omega_{max}` on a kappa grid.
 
@@ -446,6 +448,10 @@ def trace_branches(
         Largest :math:`\\Omega = \\omega h / c_T` of interest.
     step, rtol, max_depth :
         Scan spacing, root tolerance and refinement depth (the accuracy/speed settings).
+    chunk : int
+        Kappa points per vectorised block (bounds the memory).
+    progress : callable, optional
+        Called with the number of kappa points finished after each block.
 
     Returns
     -------
@@ -473,6 +479,7 @@ def trace_branches(
     check_positive("omega_max", omega_max)
     check_positive("step", step)
     check_positive("rtol", rtol)
+    chunk = check_positive_int("chunk", chunk)
     omega = {}
     failures = []
     top = omega_max * (1 + 1e-9) + 2 * step
@@ -484,8 +491,16 @@ def trace_branches(
         for i in zero:
             per_k[i] = cut
         if positive.size:
-            roots, fails = _scan_roots(kind, kappa[positive], nu, top, step, rtol, max_depth)
-            failures += fails
+            kp, roots = kappa[positive], []
+            for lo in range(0, kp.size, chunk):
+                hi = min(lo + chunk, kp.size)
+                # one neighbour either side keeps the continuation check across chunk seams
+                a, b = max(lo - 1, 0), min(hi + 1, kp.size)
+                r, fails = _scan_roots(kind, kp[a:b], nu, top, step, rtol, max_depth)
+                roots += r[lo - a:hi - a]
+                failures += [f for f in fails if kp[lo] <= f[1] <= kp[hi - 1]]
+                if progress is not None:
+                    progress(hi - lo)
             for i, r in zip(positive, roots):
                 per_k[i] = r[r <= omega_max]
         n_br = max(len(r) for r in per_k)
@@ -500,4 +515,4 @@ def trace_branches(
             for i in inner:
                 if max(y[i - 1], y[i + 1]) < omega_max - 4 * step:
                     failures.append((kind, float(kappa[i]), f"{kind}{j} lost between neighbours"))
-    return ExactBranches(kappa, omega, nu, omega_max, failures)
+    return ExactBranches(kappa, omega, nu, omega_max, list(dict.fromkeys(failures)))

@@ -136,3 +136,16 @@ def test_report_quick_writes_linked_files(tmp_path):
     md = report(tmp_path, quick=True)
     links = re.findall(r"\]\(([^)]+)\)", md)
     assert links and all((tmp_path / link).is_file() for link in links)
+
+
+@pytest.mark.parametrize("mass", ["consistent", "singular"])
+def test_chunking_does_not_change_results(mass):
+    patch = plate_patch(mass=mass)
+    kappa = np.linspace(0, 6, 101)
+    whole = discrete_branches(patch, NU, kappa)
+    done = []
+    parts = discrete_branches(patch, NU, kappa, chunk=7, progress=done.append)
+    assert sum(done) == kappa.size
+    assert whole.symmetry == parts.symmetry
+    for lab, w in whole.omega.items():
+        assert np.allclose(w, parts.omega[lab], rtol=1e-12, atol=1e-12, equal_nan=True)

@@ -55,3 +55,11 @@ def test_bad_input_exits_2(argv, tmp_path, capsys):
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "error" in err
     assert not (tmp_path / "x.csv").exists()
+
+
+def test_progress_bar_goes_to_stderr(tmp_path, capsys):
+    rc = main(["branches", "--exact-only", "--count", "5", "--progress",
+               "--csv", str(tmp_path / "p.csv")])
+    assert rc == 0
+    captured = capsys.readouterr()
+    assert "branches" in captured.err and captured.out == ""

@@ -192,3 +192,14 @@ def test_unresolvable_pair_is_reported_not_hidden():
     # at nu = 1/3 and kappa = 1e-9 the S1/S2 split is ~1e-18: below float resolution
     br = trace_branches(1 / 3, [1e-9], 3.5, kinds=("S",), max_depth=3)
     assert br.failures and br.failures[0][0] == "S"
+
+
+def test_chunking_does_not_change_results():
+    kappa = np.linspace(0, 6, 60)
+    whole = trace_branches(0.3, kappa, 6.0)
+    done = []
+    parts = trace_branches(0.3, kappa, 6.0, chunk=7, progress=done.append)
+    assert sum(done) == 2 * (kappa.size - 1)  # kappa = 0 comes from the closed forms
+    assert sorted(whole.omega) == sorted(parts.omega) and parts.failures == []
+    for lab, w in whole.omega.items():
+        assert np.allclose(w, parts.omega[lab], rtol=1e-14, equal_nan=True)

@@ -81,23 +81,20 @@ def run(args) -> int:
         raise InputError("nothing to write: give --csv PATH and/or --figure PATH")
     masses = [] if args.exact_only else (args.mass or ["consistent", "singular"])
     show = sys.stderr.isatty() if args.progress is None else args.progress
-    steps = ["exact"] + masses
     bar = None
     if show:
         from tqdm import tqdm
 
-        bar = tqdm(total=len(steps), desc="branches", file=sys.stderr)
-    exact = trace_branches(args.nu, kappa, args.omega_max)
-    if bar:
-        bar.update()
+        total = 2 * int(np.count_nonzero(kappa > 0)) + kappa.size * len(masses)
+        bar = tqdm(total=total, desc="branches", unit="kappa", file=sys.stderr)
+    tick = bar.update if bar else None
+    exact = trace_branches(args.nu, kappa, args.omega_max, progress=tick)
     results = []
     for mass in masses:
         patch = plate_patch(p=args.p, n=args.n, model=args.model, r=args.r, mass=mass,
                             contact=args.contact, gamma_s=args.gamma_s)
-        d = discrete_branches(patch, args.nu, kappa)
+        d = discrete_branches(patch, args.nu, kappa, progress=tick)
         results.append((mass, d, relative_error(d, exact)))
-        if bar:
-            bar.update()
     if bar:
         bar.close()
     for kind, k, why in exact.failures:

@@ -434,7 +434,11 @@ def trace_branches(
     (:func:`deflated_frequency_function`); wherever three samples of the same sign dip
     towards zero (the signature of two close roots, e.g. a veering pair or the split of a
     double cut-off) the cells are refined eight-fold, up to ``max_depth`` times, and
-    whatever stays unresolved is listed in ``failures`` with its kappa. Brackets are closed
+    whatever stays unresolved is listed in ``failures`` with its kappa. Continuation along
+    kappa: the roots found at each grid neighbour, and the midpoints between them, are added
+    as samples and the scan is repeated until the root counts settle, so a pair seen at one
+    kappa is found at the next; a branch that still vanishes between two neighbours that have
+    it is reported. Brackets are closed
     by the Illinois method to relative width ``rtol``. At :math:`\\kappa = 0` the closed-form
     cut-offs (:func:`cutoff_frequencies`) are used.
 

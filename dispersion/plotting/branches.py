@@ -127,7 +127,10 @@ def plot_speed_accuracy(rows: Sequence[Mapping], ax=None, x="time_s", y="error",
     for name, rs in groups.items():
         rs = sorted(rs, key=lambda r: r[x])
         ax.loglog([r[x] for r in rs], [max(r[y], 1e-17) for r in rs], "o-", label=name)
-    ax.set_xlabel(x)
-    ax.set_ylabel(y)
+    from matplotlib.ticker import NullFormatter
+
+    ax.xaxis.set_minor_formatter(NullFormatter())
+    ax.set_xlabel({"time_s": "wall time [s]"}.get(x, x))
+    ax.set_ylabel({"error": "max relative error"}.get(y, y))
     ax.legend(fontsize="x-small")
     return ax

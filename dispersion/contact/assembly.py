@@ -107,8 +107,8 @@ def discretize(patch: RingPatch) -> Discretization:
 
 def _kinematics(disc: Discretization, mat: StVenantKirchhoff, u: np.ndarray):
     ue = np.asarray(u, dtype=float).reshape(-1, 2)[disc.conn]
-    F = np.eye(2) + np.einsum("eak,egaJ->egkJ", ue, disc.dR)
-    E = 0.5 * (np.einsum("egkI,egkJ->egIJ", F, F) - np.eye(2))
+    F = np.eye(2) + np.einsum("eak,egaJ->egkJ", ue, disc.dR, optimize=True)
+    E = 0.5 * (F.transpose(0, 1, 3, 2) @ F - np.eye(2))
     return F, E, mat.stress(E)
 
 
@@ -117,7 +117,8 @@ def internal_force(disc: Discretization, mat: StVenantKirchhoff, u: np.ndarray,
     """Internal force vector ``(n_dofs,)`` and (if ``tangent``) the tangent stiffness (CSR)."""
     F, _, S = _kinematics(disc, mat, u)
     n_el = len(disc.conn)
-    fe = np.einsum("eg,egkI,egIJ,egaJ->eak", disc.wdet, F, S, disc.dR).reshape(n_el, -1)
+    P = (F @ S) * disc.wdet[:, :, None, None]  # first Piola-Kirchhoff stress times weight
+    fe = np.einsum("egkJ,egaJ->eak", P, disc.dR, optimize=True).reshape(n_el, -1)
     dofs = disc.element_dofs()
     f = np.bincount(dofs.ravel(), fe.ravel(), minlength=disc.n_dofs)
     if not tangent:
@@ -127,9 +128,12 @@ def internal_force(disc: Discretization, mat: StVenantKirchhoff, u: np.ndarray,
     B[:, :, 0] = F[:, :, None, :, 0] * dR[..., 0:1]
     B[:, :, 1] = F[:, :, None, :, 1] * dR[..., 1:2]
     B[:, :, 2] = F[:, :, None, :, 0] * dR[..., 1:2] + F[:, :, None, :, 1] * dR[..., 0:1]
-    B = B.reshape(n_el, 9, 3, 18)
-    Km = np.einsum("eg,egpi,pq,egqj->eij", disc.wdet, B, mat.voigt(), B)
-    G = np.einsum("eg,egaI,egIJ,egbJ->eab", disc.wdet, dR, S, dR)
+    B = B.reshape(n_el, 27, 18)  # (element, gauss x Voigt row, element DOF)
+    CB = (mat.voigt() @ B.reshape(n_el, 9, 3, 18)) * disc.wdet[:, :, None, None]
+    Km = B.transpose(0, 2, 1) @ CB.reshape(n_el, 27, 18)
+    SdR = (dR @ S) * disc.wdet[:, :, None, None]  # (e, g, a, J): S symmetric
+    G = dR.transpose(0, 2, 1, 3).reshape(n_el, 9, 18) @ SdR.transpose(0, 1, 3, 2).reshape(
+        n_el, 18, 9)
     Ke = Km + np.einsum("eab,kl->eakbl", G, np.eye(2)).reshape(n_el, 18, 18)
     rows = np.repeat(dofs, 18, axis=1).ravel()
     cols = np.tile(dofs, (1, 18)).ravel()

@@ -113,6 +113,7 @@ class State:
     a_c: np.ndarray
     lam: np.ndarray
     iterations: int = 0
+    mu: np.ndarray | None = None
 
 
 @dataclass
@@ -168,20 +169,28 @@ def step(prob: ContactProblem, nm: Newmark, state: State, dt: float, split=None)
     f_ext = np.zeros(prob.n) if prob.f_ext is None else prob.f_ext
     M, G = prob.M, sp.csr_matrix(prob.G)
     c1 = 1.0 / (beta * dt**2)
-    U = ut.copy()
-    mu = np.zeros(G.shape[0])
+    # Newton starts from the last converged configuration: the predictor itself carries the
+    # high-frequency part of a_n and lies far from equilibrium in the stiff directions
+    U = u.copy()
+    mu = state.mu.copy() if state.mu is not None else np.zeros(G.shape[0])  # warm start
     c_ncp = None
-    for it in range(1, nm.max_iter + 1):
+
+    def residual(U, mu):
         f, K = prob.internal(U)
         inertia = c1 * (M @ (U - ut))
-        r = inertia + f - f_ext - G.T @ mu
         g = prob.g0 + G @ U
+        phi = np.minimum(mu, c_ncp * g) if c_ncp is not None else None
+        return f, K, inertia, inertia + f - f_ext - G.T @ mu, g, phi
+
+    f, K, inertia, r, g, _ = residual(U, mu)
+    for it in range(1, nm.max_iter + 1):
         Keff = (c1 * M + K).tocsr()
         if c_ncp is None:
             c_ncp = float(Keff.diagonal().max())
         phi = np.minimum(mu, c_ncp * g)
+        merit = np.hypot(np.linalg.norm(r), np.linalg.norm(phi))
         scale = max(1.0, np.linalg.norm(inertia), np.linalg.norm(f))
-        if it > 1 and np.hypot(np.linalg.norm(r), np.linalg.norm(phi)) <= nm.tol * scale:
+        if it > 1 and merit <= nm.tol * scale:
             break
         act = np.flatnonzero(mu - c_ncp * g > 0)
         Ga = G[act]
@@ -190,9 +199,19 @@ def step(prob: ContactProblem, nm: Newmark, state: State, dt: float, split=None)
         sol = np.linalg.solve(A.toarray(), rhs) if nm.solver == "dense" else spla.spsolve(A, rhs)
         if not np.all(np.isfinite(sol)):
             raise ConvergenceError(f"singular Newton matrix at t = {state.t + dt:.6g}")
-        U = U + sol[:prob.n]
-        mu = np.zeros_like(mu)
-        mu[act] = sol[prob.n:]
+        dU = sol[:prob.n]
+        mu_new = np.zeros_like(mu)
+        mu_new[act] = sol[prob.n:]
+        # backtracking on the total residual: full steps near the solution, damped far away
+        alpha = 1.0
+        while True:
+            trial = residual(U + alpha * dU, mu + alpha * (mu_new - mu))
+            m_trial = np.hypot(np.linalg.norm(trial[3]), np.linalg.norm(trial[5]))
+            if m_trial <= (1 - 1e-4 * alpha) * merit or alpha <= 1 / 32:
+                break
+            alpha /= 2
+        U, mu = U + alpha * dU, mu + alpha * (mu_new - mu)
+        f, K, inertia, r, g, _ = trial
     else:
         raise ConvergenceError(
             f"Newton did not reach tol = {nm.tol:g} in {nm.max_iter} iterations at "
@@ -211,7 +230,7 @@ def step(prob: ContactProblem, nm: Newmark, state: State, dt: float, split=None)
         lam_scale = 1.0
     v_new[m] = vt[m] + dt * gamma * a_int[m] + dt * a_c[m]
     v_new[z] = (U[z] - u[z]) / dt
-    return State(state.t + dt, U, v_new, a_int, a_c, lam_scale * mu, it)
+    return State(state.t + dt, U, v_new, a_int, a_c, lam_scale * mu, it, mu)
 
 
 def _record(hist: History, prob: ContactProblem, s: State, keep_states: bool):

@@ -29,6 +29,7 @@ L. Piegl, W. Tiller, *The NURBS Book*, 2nd ed., Springer 1997, sec. 7.5 (circle)
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
@@ -98,7 +99,7 @@ class RingPatch:
 
     def boundary_basis(self, xi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Rational basis of the outer boundary curve at ``xi``: ``(global indices, R)``."""
-        act, N = SplineBasis1D.from_knots(self.kv_xi).evaluate(xi)
+        act, N = _basis(self.kv_xi).evaluate(xi)
         outer = self.outer_indices()
         w = self.weights[outer][act]
         R = w * N / np.sum(w * N, axis=1, keepdims=True)
@@ -113,6 +114,11 @@ class RingPatch:
     def greville_xi(self) -> np.ndarray:
         """Greville abscissae of the arc direction: the contact points of the outer surface."""
         return np.array([float(g) for g in self.kv_xi.greville()])
+
+
+@lru_cache(maxsize=32)
+def _basis(kv: KnotVector) -> SplineBasis1D:
+    return SplineBasis1D.from_knots(kv)
 
 
 def _refine_homogeneous(Pw: np.ndarray, kv: KnotVector, m: int, axis: int):

@@ -125,7 +125,8 @@ def simulate_ring(sc: Scenario | None = None, mass: str = "singular", scheme: st
     series = {"t": arr["t"], "contact_force": F, "kinetic": arr["kinetic"],
               "strain": arr["strain"], "total": arr["total"],
               "momentum_x": arr["momentum"][:, 0], "momentum_y": arr["momentum"][:, 1],
-              "penetration": penetration, "rotation_deg": rotation,
+              "penetration": penetration, "gap_min_greville": arr["gap_min"],
+              "rotation_deg": rotation,
               "newton_iterations": arr["iterations"]}
     E0 = arr["total"][0]
     summary = {

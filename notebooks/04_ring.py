@@ -43,7 +43,7 @@ bars = {m: simulate_bar(40, mass=m) for m in ("lumped", "singular")}
 for m, res in bars.items():
     print(m, {k: round(float(v), 4) for k, v in res.metrics.items()
               if k in ("duration_error", "force_oscillation", "energy_change_percent")})
-plot_bar_force(bars).figure
+plot_bar_force(bars).figure  # noqa: B018 (displayed by the notebook)
 
 # %% [markdown]
 # ## The ring, both masses (a few seconds each)

@@ -4,8 +4,13 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from dispersion.contact.assembly import (discretize, internal_force, ring_mass,
-                                         ring_redistribution, strain_energy)
+from dispersion.contact.assembly import (
+    discretize,
+    internal_force,
+    ring_mass,
+    ring_redistribution,
+    strain_energy,
+)
 from dispersion.contact.material import StVenantKirchhoff
 from dispersion.contact.nurbs import quarter_ring
 from dispersion.errors import InputError
@@ -28,7 +33,7 @@ def test_tangent_matches_finite_differences(setup):
     _, disc, mat = setup
     rng = np.random.default_rng(0)
     u = 0.03 * rng.standard_normal(disc.n_dofs)
-    f, K = internal_force(disc, mat, u)
+    _, K = internal_force(disc, mat, u)
     v = rng.standard_normal(disc.n_dofs)
     h = 1e-6
     fd = (internal_force(disc, mat, u + h * v, False)
@@ -60,7 +65,7 @@ def test_rigid_rotation_is_stress_free(setup):
 
 @pytest.mark.parametrize("variant", ["consistent", "lumped", "singular", "singular-lumped"])
 def test_mass_symmetric_psd_and_translational_mass(setup, variant):
-    ring, disc, _ = setup
+    _, disc, _ = setup
     rho = 1000.0
     M = ring_mass(disc, rho, variant).toarray()
     assert np.allclose(M, M.T)

@@ -41,8 +41,15 @@ from ..mass import contact_weights, mass_variant, redistribution_matrix
 from .material import StVenantKirchhoff
 from .nurbs import RingPatch, SplineBasis1D
 
-__all__ = ["Discretization", "discretize", "internal_force", "strain_energy",
-           "consistent_mass", "ring_redistribution", "ring_mass"]
+__all__ = [
+    "Discretization",
+    "consistent_mass",
+    "discretize",
+    "internal_force",
+    "ring_mass",
+    "ring_redistribution",
+    "strain_energy",
+]
 
 _GAUSS_X, _GAUSS_W = np.polynomial.legendre.leggauss(3)
 

@@ -51,7 +51,7 @@ import scipy.sparse.linalg as spla
 
 from ..errors import ConvergenceError, InputError, check_positive, check_positive_int
 
-__all__ = ["ContactProblem", "Newmark", "State", "History", "step", "integrate", "SCHEMES"]
+__all__ = ["SCHEMES", "ContactProblem", "History", "Newmark", "State", "integrate", "step"]
 
 SCHEMES = ("kane", "standard")
 

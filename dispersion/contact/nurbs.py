@@ -36,7 +36,7 @@ import numpy as np
 from ..bspline import KnotVector, bernstein_numeric, extraction_operators, open_knot_vector, refine
 from ..errors import InputError, check_positive, check_positive_int
 
-__all__ = ["RingPatch", "quarter_ring", "SplineBasis1D"]
+__all__ = ["RingPatch", "SplineBasis1D", "quarter_ring"]
 
 
 @dataclass(frozen=True)

@@ -3,8 +3,8 @@
 >>> s = Scenario()
 >>> round(s.v0 / s.shear_wave_speed, 3)   # paper: v0 is about 3.9 % of c_T
 0.039
->>> s.with_level(2).n_xi_elements
-32
+>>> s.with_level(1).n_xi_elements, s.with_level(1).n_eta_elements
+(32, 4)
 """
 from __future__ import annotations
 
@@ -97,7 +97,7 @@ class Scenario:
 
     @property
     def n_steps(self) -> int:
-        return int(round(self.t_end / self.dt))
+        return round(self.t_end / self.dt)
 
     def with_level(self, level: int) -> Scenario:
         """Scenario with the mesh refined ``level`` times (each halves the element size)."""

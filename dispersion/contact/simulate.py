@@ -6,8 +6,8 @@ and runs the Newmark scheme of :mod:`.newmark`. No gravity: after the contact ev
 flies off, so its total (kinetic + strain) energy must equal the initial kinetic energy.
 
 >>> res = simulate_ring(Scenario(n_xi_elements=8, n_eta_elements=1, t_end=0.5), "singular")
->>> sorted(res.summary)[:3]
-['contact_events', 'energy_change_percent', 'final_rotation_deg']
+>>> res.summary["in_contact_at_end"], bool(abs(res.series["momentum_x"]).max() < 1e-6)
+(True, True)
 
 References
 ----------
@@ -28,7 +28,7 @@ from .newmark import ContactProblem, Newmark, integrate
 from .nurbs import RingPatch, quarter_ring
 from .scenario import Scenario
 
-__all__ = ["RING_MASSES", "Scenario", "RingResult", "ring_patch", "ring_problem", "simulate_ring"]
+__all__ = ["RING_MASSES", "RingResult", "Scenario", "ring_patch", "ring_problem", "simulate_ring"]
 
 RING_MASSES = ("consistent", "lumped", "singular", "singular-lumped")
 _SAMPLES_PER_ELEMENT = 8

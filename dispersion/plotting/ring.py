@@ -14,8 +14,13 @@ from collections.abc import Sequence
 
 import numpy as np
 
-__all__ = ["figure4", "plot_contact_energy", "plot_bar_validation", "plot_energy_runtime",
-           "plot_bar_force"]
+__all__ = [
+    "figure4",
+    "plot_bar_force",
+    "plot_bar_validation",
+    "plot_contact_energy",
+    "plot_energy_runtime",
+]
 
 
 def _axes(ax, size=(6.0, 3.2)):

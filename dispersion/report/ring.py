@@ -19,7 +19,7 @@ from ..contact.simulate import ring_patch, simulate_ring
 from ..errors import ConvergenceError, InputError
 from ..io import save_figure, write_text
 
-__all__ = ["report", "ring_run", "bar_rows", "dt_sweep"]
+__all__ = ["bar_rows", "dt_sweep", "report", "ring_run"]
 
 COMMAND = "dispersion reproduce --sections ring"
 
@@ -76,8 +76,7 @@ def report(out: Path, quick: bool = False, executor=None) -> str:
     """Write the ring figures and data into ``out``; return the Markdown section."""
     from matplotlib.figure import Figure
 
-    from ..plotting.ring import (figure4, plot_bar_force, plot_bar_validation,
-                                 plot_energy_runtime)
+    from ..plotting.ring import figure4, plot_bar_force, plot_bar_validation, plot_energy_runtime
 
     out = Path(out)
     sc = Scenario()
@@ -143,8 +142,8 @@ def report(out: Path, quick: bool = False, executor=None) -> str:
         "",
         "![Figure 4](figure4.png)",
         "",
-        "| mass | energy change (%) | max penetration (m) | contact events | force roughness "
-        "| rotation (deg) | free-flight energy spread (%) | runtime (s) |",
+        ("| mass | energy change (%) | max penetration (m) | contact events | force roughness "
+         "| rotation (deg) | free-flight energy spread (%) | runtime (s) |"),
         "|---|---|---|---|---|---|---|---|",
     ]
     for r in (lumped, singular) + tuple(std) + tuple(levels):
@@ -160,18 +159,18 @@ def report(out: Path, quick: bool = False, executor=None) -> str:
                      f"{r['free_flight_energy_spread_percent']:.3f} | {r['runtime']:.1f} |")
     lines += [
         "",
-        "Paper: lumped -9.5 %, singular -0.097 %. The numbers above are what this code "
-        "measures on the reconstructed scene; force roughness = sum |second difference of "
-        "the contact force| / max force; the free-flight spread (max - min of the total energy "
-        "after the last contact) is the integrator's own energy error without contact.",
+        ("Paper: lumped -9.5 %, singular -0.097 %. The numbers above are what this code "
+         "measures on the reconstructed scene; force roughness = sum |second difference of "
+         "the contact force| / max force; the free-flight spread (max - min of the total energy "
+         "after the last contact) is the integrator's own energy error without contact."),
         "",
-        "### Validation: elastic bar hitting a rigid wall (exact: contact 2L/c, stress rho c v0, "
-        "rebound v0, energy conserved)",
+        ("### Validation: elastic bar hitting a rigid wall (exact: contact 2L/c, stress rho c v0, "
+         "rebound v0, energy conserved)"),
         "",
         "![bar validation](bar_validation.png)",
         "",
-        "| mass | scheme | elements | dt c/L | duration err | stress err | force osc. "
-        "| rebound err | energy change (%) |",
+        ("| mass | scheme | elements | dt c/L | duration err | stress err | force osc. "
+         "| rebound err | energy change (%) |"),
         "|---|---|---|---|---|---|---|---|---|",
     ]
     for r in brows + std_rows:
@@ -185,8 +184,8 @@ def report(out: Path, quick: bool = False, executor=None) -> str:
         "",
         "![energy vs runtime](ring_energy_runtime.png)",
         "",
-        "| mass | dt (s) | Newton converged | max iterations | energy change (%) "
-        "| contact events | runtime (s) |",
+        ("| mass | dt (s) | Newton converged | max iterations | energy change (%) "
+         "| contact events | runtime (s) |"),
         "|---|---|---|---|---|---|---|",
     ]
     for r in sweep:
@@ -196,10 +195,10 @@ def report(out: Path, quick: bool = False, executor=None) -> str:
                      f"{r.get('contact_events', 'n/a')} | {r['runtime']:.1f} |")
     lines += [
         "",
-        f"Largest dt of the sweep at which Newton converged (tol 1e-8, at most 25 "
-        f"iterations): lumped {largest['lumped']} s, singular {largest['singular']} s "
-        f"(sweep up to {max(dts)} s). A redistribution weight "
-        f"gamma_s = 1.5 (outside [0, 1], indefinite mass) is {rejected}.",
+        (f"Largest dt of the sweep at which Newton converged (tol 1e-8, at most 25 "
+         f"iterations): lumped {largest['lumped']} s, singular {largest['singular']} s "
+         f"(sweep up to {max(dts)} s). A redistribution weight "
+         f"gamma_s = 1.5 (outside [0, 1], indefinite mass) is {rejected}."),
         "",
         f"Regenerate: `{COMMAND}`; this section took {elapsed:.0f} s.",
         "",

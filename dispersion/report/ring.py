@@ -83,7 +83,7 @@ def report(out: Path, quick: bool = False, executor=None) -> str:
     t_start = time.perf_counter()
     pair = dt_sweep(sc, [sc.dt], executor=executor)
     lumped, singular = (next(r for r in pair if r["mass"] == m) for m in ("lumped", "singular"))
-    save_figure(figure4(lumped["result"], singular["result"], t_max=4.0), out / "figure4.png",
+    save_figure(figure4(lumped["result"], singular["result"]), out / "figure4.png",
                 dpi=130)
 
     sizes = (10, 20, 40) if quick else (10, 20, 40, 80, 160)

@@ -104,7 +104,8 @@ class Newmark:
 
 @dataclass
 class State:
-    """Displacement, velocity, internal and contact accelerations, multipliers (force) at ``t``."""
+    """Displacement, velocity, internal and contact accelerations, contact forces ``lam`` at
+    ``t``; ``iterations`` = Newton solves of the step, ``mu`` = raw multipliers (warm start)."""
 
     t: float
     u: np.ndarray
@@ -230,7 +231,7 @@ def step(prob: ContactProblem, nm: Newmark, state: State, dt: float, split=None)
         lam_scale = 1.0
     v_new[m] = vt[m] + dt * gamma * a_int[m] + dt * a_c[m]
     v_new[z] = (U[z] - u[z]) / dt
-    return State(state.t + dt, U, v_new, a_int, a_c, lam_scale * mu, it, mu)
+    return State(state.t + dt, U, v_new, a_int, a_c, lam_scale * mu, it - 1, mu)
 
 
 def _record(hist: History, prob: ContactProblem, s: State, keep_states: bool):

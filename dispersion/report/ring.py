@@ -193,6 +193,13 @@ def report(out: Path, quick: bool = False, executor=None) -> str:
                      f"{r.get('newton_iterations_max', 'n/a')} | "
                      f"{_fmt(r['energy_change_percent'], '+.3g')} | "
                      f"{r.get('contact_events', 'n/a')} | {r['runtime']:.1f} |")
+    for mass in ("lumped", "singular"):
+        pts = [(r["dt"], abs(r["energy_change_percent"])) for r in sweep
+               if r["mass"] == mass and r["converged"] and r["dt"] <= sc.dt]
+        if len(pts) >= 2:
+            d, e = np.log(np.array(sorted(pts))).T
+            lines.append(f"\n{mass}: |energy change| over dt <= {sc.dt} s falls like "
+                         f"dt^{np.polyfit(d, e, 1)[0]:.2f} (least-squares fit of the rows above).")
     lines += [
         "",
         (f"Largest dt of the sweep at which Newton converged (tol 1e-8, at most 25 "

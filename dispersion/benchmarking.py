@@ -55,6 +55,7 @@ __all__ = [
     "run_textbook",
     "compare",
     "run_benchmark",
+    "order_sweep",
     "format_table",
     "write_results",
 ]
@@ -460,6 +461,54 @@ def _ground_types() -> str:
     from sympy.external.gmpy import GROUND_TYPES
 
     return GROUND_TYPES
+
+
+def order_sweep(quick: bool = False, *, budget: float | None = None, model: str = "bloch",
+                r=2, maxima: str = "maxima") -> dict:
+    """Seconds each route needs to reach each order, S0 and A0 together (the speed chart).
+
+    Problems: ``"rayleigh_lamb"`` (ours, Maxima, textbook series) and ``"cmm"`` (the paper's
+    patch with CMM: ours, textbook determinant). Ours and Maxima are run afresh per order;
+    the textbook route streams its orders, so its times are cumulative (S0 time to reach the
+    order plus A0 time to reach it, each including its own ``Matrix.det``). Returns
+    ``{problem: {route: [[order, seconds], ...]}, "budget_s": budget, "notes": [...]}``.
+    """
+    from . import power_balance
+
+    budget = (5.0 if quick else 60.0) if budget is None else float(check_positive("budget", budget))
+    rl_orders = (4, 8) if quick else (4, 8, 12, 16)
+    cmm_orders = (4, 8) if quick else (4, 8, 12)
+    power_balance.discrete_series("S0", 2, model="x-exact")  # warm-up, then caches dropped
+    cmm = _mass_kwargs("consistent", model, r)
+    out: dict = {"rayleigh_lamb": {"ours": [], "maxima": [], "textbook": []},
+                 "cmm": {"ours": [], "textbook": []}, "budget_s": budget, "notes": [],
+                 "model": model, "r": str(r)}
+    for order in rl_orders:
+        _clear_caches()
+        out["rayleigh_lamb"]["ours"].append(
+            [order, _ours([(b, {"exact": True}) for b in ("S0", "A0")], order).seconds])
+        mx = run_maxima(order, executable=maxima)
+        if mx.complete:
+            out["rayleigh_lamb"]["maxima"].append([order, mx.seconds])
+        elif mx.note and mx.note not in out["notes"]:
+            out["notes"].append(f"maxima: {mx.note}")
+    for order in cmm_orders:
+        _clear_caches()
+        out["cmm"]["ours"].append([order, _ours([(b, cmm) for b in ("S0", "A0")], order).seconds])
+
+    extra = {k: cmm[k] for k in ("contact", "gamma_s") if k in cmm}
+    builds = {"rayleigh_lamb": lambda b: (lambda: textbook_rayleigh_lamb(b)),
+              "cmm": lambda b: (lambda: textbook_plate("consistent", model, r, **extra))}
+    for problem, orders in (("rayleigh_lamb", rl_orders), ("cmm", cmm_orders)):
+        reached = {}
+        for branch in ("S0", "A0"):
+            res = run_textbook(builds[problem](branch), (branch,), max(orders), budget)
+            reached[branch] = dict(res.progress)
+            if res.note:
+                out["notes"].append(f"textbook {problem} {branch}: {res.note}")
+        both = sorted(set(reached["S0"]) & set(reached["A0"]) - {2})
+        out[problem]["textbook"] = [[k, reached["S0"][k] + reached["A0"][k]] for k in both]
+    return out
 
 
 # --------------------------------------------------------------------------- output

@@ -123,3 +123,17 @@ def test_cli_rejects_bad_budget(capsys):
     assert main(["bench", "--budget", "-1"]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "budget" in err
+
+
+@pytest.mark.slow
+def test_series_speed_report_writes_chart_and_data(tmp_path):
+    pytest.importorskip("matplotlib")
+    from dispersion.report.series_speed import report
+
+    md = report(tmp_path, quick=True)
+    assert (tmp_path / "series_speed.png").stat().st_size > 0
+    import json
+
+    data = json.loads((tmp_path / "series_speed.json").read_text())
+    assert [k for k, _ in data["rayleigh_lamb"]["ours"]] == [4, 8]
+    assert "series_speed.png" in md and "series_speed.json" in md

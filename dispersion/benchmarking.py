@@ -43,20 +43,21 @@ from .errors import InputError, check_positive, check_positive_int
 
 __all__ = [
     "NU",
+    "BenchmarkResult",
     "RouteResult",
     "Row",
-    "BenchmarkResult",
-    "maxima_script",
-    "parse_maxima_output",
-    "run_maxima",
-    "textbook_orders",
-    "textbook_rayleigh_lamb",
-    "textbook_plate",
-    "run_textbook",
     "compare",
-    "run_benchmark",
-    "order_sweep",
     "format_table",
+    "maxima_script",
+    "order_sweep",
+    "parse_maxima_output",
+    "run_benchmark",
+    "run_maxima",
+    "run_textbook",
+    "textbook_orders",
+    "textbook_plate",
+    "textbook_rayleigh_lamb",
+    "to_json",
     "write_results",
 ]
 
@@ -239,7 +240,7 @@ def _textbook_worker(build: Callable[[], sympy.Expr], branches: tuple[str, ...],
             for power, a in textbook_orders(F, BRANCH_START[branch], order):
                 q.put(("coef", branch, power, str(a), time.perf_counter() - start))
         q.put(("done", "", 0, "", time.perf_counter() - start))
-    except Exception as exc:  # reported to the parent, which keeps it as a note
+    except Exception as exc:  # noqa: BLE001 - reported to the parent as a note
         q.put(("error", "", 0, f"{type(exc).__name__}: {exc}", time.perf_counter() - start))
 
 
@@ -364,7 +365,7 @@ def run_benchmark(quick: bool = False, *, budget: float | None = None, model: st
     say = progress or (lambda msg: None)
     budget = (10.0 if quick else 120.0) if budget is None else float(check_positive("budget", budget))
     rl_order, high_order = (8, 8) if quick else (16, 12)
-    from . import power_balance  # noqa: F401  (import cost outside the timings: warm interpreter)
+    from . import power_balance  # imported before the timings: warm interpreter
 
     # Warm-up: compile the code paths once on a small, different problem, then drop caches.
     power_balance.discrete_series("S0", 2, p=2, n=3, model="x-exact")

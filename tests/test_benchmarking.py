@@ -82,8 +82,8 @@ def test_textbook_determinant_agrees_with_engine_kappa2_kappa4():
         textbook = dict(B.textbook_orders(F, sigma, 4))
         ours = discrete_series(branch, 4, model="x-exact", nu=nu_val)
         assert set(textbook) == set(ours) == set(range(2 * sigma, 5, 2))
-        for power in textbook:
-            assert same(textbook[power], ours[power]), (branch, power)
+        for power, value in textbook.items():
+            assert same(value, ours[power]), (branch, power)
     # The leading S0 term is the plate velocity, eq 14's 2/(1 - nu), for any discretisation.
     assert same(dict(B.textbook_orders(F, 1, 2))[2], EQ14[2].subs(nu, nu_val))
 

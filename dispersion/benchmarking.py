@@ -91,6 +91,7 @@ class Row:
     routes: dict[str, RouteResult]
     compared: int = 0
     mismatches: list[str] = field(default_factory=list)
+    target_s: float | None = None  # the issue's speed target for our engine, if any
 
 
 @dataclass
@@ -156,7 +157,11 @@ def run_maxima(order: int = 16, *, executable: str = "maxima", timeout: float = 
     path = str(script).replace("\\", "/").replace('"', '\\"')
     cmd = [exe, "--very-quiet", f'--batch-string=N : {order // 2}$ batchload("{path}")$']
     start = time.perf_counter()
-    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, check=False)
+    try:
+        proc = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, check=False)
+    except subprocess.TimeoutExpired:
+        return RouteResult("maxima", seconds=timeout, complete=False,
+                           note=f"stopped after the {timeout:g} s timeout")
     wall = time.perf_counter() - start
     coeffs, _ = parse_maxima_output(proc.stdout)
     expected = {"S0": order // 2, "A0": order // 2 - 1}
@@ -395,7 +400,8 @@ def run_benchmark(quick: bool = False, *, budget: float | None = None, model: st
     jobs += [(b, _mass_kwargs(m, model, r)) for m in PAPER_MASSES for b in ("S0", "A0")]
     _clear_caches()
     ours = _ours(jobs, 8)
-    rows.append(Row("eqs 14-20 + kappa^8 (exact; CMM, lumped, singular)", {"ours": ours}))
+    rows.append(Row("eqs 14-20 + kappa^8 (exact; CMM, lumped, singular)", {"ours": ours},
+                    target_s=3.0))
     say("ours: CMM S0, A0 to kappa^8")
     _clear_caches()
     ours = _ours([(b, _mass_kwargs("consistent", model, r)) for b in ("S0", "A0")], 8)
@@ -409,7 +415,7 @@ def run_benchmark(quick: bool = False, *, budget: float | None = None, model: st
                 for b in ("S0", "A0")]
         _clear_caches()
         ours = _ours(jobs, high_order)
-        rows.append(Row(f"CMM + singular to kappa^{high_order}", {"ours": ours}))
+        rows.append(Row(f"CMM + singular to kappa^{high_order}", {"ours": ours}, target_s=10.0))
 
     # 3. exact Rayleigh-Lamb to kappa^16, with Maxima
     say(f"ours: Rayleigh-Lamb S0, A0 to kappa^{rl_order}")
@@ -530,13 +536,16 @@ def _ratio(ours: RouteResult, other: RouteResult | None) -> str:
 
 def format_table(result: BenchmarkResult) -> str:
     """Markdown table: task, ours [s], each baseline [s] and its ratio to ours, agreement."""
-    lines = ["| task | ours [s] | textbook [s] | ratio | maxima [s] | ratio | agree |",
-             "|---|---|---|---|---|---|---|"]
+    lines = ["| task | ours [s] | target | textbook [s] | ratio | maxima [s] | ratio | agree |",
+             "|---|---|---|---|---|---|---|---|"]
     for row in result.rows:
         ours, tb, mx = (row.routes.get(k) for k in ("ours", "textbook", "maxima"))
-        agree = f"{row.compared} coeffs" if not row.mismatches else f"MISMATCH ({len(row.mismatches)})"
-        lines.append(f"| {row.task} | {_cell(ours)} | {_cell(tb)} | {_ratio(ours, tb)} | "
-                     f"{_cell(mx)} | {_ratio(ours, mx)} | {agree} |")
+        agree = (f"{row.compared} coeffs" if not row.mismatches
+                 else f"MISMATCH ({len(row.mismatches)})")
+        target = "-" if row.target_s is None else (
+            f"< {row.target_s:g} s: " + ("met" if ours.seconds < row.target_s else "MISSED"))
+        lines.append(f"| {row.task} | {_cell(ours)} | {target} | {_cell(tb)} | "
+                     f"{_ratio(ours, tb)} | {_cell(mx)} | {_ratio(ours, mx)} | {agree} |")
     lines.append("")
     lines.append(f"Peak RSS: this process {result.peak_rss_mib:.0f} MiB, largest child "
                  f"(textbook worker / maxima) {result.peak_child_rss_mib:.0f} MiB"
@@ -566,6 +575,7 @@ def to_json(result: BenchmarkResult) -> dict:
         "peak_traced_mib": result.peak_traced_mib,
         "agree": result.agree,
         "rows": [{"task": row.task, "compared": row.compared, "mismatches": row.mismatches,
+                  "target_s": row.target_s,
                   "routes": {k: route(v) for k, v in row.routes.items()}}
                  for row in result.rows],
     }

@@ -116,7 +116,7 @@ def test_table_marks_stopped_baselines_with_greater_than():
     result = B.BenchmarkResult([B.Row("toy", {"ours": ours, "textbook": slow})], 1.0, 1.0, None,
                                {})
     table = B.format_table(result)
-    assert "| toy | 0.5 | > 10 | > 20 |" in table
+    assert "| toy | 0.5 | - | > 10 | > 20 |" in table
 
 
 def test_cli_rejects_bad_budget(capsys):

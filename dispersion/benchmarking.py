@@ -143,7 +143,22 @@ def run_maxima(order: int = 16, *, executable: str = "maxima", timeout: float = 
                script: Path | None = None) -> RouteResult:
     """Run the Maxima program for the S0 and A0 series up to ``kappa**order``; wall time.
 
-    Returns a result with ``seconds=None`` and a note when maxima or the script is absent.
+    Parameters
+    ----------
+    order : int
+        Highest power of :math:`\\kappa` (even, >= 2); the program gets ``N = order // 2``.
+    executable : str
+        Name or path of the maxima binary.
+    timeout : float
+        Seconds before the subprocess is stopped (reported, not raised).
+    script : Path, optional
+        The ``.mac`` program (default :func:`maxima_script`).
+
+    Returns
+    -------
+    RouteResult
+        ``seconds`` is the wall time including Maxima's start-up; ``seconds=None`` and a note
+        when maxima or the script is absent.
     """
     order = check_positive_int("order", order, 2)
     exe = shutil.which(executable)
@@ -361,6 +376,21 @@ def run_benchmark(quick: bool = False, *, budget: float | None = None, model: st
                   progress: Callable[[str], None] | None = None) -> BenchmarkResult:
     """Run every task with every route, compare the coefficients, return the table.
 
+    Parameters
+    ----------
+    quick : bool
+        Orders up to kappa^8 only and a 10 s textbook budget (CI).
+    budget : float, optional
+        Seconds per textbook job (default 120; quick 10).
+    model, r :
+        x-model of the plate patch (default the paper's: Bloch, square elements b = 2h).
+    maxima : str
+        The maxima executable; absent -> the Maxima column says "skipped".
+    progress : callable, optional
+        Receives one line per step (the CLI prints them on stderr).
+
+    Notes
+    -----
     Tasks: the paper set (eqs 14-20 and kappa^8: exact S0/A0 and the CMM, lumped and singular
     discrete S0/A0 series); CMM and singular to kappa^12; the exact Rayleigh-Lamb S0/A0 series
     to kappa^16. The textbook route runs on the CMM rows and on Rayleigh-Lamb, with ``budget``

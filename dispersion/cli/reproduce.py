@@ -34,7 +34,7 @@ from ..sweep import default_jobs
 __all__ = ["SECTIONS", "register", "load_sections", "build_reports", "swap_in"]
 
 #: Report sections in the order they run: module names in :mod:`dispersion.report`.
-SECTIONS = ("coefficients", "branches", "ring", "studies")
+SECTIONS = ("coefficients", "branches", "ring", "series_speed", "studies")
 
 Section = Callable[..., str]
 

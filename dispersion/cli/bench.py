@@ -13,7 +13,7 @@ def register(subparsers) -> None:
     parser.add_argument("--quick", action="store_true",
                         help="lower orders and a 10 s textbook budget (CI)")
     parser.add_argument("--budget", type=float, default=None,
-                        help="seconds per textbook job (default 240, quick 10)")
+                        help="seconds per textbook job (default 120, quick 10)")
     parser.add_argument("--model", choices=("bloch", "x-exact"), default="bloch",
                         help="x-model of the plate patch (default: bloch, r = 2, the paper's)")
     parser.add_argument("--maxima", default="maxima", help="maxima executable")

@@ -16,6 +16,19 @@ from ..errors import DispersionError, InputError
 _SUBCOMMANDS = ("series", "branches", "ring", "reproduce", "bench")
 
 
+def number(name: str, convert=float):
+    """argparse ``type`` that parses a number with ``convert`` and names ``name`` on failure.
+
+    Range checks stay with the API (``InputError``), so the CLI and Python callers agree.
+    """
+    def parse(text):
+        try:
+            return convert(text)
+        except (TypeError, ValueError):  # sympy.SympifyError is a ValueError
+            raise argparse.ArgumentTypeError(f"{name} must be a number, got {text!r}") from None
+    return parse
+
+
 class _Parser(argparse.ArgumentParser):
     def error(self, message):  # one line, exit 2, like InputError
         self.exit(2, f"{self.prog}: error: {message}\n")

@@ -19,15 +19,7 @@ from ..errors import InputError
 from ..io import save_figure, write_text
 from ..mass import CONTACT_SETS, MASS_VARIANTS
 from ..plate import MODELS
-
-
-def _float(name):
-    def parse(text):
-        try:
-            return float(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"{name} must be a number, got {text!r}") from None
-    return parse
+from . import number
 
 
 def register(sub) -> None:
@@ -38,17 +30,17 @@ def register(sub) -> None:
     p.add_argument("--mass", choices=MASS_VARIANTS, action="append",
                    help="mass variant (repeat for several; default consistent and singular)")
     p.add_argument("--contact", choices=CONTACT_SETS, default="top")
-    p.add_argument("--gamma-s", type=_float("gamma_s"), default=0.0)
+    p.add_argument("--gamma-s", type=number("gamma_s"), default=0.0)
     p.add_argument("--model", choices=MODELS, default="bloch")
-    p.add_argument("--r", type=_float("r"), default=0.5,
+    p.add_argument("--r", type=number("r"), default=0.5,
                    help="aspect ratio b/h of the Bloch model (paper Figure 2: h/b = 2, r = 0.5)")
     p.add_argument("--p", type=int, default=2, help="degree through the thickness")
     p.add_argument("--n", type=int, default=3, help="control points through the thickness")
-    p.add_argument("--nu", type=_float("nu"), default=0.3)
-    p.add_argument("--kappa-min", type=_float("kappa-min"), default=0.0)
-    p.add_argument("--kappa-max", type=_float("kappa-max"), default=8.0)
+    p.add_argument("--nu", type=number("nu"), default=0.3)
+    p.add_argument("--kappa-min", type=number("kappa-min"), default=0.0)
+    p.add_argument("--kappa-max", type=number("kappa-max"), default=8.0)
     p.add_argument("--count", type=int, default=400, help="number of kappa points")
-    p.add_argument("--omega-max", type=_float("omega-max"), default=8.0)
+    p.add_argument("--omega-max", type=number("omega-max"), default=8.0)
     p.add_argument("--csv", help="write rows kappa, Omega, branch, symmetry, source to PATH")
     p.add_argument("--figure", help="write the figure (PNG or PDF by suffix) to PATH")
     p.add_argument("--exact-only", action="store_true", help="Rayleigh-Lamb branches only")

@@ -13,17 +13,9 @@ import sys
 from dataclasses import replace
 
 from ..errors import InputError
+from . import number
 
 MASSES = ("lumped", "singular", "consistent")
-
-
-def _float(name):
-    def parse(text):
-        try:
-            return float(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"{name} must be a number, got {text!r}") from None
-    return parse
 
 
 def register(sub) -> None:
@@ -36,8 +28,8 @@ def register(sub) -> None:
                    help="Newmark variant: contact-modified (Kane, default) or standard")
     p.add_argument("--level", type=int, default=0,
                    help="mesh refinement level: 16*2^level x 2*2^level elements")
-    p.add_argument("--dt", type=_float("dt"), default=None, help="time step (s), default 0.05")
-    p.add_argument("--t-end", type=_float("t-end"), default=None,
+    p.add_argument("--dt", type=number("dt"), default=None, help="time step (s), default 0.05")
+    p.add_argument("--t-end", type=number("t-end"), default=None,
                    help="end time (s), default 40")
     p.add_argument("--out", help="write summary.json, history.csv, figure.png into DIR")
     p.add_argument("--json", action="store_true", help="print the summary as JSON")

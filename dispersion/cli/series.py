@@ -1,7 +1,6 @@
 """``dispersion series``: power-balance series of S0/A0 (discrete or exact), and ``--paper``."""
 from __future__ import annotations
 
-import argparse
 import json
 import sys
 
@@ -11,20 +10,11 @@ from ..errors import InputError
 from ..io import write_text
 from ..mass import CONTACT_SETS, MASS_VARIANTS
 from ..plate import MODELS
-
-
-def _rational(name):
-    def parse(text):
-        try:
-            value = sympy.Rational(text)
-        except (TypeError, ValueError, sympy.SympifyError):
-            raise argparse.ArgumentTypeError(f"{name} must be a number, got {text!r}") from None
-        return value
-    return parse
+from . import number
 
 
 def _aspect(text):
-    return sympy.Symbol("r", positive=True) if text == "r" else _rational("r")(text)
+    return sympy.Symbol("r", positive=True) if text == "r" else number("r", sympy.Rational)(text)
 
 
 def register(sub) -> None:
@@ -35,7 +25,7 @@ def register(sub) -> None:
     p.add_argument("--exact", action="store_true", help="exact Rayleigh-Lamb series (eqs 14-15)")
     p.add_argument("--mass", choices=MASS_VARIANTS, default="consistent")
     p.add_argument("--contact", choices=CONTACT_SETS, default="top")
-    p.add_argument("--gamma-s", type=_rational("gamma_s"), default=sympy.Integer(0),
+    p.add_argument("--gamma-s", type=number("gamma_s", sympy.Rational), default=sympy.Integer(0),
                    help="share of a contact shape function sent to the second neighbour "
                         "(paper's gamma_s), in [0, 1]")
     p.add_argument("--model", choices=MODELS, default="bloch")
@@ -44,7 +34,7 @@ def register(sub) -> None:
     p.add_argument("--p", type=int, default=2, help="degree through the thickness (>= 1)")
     p.add_argument("--n", type=int, default=3, help="control points through the thickness (>= p+1)")
     p.add_argument("--order", type=int, default=8, help="highest power of kappa (even)")
-    p.add_argument("--nu", type=_rational("nu"), default=None, help="substitute a value for nu")
+    p.add_argument("--nu", type=number("nu", sympy.Rational), default=None, help="substitute a value for nu")
     p.add_argument("--format", choices=("text", "latex", "json"), default="text")
     p.add_argument("--paper", action="store_true",
                    help="regenerate eqs 14-20 and print the errata table (printed vs derived)")
@@ -75,7 +65,6 @@ def series_record(args, branch: str) -> dict:
 
 
 def _render(record: dict, fmt: str) -> str:
-    kappa = sympy.Symbol("kappa")
     terms = [(int(k), sympy.sympify(v, locals={"nu": sympy.Symbol("nu"),
                                                "r": sympy.Symbol("r", positive=True)}))
              for k, v in record["coefficients"].items()]

@@ -21,15 +21,12 @@ import numpy as np
 
 from dispersion.contact.scenario import Scenario
 from dispersion.contact.simulate import simulate_ring
+from dispersion.report.ring import step_timing
 
 
 def per_step(level: int, solver: str, steps: int) -> tuple[int, int, float, float]:
-    sc = replace(Scenario().with_level(level), t_end=steps * Scenario().dt)
-    t0 = time.perf_counter()
-    res = simulate_ring(sc, "singular", solver=solver)
-    wall = time.perf_counter() - t0
-    iters = int(np.sum(res.series["newton_iterations"]))
-    return res.summary["elements"], res.summary["dofs"], wall / steps, wall / iters
+    row = step_timing(level, steps, solver)
+    return row["elements"], row["dofs"], row["ms_per_step"] / 1e3, row["ms_per_iteration"] / 1e3
 
 
 def main() -> None:
@@ -61,7 +58,8 @@ def main() -> None:
 
     print("\n3. peak memory")
     tracemalloc.start()
-    simulate_ring(replace(Scenario(), t_end=5.0), "singular")
+    sc = Scenario()
+    simulate_ring(replace(sc, t_end=100 * sc.dt), "singular")
     peak = tracemalloc.get_traced_memory()[1]
     tracemalloc.stop()
     print(f"  tracemalloc peak of a 100-step default run: {peak / 2**20:.1f} MiB")

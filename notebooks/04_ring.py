@@ -46,7 +46,7 @@ for m, res in bars.items():
 plot_bar_force(bars).figure  # noqa: B018 (displayed by the notebook)
 
 # %% [markdown]
-# ## The ring, both masses (a few seconds each)
+# ## The ring, both masses (about 20 s each)
 
 # %%
 runs = {m: simulate_ring(sc, m) for m in ("lumped", "singular")}
@@ -57,7 +57,7 @@ for m, res in runs.items():
           f"rotation {s['final_rotation_deg']:.0f} deg")
 
 # %%
-figure4(runs["lumped"], runs["singular"], t_max=30.0)
+figure4(runs["lumped"], runs["singular"])
 
 # %% [markdown]
 # Paper: lumped mass loses 9.5 % of the energy, singular mass 0.097 %. The numbers printed

@@ -1,6 +1,6 @@
 """Ring benchmark: conservation laws and lumped-vs-singular behaviour (paper sec. 3).
 
-The full default scenario runs once per mass (about 5 s each) in a module fixture.
+The full default scenario runs once per mass (about 20 s each) in a module fixture.
 """
 from __future__ import annotations
 
@@ -55,12 +55,29 @@ def test_contact_points_never_penetrate(runs):
         assert 0 < res.summary["max_penetration"] < 0.05 * h
 
 
-def test_singular_mass_loses_less_energy_and_smooths_the_force(runs):
-    # paper sec. 3: lumped loses 9.5 %, singular 0.097 %; here we assert the ordering
+def test_singular_mass_loses_well_under_one_percent_lumped_clearly_more(runs):
+    # paper sec. 3: lumped loses 9.5 %, singular 0.097 % of the energy after the rebound
     lumped, singular = runs["lumped"].summary, runs["singular"].summary
-    assert lumped["energy_change_percent"] < 0  # Kane scheme: dissipative for regular mass
-    assert abs(singular["energy_change_percent"]) < 0.5 * abs(lumped["energy_change_percent"])
-    assert singular["force_roughness"] < lumped["force_roughness"]
+    assert lumped["energy_change_percent"] < -5  # Kane scheme: dissipative for regular mass
+    assert abs(singular["energy_change_percent"]) < 0.25
+    assert singular["force_roughness"] < 0.2 * lumped["force_roughness"]
+
+
+@pytest.fixture(scope="module")
+def coarse_step_runs():
+    sc = replace(Scenario(), dt=0.2)
+    return {m: simulate_ring(sc, m).summary for m in ("lumped", "singular")}
+
+
+def test_singular_energy_error_falls_with_the_step_lumped_does_not(runs, coarse_step_runs):
+    # singular mass: the semi-discrete system conserves energy, so the loss is a time-step
+    # error and falls with dt; lumped mass: the contact nodes' kinetic energy is destroyed at
+    # every impact, whatever the step (measured: -7.1 % at dt 0.2 s, -8.8 % at 0.05 s)
+    fine = runs["singular"].summary["energy_change_percent"]
+    coarse = coarse_step_runs["singular"]["energy_change_percent"]
+    assert abs(fine) < 0.1 * abs(coarse)
+    for summary in (runs["lumped"].summary, coarse_step_runs["lumped"]):
+        assert summary["energy_change_percent"] < -5
 
 
 def test_standard_newmark_changes_energy_at_impacts():
@@ -77,15 +94,3 @@ def test_bad_mass_rejected():
         ring_problem(Scenario(), "heavy")
     with pytest.raises(InputError, match="r_outer"):
         Scenario(r_inner=2.0, r_outer=1.0)
-
-
-@pytest.mark.slow
-def test_singular_energy_error_falls_with_the_step_lumped_does_not():
-    # measured (report section): singular -3.07 % at dt 0.05, -0.96 % at 0.025;
-    # lumped -10.3 % and -13.4 %: only the singular mass converges to energy conservation
-    sc = replace(Scenario(), dt=0.025)
-    singular = simulate_ring(sc, "singular").summary["energy_change_percent"]
-    lumped = simulate_ring(sc, "lumped").summary["energy_change_percent"]
-    coarse = simulate_ring(Scenario(), "singular").summary["energy_change_percent"]
-    assert abs(singular) < 0.5 * abs(coarse)
-    assert abs(lumped) > 5 * abs(singular)

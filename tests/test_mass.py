@@ -1,5 +1,4 @@
 """Mass variants (paper eqs 1-4): symmetry, semi-definiteness, translational mass, rank."""
-import warnings
 
 import numpy as np
 import pytest

@@ -1,6 +1,5 @@
 """Power-balance series: paper eqs 14-20 derived, and checked by independent computations."""
 import mpmath
-import numpy as np
 import pytest
 import sympy
 

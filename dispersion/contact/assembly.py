@@ -56,13 +56,19 @@ _GAUSS_X, _GAUSS_W = np.polynomial.legendre.leggauss(3)
 
 @dataclass(frozen=True)
 class Discretization:
-    """Quadrature data: connectivity ``(n_el, 9)``, ``R (n_el, 9g, 9)``, ``dR (n_el, 9g, 9, 2)``."""
+    """Quadrature data: connectivity ``(n_el, 9)``, ``R (n_el, 9g, 9)``, ``dR (n_el, 9g, 9, 2)``.
+
+    ``pattern`` is the CSR structure of the stiffness ``(indices, indptr, slot)``: entry ``i``
+    of the element matrices (flattened) adds into ``data[slot[i]]``, so assembly is a single
+    ``bincount`` with no sorting per call.
+    """
 
     patch: RingPatch
     conn: np.ndarray
     R: np.ndarray
     dR: np.ndarray
     wdet: np.ndarray
+    pattern: tuple
 
     @property
     def n_points(self) -> int:
@@ -109,7 +115,18 @@ def discretize(patch: RingPatch) -> Discretization:
     detJ = np.linalg.det(J)
     dRdX = np.einsum("egal,eglk->egak", dR, np.linalg.inv(J))
     wq = np.einsum("eg,eh->egh", wx[ex], wy[ey]).reshape(n_el, 9)
-    return Discretization(patch, conn, R, dRdX, wq * np.abs(detJ))
+    dofs = (2 * conn[:, :, None] + np.arange(2)).reshape(n_el, -1)
+    return Discretization(patch, conn, R, dRdX, wq * np.abs(detJ),
+                          _csr_pattern(dofs, 2 * patch.n_points))
+
+
+def _csr_pattern(dofs: np.ndarray, n: int) -> tuple:
+    """CSR ``(indices, indptr, slot)`` of the matrix assembled from element ``dofs``."""
+    k = dofs.shape[1]
+    key = (np.repeat(dofs, k, axis=1) * n + np.tile(dofs, (1, k))).ravel()
+    unique, slot = np.unique(key, return_inverse=True)
+    indptr = np.searchsorted(unique, np.arange(n + 1) * n)
+    return unique % n, indptr, slot
 
 
 def _kinematics(disc: Discretization, mat: StVenantKirchhoff, u: np.ndarray):
@@ -142,9 +159,9 @@ def internal_force(disc: Discretization, mat: StVenantKirchhoff, u: np.ndarray,
     G = dR.transpose(0, 2, 1, 3).reshape(n_el, 9, 18) @ SdR.transpose(0, 1, 3, 2).reshape(
         n_el, 18, 9)
     Ke = Km + np.einsum("eab,kl->eakbl", G, np.eye(2)).reshape(n_el, 18, 18)
-    rows = np.repeat(dofs, 18, axis=1).ravel()
-    cols = np.tile(dofs, (1, 18)).ravel()
-    K = sp.csr_matrix((Ke.ravel(), (rows, cols)), shape=(disc.n_dofs, disc.n_dofs))
+    indices, indptr, slot = disc.pattern
+    data = np.bincount(slot, Ke.ravel(), minlength=len(indices))
+    K = sp.csr_matrix((data, indices, indptr), shape=(disc.n_dofs, disc.n_dofs))
     return f, K
 
 

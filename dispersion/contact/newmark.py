@@ -170,6 +170,7 @@ def step(prob: ContactProblem, nm: Newmark, state: State, dt: float, split=None)
     f_ext = np.zeros(prob.n) if prob.f_ext is None else prob.f_ext
     M, G = prob.M, sp.csr_matrix(prob.G)
     c1 = 1.0 / (beta * dt**2)
+    c1M = c1 * M
     # Newton starts from the last converged configuration: the predictor itself carries the
     # high-frequency part of a_n and lies far from equilibrium in the stiff directions
     U = u.copy()
@@ -185,7 +186,7 @@ def step(prob: ContactProblem, nm: Newmark, state: State, dt: float, split=None)
 
     f, K, inertia, r, g, _ = residual(U, mu)
     for it in range(1, nm.max_iter + 1):
-        Keff = (c1 * M + K).tocsr()
+        Keff = c1M + K
         if c_ncp is None:
             c_ncp = float(Keff.diagonal().max())
         phi = np.minimum(mu, c_ncp * g)
@@ -194,9 +195,9 @@ def step(prob: ContactProblem, nm: Newmark, state: State, dt: float, split=None)
         if it > 1 and merit <= nm.tol * scale:
             break
         act = np.flatnonzero(mu - c_ncp * g > 0)
-        Ga = G[act]
-        A = sp.bmat([[Keff, -Ga.T], [Ga, None]], format="csc")
         rhs = np.concatenate([-(inertia + f - f_ext), -g[act]])
+        # the saddle-point matrix is only needed while a constraint is active
+        A = sp.bmat([[Keff, -G[act].T], [G[act], None]], format="csc") if len(act) else Keff
         sol = np.linalg.solve(A.toarray(), rhs) if nm.solver == "dense" else spla.spsolve(A, rhs)
         if not np.all(np.isfinite(sol)):
             raise ConvergenceError(f"singular Newton matrix at t = {state.t + dt:.6g}")

@@ -19,7 +19,7 @@ from ..contact.simulate import ring_patch, simulate_ring
 from ..errors import ConvergenceError, InputError
 from ..io import save_figure, write_text
 
-__all__ = ["bar_rows", "dt_sweep", "report", "ring_run"]
+__all__ = ["bar_rows", "dt_sweep", "report", "ring_run", "step_timing"]
 
 COMMAND = "dispersion reproduce --sections ring"
 
@@ -63,6 +63,20 @@ def dt_sweep(sc: Scenario, dts, masses=("lumped", "singular"), scheme: str = "ka
                                      for dt in dts])
 
 
+def step_timing(level: int, steps: int = 40, solver: str = "sparse") -> dict:
+    """Wall time per step and per Newton iteration of ``steps`` steps through the first impact
+    (singular mass, mesh ``level``): the cost of the solver against the number of elements."""
+    sc = Scenario().with_level(level)
+    sc = replace(sc, t_end=steps * sc.dt)
+    t0 = time.perf_counter()
+    res = simulate_ring(sc, "singular", solver=solver)
+    wall = time.perf_counter() - t0
+    iters = int(np.sum(res.series["newton_iterations"]))
+    return {"level": level, "elements": res.summary["elements"], "dofs": res.summary["dofs"],
+            "solver": solver, "steps": steps, "ms_per_step": 1e3 * wall / steps,
+            "ms_per_iteration": 1e3 * wall / iters}
+
+
 def _clean(row: dict) -> dict:
     return {k: (float(v) if isinstance(v, (np.floating, np.integer)) else v)
             for k, v in row.items() if k != "result"}
@@ -100,8 +114,8 @@ def report(out: Path, quick: bool = False, executor=None) -> str:
     plot_bar_force(forces, a3)
     save_figure(fig, out / "bar_validation.png", dpi=130)
 
-    dts = ((0.05, 0.1, 0.4, 1.6, 3.2) if quick
-           else (0.0125, 0.025, 0.05, 0.1, 0.2, 0.4, 0.8, 1.6, 3.2, 6.4))
+    dts = ((0.05, 0.2, 0.8, 3.2, 12.8, 51.2) if quick
+           else (0.025, 0.05, 0.1, 0.2, 0.4, 0.8, 1.6, 3.2, 6.4, 12.8, 25.6, 51.2))
     # the paper's step is the pair above: reuse it instead of running it again
     sweep = pair + dt_sweep(sc, [d for d in dts if d != sc.dt], executor=executor)
     sweep.sort(key=lambda r: (r["mass"], r["dt"]))
@@ -113,6 +127,7 @@ def report(out: Path, quick: bool = False, executor=None) -> str:
     ax.set_title(f"ring, t_end = {sc.t_end} s, {sc.n_xi_elements} x {sc.n_eta_elements} "
                  "elements", fontsize=9)
     save_figure(ax.figure, out / "ring_energy_runtime.png", dpi=130)
+    timing = [step_timing(lev) for lev in ((0, 1) if quick else (0, 1, 2, 3))]
     largest = {m: max([r["dt"] for r in sweep if r["mass"] == m and r["converged"]], default=None)
                for m in ("lumped", "singular")}
     try:
@@ -127,6 +142,7 @@ def report(out: Path, quick: bool = False, executor=None) -> str:
         "scenario": sc.__dict__, "pair": [_clean(r) for r in pair],
         "bar": [_clean(r) for r in brows], "bar_standard": [_clean(r) for r in std_rows],
         "dt_sweep": [_clean(r) for r in sweep], "ring_standard": [_clean(r) for r in std],
+        "ring_levels": [_clean(r) for r in levels], "step_timing": timing,
         "largest_converged_dt": largest, "quick": quick}, indent=1, default=str))
 
     lines = [
@@ -206,6 +222,23 @@ def report(out: Path, quick: bool = False, executor=None) -> str:
          f"iterations): lumped {largest['lumped']} s, singular {largest['singular']} s "
          f"(sweep up to {max(dts)} s). A redistribution weight "
          f"gamma_s = 1.5 (outside [0, 1], indefinite mass) is {rejected}."),
+        "",
+        "### Speed: time per step against the number of elements",
+        "",
+        (f"Singular mass, {timing[0]['steps']} steps through the first impact, sparse "
+         "saddle-point solves (scipy.sparse.linalg.spsolve); the benchmark "
+         "`python benchmarks/bench_ring.py` adds the dense LAPACK baseline and peak memory."),
+        "",
+        "| level | elements | DOFs | ms per step | ms per Newton iteration |",
+        "|---|---|---|---|---|",
+    ]
+    lines += [f"| {r['level']} | {r['elements']} | {r['dofs']} | {r['ms_per_step']:.2f} | "
+              f"{r['ms_per_iteration']:.2f} |" for r in timing]
+    if len(timing) >= 3:
+        n, t = np.log([[r["elements"], r["ms_per_step"]] for r in timing[1:]]).T
+        lines.append(f"\nTime per step grows like elements^{np.polyfit(n, t, 1)[0]:.2f} "
+                     "(least-squares fit from level 1 on).")
+    lines += [
         "",
         f"Regenerate: `{COMMAND}`; this section took {elapsed:.0f} s.",
         "",

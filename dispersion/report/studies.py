@@ -48,6 +48,7 @@ from pathlib import Path
 import numpy as np
 import sympy
 
+from ..branches import pencil_frequencies
 from ..errors import ConvergenceError, InputError, check_nu, check_positive, check_positive_int
 from ..io import save_figure, write_text
 from ..plate import mirror_bases, numeric_pencil, plate_patch
@@ -78,26 +79,14 @@ def condensed_frequencies(patch, nu: float, kappa) -> np.ndarray:
 
     Massless DOFs (singular masses) are condensed statically,
     :math:`K_c = K_{mm} - K_{ms} K_{ss}^{-1} K_{sm}`, so the pencil keeps exactly the finite
-    branches; the rest is a batched symmetric eigenproblem after a Cholesky factor of M.
+    branches (:func:`dispersion.branches.pencil_frequencies`).
 
     >>> W = condensed_frequencies(plate_patch(mass="singular"), 0.3, [0.1, 0.2])
     >>> W.shape
     (2, 4)
     """
     K, M = numeric_pencil(patch, nu, kappa)
-    return _pencil_frequencies(K, M, patch.massless)
-
-
-def _pencil_frequencies(K: np.ndarray, M: np.ndarray, massless) -> np.ndarray:
-    s = list(massless)
-    if s:
-        m = [i for i in range(K.shape[1]) if i not in s]
-        Kms = K[:, m][:, :, s]
-        K = K[:, m][:, :, m] - Kms @ np.linalg.solve(K[:, s][:, :, s], Kms.transpose(0, 2, 1))
-        M = M[:, m][:, :, m]
-    Linv = np.linalg.inv(np.linalg.cholesky(M))
-    w2 = np.linalg.eigvalsh(Linv @ K @ Linv.transpose(0, 2, 1))
-    return np.sqrt(np.clip(w2, 0.0, None))  # clip: round-off below 0 at kappa = 0 only
+    return pencil_frequencies(K, M, patch.massless)
 
 
 def branch_frequencies(patch, nu: float, kappa) -> dict[str, np.ndarray]:
@@ -111,14 +100,14 @@ def branch_frequencies(patch, nu: float, kappa) -> dict[str, np.ndarray]:
     K, M = numeric_pencil(patch, nu, kappa)
     bases = mirror_bases(patch)
     if bases is None:
-        W = _pencil_frequencies(K, M, patch.massless)
+        W = pencil_frequencies(K, M, patch.massless)
         return {"A0": W[:, 0], "S0": W[:, 1]}
     out = {}
     for key, E in bases.items():
         idx = np.arange(E.shape[1])
         Mb = E.T @ M @ E
         zero = tuple(i for i in idx if np.allclose(Mb[:, i, :], 0.0))
-        out[f"{key}0"] = _pencil_frequencies(E.T @ K @ E, Mb, zero)[:, 0]
+        out[f"{key}0"] = pencil_frequencies(E.T @ K @ E, Mb, zero)[:, 0]
     return out
 
 

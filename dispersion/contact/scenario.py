@@ -5,6 +5,8 @@
 0.039
 >>> s.with_level(1).n_xi_elements, s.with_level(1).n_eta_elements
 (32, 4)
+>>> s.scaled(0.125).r_outer, s.scaled(0.125).t_end
+(20.0, 45.0)
 """
 from __future__ import annotations
 
@@ -102,6 +104,16 @@ class Scenario:
     @property
     def n_steps(self) -> int:
         return round(self.t_end / self.dt)
+
+    def scaled(self, factor: float) -> Scenario:
+        """The same scene ``factor`` times larger (radii, gap and end time), same dt.
+
+        With v0 and the material fixed, this is the scene at the step ``dt / factor``:
+        the way to see how the size chosen above resolves the impacts.
+        """
+        check_positive("factor", factor)
+        return replace(self, r_inner=self.r_inner * factor, r_outer=self.r_outer * factor,
+                       gap=self.gap * factor, t_end=self.t_end * factor)
 
     def with_level(self, level: int) -> Scenario:
         """Scenario with the mesh refined ``level`` times (each halves the element size)."""

@@ -1,0 +1,58 @@
+"""README commands run as written, so the README cannot rot.
+
+Every ``dispersion ...`` command in the README's bash blocks runs in a fresh directory through
+``python -m dispersion`` (the console script's entry point) and must exit 0, print something
+and write the files it names. The quick start's main job (``dispersion reproduce``, about
+8 min) is a slow check; the quick start's test command is this test suite itself.
+"""
+from __future__ import annotations
+
+import re
+import shlex
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+README = Path(__file__).resolve().parents[1] / "README.md"
+SLOW = {"reproduce", "bench"}  # minutes each: run by .ci/run, not by default
+
+
+def readme_commands() -> list[str]:
+    """``dispersion`` commands of the README's bash blocks (comments and install steps cut)."""
+    out = []
+    for block in re.findall(r"```bash\n(.*?)```", README.read_text(), re.S):
+        for line in block.splitlines():
+            command = line.split(" #")[0].split("&&")[-1].strip()
+            if command.startswith("dispersion "):
+                out.append(command)
+    return out
+
+
+def _param(command: str):
+    marks = [pytest.mark.slow] if shlex.split(command)[1] in SLOW else []
+    return pytest.param(command, marks=marks, id=command)
+
+
+def test_readme_has_the_main_job_and_the_commands_of_each_part():
+    names = {shlex.split(c)[1] for c in readme_commands()}
+    assert {"reproduce", "series", "branches", "ring"} <= names
+
+
+def _named_outputs(args: list[str]) -> list[str]:
+    return [args[i + 1] for i, a in enumerate(args[:-1])
+            if a in ("--out", "--figure", "--csv")]
+
+
+@pytest.mark.parametrize("command", [_param(c) for c in readme_commands()])
+def test_readme_command_runs(command, tmp_path):
+    args = shlex.split(command)[1:]
+    proc = subprocess.run([sys.executable, "-m", "dispersion", *args], cwd=tmp_path,
+                          capture_output=True, text=True, timeout=1800, check=False)
+    assert proc.returncode == 0, proc.stderr[-2000:]
+    assert "Traceback" not in proc.stderr
+    written = _named_outputs(args) or (["reports/index.md"] if args[0] == "reproduce" else [])
+    assert proc.stdout.strip() or written
+    for name in written:
+        assert (tmp_path / name).exists(), f"{command!r} did not write {name}"

@@ -12,8 +12,11 @@ import json
 import sys
 from dataclasses import replace
 
+from ..contact.scenario import Scenario
 from ..errors import InputError
 from . import number
+
+DEFAULT = Scenario()
 
 MASSES = ("lumped", "singular", "consistent")
 
@@ -28,9 +31,10 @@ def register(sub) -> None:
                    help="Newmark variant: contact-modified (Kane, default) or standard")
     p.add_argument("--level", type=int, default=0,
                    help="mesh refinement level: 16*2^level x 2*2^level elements")
-    p.add_argument("--dt", type=number("dt"), default=None, help="time step (s), default 0.05")
+    p.add_argument("--dt", type=number("dt"), default=None,
+                   help=f"time step (s), default {DEFAULT.dt:g}")
     p.add_argument("--t-end", type=number("t-end"), default=None,
-                   help="end time (s), default 40")
+                   help=f"end time (s), default {DEFAULT.t_end:g}")
     p.add_argument("--out", help="write summary.json, history.csv, figure.png into DIR")
     p.add_argument("--json", action="store_true", help="print the summary as JSON")
     p.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
@@ -39,13 +43,12 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    from ..contact.scenario import Scenario
     from ..contact.simulate import simulate_ring
     from ..io import write_text
 
     if isinstance(args.level, bool) or args.level < 0 or args.level > 4:
         raise InputError(f"level must be an integer in [0, 4], got {args.level}")
-    sc = Scenario().with_level(args.level)
+    sc = DEFAULT.with_level(args.level)
     changes = {k: v for k, v in (("dt", args.dt), ("t_end", args.t_end)) if v is not None}
     sc = replace(sc, **changes)
     show = sys.stderr.isatty() if args.progress is None else args.progress

@@ -36,7 +36,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import InputError, check_nu, check_positive_int
+from .errors import InputError, check_nu, check_positive_int, check_wavenumbers
 from .plate import PlatePatch, mirror_bases, numeric_pencil
 
 __all__ = [
@@ -148,15 +148,6 @@ def _geometric_mirror(n: int) -> np.ndarray:
     return np.block([[J, np.zeros((n, n))], [np.zeros((n, n)), -J]])
 
 
-def _check_kappa(kappa) -> np.ndarray:
-    kappa = np.atleast_1d(np.asarray(kappa, dtype=float))
-    if kappa.ndim != 1 or kappa.size == 0:
-        raise InputError("kappa must be a non-empty 1-d array")
-    if not np.all(np.isfinite(kappa)) or np.any(kappa < 0):
-        raise InputError("kappa must be finite and >= 0")
-    return kappa
-
-
 def discrete_branches(patch: PlatePatch, nu: float, kappa, chunk: int = 20000,
                       progress=None) -> DiscreteBranches:
     """All finite discrete branches of ``patch`` on the grid ``kappa`` (see module docstring).
@@ -175,7 +166,7 @@ def discrete_branches(patch: PlatePatch, nu: float, kappa, chunk: int = 20000,
         Called with the number of kappa points finished after each chunk.
     """
     nu = float(check_nu(nu))
-    kappa = _check_kappa(kappa)
+    kappa = check_wavenumbers(kappa)
     chunk = check_positive_int("chunk", chunk)
     zone = math.pi / float(patch.r) if patch.model == "bloch" else None
     parts = []

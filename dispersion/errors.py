@@ -21,6 +21,7 @@ __all__ = [
     "check_nu",
     "check_positive_int",
     "check_positive",
+    "check_wavenumbers",
 ]
 
 
@@ -76,3 +77,15 @@ def check_positive(name: str, value):
     if not ok:
         raise InputError(f"{name} must be a finite number > 0, got {value!r}")
     return value
+
+
+def check_wavenumbers(kappa):
+    """``kappa`` as a non-empty 1-d float array of finite values >= 0, else :class:`InputError`."""
+    import numpy as np
+
+    kappa = np.atleast_1d(np.asarray(kappa, dtype=float))
+    if kappa.ndim != 1 or kappa.size == 0:
+        raise InputError("kappa must be a non-empty 1-d array")
+    if not np.all(np.isfinite(kappa)) or np.any(kappa < 0):
+        raise InputError("kappa must be finite and >= 0")
+    return kappa

@@ -36,7 +36,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .errors import InputError, check_nu, check_positive, check_positive_int
+from .errors import InputError, check_nu, check_positive, check_positive_int, check_wavenumbers
 
 __all__ = [
     "ExactBranches",
@@ -270,11 +270,7 @@ class ExactBranches:
 
 
 def _check_grid(kappa) -> np.ndarray:
-    kappa = np.atleast_1d(np.asarray(kappa, dtype=float))
-    if kappa.ndim != 1 or kappa.size == 0:
-        raise InputError("kappa must be a non-empty 1-d array")
-    if not np.all(np.isfinite(kappa)) or np.any(kappa < 0):
-        raise InputError("kappa must be finite and >= 0")
+    kappa = check_wavenumbers(kappa)
     if kappa.max() > 300:
         raise InputError(f"kappa must be <= 300 (cosh overflow), got {kappa.max()}")
     return kappa

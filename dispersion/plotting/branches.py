@@ -15,6 +15,8 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 
+from . import axes
+
 __all__ = [
     "figure2",
     "plot_discrete",
@@ -25,12 +27,8 @@ __all__ = [
 ]
 
 
-def _axes(ax, size=(5.5, 4.0)):
-    if ax is None:
-        from matplotlib.figure import Figure
-
-        ax = Figure(figsize=size, layout="constrained").add_subplot()
-    return ax
+def _axes(ax):
+    return axes(ax, (5.5, 4.0))
 
 
 def plot_exact(exact, ax=None, color="k", label="exact Rayleigh-Lamb (S solid, A dashed)"):

@@ -14,6 +14,8 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from . import axes
+
 __all__ = [
     "figure4",
     "plot_bar_force",
@@ -23,12 +25,8 @@ __all__ = [
 ]
 
 
-def _axes(ax, size=(6.0, 3.2)):
-    if ax is None:
-        from matplotlib.figure import Figure
-
-        ax = Figure(figsize=size, layout="constrained").add_subplot()
-    return ax
+def _axes(ax):
+    return axes(ax, (6.0, 3.2))
 
 
 def plot_contact_energy(result, ax=None, title: str | None = None):

@@ -9,6 +9,8 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 
+from . import axes
+
 __all__ = ["plot_time_vs_order"]
 
 _STYLE = {"ours": ("C0", "o", "-"), "maxima": ("C2", "s", "--"), "textbook": ("C3", "^", ":")}
@@ -21,10 +23,7 @@ def plot_time_vs_order(routes: Mapping[str, Sequence[Sequence[float]]], ax=None,
     A dotted line at ``budget`` marks where the textbook route was stopped: orders it did not
     reach took longer than that.
     """
-    if ax is None:
-        from matplotlib.figure import Figure
-
-        ax = Figure(figsize=(5.0, 3.8), layout="constrained").add_subplot()
+    ax = axes(ax, (5.0, 3.8))
     for name, points in routes.items():
         color, marker, line = _STYLE.get(name, ("C7", "x", "-"))
         if points:

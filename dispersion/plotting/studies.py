@@ -16,13 +16,11 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from . import axes
+
 
 def _axes(ax):
-    if ax is None:
-        from matplotlib.figure import Figure
-
-        ax = Figure(figsize=(5, 3.5), layout="constrained").add_subplot()
-    return ax
+    return axes(ax, (5, 3.5))
 
 
 def plot_gamma_coefficients(rows: Sequence[dict], ax=None):

@@ -24,7 +24,7 @@ import scipy.sparse as sp
 from ..errors import InputError
 from .assembly import discretize, internal_force, ring_mass, strain_energy
 from .material import StVenantKirchhoff
-from .newmark import ContactProblem, Newmark, integrate
+from .newmark import DENSE_MAX, ContactProblem, Newmark, integrate
 from .nurbs import RingPatch, quarter_ring
 from .scenario import Scenario
 
@@ -58,8 +58,10 @@ def ring_problem(sc: Scenario, mass: str = "singular") -> tuple[ContactProblem, 
     g0 = np.einsum("ma,ma->m", R, patch.points[idx, 1])
     directions = np.zeros((2, disc.n_dofs))
     directions[0, 0::2] = directions[1, 1::2] = 1.0
-    prob = ContactProblem(M, lambda u: internal_force(disc, mat, u),
-                          G, g0, lambda u: strain_energy(disc, mat, u), None, directions)
+    dense = disc.n_dofs <= DENSE_MAX
+    prob = ContactProblem(M, lambda u: internal_force(disc, mat, u, dense=dense),
+                          G, g0, lambda u: strain_energy(disc, mat, u), None, directions,
+                          force=lambda u: internal_force(disc, mat, u, tangent=False))
     return prob, patch
 
 
@@ -93,7 +95,7 @@ def _chord_angle(patch: RingPatch, u: np.ndarray) -> float:
 
 def simulate_ring(sc: Scenario | None = None, mass: str = "singular", scheme: str = "kane",
                   *, progress: Callable | None = None, tol: float = 1e-8,
-                  solver: str = "sparse") -> RingResult:
+                  solver: str = "auto") -> RingResult:
     """Run the ring benchmark; raises :class:`~dispersion.errors.ConvergenceError` on failure.
 
     ``summary``: ``energy_change_percent`` (total energy at the end vs the initial kinetic

@@ -46,6 +46,9 @@ __all__ = [
     "Discretization",
     "consistent_mass",
     "discretize",
+    "float_redistribution",
+    "patch_mass",
+    "patch_redistribution",
     "internal_force",
     "ring_mass",
     "ring_redistribution",
@@ -243,23 +246,49 @@ def consistent_mass(disc: Discretization, rho: float) -> sp.csr_matrix:
     return sp.csr_matrix((Me.ravel(), (rows, cols)), shape=(n, n))
 
 
-def ring_redistribution(patch: RingPatch, gamma_s: float = 0.5) -> sp.csr_matrix:
-    """Redistribution ``R`` (``N_m = N R``) moving every outer-surface function inward.
+def float_redistribution(n: int, contact: str, gamma_s: float) -> np.ndarray:
+    """Float redistribution matrix of :func:`dispersion.mass.redistribution_matrix` across ``n``
+    functions, contact set ``contact`` (``"top"``: index n-1, ``"bottom"``: index 0).
 
-    Each column of control points through the thickness gets the paper's weights
+    >>> float_redistribution(3, "bottom", 0.5).tolist()
+    [[0.0, 0.5, 0.5], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+    """
+    R = redistribution_matrix(n, contact_weights(n, contact, gamma_s))
+    return np.array(R.tolist(), dtype=float)
+
+
+def patch_redistribution(patch: RingPatch, side: str = "eta1",
+                         gamma_s: float = 0.5) -> sp.csr_matrix:
+    """Redistribution ``R`` (``N_m = N R``) moving every function of ``side`` inward.
+
+    Each line of control points across the patch gets the paper's weights
     (:func:`dispersion.mass.contact_weights`, eqs 2-4): ``1 - gamma_s`` to the neighbour,
     ``gamma_s`` to the next one.
     """
-    Rc = redistribution_matrix(patch.n_eta, contact_weights(patch.n_eta, "top", gamma_s))
-    Rc = np.array(Rc.tolist(), dtype=float)
-    return sp.kron(sp.eye(patch.n_xi), sp.csr_matrix(Rc)).tocsr()
+    if side.startswith("eta"):
+        Rc = float_redistribution(patch.n_eta, "top" if side == "eta1" else "bottom", gamma_s)
+        return sp.kron(sp.eye(patch.n_xi), sp.csr_matrix(Rc)).tocsr()
+    Rc = float_redistribution(patch.n_xi, "top" if side == "xi1" else "bottom", gamma_s)
+    return sp.kron(sp.csr_matrix(Rc), sp.eye(patch.n_eta)).tocsr()
+
+
+def ring_redistribution(patch: RingPatch, gamma_s: float = 0.5) -> sp.csr_matrix:
+    """:func:`patch_redistribution` of the outer surface ``eta1`` (the ring's contact side)."""
+    return patch_redistribution(patch, "eta1", gamma_s)
+
+
+def patch_mass(disc: Discretization, rho: float, variant: str = "consistent",
+               side: str = "eta1", gamma_s: float = 0.5) -> sp.csr_matrix:
+    """Mass matrix on the interleaved DOFs for ``variant`` (see
+    :func:`dispersion.mass.mass_variant`); singular variants redistribute ``side``."""
+    M = consistent_mass(disc, rho)
+    R = patch_redistribution(disc.patch, side, gamma_s) if variant.startswith("singular") else None
+    Mv = sp.csr_matrix(mass_variant(M, variant, R))
+    Mv.eliminate_zeros()
+    return sp.kron(Mv, sp.eye(2)).tocsr()
 
 
 def ring_mass(disc: Discretization, rho: float, variant: str = "consistent",
               gamma_s: float = 0.5) -> sp.csr_matrix:
-    """Mass matrix on the interleaved DOFs for ``variant`` (see :func:`dispersion.mass.mass_variant`)."""
-    M = consistent_mass(disc, rho)
-    R = ring_redistribution(disc.patch, gamma_s) if variant.startswith("singular") else None
-    Mv = sp.csr_matrix(mass_variant(M, variant, R))
-    Mv.eliminate_zeros()
-    return sp.kron(Mv, sp.eye(2)).tocsr()
+    """:func:`patch_mass` with the ring's contact side ``eta1``."""
+    return patch_mass(disc, rho, variant, "eta1", gamma_s)

@@ -63,7 +63,9 @@ class Discretization:
     direction). ``pattern`` is the CSR structure of the stiffness ``(indices, indptr, slot)``:
     entry ``i`` of the element matrices (flattened) adds into ``data[slot[i]]``, so assembly
     is a single ``bincount`` with no sorting per call; ``dense_slot`` holds the flat position
-    of each CSR entry in a dense ``(n_dofs, n_dofs)`` array.
+    of each CSR entry in a dense ``(n_dofs, n_dofs)`` array. ``BF`` maps the DOFs to the
+    displacement gradient components ``(F00 - 1, F01, F10, F11 - 1)`` at all Gauss points
+    (stacked); its transpose ``BFT`` maps weighted stresses back to nodal forces.
     """
 
     patch: RingPatch
@@ -73,6 +75,8 @@ class Discretization:
     wdet: np.ndarray
     pattern: tuple
     dense_slot: np.ndarray
+    BF: sp.csr_matrix
+    BFT: sp.csr_matrix
 
     @property
     def n_points(self) -> int:
@@ -127,8 +131,27 @@ def discretize(patch: RingPatch) -> Discretization:
     n = 2 * patch.n_points
     pattern = _csr_pattern(dofs, n)
     rows = np.repeat(np.arange(n), np.diff(pattern[1]))
+    BF = _gradient_operator(conn, dRdX, n)
     return Discretization(patch, conn, R, dRdX, wq * np.abs(detJ), pattern,
-                          rows * n + pattern[0])
+                          rows * n + pattern[0], BF, BF.T.tocsr())
+
+
+def _gradient_operator(conn: np.ndarray, dR: np.ndarray, n: int) -> sp.csr_matrix:
+    """Sparse ``(4 n_gauss, n_dofs)`` map ``u -> (F00 - 1, F01, F10, F11 - 1)`` at every Gauss
+    point, :math:`F_{kJ} - \\delta_{kJ} = \\sum_a u_{ak} \\partial_J R_a`."""
+    n_el, ng, nf = dR.shape[:3]
+    npts = n_el * ng
+    point = np.arange(npts).reshape(n_el, ng)[:, :, None]
+    node = conn[:, None, :]
+    rows, cols, vals = [], [], []
+    for block, (k, J) in enumerate(((0, 0), (0, 1), (1, 0), (1, 1))):
+        r = np.broadcast_to(block * npts + point, (n_el, ng, nf))
+        c = np.broadcast_to(2 * node + k, (n_el, ng, nf))
+        rows.append(r.ravel())
+        cols.append(c.ravel())
+        vals.append(dR[..., J].ravel())
+    return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+                         shape=(4 * npts, n))
 
 
 def _csr_pattern(dofs: np.ndarray, n: int) -> tuple:
@@ -155,13 +178,8 @@ def _kinematics(disc: Discretization, mat: StVenantKirchhoff, u: np.ndarray):
 
 def _green_components(disc: Discretization, u: np.ndarray):
     """Deformation gradient and Green strain by components at every Gauss point (fast path)."""
-    u2 = np.asarray(u, dtype=float).reshape(-1, 2)
-    ux, uy = u2[disc.conn, 0][:, None, :], u2[disc.conn, 1][:, None, :]  # (e, 1, a)
-    dx, dy = disc.dR[..., 0], disc.dR[..., 1]  # (e, g, a)
-    F00 = 1.0 + (ux * dx).sum(-1)
-    F01 = (ux * dy).sum(-1)
-    F10 = (uy * dx).sum(-1)
-    F11 = 1.0 + (uy * dy).sum(-1)
+    Fv = (disc.BF @ np.asarray(u, dtype=float)).reshape(4, -1)
+    F00, F01, F10, F11 = 1.0 + Fv[0], Fv[1], Fv[2], 1.0 + Fv[3]
     E00 = 0.5 * (F00 * F00 + F10 * F10 - 1.0)
     E11 = 0.5 * (F01 * F01 + F11 * F11 - 1.0)
     E01 = 0.5 * (F00 * F01 + F10 * F11)
@@ -172,18 +190,12 @@ def _force(disc: Discretization, mat: StVenantKirchhoff, u: np.ndarray) -> np.nd
     """Internal force alone, by components (no 2 x 2 matrix products per Gauss point)."""
     (F00, F01, F10, F11), (E00, E11, E01) = _green_components(disc, u)
     tr = mat.lam_bar * (E00 + E11)
-    w = disc.wdet
+    w = disc.wdet.ravel()
     S00, S11, S01 = (tr + 2 * mat.mu * E00) * w, (tr + 2 * mat.mu * E11) * w, 2 * mat.mu * E01 * w
-    P00, P01 = F00 * S00 + F01 * S01, F00 * S01 + F01 * S11
-    P10, P11 = F10 * S00 + F11 * S01, F10 * S01 + F11 * S11
-    dx, dy = disc.dR[..., 0], disc.dR[..., 1]
-    fx = (P00[..., None] * dx + P01[..., None] * dy).sum(1)  # (e, a)
-    fy = (P10[..., None] * dx + P11[..., None] * dy).sum(1)
-    n = disc.n_points
-    f = np.empty(2 * n)
-    f[0::2] = np.bincount(disc.conn.ravel(), fx.ravel(), minlength=n)
-    f[1::2] = np.bincount(disc.conn.ravel(), fy.ravel(), minlength=n)
-    return f
+    # f_ak = sum_g sum_J P_kJ dR_aJ: the transpose of the gradient map applied to P
+    P = np.concatenate([F00 * S00 + F01 * S01, F00 * S01 + F01 * S11,
+                        F10 * S00 + F11 * S01, F10 * S01 + F11 * S11])
+    return disc.BFT @ P
 
 
 def internal_force(disc: Discretization, mat: StVenantKirchhoff, u: np.ndarray,
@@ -233,7 +245,7 @@ def strain_energy(disc: Discretization, mat: StVenantKirchhoff, u: np.ndarray) -
     _, (E00, E11, E01) = _green_components(disc, u)
     tr = E00 + E11
     W = 0.5 * mat.lam_bar * tr**2 + mat.mu * (E00**2 + E11**2 + 2 * E01**2)
-    return float(np.sum(disc.wdet * W))
+    return float(np.sum(disc.wdet.ravel() * W))
 
 
 def consistent_mass(disc: Discretization, rho: float) -> sp.csr_matrix:

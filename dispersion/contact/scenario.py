@@ -100,7 +100,7 @@ class Scenario:
             raise InputError(f"theta0_deg must be finite, got {self.theta0_deg}")
         if not np.isfinite(self.gap):
             raise InputError(f"gap must be a finite number >= 0, got {self.gap}")
-        if not 1 / self.dt**2 < np.inf:
+        if not (self.dt**2 > 0 and 1 / self.dt**2 < np.inf):
             raise InputError(f"dt must be >= 1e-150 s (1/dt^2 overflows), got {self.dt}")
         if self.t_end < self.dt:
             raise InputError(f"t_end must be >= dt = {self.dt:g} s (one step), got {self.t_end:g}")

@@ -60,9 +60,10 @@ __all__ = ["SCHEMES", "DENSE_MAX", "ContactProblem", "History", "Newmark", "Stat
 SCHEMES = ("kane", "standard")
 
 #: Largest step matrix factorized with dense LAPACK; sparse SuperLU above. Chosen by
-#: measurement (``python benchmarks/bench_ring.py``, table 1): on the 2-core test machine
-#: SuperLU factorizes the ring's 144-DOF step matrix 20x faster than LAPACK (threaded BLAS
-#: under load), while dense wins on the bar's few dozen DOFs.
+#: measurement (``python benchmarks/bench_ring.py``, table 1, 2-core machine): at the ring's
+#: 144 DOFs the two factorize within 2x of each other when the machine is quiet, and
+#: threaded LAPACK is up to 20x slower when it is loaded; from 408 DOFs on SuperLU wins
+#: outright (0.74 vs 1.6 ms, 12 vs 74 ms at 1320). Dense stays for the bar's few dozen DOFs.
 DENSE_MAX = 64
 #: Largest problem whose mass and constraint matrices are kept dense for products.
 _MATVEC_DENSE_MAX = 400
@@ -100,7 +101,8 @@ class Newmark:
     ``beta = 0`` (with ``gamma = 1/2``) is the explicit central-difference scheme. ``tol``
     bounds the total residual (force residual and complementarity) relative to
     ``max(|inertia|, |f_int|, |f_ext|)`` of the step; ``solver`` is ``"auto"`` (dense up to
-    ``dense_max`` unknowns), ``"dense"`` or ``"sparse"``.
+    ``dense_max`` unknowns), ``"dense"`` or ``"sparse"``. ``reuse_tangent=False`` rebuilds
+    and refactors the tangent at every Newton iteration (full Newton: the speed baseline).
     """
 
     beta: float = 0.25
@@ -110,6 +112,7 @@ class Newmark:
     max_iter: int = 25
     solver: str = "auto"
     dense_max: int = DENSE_MAX
+    reuse_tangent: bool = True
 
     def __post_init__(self):
         if not (np.isfinite(self.beta) and 0 <= self.beta <= 0.5):
@@ -389,7 +392,7 @@ def _newton(prob, nm, split, state, ut, c1, rows, fixed=None, tangent=None, gues
     mu = state.mu.copy() if state.mu is not None else np.zeros(G.shape[0])  # warm start
     mask = None if rows is None else rows.astype(float)
     keep = None if fixed is None else (~fixed).astype(float)
-    if tangent.solve is None:
+    if tangent.solve is None or not nm.reuse_tangent:
         tangent.refresh(prob, nm, split, U, c1, mask, keep)
 
     def residual(U, mu):
@@ -431,7 +434,7 @@ def _newton(prob, nm, split, state, ut, c1, rows, fixed=None, tangent=None, gues
         f, inertia, r, g = trial
         if m_trial <= nm.tol * scale:
             return U, mu, it, f
-        if m_trial > 0.1 * merit and not tangent.fresh:
+        if not nm.reuse_tangent or (m_trial > 0.1 * merit and not tangent.fresh):
             tangent.refresh(prob, nm, split, U, c1, mask, keep)
         merit = m_trial
     raise ConvergenceError(

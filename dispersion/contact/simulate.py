@@ -19,10 +19,8 @@ from collections.abc import Callable
 from dataclasses import asdict, dataclass
 
 import numpy as np
-import scipy.sparse as sp
 
 from ..errors import InputError
-from ..mass import MASS_VARIANTS
 from .material import StVenantKirchhoff
 from .newmark import ContactProblem, Newmark, integrate
 from .nurbs import RingPatch, quarter_ring
@@ -94,7 +92,7 @@ def simulate_ring(sc: Scenario | None = None, mass: str = "singular", scheme: st
                   *, progress: Callable | None = None, tol: float = 1e-8,
                   solver: str = "auto", contact_threshold: float = 1e-9,
                   perturbation: float = 0.0, seed: int = 0,
-                  consistent: bool = True) -> RingResult:
+                  consistent: bool = True, reuse_tangent: bool = True) -> RingResult:
     """Run the ring benchmark; raises :class:`~dispersion.errors.ConvergenceError` on failure.
 
     Parameters
@@ -107,6 +105,8 @@ def simulate_ring(sc: Scenario | None = None, mass: str = "singular", scheme: st
         distribution from ``seed``): ``1e-12`` probes how runs differ by round-off.
     consistent : bool
         Put the massless DOFs in equilibrium at t = 0 (:func:`~.newmark.consistent_state`).
+    tol, solver, reuse_tangent
+        Newton controls of :class:`~.newmark.Newmark`.
 
     ``summary``: ``energy_change_percent`` (total energy at the end vs the initial kinetic
     energy), ``max_penetration_greville`` (m, at the Greville points, where the constraint
@@ -130,7 +130,7 @@ def simulate_ring(sc: Scenario | None = None, mass: str = "singular", scheme: st
     if perturbation:
         v0 = v0 + perturbation * sc.v0 * np.random.default_rng(seed).standard_normal(n)
     hist = integrate(prob, np.zeros(n), v0, sc.dt, sc.n_steps,
-                     newmark_for(scheme, tol=tol, solver=solver), progress, keep_states=True,
+                     newmark_for(scheme, tol=tol, solver=solver, reuse_tangent=reuse_tangent), progress, keep_states=True,
                      consistent=consistent)
     arr = hist.arrays()
     xi = np.linspace(0, 1, _SAMPLES_PER_ELEMENT * sc.n_xi_elements + 1)

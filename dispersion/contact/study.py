@@ -91,6 +91,7 @@ class RingStudy:
     paper: dict
     scenario: dict
     steps_per_impact: float
+    default_steps_per_impact: float
     pair: dict
     spread: dict
     grid: list
@@ -208,5 +209,5 @@ def measure(quick: bool = False, executor=None) -> RingStudy:
     seconds["total"] = time.perf_counter() - t_all
     sc_dict = dict(vars(scene), E=scene.E)
     return RingStudy(quick, DEFAULT_RULE, SCENE_HISTORY, PAPER, sc_dict,
-                     steps_per_impact(scene), pair, spread, grid, sweep, dt_fit, timing,
+                     steps_per_impact(scene), steps_per_impact(base), pair, spread, grid, sweep, dt_fit, timing,
                      signorini, seconds)

@@ -84,12 +84,13 @@ def figure4(lumped: dict, singular: dict, paper: dict | None = None):
     from matplotlib.figure import Figure
 
     fig = Figure(figsize=(10, 7.5), layout="constrained")
-    grid = fig.subplots(3, 2, gridspec_kw={"width_ratios": (2.2, 1)})
+    grid = fig.subplot_mosaic([["l", "lz"], ["s", "sz"], ["e", "e"]],
+                              gridspec_kw={"width_ratios": (2.2, 1)})
     fmax = 1.08 * max(np.max(_arr(r, "contact_force")) for r in (lumped, singular))
-    for row, run in enumerate((lumped, singular)):
-        plot_contact_energy(run, grid[row, 0], force_max=fmax)
+    for key, run in (("l", lumped), ("s", singular)):
+        plot_contact_energy(run, grid[key], force_max=fmax)
         lo, hi = _first_impact(run)
-        ax = grid[row, 1]
+        ax = grid[key + "z"]
         t = _arr(run, "t")
         sel = (t >= lo) & (t <= hi)
         ax.plot(t[sel], _arr(run, "contact_force")[sel], "o-", ms=2, lw=0.8, color="C0")
@@ -97,14 +98,17 @@ def figure4(lumped: dict, singular: dict, paper: dict | None = None):
         ax.set_xlabel("time t (s)")
         ax.set_ylabel("contact force (N/m)")
         ax.set_title(f"{run['summary']['mass']}: first impact (dots: steps)", fontsize=9)
-    plot_energy_change({"lumped": lumped, "singular": singular}, paper, grid[2, 0])
-    grid[2, 0].set_title("energy change against time", fontsize=9)
-    grid[2, 1].axis("off")
+    plot_energy_change({"lumped": lumped, "singular": singular}, paper, grid["e"])
+    grid["e"].set_title("energy change against time", fontsize=9)
     return fig
 
 
-def plot_grid(rows: Sequence[dict], paper: dict | None = None, ax=None):
-    """Energy change (%) against steps per impact, one line per (mass, landing angle)."""
+def plot_grid(rows: Sequence[dict], paper: dict | None = None, ax=None,
+              default_steps: float | None = None):
+    """|Energy change| (%) against steps per impact, one line per (mass, landing angle);
+    the paper's values dashed, the default scene's steps per impact dotted."""
+    from matplotlib.ticker import ScalarFormatter
+
     ax = _axes(ax, (6.5, 3.8))
     masses = sorted({r["mass"] for r in rows})
     angles = sorted({r["theta0_deg"] for r in rows})
@@ -119,8 +123,12 @@ def plot_grid(rows: Sequence[dict], paper: dict | None = None, ax=None):
         if paper and mass in paper:
             ax.axhline(abs(paper[mass]), color=f"C{k}", ls="--", lw=0.8,
                        label=f"paper, {mass}: {paper[mass]:g} %")
+    if default_steps is not None:
+        ax.axvline(default_steps, color="0.4", ls=":", lw=1, label="default scene")
     ax.set_xscale("log")
     ax.set_yscale("log")
+    ax.xaxis.set_major_formatter(ScalarFormatter())
+    ax.xaxis.set_minor_formatter(ScalarFormatter())
     ax.set_xlabel("steps per impact (2 t / (c_p dt))")
     ax.set_ylabel("|energy change| (%)")
     ax.legend(fontsize=6, ncol=2)

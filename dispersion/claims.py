@@ -313,7 +313,10 @@ def _claim(entry: dict, own: dict, i: int, lines: _Lines) -> Claim:
         raise InputError(f"{where}: claim #{i + 1}: field 'name': required (a non-empty string)")
 
     def fail(key, message):
-        raise InputError(f"{lines.at(i, key)}: claim {name!r}: field {key!r}: {message}")
+        line = lines.line(i, key)
+        if key.isdigit() and line == lines.line(i):  # a power inside an inline table
+            line = lines.line(i, "coefficients")
+        raise InputError(f"{lines.file}:{line}: claim {name!r}: field {key!r}: {message}")
 
     unknown = sorted(set(entry) - CLAIM_KEYS)
     if unknown:
@@ -588,6 +591,12 @@ def _same(a, b) -> bool:
     return sympy.cancel(sympy.together(a - b)) == 0
 
 
+def _show(expr) -> str:
+    """``1 - nu`` rather than sympy's ``-nu + 1``."""
+    const, rest = sympy.expand(expr).as_coeff_Add()
+    return f"{const} - {-rest}" if const and rest.could_extract_minus_sign() else str(expr)
+
+
 def _numer_terms(expr) -> dict:
     num = sympy.Poly(expr, *sorted(expr.free_symbols, key=str)) if expr.free_symbols else None
     return dict(num.terms()) if num is not None else {(): expr}
@@ -602,7 +611,7 @@ def describe_difference(printed, derived) -> str:
     >>> describe_difference(1/(1 - nu), 2/(1 - nu))
     'factor: printed = 1/2 * derived'
     >>> describe_difference((nu + 3)/(1 - nu), (nu + 2)/(1 - nu))
-    'numerator term 2 -> 3 (same denominator -nu + 1)'
+    'numerator term 2 -> 3 (same denominator 1 - nu)'
     """
     printed, derived = sympy.sympify(printed), sympy.sympify(derived)
     diff = sympy.factor(sympy.cancel(printed - derived))
@@ -620,6 +629,8 @@ def describe_difference(printed, derived) -> str:
     q = sympy.cancel(pd / dd)
     if q.is_number:  # same denominator up to a constant: compare the numerators term by term
         pn, pd = sympy.expand(pn / q), sympy.expand(pd / q)
+        if sympy.expand(pd).as_coeff_Add()[0] < 0:  # write 1 - nu rather than nu - 1
+            pn, pd, dn = -pn, sympy.expand(-pd), -dn
         a, b = _numer_terms(sympy.expand(pn)), _numer_terms(sympy.expand(dn))
         changed = [m for m in set(a) | set(b) if a.get(m, 0) != b.get(m, 0)]
         if len(changed) == 1:
@@ -627,12 +638,15 @@ def describe_difference(printed, derived) -> str:
             syms = sorted(sympy.expand(pn + dn).free_symbols, key=str)
             mono = sympy.Mul(*[s**e for s, e in zip(syms, m)])
             was, now = b.get(m, 0) * mono, a.get(m, 0) * mono
-            return f"numerator term {now if was == 0 else was} -> {now} (same denominator {pd})"
+            return f"numerator term {was} -> {now} (same denominator {_show(pd)})"
         return (f"numerator: printed {sympy.factor(pn)}, derived {sympy.factor(dn)} "
                 f"(same denominator {sympy.factor(dd)})")
-    pn, dn = sympy.factor(pn), sympy.factor(dn)
-    if sympy.cancel(pn - dn) == 0:
-        return f"denominator: printed {sympy.factor(pd)}, derived {sympy.factor(dd)}"
+    k = sympy.cancel(pn / dn)
+    if k.is_number:  # same numerator up to a constant: the denominators differ
+        pd, dd = sympy.expand(pd / k), sympy.expand(dd)
+        if dd.as_coeff_Add()[0] < 0:
+            pd, dd = -pd, -dd
+        return f"denominator: printed {_show(sympy.factor(pd))}, derived {_show(sympy.factor(dd))}"
     return f"difference printed - derived = {diff}"
 
 

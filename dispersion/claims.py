@@ -638,7 +638,7 @@ def describe_difference(printed, derived) -> str:
             syms = sorted(sympy.expand(pn + dn).free_symbols, key=str)
             mono = sympy.Mul(*[s**e for s, e in zip(syms, m)])
             was, now = b.get(m, 0) * mono, a.get(m, 0) * mono
-            return f"numerator term {was} -> {now} (same denominator {_show(pd)})"
+            return f"numerator term {was} -> {now} (same denominator {_show(sympy.factor(pd))})"
         return (f"numerator: printed {sympy.factor(pn)}, derived {sympy.factor(dn)} "
                 f"(same denominator {sympy.factor(dd)})")
     k = sympy.cancel(pn / dn)

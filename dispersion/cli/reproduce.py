@@ -50,6 +50,9 @@ def register(subparsers) -> None:
                         help="quick subset (coarser grids, lower orders, a short ring), as CI runs")
     parser.add_argument("--render", action="store_true",
                         help="do not measure: rebuild every page and figure from the JSON in --out")
+    parser.add_argument("--readme", default=None, metavar="FILE",
+                        help="also rewrite the generated blocks of this Markdown file "
+                             "(e.g. README.md) from the new results")
     parser.add_argument("--jobs", type=int, default=None,
                         help="worker processes for sweeps (default: usable CPU count)")
     parser.add_argument("--sections", default=",".join(SECTIONS),
@@ -145,6 +148,9 @@ def handler(args: argparse.Namespace) -> int:
         raise InputError("--render renders every section present: --sections does not apply")
     jobs = check_positive_int("--jobs", args.jobs) if args.jobs is not None else default_jobs()
     out = check_target(Path(args.out))
+    readme = Path(args.readme) if args.readme is not None else None
+    if readme is not None and not readme.is_file():
+        raise InputError(f"--readme must name an existing Markdown file, got {args.readme!r}")
     for name in names:
         section_module(name)  # a broken installation fails before any work
     t0 = time.perf_counter()
@@ -157,6 +163,11 @@ def handler(args: argparse.Namespace) -> int:
             finally:
                 pool.shutdown(wait=True, cancel_futures=True)
         parts = render_folder(staged)
+    if readme is not None:
+        from ..report.readme import update_readme
+
+        changed = update_readme(readme, out)
+        print(f"{'updated' if changed else 'unchanged'}: generated blocks of {readme}")
     verb = "rendered" if args.render else "wrote"
     print(f"{verb} {Path(args.out) / 'index.md'} ({len(parts)} sections, "
           f"{time.perf_counter() - t0:.1f} s)")

@@ -25,6 +25,7 @@
 # %%
 from IPython.display import Markdown
 
+from dispersion.claims import format_results, verify_file
 from dispersion.errata import eq13_note, errata_table, format_table
 
 rows = errata_table()
@@ -41,8 +42,6 @@ Markdown(format_table(rows, "markdown"))
 # The whole file verified, with the simplest description of each difference:
 
 # %%
-from dispersion.claims import format_results, verify_file
-
 Markdown(format_results(verify_file(jobs=1).results, "markdown"))
 
 # %% [markdown]

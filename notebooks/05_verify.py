@@ -28,7 +28,8 @@ from pathlib import Path
 
 from IPython.display import Markdown
 
-from dispersion.claims import format_results, verify_file
+from dispersion.claims import format_results, junit_xml, verify_file
+from dispersion.testing import assert_series
 
 claims = """
 [[claim]]
@@ -64,8 +65,6 @@ result.passed, [(r.name, r.difference) for r in result.results if not r.passed]
 # and the JUnit XML report (`dispersion verify --junit FILE`) shows each claim as a test case:
 
 # %%
-from dispersion.claims import junit_xml
-
 path.write_text(claims.replace("TYPO", "29"))
 result = verify_file(path, jobs=1)
 print(result.passed)
@@ -76,8 +75,6 @@ print(junit_xml(result)[:600])
 # inline claim) raises an `AssertionError` that shows printed and derived term by term:
 
 # %%
-from dispersion.testing import assert_series
-
 try:
     assert_series("A0", {4: "2/(3*(1-nu))", 6: "(2*nu^2 + 8*nu - 28)/(45*(1-nu)^2)"},
                   name="eq 18 (typo)", model="bloch", r=2, mass="consistent")

@@ -147,7 +147,7 @@ class Model:
                                                         else "")
         mass = f"{self.mass} mass"
         if self.mass.startswith("singular"):
-            mass += (f" (weights {dict(self.weights)})" if self.weights is not None
+            mass += (f" (weights {self.patch_kwargs()['weights']})" if self.weights is not None
                      else f" ({self.contact}, gamma_s={self.gamma_s})")
         return f"{geom}, {mass}"
 

@@ -151,7 +151,6 @@ def test_each_distinct_derivation_is_shared():
     assert [r.status for r in verify_claims(claims, jobs=1).results] == ["holds", "holds"]
 
 
-@pytest.mark.slow
 def test_parallel_verification_agrees_with_serial(paper):
     par = verify_file(paper_claims_path(), jobs=2)
     assert [(r.name, r.status, r.difference) for r in par.results] == \

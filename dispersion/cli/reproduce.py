@@ -31,7 +31,7 @@ from ..io import write_text
 from ..report import SECTIONS, section_module
 from ..report.folder import check_target, open_report
 from ..report.index import SectionResult, render_index
-from ..sweep import default_jobs
+from ..sweep import default_jobs, process_pool
 
 __all__ = ["register", "measure_sections", "render_folder", "handler"]
 
@@ -134,10 +134,7 @@ def _command(args: argparse.Namespace) -> str:
 def _pool(jobs: int) -> cf.Executor:
     if jobs == 1:
         return cf.ThreadPoolExecutor(max_workers=1)  # in-process, one call at a time
-    from .. import sweep
-
-    factory = getattr(sweep, "process_pool", None)
-    return factory(jobs) if factory else cf.ProcessPoolExecutor(max_workers=jobs)
+    return process_pool(jobs)  # workers die with this process
 
 
 def handler(args: argparse.Namespace) -> int:

@@ -160,3 +160,20 @@ def test_parallel_verification_agrees_with_serial(paper):
 def test_kappa_symbol_is_not_allowed_in_a_coefficient():
     with pytest.raises(InputError, match="field '2'"):
         parse_claims(f'[[claim]]\nname = "a"\nbranch = "S0"\ncoefficients = {{2 = "{KAPPA}"}}\n')
+
+
+def test_a_derivation_that_fails_marks_its_claim_as_error(monkeypatch):
+    import dispersion.claims as claims_mod
+    from dispersion.errors import DispersionError
+
+    def broken(*args):
+        raise DispersionError("characteristic function vanishes identically near the origin")
+
+    monkeypatch.setattr(claims_mod, "_series", broken)
+    claims = parse_claims('[[claim]]\nname = "a"\nmodel = "rayleigh-lamb"\nbranch = "A0"\n'
+                          'coefficients = {4 = "2/(3*(1-nu))"}\n')
+    result = verify_claims(claims, jobs=1)
+    assert not result.passed and result.results[0].status == "error"
+    assert "vanishes identically" in result.results[0].difference
+    root = ET.fromstring(junit_xml(result))
+    assert root.get("errors") == "1" and root.find(".//testcase/error") is not None

@@ -236,7 +236,9 @@ class Verification:
 
 def paper_claims_path() -> Path:
     """The claims file of the paper's eqs (14)-(20) shipped with the package."""
-    return Path(__file__).with_name("data") / "paper_claims.toml"
+    from importlib import resources
+
+    return Path(str(resources.files(__package__) / "data" / "paper_claims.toml"))
 
 
 def load_claims(path) -> list[Claim]:

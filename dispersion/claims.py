@@ -33,9 +33,10 @@ Keys of a claim (``[defaults]`` may set any of them except ``name``):
     is claimed, a missing one as zero.
 ``syntax``
     ``"sympy"`` (default: sympy text, ``^`` or ``**`` for powers, symbols ``nu``, ``kappa``,
-    ``r``) or ``"latex"`` (``\\nu``, ``\\kappa``; parsed by sympy's ``parse_latex`` with the
-    ``lark`` backend, which needs an explicit ``\\cdot`` before a parenthesis that follows a
-    power, e.g. ``\\nu^2 \\cdot (1-\\nu)``).
+    ``r``) or ``"latex"`` (``\\nu``, ``\\kappa``, ``\\frac``, ``O(\\kappa^8)``, as printed in a
+    paper; parsed by sympy's ``parse_latex`` with the ``lark`` backend, products before an
+    opening and after a closing parenthesis made explicit first). Use TOML literal strings
+    (single quotes) so that backslashes stay as written.
 ``nu``, ``rtol``
     Series claims may substitute a number for nu (``nu = "3/10"``); with ``rtol`` as well,
     the coefficients are compared to that relative tolerance instead of exactly.
@@ -465,23 +466,63 @@ def _parse_latex(text, key, fail) -> sympy.Expr:
     body = text[:m.start()] if m else text
     if m:
         order = int(m.group(1))
+    # the lark grammar needs explicit products before "(" and after ")": 2\nu^2(1-\nu)
     body = body.replace(r"\left", "").replace(r"\right", "")
+    body = re.sub(r"(\\[A-Za-z]+|[A-Za-z0-9}])\s*\(", lambda m: m.group(0) if m.group(1) in
+                  (r"\cdot", r"\times") else m.group(1) + r" \cdot (", body)
+    body = re.sub(r"\)(?=\s*[A-Za-z0-9\\(])", r") \\cdot ", body)
     try:
-        from sympy.parsing.latex import parse_latex
-
-        expr = parse_latex(body, backend="lark")
+        expr = sympy.Add(*[sign * _parse_latex_term(term) for sign, term in _terms(body)])
     except ImportError:
         fail(key, "LaTeX claims need the lark package (pip install lark)")
     except Exception as exc:  # noqa: BLE001 - any parser failure is the user's input
-        fail(key, f"does not parse as LaTeX: {text!r} ({type(exc).__name__}; "
-                  r"write \cdot between factors)")
-    if not isinstance(expr, sympy.Basic):  # lark returns a parse tree when it is ambiguous
-        fail(key, f"ambiguous LaTeX {text!r}: write \\cdot between factors")
+        fail(key, f"does not parse as LaTeX: {text!r} ({type(exc).__name__})")
     expr = expr.subs({sympy.Symbol(s): v for s, v in _NAMES.items()})
     bad = sorted(str(s) for s in expr.free_symbols - set(_NAMES.values()))
     if bad:
         fail(key, f"unknown symbol {bad[0]!r} in {text!r} (use \\nu, \\kappa, r)")
     return expr + sympy.Order(KAPPA**order) if order else expr
+
+
+def _terms(body: str) -> list[tuple[int, str]]:
+    """Split a LaTeX sum at its top-level + and - (the parser is superlinear in length)."""
+    out, depth, start, sign = [], 0, 0, 1
+    for i, ch in enumerate(body):
+        depth += ch in "{(" and 1 or (ch in "})" and -1 or 0)
+        if depth == 0 and ch in "+-" and body[start:i].strip():
+            out.append((sign, body[start:i]))
+            start, sign = i + 1, (1 if ch == "+" else -1)
+        elif depth == 0 and ch in "+-":  # a leading sign
+            start, sign = i + 1, sign * (1 if ch == "+" else -1)
+    out.append((sign, body[start:]))
+    return out
+
+
+@functools.lru_cache(maxsize=1024)
+def _parse_latex_term(term: str):
+    from sympy.parsing.latex import parse_latex
+
+    expr = _unambiguous(parse_latex(term, backend="lark"))
+    if expr is None:
+        raise ValueError("ambiguous")
+    return expr
+
+
+def _unambiguous(tree):
+    """The one reading of a lark parse: its alternatives (``_ambig``) must all be equal.
+
+    The lark grammar is ambiguous in the association of products (``2 x (y)``); the
+    readings are then equal expressions and any will do. Returns None if they differ.
+    """
+    if isinstance(tree, sympy.Basic):
+        return tree
+    if getattr(tree, "data", None) != "_ambig":
+        return None
+    readings = [_unambiguous(c) for c in tree.children]
+    if any(r is None for r in readings):
+        return None
+    first = readings[0]
+    return first if all(sympy.cancel(r - first) == 0 for r in readings[1:]) else None
 
 
 def _series_claim(entry: dict, common: dict, fail) -> Claim:

@@ -180,11 +180,14 @@ def errata_document(rows, eq13=None, title: str = "Errata of eqs (13)-(20)") -> 
     """A complete LaTeX document: the errata table and, if given, the eq (13) balances.
 
     ``eq13`` is :func:`eq13_note` (or its JSON form). Compiles with ``pdflatex`` from
-    ``texlive-latex-base`` alone (packages: amsmath, graphicx).
+    ``texlive-latex-base`` alone (packages: amsmath, geometry, longtable): a landscape page,
+    the table breaking across pages.
     """
-    parts = [r"\documentclass{article}", r"\usepackage{amsmath}", r"\usepackage{graphicx}",
-             r"\begin{document}", rf"\section*{{{_tex(title)}}}",
-             r"\noindent\resizebox{\textwidth}{!}{%", format_table(rows, "latex") + "}"]
+    table = format_table(rows, "latex").replace(r"{tabular}", r"{longtable}")
+    parts = [r"\documentclass{article}", r"\usepackage{amsmath}",
+             r"\usepackage[a4paper,landscape,margin=1.5cm]{geometry}", r"\usepackage{longtable}",
+             r"\renewcommand{\arraystretch}{2.2}", r"\begin{document}",
+             rf"\section*{{{_tex(title)}}}", r"\small", table, r"\normalsize"]
     if eq13:
         parts += [r"\subsection*{Eq (13): leading balance $q_0(w)$ for "
                   r"$\Omega^2 = w\,\kappa^{2\sigma}$}", r"\begin{itemize}"]

@@ -24,8 +24,8 @@ def register(sub) -> None:
     p.add_argument("--junit", metavar="FILE", help="write a JUnit XML report ('-' for stdout)")
     p.add_argument("--format", choices=("text", "markdown"), default="text")
     p.add_argument("--jobs", type=int, default=None,
-                   help="worker processes for independent derivations (default: 1 for a few "
-                        "derivations, else the CPU count)")
+                   help="worker processes for independent derivations (default: in-process "
+                        "for series to kappa^8 or less, else the CPU count)")
     p.set_defaults(func=run)
 
 

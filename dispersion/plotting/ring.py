@@ -46,7 +46,7 @@ def plot_contact_energy(run: dict, ax=None, title: str | None = None, force_max=
     right.set_ylim(0, 1.15 * hi if hi > 0 else 1)
     s = run["summary"]
     ax.set_title(title or f"{s['mass']} mass ({s['scheme']}): energy change "
-                 f"{s['energy_change_percent']:+.3g} %", fontsize=9)
+                 f"{s['energy_change_percent']:+.3f} %", fontsize=9)
     return ax
 
 
@@ -109,7 +109,7 @@ def plot_grid(rows: Sequence[dict], paper: dict | None = None, ax=None,
     the paper's values dashed, the default scene's steps per impact dotted."""
     from matplotlib.ticker import ScalarFormatter
 
-    ax = _axes(ax, (6.5, 3.8))
+    ax = _axes(ax, (8.0, 3.8))
     masses = sorted({r["mass"] for r in rows})
     angles = sorted({r["theta0_deg"] for r in rows})
     markers = "osd^v"
@@ -131,7 +131,7 @@ def plot_grid(rows: Sequence[dict], paper: dict | None = None, ax=None,
     ax.xaxis.set_minor_formatter(ScalarFormatter())
     ax.set_xlabel("steps per impact (2 t / (c_p dt))")
     ax.set_ylabel("|energy change| (%)")
-    ax.legend(fontsize=6, ncol=2)
+    ax.legend(fontsize=6, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
     return ax
 
 

@@ -25,14 +25,16 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from ..errors import InputError
+from ..bspline import open_knot_vector
+from ..errors import InputError, check_positive, check_positive_int
 from ..mass import MASS_VARIANTS
 from .assembly import discretize, internal_force, patch_mass, strain_energy
 from .material import StVenantKirchhoff
 from .newmark import DENSE_MAX, ContactProblem
 from .nurbs import RingPatch, SplineBasis1D
 
-__all__ = ["SIDES", "Plane", "PatchModel", "patch_problem", "restrict"]
+__all__ = ["SIDES", "Plane", "PatchModel", "patch_problem", "rectangle_patch", "restrict",
+           "side_basis", "side_points"]
 
 #: Sides of a patch: ``eta1`` is the last row of control points across ``eta`` (the ring's
 #: outer surface), ``eta0`` the first, likewise ``xi0`` and ``xi1``.
@@ -79,6 +81,25 @@ class PatchModel:
         u = np.zeros(self.disc.n_dofs)
         u[self.free] = u_free
         return u.reshape(-1, 2)
+
+
+def rectangle_patch(width: float, height: float, n_xi: int = 2, n_eta: int = 2, p: int = 2,
+                    origin: tuple = (0.0, 0.0)) -> RingPatch:
+    """Rectangle ``[x0, x0 + width] x [y0, y0 + height]`` as a B-spline patch of degree ``p``
+    (unit weights, control points at the Greville abscissae: the linear map is exact).
+
+    >>> patch = rectangle_patch(2.0, 1.0, 3, 2)
+    >>> patch.n_xi, patch.n_eta, patch.points[-1].tolist()
+    (5, 4, [2.0, 1.0])
+    """
+    check_positive("width", width)
+    check_positive("height", height)
+    kx = open_knot_vector(p, check_positive_int("n_xi", n_xi))
+    ky = open_knot_vector(p, check_positive_int("n_eta", n_eta))
+    gx = np.array([float(g) for g in kx.greville()])
+    gy = np.array([float(g) for g in ky.greville()])
+    X, Y = np.meshgrid(origin[0] + width * gx, origin[1] + height * gy, indexing="ij")
+    return RingPatch(kx, ky, np.column_stack([X.ravel(), Y.ravel()]), np.ones(X.size))
 
 
 def side_points(patch: RingPatch, side: str) -> np.ndarray:

@@ -22,10 +22,10 @@ DEFAULT = Scenario()
 #: Scenario fields the CLI exposes: option name -> (field, unit).
 _FIELDS = {
     "r-inner": ("r_inner", "m"), "r-outer": ("r_outer", "m"), "theta0": ("theta0_deg", "deg"),
-    "gap": ("gap", "m"), "rho": ("rho", "kg/m^3"), "nu": ("nu", "1"), "v0": ("v0", "m/s"),
-    "v0-over-ct": ("v0_over_cT", "1"), "dt": ("dt", "s"), "t-end": ("t_end", "s"),
-    "xi-elements": ("n_xi_elements", "1"), "eta-elements": ("n_eta_elements", "1"),
-    "gamma-s": ("gamma_s", "1"),
+    "gap": ("gap", "m"), "rho": ("rho", "kg/m^3"), "nu": ("nu", "dimensionless"), "v0": ("v0", "m/s"),
+    "v0-over-ct": ("v0_over_cT", "dimensionless"), "dt": ("dt", "s"), "t-end": ("t_end", "s"),
+    "xi-elements": ("n_xi_elements", "count"), "eta-elements": ("n_eta_elements", "count"),
+    "gamma-s": ("gamma_s", "dimensionless"),
 }
 
 

@@ -157,11 +157,13 @@ def bar_model(bar: Bar) -> BarModel:
     fixed = {"left": 0, "right": n - 1}
     free = np.setdiff1d(np.arange(n), [fixed[e] for e in bar.clamped])
     Kf = K[free][:, free].tocsr()
+    # dense products below a few hundred DOFs: scipy.sparse's per-call overhead dominates
+    Kp = Kf.toarray() if len(free) <= 400 else Kf
     G = sp.csr_matrix(([sign], ([0], [int(np.flatnonzero(free == dof)[0])])), shape=(1, len(free)))
-    prob = ContactProblem(Mv[free][:, free].tocsr(), lambda u: (Kf @ u, Kf), G,
-                          np.array([bar.gap]), lambda u: 0.5 * float(u @ (Kf @ u)),
+    prob = ContactProblem(Mv[free][:, free].tocsr(), lambda u: (Kp @ u, Kf), G,
+                          np.array([bar.gap]), lambda u: 0.5 * float(u @ (Kp @ u)),
                           None if f_ext is None else f_ext[free], None, Kf,
-                          lambda u: Kf @ u)
+                          lambda u: Kp @ u)
     return BarModel(bar, prob, basis, free, dof)
 
 

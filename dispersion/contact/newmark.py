@@ -245,6 +245,8 @@ class _Split:
 
 def _lcp(S: np.ndarray, q: np.ndarray, max_iter: int) -> np.ndarray:
     """``mu >= 0`` with ``S mu + q >= 0`` and ``mu . (S mu + q) = 0`` (primal-dual active set)."""
+    if len(q) == 1:  # one contact point: the complementarity solution in closed form
+        return np.array([max(0.0, -q[0] / S[0, 0])])
     act = q < 0
     mu = np.zeros(len(q))
     for _ in range(max_iter + len(q)):
@@ -295,11 +297,13 @@ def step(prob: ContactProblem, nm: Newmark, state: State, dt: float, split=None,
     G = split.G
     if prob.K is not None:
         linear = linear or _Linear(prob, split, nm, c1)
-        rhs = c1 * (split.M @ ut) + (f_ext if rows is None else np.where(rows, f_ext, 0.0))
+        M = split.Md if split.Md is not None else split.M
+        rhs = c1 * (M @ ut) + (f_ext if rows is None else np.where(rows, f_ext, 0.0))
         U0 = linear.solve(rhs)
         mu = np.zeros(G.shape[0])
         if G.shape[0]:
-            mu = _lcp(linear.S, prob.g0 + G @ U0, nm.max_iter)
+            Gm = split.Gd if split.Gd is not None else G
+            mu = _lcp(linear.S, prob.g0 + Gm @ U0, nm.max_iter)
         U = U0 + linear.W @ mu
         it = 1
         f = prob.internal(U)[0] if explicit else None
@@ -492,12 +496,13 @@ def _record(hist: History, prob: ContactProblem, split: _Split, s: State, keep_s
     hist.t.append(s.t)
     hist.contact_force.append(float(np.sum(s.lam)))
     hist.lam.append(s.lam)
-    hist.kinetic.append(0.5 * float(s.v @ (split.M @ s.v)))
+    M = split.Md if split.Md is not None else split.M
+    mv = M @ s.v
+    hist.kinetic.append(0.5 * float(s.v @ mv))
     hist.strain.append(float(prob.energy(s.u)))
     hist.potential.append(-float(split.f_ext @ s.u))
-    mv = split.M @ s.v
     hist.momentum.append(mv.sum(keepdims=True) if prob.directions is None else prob.directions @ mv)
-    g = prob.g0 + split.G @ s.u
+    g = prob.g0 + (split.Gd if split.Gd is not None else split.G) @ s.u
     hist.gap_min.append(float(g.min()) if len(g) else np.inf)
     hist.iterations.append(s.iterations)
     if keep_states:

@@ -154,7 +154,7 @@ def render(data: dict, out: Path) -> str:
         "",
         "### GetFEM's 1D Signorini bar (exact solution of period 3, energy 1/8)",
         "",
-        (f"P1 (dt 0.002) and p = 2 (dt 0.001), 20 elements, T = "
+        (f"P1 (dt 0.002; Kane and explicit) and p = 2 (dt 0.001; Kane), 20 elements, T = "
          f"{data['signorini'][0]['t_end']:g}. Energy drift: "
          "largest change of the total energy after t = 0 (% of 1/8); initial state: energy "
          "the consistent initial state changed (massless DOF in equilibrium, % of 1/8); "

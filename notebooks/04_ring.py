@@ -19,6 +19,7 @@
 # grid are in `dispersion reproduce --sections ring`.
 
 # %%
+# %matplotlib inline
 from dataclasses import replace
 
 from dispersion.contact.scenario import Scenario

@@ -199,8 +199,9 @@ class _Solver:
 
     def factor(self, A):
         if self.dense:
-            lu = sla.lu_factor(A, check_finite=False)
-            return lambda b: sla.lu_solve(lu, b, check_finite=False)
+            # a few dozen unknowns: one product with the inverse beats any solve call
+            inv = np.linalg.inv(A.toarray() if sp.issparse(A) else A)
+            return lambda b: inv @ b
         return spla.splu(A).solve
 
 
@@ -325,7 +326,8 @@ def step(prob: ContactProblem, nm: Newmark, state: State, dt: float, split=None,
     else:
         a_tot = c1 * (U - ut)[m]
         if nm.scheme == "kane":
-            y = split.solve((G.T @ mu)[m]) if np.any(mu) else np.zeros(len(m))
+            GT = split.Gd.T if split.Gd is not None else G.T
+            y = split.solve((GT @ mu)[m]) if np.any(mu) else np.zeros(len(m))
             a_int[m], a_c[m] = a_tot - y, 2 * beta * y
         else:
             a_int[m] = a_tot

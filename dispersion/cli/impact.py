@@ -13,7 +13,7 @@ import sys
 from ..errors import InputError
 from ..mass import MASS_VARIANTS
 from . import number
-from .ring import check_out, progress_default  # noqa: F401 (shared CLI helpers)
+from .ring import check_out
 
 SCENES = ("signorini-1d",)
 

@@ -251,15 +251,28 @@ def _discrete_build(patch, block: str | None, sigma: int, ctx):
     w, nu = gens[0], gens[1]
     r_gen = gens[2] if len(gens) > 2 else None
     mats = _plate.lame(nu, scaled=True)
-    n2 = 2 * patch.n
     if block is None:
-        E, nx = sympy.eye(n2), patch.n
+        def project(B):
+            return B
+        nx, size = patch.n, 2 * patch.n
     else:
         E = _plate.mirror_bases(patch.n, exact=True)[block]
         nx = sum(1 for j in range(E.cols) if any(E[i, j] != 0 for i in range(patch.n)))
-    terms = [(mats[m], f, _rational_rows(E.T * B * E)) for m, f, B in _plate.stiffness_terms(patch)]
-    Mb = _rational_rows(E.T * _plate.mass_block(patch) * E)
-    size = E.cols
+        size = E.cols
+
+        def project(B):
+            return E.T * B * E
+    # interleave x and y unknowns: the matrix is banded, and elimination keeps the band
+    xs, ys = list(range(nx)), list(range(nx, size))
+    order = [v for pair in zip(xs, ys) for v in pair] + xs[len(ys):] + ys[len(xs):]
+    is_x = [c < nx for c in order]
+
+    def rows_of(B):
+        R = _rational_rows(project(B))
+        return [[R[i][j] for j in order] for i in order]
+
+    terms = [(mats[m], f, rows_of(B)) for m, f, B in _plate.stiffness_terms(patch)]
+    Mb = rows_of(_plate.mass_block(patch))
     zero = ctx.from_dict({})
 
     def r_power(e: int):
@@ -272,16 +285,16 @@ def _discrete_build(patch, block: str | None, sigma: int, ctx):
 
     def build(D):
         taylor = _plate.x_taylor(patch, D)
-        xs = {}
+        xf = {}
         for name, pairs in taylor.items():
             coeffs = []
             for c, e in pairs:
                 c = flint.fmpq(int(c.p), int(c.q))
                 coeffs.append(zero if c == 0 else c * r_power(e) + zero)
-            xs[name] = _k.Series(ctx, coeffs, D)
+            xf[name] = _k.Series(ctx, coeffs, D)
         t = _k.Series.gen_t(ctx, D)
-        xs["s2"] = t * xs["s"] * xs["s"]
-        mass = (1 - 2 * nu) * (_k.Series(ctx, [0] * sigma + [w], D) * xs["mx"])
+        xf["s2"] = t * xf["s"] * xf["s"]
+        mass = (1 - 2 * nu) * (_k.Series(ctx, [0] * sigma + [w], D) * xf["mx"])
         rows = []
         for i in range(size):
             row = []
@@ -291,9 +304,9 @@ def _discrete_build(patch, block: str | None, sigma: int, ctx):
                     if not B[i][j]:
                         continue
                     if f == "s":
-                        x = xs["s2"] if i < nx <= j else None
+                        x = xf["s2"] if is_x[i] and not is_x[j] else None
                     else:
-                        x = xs[f]
+                        x = xf[f]
                     e = e + (x * (mat * B[i][j]) if x is not None else mat * B[i][j])
                 if Mb[i][j]:
                     e = e - mass * Mb[i][j]
@@ -305,8 +318,8 @@ def _discrete_build(patch, block: str | None, sigma: int, ctx):
 
 
 def _rational_rows(M) -> list[list]:
-    return [[flint.fmpq(int(sympy.Rational(v).p), int(sympy.Rational(v).q)) if v != 0 else 0
-             for v in M.row(i)] for i in range(M.rows)]
+    return [[flint.fmpq(int(v.p), int(v.q)) if v != 0 else 0 for v in M.row(i)]
+            for i in range(M.rows)]
 
 
 def discrete_series_raw(branch: str = "S0", order: int = 8, *, p: int = 2, n: int = 3,

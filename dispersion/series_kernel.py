@@ -200,26 +200,49 @@ def determinant(rows: list[list[Series]]) -> Series:
     A0 = [[_at_generic(rows[i][j].coeffs[0]) for j in range(n)] for i in range(n)]
     order, k = _pivot_order(A0)
     a = [[list(rows[i][j].coeffs) for j in order] for i in order]
+    nonzero = [[any(not c.is_zero() for c in x) for x in row] for row in a]
     zero = ctx.from_dict({})
-    one = [zero + 1] + [zero] * D
-    prev = one
+    pivots = [[zero + 1] + [zero] * D]  # pivots[s] = leading minor of order s
+    level = [0] * n  # row i holds its Bareiss level-`level[i]` entries (lazy row scaling)
+
+    def lift(i: int, s: int) -> None:
+        # a row untouched since level l is the level-s row times p_s / p_l (exact division)
+        if level[i] != s:
+            for j in range(s, n):
+                if nonzero[i][j]:
+                    a[i][j] = _div(_mul(a[i][j], pivots[s], D), pivots[level[i]], D)
+            level[i] = s
+
     for s in range(k):
-        piv = a[s][s]
+        lift(s, s)
+        piv, prev = a[s][s], pivots[s]
         for i in range(s + 1, n):
+            if not nonzero[i][s]:
+                continue  # not coupled to the pivot row: scaled lazily (banded matrices)
+            lift(i, s)
             ais = a[i][s]
-            ais_zero = all(c.is_zero() for c in ais)
             for j in range(s + 1, n):
-                x = _mul(piv, a[i][j], D)
-                if not ais_zero:
-                    y = _mul(ais, a[s][j], D)
-                    x = [u - v for u, v in zip(x, y)]
-                a[i][j] = _div(x, prev, D) if prev is not one else x
-        prev = piv
+                if nonzero[s][j]:
+                    x = _mul(ais, a[s][j], D)
+                    if nonzero[i][j]:
+                        x = [u - v for u, v in zip(_mul(piv, a[i][j], D), x)]
+                    else:
+                        x = [-v for v in x]
+                elif nonzero[i][j]:
+                    x = _mul(piv, a[i][j], D)
+                else:
+                    continue
+                a[i][j] = _div(x, prev, D)
+                nonzero[i][j] = any(not c.is_zero() for c in a[i][j])
+            level[i] = s + 1
+        pivots.append(piv)
+    for i in range(k, n):
+        lift(i, k)
     m = n - k
     trailing = [[a[i][j] for j in range(k, n)] for i in range(k, n)]
     det = _cofactor(trailing, D)
     for _ in range(m - 1):
-        det = _div(det, prev, D)
+        det = _div(det, pivots[k], D)
     return Series(ctx, det, D)
 
 

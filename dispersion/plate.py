@@ -42,6 +42,7 @@ T. J. R. Hughes, "Isogeometric analysis of structural vibrations", CMAME 195 (20
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from functools import lru_cache
 
@@ -49,7 +50,7 @@ import numpy as np
 import sympy
 
 from . import bspline
-from .errors import InputError, check_nu, check_positive, check_positive_int
+from .errors import InputError, check_nu, check_positive_int
 from .mass import MASS_VARIANTS, contact_weights, mass_variant, redistribution_matrix
 
 __all__ = [
@@ -191,8 +192,9 @@ def plate_patch(
     p, n : int
         Degree and number of control points through the thickness (``n >= p + 1``).
     model : ``"x-exact"`` or ``"bloch"``
-    r : number, sympy expression or None
-        Aspect ratio b/h of the Bloch model (None: kept as the symbol ``r``). Unused for x-exact.
+    r : number, sympy Rational or None
+        Aspect ratio b/h of the Bloch model, in ``R_RANGE`` = [1/1000, 1000] (None: kept as
+        the symbol ``r``). Checked but unused for x-exact (the CLI refuses it there).
     mass : ``"consistent"``, ``"lumped"``, ``"singular"``, ``"singular-lumped"``
     contact, gamma_s :
         Contact set and the paper's weight (see :func:`dispersion.mass.contact_weights`).
@@ -211,10 +213,13 @@ def plate_patch(
         if r is None:
             r = sympy.Symbol("r", positive=True)
         elif not isinstance(r, sympy.Symbol):
-            check_positive("aspect ratio r", r)
-            r = sympy.nsimplify(r)
+            r = _aspect_ratio(r)
     else:
+        if r is not None:  # checked, so that a bad value is never silently accepted
+            _aspect_ratio(r)
         r = None
+    if gamma_s is not None:
+        gamma_s = _rational("gamma_s", gamma_s)
     Y = thickness_matrices(p, n)
     R = None
     if mass.startswith("singular"):
@@ -223,6 +228,37 @@ def plate_patch(
         R = redistribution_matrix(n, weights, allow_negative=allow_negative)
     My = mass_variant(Y["00"], mass, R)
     return PlatePatch(p, n, model, r, mass, R, Y, My, x_lumped=mass.endswith("lumped"))
+
+
+#: Valid aspect ratios r = b/h of the Bloch model. Outside, the float pencil of the numeric
+#: branches loses its digits (the d-function is a difference of O(1) terms divided by r^2,
+#: and the S0 frequency at r = 1e-8 came out 100 % wrong), and exact rationals grow huge.
+R_RANGE = (sympy.Rational(1, 1000), sympy.Integer(1000))
+
+
+def _rational(name: str, value) -> sympy.Rational:
+    """``value`` as an exact sympy Rational (floats by their shortest decimal); finite only."""
+    try:
+        if isinstance(value, float):
+            if not math.isfinite(value):
+                raise ValueError
+            out = sympy.Rational(repr(value))
+        else:
+            out = sympy.sympify(value)
+        if not out.is_Rational:
+            raise ValueError
+    except (TypeError, ValueError, sympy.SympifyError):
+        raise InputError(f"{name} must be a finite rational number, got {value!r}") from None
+    return out
+
+
+def _aspect_ratio(r) -> sympy.Rational:
+    r = _rational("aspect ratio r", r)
+    lo, hi = R_RANGE
+    if not lo <= r <= hi:
+        shown = str(r) if len(str(r)) <= 20 else str(sympy.Float(r, 3))
+        raise InputError(f"aspect ratio r must lie in [{lo}, {hi}], got {shown}")
+    return r
 
 
 def x_functions(patch: PlatePatch, kappa) -> dict[str, object]:

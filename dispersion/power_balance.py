@@ -23,7 +23,6 @@ For the discrete plate the characteristic function is :math:`\\det K_{dyn}` (pap
 split into its symmetric/antisymmetric block when the mass keeps the mirror symmetry; for the
 exact plate it is the entire-function Rayleigh-Lamb equation of :mod:`dispersion.rayleigh_lamb`.
 
->>> nu = sympy.Symbol("nu")
 >>> exact_series("S0", 4)[2]
 -2/(nu - 1)
 
@@ -35,25 +34,35 @@ Rutgers University 2011 (method of power balance). A. Tkachuk et al., eqs (14)-(
 from __future__ import annotations
 
 import math
+from fractions import Fraction
 
 import flint
-import sympy
-from sympy.core.mul import _keep_coeff
 
-from . import plate as _plate
 from . import series_kernel as _k
 from .errors import DispersionError, InputError, check_nu, check_positive_int
 from .rayleigh_lamb import frequency_function
 
 __all__ = [
-    "BRANCHES", "MAX_ORDER", "discrete_series", "exact_series", "exact_leading_balance",
-    "exact_series_raw", "discrete_series_raw", "check_request",
+    "BRANCHES", "MAX_ORDER", "MAX_WORK", "NU", "R_SYM", "check_request", "discrete_series",
+    "discrete_series_raw", "exact_leading_balance", "exact_series", "exact_series_raw",
+    "format_coefficient", "substitute_raw",
 ]
 
 BRANCHES = {"S0": ("S", 1), "A0": ("A", 2)}
-NU = sympy.Symbol("nu")
-R_SYM = sympy.Symbol("r", positive=True)
-_G = sympy.Symbol("g")
+
+
+def __getattr__(name: str):
+    # sympy symbols on demand: the flint path (exact_series_raw, the CLI's JSON) never
+    # imports sympy
+    if name == "NU":
+        import sympy
+
+        return sympy.Symbol("nu")
+    if name == "R_SYM":
+        import sympy
+
+        return sympy.Symbol("r", positive=True)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 #: Highest power of kappa accepted, per kind of request (see :func:`check_request`).
 MAX_ORDER = {"exact": 160, "discrete": 32}
@@ -89,8 +98,11 @@ def check_request(branch: str, order, exact: bool, n: int | None = None) -> tupl
     return kind, sigma, order
 
 
-def _to_expr(num, den, symbols: tuple, factor: bool = True) -> sympy.Expr:
+def _to_expr(num, den, symbols: tuple, factor: bool = True):
     """num/den (fmpq_mpoly free of w) as a sympy expression; cancelled, factored by flint."""
+    from sympy.core.mul import _keep_coeff
+    import sympy
+
     g = num.gcd(den)
     if not g.is_one():
         num, den = num / g, den / g
@@ -101,7 +113,9 @@ def _to_expr(num, den, symbols: tuple, factor: bool = True) -> sympy.Expr:
     return _keep_coeff(cn / cd, sympy.Mul(*fn, *(1 / f for f in fd)))
 
 
-def _poly_expr(p, symbols) -> sympy.Expr:
+def _poly_expr(p, symbols):
+    import sympy
+
     terms = []
     for mon, c in p.to_dict().items():
         term = sympy.Rational(int(c.p), int(c.q))
@@ -112,26 +126,89 @@ def _poly_expr(p, symbols) -> sympy.Expr:
     return sympy.Add(*terms)
 
 
-def _factored(p, symbols) -> tuple[sympy.Rational, list]:
-    """Flint factorisation as (rational constant, [primitive integer factor ** e])."""
+def _primitive_factors(p) -> tuple[Fraction, list[tuple[object, int]]]:
+    """Flint factorisation as (rational constant, [(primitive integer factor, power)])."""
     const, factors = p.factor()
-    c = sympy.Rational(int(const.p), int(const.q))
+    c = Fraction(int(const.p), int(const.q))
     out = []
     for f, e in factors:
-        coeffs = [v for v in f.to_dict().values()]
+        coeffs = list(f.to_dict().values())
         den = math.lcm(*(int(v.q) for v in coeffs))
         num = math.gcd(*(int(v.p) for v in coeffs))
-        f = f * flint.fmpq(den, num)
-        c *= sympy.Rational(num, den) ** e
-        out.append(_poly_expr(f, symbols) ** e)
+        out.append((f * flint.fmpq(den, num), e))
+        c *= Fraction(num, den) ** e
     return c, out
 
 
+def _factored(p, symbols):
+    import sympy
+
+    c, factors = _primitive_factors(p)
+    return sympy.Rational(c.numerator, c.denominator), \
+        [_poly_expr(f, symbols) ** e for f, e in factors]
+
+
+def format_coefficient(num, den) -> str:
+    """``num/den`` as factored Python/sympy syntax, by flint alone (no sympy).
+
+    >>> ctx = _k.context(("nu",))
+    >>> nu = ctx.gens()[1]
+    >>> format_coefficient(ctx.from_dict({}) + 2, 1 - nu)
+    '-2/(nu - 1)'
+    """
+    g = num.gcd(den)
+    if not g.is_one():
+        num, den = num / g, den / g
+    if num.is_zero():
+        return "0"
+    cn, fn = _primitive_factors(num)
+    cd, fd = _primitive_factors(den)
+    c = cn / cd
+
+    def product(factors):
+        parts = []
+        for f, e in factors:
+            text = str(f).replace("^", "**")
+            if len(f.to_dict()) > 1:
+                text = f"({text})"
+            parts.append(text + (f"**{e}" if e > 1 else ""))
+        return "*".join(parts)
+
+    top, bottom = product(fn), product(fd)
+    sign = "-" if c < 0 else ""
+    c = abs(c)
+    head = str(c.numerator) if (c.numerator != 1 or not top) else ""
+    numerator = "*".join(x for x in (head, top) if x)
+    if c.denominator != 1:
+        bottom = f"{c.denominator}*{bottom}" if bottom else str(c.denominator)
+    if not bottom:
+        return sign + numerator
+    if len(fd) + (c.denominator != 1) > 1:
+        bottom = f"({bottom})"
+    return f"{sign}{numerator}/{bottom}"
+
+
+def substitute_raw(raw: list[tuple], name: str, value) -> list[tuple]:
+    """Substitute a rational ``value`` for the parameter ``name`` in ``[(power, num, den)]``."""
+    v = Fraction(value)
+    v = flint.fmpq(v.numerator, v.denominator)
+    out = []
+    for k, a, b in raw:
+        a, b = a.subs({name: v}), b.subs({name: v})
+        if b.is_zero():
+            raise InputError(f"{name} = {value} is a pole of the kappa^{k} coefficient")
+        out.append((k, a, b))
+    return out
+
+
 def _substitute_nu(series: dict, nu) -> dict:
+    import sympy
+
     if nu is None:
         return series
     nu = check_nu(sympy.nsimplify(nu) if isinstance(nu, float) else nu)
-    return {k: sympy.factor(v.subs(NU, nu)) for k, v in series.items()}
+    symbol = sympy.Symbol("nu")
+    return {k: sympy.factor(v.subs(symbol, nu)) for k, v in series.items()}
 
 
 def _solve(build, sigma: int, order: int, D0: int):
@@ -198,7 +275,7 @@ def exact_series_raw(branch: str, order: int, form: str = "standard") -> list[tu
 
 
 def exact_series(branch: str, order: int, nu=None, form: str = "standard",
-                 factor: bool = True) -> dict[int, sympy.Expr]:
+                 factor: bool = True) -> dict:
     """Series of the exact Rayleigh-Lamb branch S0 or A0 (paper eqs 14-15) to kappa^order.
 
     The characteristic function is :func:`dispersion.rayleigh_lamb.frequency_function` itself,
@@ -208,19 +285,22 @@ def exact_series(branch: str, order: int, nu=None, form: str = "standard",
     >>> exact_series("A0", 6, nu=0)
     {4: 2/3, 6: -34/45}
     """
+    import sympy
+
     if nu is not None:
         check_nu(nu)
-    series = {k: _to_expr(a, b, (NU,), factor) for k, a, b in exact_series_raw(branch, order, form)}
+    series = {k: _to_expr(a, b, (sympy.Symbol("nu"),), factor)
+              for k, a, b in exact_series_raw(branch, order, form)}
     return _substitute_nu(series, nu)
 
 
-def exact_leading_balance(branch: str, form: str = "standard") -> sympy.Expr:
+def exact_leading_balance(branch: str, form: str = "standard"):
     """Leading balance q0(w) of the Rayleigh-Lamb equation for Omega^2 = w kappa^(2 sigma).
 
     Its non-zero roots are the admissible leading coefficients; used by the errata to show
     that the printed eq (13) has no A0 branch and a wrong S0 speed.
 
-    >>> sympy.factor(exact_leading_balance("S0"))
+    >>> exact_leading_balance("S0")
     w*(nu*w - w + 2)/(nu - 1)
     """
     kind, sigma, _ = check_request(branch, 2 * BRANCHES[branch][1], exact=True)
@@ -230,12 +310,14 @@ def exact_leading_balance(branch: str, form: str = "standard") -> sympy.Expr:
     while F.valuation() is None or F.valuation() > D:
         D *= 2
         F = build(D)
+    import sympy
+
     q0 = F.coeffs[F.valuation()]
-    w, g = sympy.symbols("w g")
+    w, g, nu = sympy.symbols("w g nu")
     expr = 0
     for mon, c in q0.to_dict().items():
         expr += sympy.Rational(int(c.p), int(c.q)) * w ** mon[0] * g ** mon[1]
-    return sympy.factor(expr.subs(g, (1 - 2 * NU) / (2 * (1 - NU))))
+    return sympy.factor(expr.subs(g, (1 - 2 * nu) / (2 * (1 - nu))))
 
 
 # --------------------------------------------------------------------------- discrete plate
@@ -247,6 +329,10 @@ def _discrete_build(patch, block: str | None, sigma: int, ctx):
     The pencil is made even in kappa by the similarity diag(I, s I), which moves
     :math:`s^2 = t (s/\\kappa)^2` onto one off-diagonal block.
     """
+    import sympy
+
+    from . import plate as _plate
+
     gens = ctx.gens()
     w, nu = gens[0], gens[1]
     r_gen = gens[2] if len(gens) > 2 else None
@@ -326,7 +412,11 @@ def discrete_series_raw(branch: str = "S0", order: int = 8, *, p: int = 2, n: in
                         model: str = "x-exact", r=None, mass: str = "consistent",
                         contact: str = "top", gamma_s=0, weights=None,
                         split: bool | None = None) -> tuple[list[tuple], tuple[str, ...]]:
-    """``([(power of kappa, num, den)], params)``: the sympy-free core of :func:`discrete_series`."""
+    """``([(power of kappa, num, den)], params)``: the flint core of :func:`discrete_series`."""
+    import sympy
+
+    from . import plate as _plate
+
     _, sigma, order = check_request(branch, order, exact=False, n=n)
     kind = BRANCHES[branch][0]
     patch = _plate.plate_patch(p, n, model, r, mass, contact, gamma_s, weights)
@@ -356,7 +446,7 @@ def discrete_series(
     nu=None,
     split: bool | None = None,
     factor: bool = True,
-) -> dict[int, sympy.Expr]:
+) -> dict:
     """Series of the discrete S0 / A0 branch of the plate patch (paper eqs 17-20).
 
     Parameters are those of :func:`dispersion.plate.plate_patch`; ``order`` is the highest
@@ -368,10 +458,12 @@ def discrete_series(
     >>> discrete_series("A0", 6)[4]
     -2/(3*(nu - 1))
     """
+    import sympy
+
     if nu is not None:
         check_nu(nu)
     raw, params = discrete_series_raw(branch, order, p=p, n=n, model=model, r=r, mass=mass,
                                       contact=contact, gamma_s=gamma_s, weights=weights,
                                       split=split)
-    symbols = (NU, R_SYM)[: len(params)]
+    symbols = (sympy.Symbol("nu"), sympy.Symbol("r", positive=True))[: len(params)]
     return _substitute_nu({k: _to_expr(a, b, symbols, factor) for k, a, b in raw}, nu)

@@ -11,12 +11,28 @@ import json
 import sys
 from fractions import Fraction
 
-from .. import defaults
 from ..errors import InputError
-from . import number
 
 #: Options of the discrete patch, with their defaults (None: not given on the command line).
 _PATCH_OPTIONS = ("mass", "contact", "gamma_s", "model", "r", "p", "n")
+
+
+class _Default:
+    """A default read from :mod:`dispersion.defaults` only when shown or used.
+
+    ``dispersion.defaults`` imports sympy (0.3 s); the exact series prints without it.
+    """
+
+    def __init__(self, name: str):
+        self.name = name
+
+    def value(self):
+        from .. import defaults
+
+        return getattr(defaults, self.name)
+
+    def __str__(self) -> str:
+        return str(self.value())
 
 
 def _fraction(name):
@@ -40,31 +56,32 @@ def register(sub) -> None:
                     "by power balance (paper eqs 14-20); Omega = omega h / c_T, kappa = k h "
                     "(dimensionless), nu symbolic unless --nu is given.",
         formatter_class=argparse.ArgumentDefaultsHelpFormatter)
-    p.add_argument("--branch", choices=("S0", "A0", "both"), default="both")
+    p.add_argument("--branch", choices=("S0", "A0", "both"), default="both",
+                   help="which branch through the origin")
     p.add_argument("--exact", action="store_true",
                    help="exact Rayleigh-Lamb series (eqs 14-15); takes none of the patch options")
-    p.add_argument("--mass", default=None,
-                   help=f"mass variant: consistent, lumped, singular, singular-lumped "
-                        f"(default {defaults.MASS})")
-    p.add_argument("--contact", default=None,
-                   help=f"contact set of a singular mass: top, bottom, both "
-                        f"(default {defaults.CONTACT})")
-    p.add_argument("--gamma-s", type=_fraction("gamma_s"), default=None,
-                   help=f"singular mass: share of a contact shape function sent to the second "
-                        f"neighbour (paper's gamma_s), in [0, 1] (default {defaults.GAMMA_S})")
-    p.add_argument("--model", default=None,
-                   help=f"x-model of the patch: bloch or x-exact (default {defaults.MODEL})")
-    p.add_argument("--r", type=_aspect, default=None,
-                   help=f"aspect ratio b/h of the Bloch model (dimensionless), or 'r' to keep it "
-                        f"symbolic (default {defaults.R})")
-    p.add_argument("--p", type=int, default=None,
-                   help=f"degree through the thickness, >= 1 (default {defaults.P})")
-    p.add_argument("--n", type=int, default=None,
-                   help=f"control points through the thickness, >= p + 1 (default {defaults.N})")
+    p.add_argument("--mass", default=_Default("MASS"),
+                   help="mass variant: consistent, lumped, singular, singular-lumped "
+                        "(default %(default)s)")
+    p.add_argument("--contact", default=_Default("CONTACT"),
+                   help="contact set of a singular mass: top, bottom, both "
+                        "(default %(default)s)")
+    p.add_argument("--gamma-s", type=_fraction("gamma_s"), default=_Default("GAMMA_S"),
+                   help="singular mass: share of a contact shape function sent to the second "
+                        "neighbour (paper's gamma_s), in [0, 1] (default %(default)s)")
+    p.add_argument("--model", default=_Default("MODEL"),
+                   help="x-model of the patch: bloch or x-exact (default %(default)s)")
+    p.add_argument("--r", type=_aspect, default=_Default("R"),
+                   help="aspect ratio b/h of the Bloch model (dimensionless), or 'r' to keep it "
+                        "symbolic (default %(default)s)")
+    p.add_argument("--p", type=int, default=_Default("P"),
+                   help="degree through the thickness, >= 1 (default %(default)s)")
+    p.add_argument("--n", type=int, default=_Default("N"),
+                   help="control points through the thickness, >= p + 1 (default %(default)s)")
     p.add_argument("--order", type=int, default=8, help="highest power of kappa (even)")
     p.add_argument("--nu", type=_fraction("nu"), default=None,
-                   help="substitute a value for Poisson's ratio nu, in (-1, 0.5) "
-                        "(default: symbolic)")
+                   help="substitute a value for Poisson's ratio nu, in (-1, 0.5); "
+                        "None: symbolic")
     p.add_argument("--format", choices=("text", "latex", "json", "csv"), default="text",
                    help="what goes to stdout")
     p.add_argument("--json", metavar="FILE", default=None,
@@ -76,15 +93,16 @@ def register(sub) -> None:
 
 def _resolve(args) -> dict:
     """The patch options with defaults filled in; options that do not apply are errors."""
-    given = {k: getattr(args, k) for k in _PATCH_OPTIONS if getattr(args, k) is not None}
+    given = {k: getattr(args, k) for k in _PATCH_OPTIONS
+             if not isinstance(getattr(args, k), _Default)}
     if args.exact or args.paper:
         if given:
             name = next(iter(given)).replace("_", "-")
             mode = "--exact" if args.exact else "--paper"
             raise InputError(f"--{name} does not apply to {mode} (the exact plate has no patch)")
         return {}
-    opts = {"mass": defaults.MASS, "contact": defaults.CONTACT, "gamma_s": defaults.GAMMA_S,
-            "model": defaults.MODEL, "r": defaults.R, "p": defaults.P, "n": defaults.N}
+    opts = {k: getattr(args, k).value() for k in _PATCH_OPTIONS
+            if isinstance(getattr(args, k), _Default)}
     opts.update(given)
     if not opts["mass"].startswith("singular"):
         for key in ("contact", "gamma_s"):
@@ -195,3 +213,27 @@ def run(args) -> int:
             write_text(args.json, payload)
     sys.stdout.write(text + "\n")
     return 0
+
+
+
+def lean_main(argv: list[str] | None = None) -> int:
+    """``python -m dispersion.cli.series ...``: this command alone, without the other
+    subcommands' imports (same options, output and exit status as ``dispersion series``)."""
+    from . import _Parser
+    from ..errors import DispersionError
+
+    parser = _Parser(prog="dispersion")
+    register(parser.add_subparsers(dest="command", required=True, parser_class=_Parser))
+    args = parser.parse_args(["series", *(sys.argv[1:] if argv is None else argv)])
+    try:
+        return run(args)
+    except InputError as exc:
+        print(f"dispersion series: error: {exc}", file=sys.stderr)
+        return 2
+    except DispersionError as exc:
+        print(f"dispersion series: {type(exc).__name__}: {exc}", file=sys.stderr)
+        return 1
+
+
+if __name__ == "__main__":
+    sys.exit(lean_main())

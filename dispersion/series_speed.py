@@ -9,6 +9,8 @@ Two measurements, one result (:class:`SeriesSpeed`, stored as JSON by
   ``dispersion/maxima/rayleigh_lamb_series.mac``: CRE arithmetic truncated by
   ``ratweight``/``ratwtlvl``, Horner evaluation, leading balance once, one linear equation
   per order), wall clock and peak resident memory of each child (``os.wait4``);
+  the same command through its lean entry ``python -m dispersion.cli.series`` (this
+  subcommand alone, without the other subcommands' imports, sympy-free) is timed too;
   (b) compute only: our in-process time for the same work (flint kernel and the printed
   strings) against the compute time Maxima reports itself (``elapsed_run_time()``).
   Every coefficient of both is compared exactly at two rational values of nu.
@@ -39,12 +41,14 @@ from pathlib import Path
 from .errors import InputError
 
 __all__ = [
-    "RacePoint", "ScalingPoint", "GrowthFit", "SeriesSpeed", "fit_growth", "maxima_program",
-    "measure", "parse_maxima_output", "run_child",
+    "TIMEOUT", "TIMEOUT_MAX", "RacePoint", "ScalingPoint", "GrowthFit", "SeriesSpeed",
+    "fit_growth", "maxima_program", "measure", "parse_maxima_output", "race", "run_child",
+    "scaling",
 ]
 
-#: Default ceiling (seconds) for one child process of the race.
+#: Default and largest ceiling (seconds) for one child process of the race.
 TIMEOUT = 120.0
+TIMEOUT_MAX = 600.0
 _NU_PROBES = (Fraction(3, 10), Fraction(-2, 7))
 
 
@@ -56,6 +60,7 @@ class RacePoint:
     ours_process_s: float | None
     ours_compute_s: float | None
     ours_peak_mib: float | None
+    ours_lean_process_s: float | None = None  # ``python -m dispersion.cli.series``: no sympy
     maxima_process_s: float | None = None
     maxima_compute_s: float | None = None
     maxima_peak_mib: float | None = None
@@ -197,9 +202,11 @@ def race(orders, timeout: float = TIMEOUT, maxima: str | None = "maxima",
                                                        f"exit {run[3]}"))
             points.append(RacePoint(order, None, None, None))
             continue
+        lean = run_child([sys.executable, "-m", "dispersion.cli.series", *cmd[4:]], timeout)
         compute, ours = _ours_compute(order)
         point = dict(order=order, ours_process_s=run[0], ours_compute_s=compute,
-                     ours_peak_mib=run[1])
+                     ours_peak_mib=run[1],
+                     ours_lean_process_s=lean[0] if lean and lean[3] == 0 else None)
         if exe is not None and order <= 2 * MAXIMA_MAX_N:
             with _batch_file(order, program) as (folder, name):
                 mrun = run_child([exe, "--very-quiet", "-b", name], timeout, cwd=folder)
@@ -287,8 +294,8 @@ def measure(quick: bool = False, executor=None, *, timeout: float = TIMEOUT,
     ``executor`` is not used: the timings run one after the other so that they do not
     compete for the cores.
     """
-    if not (isinstance(timeout, (int, float)) and 0 < timeout <= 600):
-        raise InputError(f"timeout (seconds per child process) must lie in (0, 600], "
+    if not (isinstance(timeout, (int, float)) and 0 < timeout <= TIMEOUT_MAX):
+        raise InputError(f"timeout (seconds per child process) must lie in (0, {TIMEOUT_MAX:g}], "
                          f"got {timeout!r}")
     notes: list[str] = []
     orders = (8, 16) if quick else (8, 16, 24, 32, 48, 64)

@@ -239,6 +239,8 @@ def determinant(rows: list[list[Series]]) -> Series:
     for i in range(k, n):
         lift(i, k)
     m = n - k
+    if m == 0:  # A(0) is regular: the last pivot is the determinant
+        return Series(ctx, pivots[n], D)
     trailing = [[a[i][j] for j in range(k, n)] for i in range(k, n)]
     det = _cofactor(trailing, D)
     for _ in range(m - 1):

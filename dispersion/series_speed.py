@@ -8,7 +8,7 @@ Two measurements, one result (:class:`SeriesSpeed`, stored as JSON by
   --format json`` against ``maxima --very-quiet -b <program>`` (the program
   ``dispersion/maxima/rayleigh_lamb_series.mac``: CRE arithmetic truncated by
   ``ratweight``/``ratwtlvl``, Horner evaluation, leading balance once, one linear equation
-  per order), wall clock and peak resident memory of each child (``os.wait4``);
+  per order), wall clock and peak resident memory of each child (GNU ``time``);
   the same command through its lean entry ``python -m dispersion.cli.series`` (this
   subcommand alone, without the other subcommands' imports, sympy-free) is timed too;
   (b) compute only: our in-process time for the same work (flint kernel and the printed
@@ -27,7 +27,6 @@ Maxima runs only if it is installed (``shutil.which("maxima")``); otherwise the 
 from __future__ import annotations
 
 import math
-import os
 import re
 import shutil
 import subprocess
@@ -126,26 +125,30 @@ def parse_maxima_output(text: str) -> tuple[dict[str, dict[int, str]], float | N
 def run_child(cmd: list[str], timeout: float, cwd: str | None = None):
     """Run ``cmd``; return ``(wall seconds, peak RSS MiB, stdout, exit status)``, None on timeout.
 
-    The peak memory is the child's own (``os.wait4``), not the maximum over all children.
+    The peak memory is the child's own, read by GNU ``time -f %M`` (a forked child's own
+    ``ru_maxrss`` starts at the parent's size, so the parent cannot measure it directly);
+    None if ``/usr/bin/time`` is absent.
     """
-    import threading
+    import tempfile
 
-    start = time.perf_counter()
-    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True,
-                            cwd=cwd)
-    timer = threading.Timer(timeout, proc.kill)
-    timer.start()
-    try:
-        out = proc.stdout.read()
-        _, status, usage = os.wait4(proc.pid, 0)
-    finally:
-        timer.cancel()
-        proc.stdout.close()
-    wall = time.perf_counter() - start
-    proc.returncode = os.waitstatus_to_exitcode(status)
-    if wall >= timeout and proc.returncode < 0:
-        return None
-    return wall, usage.ru_maxrss / 1024.0, out, proc.returncode
+    gnu_time = shutil.which("time") or ("/usr/bin/time" if Path("/usr/bin/time").exists()
+                                        else None)
+    with tempfile.TemporaryDirectory(prefix="dispersion-rss-") as tmp:
+        rss_file = Path(tmp) / "rss"
+        full = [gnu_time, "-f", "%M", "-o", str(rss_file), *cmd] if gnu_time else cmd
+        start = time.perf_counter()
+        try:
+            proc = subprocess.run(full, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
+                                  text=True, cwd=cwd, timeout=timeout, check=False)
+        except subprocess.TimeoutExpired:
+            return None
+        wall = time.perf_counter() - start
+        peak = None
+        if gnu_time and rss_file.exists():
+            text = rss_file.read_text().strip().splitlines()
+            if text and text[-1].isdigit():
+                peak = int(text[-1]) / 1024.0
+    return wall, peak, proc.stdout, proc.returncode
 
 
 def _ours_compute(order: int) -> tuple[float, dict[str, dict[int, str]]]:

@@ -190,8 +190,9 @@ def _maxima_version(exe: str) -> str:
 
 
 def race(orders, timeout: float = TIMEOUT, maxima: str | None = "maxima",
-         notes: list | None = None) -> tuple[RacePoint, ...]:
-    """Race ours against Maxima at each order of ``orders`` (Maxima skipped if ``None``)."""
+         notes: list | None = None, maxima_max_order: int = 64) -> tuple[RacePoint, ...]:
+    """Race ours against Maxima at each order of ``orders`` (Maxima skipped if ``None`` and
+    above ``maxima_max_order``)."""
     notes = [] if notes is None else notes
     exe = shutil.which(maxima) if maxima else None
     program = maxima_program()
@@ -210,7 +211,7 @@ def race(orders, timeout: float = TIMEOUT, maxima: str | None = "maxima",
         point = dict(order=order, ours_process_s=run[0], ours_compute_s=compute,
                      ours_peak_mib=run[1],
                      ours_lean_process_s=lean[0] if lean and lean[3] == 0 else None)
-        if exe is not None and order <= 2 * MAXIMA_MAX_N:
+        if exe is not None and order <= maxima_max_order:
             with _batch_file(order, program) as (folder, name):
                 mrun = run_child([exe, "--very-quiet", "-b", name], timeout, cwd=folder)
             if mrun is None:
@@ -221,10 +222,6 @@ def race(orders, timeout: float = TIMEOUT, maxima: str | None = "maxima",
                              maxima_peak_mib=mrun[1], agree=_agree(ours, coeffs))
         points.append(RacePoint(**point))
     return tuple(points)
-
-
-#: Highest N (power of t = kappa^2) the race gives Maxima.
-MAXIMA_MAX_N = 32
 
 
 class _batch_file:
@@ -291,26 +288,29 @@ def scaling(grid: dict[int, tuple[int, ...]], masses=("consistent", "lumped", "s
 
 
 def measure(quick: bool = False, executor=None, *, timeout: float = TIMEOUT,
-            maxima: str | None = "maxima") -> SeriesSpeed:
+            maxima: str | None = "maxima", maxima_max_order: int = 32) -> SeriesSpeed:
     """The race and the scaling table (``quick``: fewer orders and sizes, for CI).
 
-    ``executor`` is not used: the timings run one after the other so that they do not
-    compete for the cores.
+    Full: ours at kappa^8, 16, 32, 64, Maxima up to ``maxima_max_order`` (kappa^32 in
+    ``dispersion reproduce``, which must stay short; ``dispersion bench`` races kappa^64 too);
+    scaling at kappa^8 for p = 2 (n = 3..12), 3 and 4 (four sizes each). ``executor`` is not
+    used: the timings run one after the other so that they do not compete for the cores.
     """
     if not (isinstance(timeout, (int, float)) and 0 < timeout <= TIMEOUT_MAX):
         raise InputError(f"timeout (seconds per child process) must lie in (0, {TIMEOUT_MAX:g}], "
                          f"got {timeout!r}")
     notes: list[str] = []
-    orders = (8, 16) if quick else (8, 16, 24, 32, 48, 64)
-    grid = {2: (3, 4, 5, 6)} if quick else {2: (3, 4, 6, 8, 10, 12), 3: (4, 5, 6, 8),
+    orders = (8, 16) if quick else (8, 16, 32, 64)
+    grid = {2: (3, 4, 5, 6)} if quick else {2: (3, 4, 6, 8, 12), 3: (4, 5, 6, 7),
                                              4: (5, 6, 7, 8)}
     exe = shutil.which(maxima) if maxima else None
     if exe is None:
         notes.append(f"Maxima not found ({maxima!r} on PATH): the race shows ours only "
                      "(apt-get install -y maxima)")
-    race_points = race(orders, timeout, maxima, notes)
+    race_points = race(orders, timeout, maxima, notes, maxima_max_order)
     points, fits = scaling(grid)
     return SeriesSpeed(race_points, points, fits, _maxima_version(exe) if exe else None,
                        tuple(notes), {"quick": quick, "orders": list(orders),
                                       "grid": {str(k): list(v) for k, v in grid.items()},
-                                      "scaling_order": 8, "timeout_s": timeout})
+                                      "scaling_order": 8, "timeout_s": timeout,
+                                      "maxima_max_order": maxima_max_order})

@@ -94,4 +94,4 @@ def test_render_from_json_alone(tmp_path):
     assert (tmp_path / "series_speed.png").stat().st_size > 0
     # whole process 0.25 / 0.5 = 0.5x (slower), compute 0.04 / 0.01 = 4x: both stated
     assert "kappa^16: 0.5x" in md and "kappa^16: 4x" in md and "Headline (whole process" in md
-    assert "singular mass" in md and "2x the consistent" in md
+    assert "takes 2x (n = 8) the time of the consistent mass" in md

@@ -31,7 +31,8 @@ def handler(args: argparse.Namespace) -> int:
         raise InputError(f"budget (seconds per child process) must lie in (0, {TIMEOUT_MAX:g}], "
                          f"got {args.budget:g}")
     start = time.perf_counter()
-    result = measure(quick=args.quick, timeout=args.budget, maxima=args.maxima)
+    result = measure(quick=args.quick, timeout=args.budget, maxima=args.maxima,
+                     maxima_max_order=64)
     seconds = time.perf_counter() - start
     if args.out is None:
         from ..results import jsonable

@@ -80,12 +80,15 @@ def render_tables(data: dict) -> str:
                         f"{f['exponent']:.2f} | {f['residual']:.2f} | "
                         f"{'yes' if f['monotone'] else 'no'} |")
     sizes = {(q["mass"], q["p"], q["n"]): q["seconds"] for q in points}
+    ns = sorted({n for m, p, n in sizes if p == 2 and m == "singular"
+                 and ("consistent", 2, n) in sizes})
     ratio = ""
-    n_max = max((q["n"] for q in points if q["p"] == 2), default=None)
-    if n_max and ("singular", 2, n_max) in sizes and ("consistent", 2, n_max) in sizes:
-        r = sizes[("singular", 2, n_max)] / sizes[("consistent", 2, n_max)]
-        ratio = (f" At p = 2, n = {n_max} the singular mass (no mirror symmetry: one full "
-                 f"determinant) takes {r:.2g}x the consistent mass (two mirror blocks).")
+    if ns:
+        shown = [n for n in (8, ns[-1]) if n in ns] or ns[-1:]
+        ratio = (" The singular mass (no mirror symmetry: one full determinant) takes "
+                 + ", ".join(f"{sizes[('singular', 2, n)] / sizes[('consistent', 2, n)]:.2g}x "
+                             f"(n = {n})" for n in dict.fromkeys(shown))
+                 + " the time of the consistent mass (two mirror blocks) at p = 2.")
     notes = "".join(f"- {n}\n" for n in data.get("notes", ()))
     order = points[0]["order"] if points else "?"
     return (

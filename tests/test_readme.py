@@ -1,12 +1,16 @@
-"""README commands run as written, so the README cannot rot.
+"""The README runs as written and quotes only generated numbers, so it cannot rot.
 
-Every ``dispersion ...`` command in the README's bash blocks runs in a fresh directory through
-``python -m dispersion`` (the console script's entry point) and must exit 0, print something
-and write the files it names. The quick start's main job (``dispersion reproduce``, about
-8 min) is a slow check; the quick start's test command is this test suite itself.
+- Every ``dispersion ...`` command in the README's bash blocks runs in a fresh directory
+  through ``python -m dispersion`` (the console script's entry point) and must exit 0, print
+  something and write the files it names. The quick start's main job (``dispersion
+  reproduce``) is a slow check; the quick start's test command is this test suite itself.
+- The Python examples (``>>>`` in python blocks) run as doctests.
+- Every generated block (:mod:`dispersion.report.readme`) equals its regeneration from the
+  committed ``reports/*.json``.
 """
 from __future__ import annotations
 
+import doctest
 import re
 import shlex
 import subprocess
@@ -15,7 +19,8 @@ from pathlib import Path
 
 import pytest
 
-README = Path(__file__).resolve().parents[1] / "README.md"
+ROOT = Path(__file__).resolve().parents[1]
+README = ROOT / "README.md"
 SLOW = {"reproduce", "bench"}  # minutes each: run by .ci/run, not by default
 
 
@@ -56,3 +61,24 @@ def test_readme_command_runs(command, tmp_path):
     assert proc.stdout.strip() or written
     for name in written:
         assert (tmp_path / name).exists(), f"{command!r} did not write {name}"
+
+
+def test_readme_generated_blocks_match_the_committed_reports():
+    from dispersion.report.readme import BLOCK, render_readme
+
+    text = README.read_text()
+    assert BLOCK.search(text), "the README quotes no generated block"
+    assert render_readme(text, ROOT / "reports") == text, (
+        "README blocks differ from reports/*.json: run "
+        "`dispersion reproduce --render --readme README.md`")
+
+
+def test_readme_python_examples_run():
+    blocks = re.findall(r"```python\n(.*?)```", README.read_text(), re.S)
+    examples = "\n".join(b for b in blocks if ">>>" in b)
+    assert examples, "the README has no Python example"
+    parser = doctest.DocTestParser()
+    test = parser.get_doctest(examples, {}, "README.md", str(README), 0)
+    runner = doctest.DocTestRunner(optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
+    runner.run(test)
+    assert runner.failures == 0 and runner.tries > 0

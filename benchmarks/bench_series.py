@@ -54,7 +54,7 @@ def main(argv=None) -> int:
                         help="seconds per branch for the textbook sympy route (off by default)")
     args = parser.parse_args(argv)
     start = time.perf_counter()
-    result = measure(quick=args.quick, maxima_max_order=64)
+    result = measure(quick=args.quick, extended=not args.quick)
     _print_tables(result)
     if args.out is not None:
         print("wrote", save(args.out / "series_speed.json", "series_speed", result,

@@ -288,21 +288,23 @@ def scaling(grid: dict[int, tuple[int, ...]], masses=("consistent", "lumped", "s
 
 
 def measure(quick: bool = False, executor=None, *, timeout: float = TIMEOUT,
-            maxima: str | None = "maxima", maxima_max_order: int = 32) -> SeriesSpeed:
+            maxima: str | None = "maxima", extended: bool = False) -> SeriesSpeed:
     """The race and the scaling table (``quick``: fewer orders and sizes, for CI).
 
-    Full: ours at kappa^8, 16, 32, 64, Maxima up to ``maxima_max_order`` (kappa^32 in
-    ``dispersion reproduce``, which must stay short; ``dispersion bench`` races kappa^64 too);
-    scaling at kappa^8 for p = 2 (n = 3..12), 3 and 4 (four sizes each). ``executor`` is not
-    used: the timings run one after the other so that they do not compete for the cores.
+    Full: ours at kappa^8, 16, 32, 64 and Maxima to kappa^32; scaling at kappa^8 for p = 2
+    (n = 3..10), 3 and 4 (four sizes each), about half a minute on a quiet 2-core machine as
+    ``dispersion reproduce`` needs. ``extended`` (``dispersion bench``) adds Maxima at
+    kappa^64 and n = 12. ``executor`` is not used: the timings run one after the other so
+    that they do not compete for the cores.
     """
     if not (isinstance(timeout, (int, float)) and 0 < timeout <= TIMEOUT_MAX):
         raise InputError(f"timeout (seconds per child process) must lie in (0, {TIMEOUT_MAX:g}], "
                          f"got {timeout!r}")
     notes: list[str] = []
     orders = (8, 16) if quick else (8, 16, 32, 64)
-    grid = {2: (3, 4, 5, 6)} if quick else {2: (3, 4, 6, 8, 12), 3: (4, 5, 6, 7),
-                                             4: (5, 6, 7, 8)}
+    grid = {2: (3, 4, 5, 6)} if quick else {2: (3, 4, 6, 8, 10) + ((12,) if extended else ()),
+                                             3: (4, 5, 6, 7), 4: (5, 6, 7, 8)}
+    maxima_max_order = 64 if extended else 32
     exe = shutil.which(maxima) if maxima else None
     if exe is None:
         notes.append(f"Maxima not found ({maxima!r} on PATH): the race shows ours only "
@@ -313,4 +315,5 @@ def measure(quick: bool = False, executor=None, *, timeout: float = TIMEOUT,
                        tuple(notes), {"quick": quick, "orders": list(orders),
                                       "grid": {str(k): list(v) for k, v in grid.items()},
                                       "scaling_order": 8, "timeout_s": timeout,
-                                      "maxima_max_order": maxima_max_order})
+                                      "maxima_max_order": maxima_max_order,
+                                      "extended": extended})

@@ -32,7 +32,7 @@ def handler(args: argparse.Namespace) -> int:
                          f"got {args.budget:g}")
     start = time.perf_counter()
     result = measure(quick=args.quick, timeout=args.budget, maxima=args.maxima,
-                     maxima_max_order=64)
+                     extended=not args.quick)
     seconds = time.perf_counter() - start
     if args.out is None:
         from ..results import jsonable

@@ -408,8 +408,7 @@ def _discrete_build(patch, block: str | None, sigma: int, ctx):
 
 
 def _rational_rows(M) -> list[list]:
-    return [[flint.fmpq(int(v.p), int(v.q)) if v != 0 else 0 for v in M.row(i)]
-            for i in range(M.rows)]
+    return [[flint.fmpq(int(v.p), int(v.q)) if v else 0 for v in row] for row in M.tolist()]
 
 
 def discrete_series_raw(branch: str = "S0", order: int = 8, *, p: int = 2, n: int = 3,

@@ -411,17 +411,24 @@ def _rational_rows(M) -> list[list]:
     return [[flint.fmpq(int(v.p), int(v.q)) if v else 0 for v in row] for row in M.tolist()]
 
 
-def discrete_series_raw(branch: str = "S0", order: int = 8, *, p: int = 2, n: int = 3,
+def discrete_series_raw(branches=("S0",), order: int = 8, *, p: int = 2, n: int = 3,
                         model: str = "x-exact", r=None, mass: str = "consistent",
                         contact: str = "top", gamma_s=0, weights=None,
-                        split: bool | None = None) -> tuple[list[tuple], tuple[str, ...]]:
-    """``([(power of kappa, num, den)], params)``: the flint core of :func:`discrete_series`."""
+                        split: bool | None = None) -> tuple[dict[str, list[tuple]], tuple]:
+    """``({branch: [(power of kappa, num, den)]}, params)``: the flint core of
+    :func:`discrete_series`, for one or both branches.
+
+    Without the mirror split, one determinant :math:`F_1(t, w) = \\det(K - t w M)` serves
+    both branches: A0 (:math:`\\Omega^2 = t^2 w`) reads :math:`F_1(t, t w)`, i.e. the term
+    :math:`t^k w^e` moves to :math:`t^{k+e}`, which truncation at :math:`t^D` keeps exact.
+    """
     import sympy
 
     from . import plate as _plate
 
-    _, sigma, order = check_request(branch, order, exact=False, n=n)
-    kind = BRANCHES[branch][0]
+    if isinstance(branches, str):
+        branches = (branches,)
+    checked = {b: check_request(b, order, exact=False, n=n) for b in branches}
     patch = _plate.plate_patch(p, n, model, r, mass, contact, gamma_s, weights)
     if split is None:
         split = patch.symmetric
@@ -429,9 +436,40 @@ def discrete_series_raw(branch: str = "S0", order: int = 8, *, p: int = 2, n: in
         raise InputError("split=True needs a mass that keeps the mirror symmetry")
     params = ("nu", "r") if isinstance(patch.r, sympy.Symbol) else ("nu",)
     ctx = _k.context(params)
-    build = _discrete_build(patch, kind if split else None, sigma, ctx)
-    nums, dens = _solve(build, sigma, order, 2 + 2 * sigma)
-    return [(2 * (sigma + k), a, b) for k, (a, b) in enumerate(zip(nums, dens))], params
+    shared = None if split else _Shared(_discrete_build(patch, None, 1, ctx),
+                                        order // 2 + 4)
+    out = {}
+    for branch, (kind, sigma, order) in checked.items():
+        if split:
+            build = _discrete_build(patch, kind, sigma, ctx)
+        else:
+            build = shared if sigma == 1 else (lambda D: _w_times_t(shared(D)))
+        nums, dens = _solve(build, sigma, order, 2 + 2 * sigma)
+        out[branch] = [(2 * (sigma + k), a, b) for k, (a, b) in enumerate(zip(nums, dens))]
+    return out, params
+
+
+class _Shared:
+    """``build(D)`` computed once at the highest precision asked for, truncated on demand."""
+
+    def __init__(self, build, D0: int):
+        self.build, self.F = build, None
+        self.D0 = D0
+
+    def __call__(self, D: int):
+        if self.F is None or self.F.D < D:
+            self.F = self.build(max(D, self.D0))
+        return _k.Series(self.F.ctx, self.F.coeffs[: D + 1], D)
+
+
+def _w_times_t(F):
+    """F(t, t w) from F(t, w), truncated at the same t^D."""
+    out = [F.ctx.from_dict({}) for _ in range(F.D + 1)]
+    for k, c in enumerate(F.coeffs):
+        for mon, v in c.to_dict().items():
+            if k + mon[0] <= F.D:
+                out[k + mon[0]] += F.ctx.from_dict({mon: v})
+    return _k.Series(F.ctx, out, F.D)
 
 
 def discrete_series(
@@ -465,8 +503,9 @@ def discrete_series(
 
     if nu is not None:
         check_nu(nu)
-    raw, params = discrete_series_raw(branch, order, p=p, n=n, model=model, r=r, mass=mass,
-                                      contact=contact, gamma_s=gamma_s, weights=weights,
-                                      split=split)
+    raws, params = discrete_series_raw((branch,), order, p=p, n=n, model=model, r=r,
+                                       mass=mass, contact=contact, gamma_s=gamma_s,
+                                       weights=weights, split=split)
+    raw = raws[branch]
     symbols = (sympy.Symbol("nu"), sympy.Symbol("r", positive=True))[: len(params)]
     return _substitute_nu({k: _to_expr(a, b, symbols, factor) for k, a, b in raw}, nu)

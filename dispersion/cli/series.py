@@ -120,8 +120,16 @@ def _resolve(args) -> dict:
     return opts
 
 
-def series_record(args, branch: str, opts: dict) -> dict:
-    """Derive one branch; return the JSON record {branch, mass, model, coefficients, ...}."""
+def series_records(args, branches: tuple[str, ...], opts: dict) -> list[dict]:
+    """Derive the branches (one determinant for both where the mass breaks the mirror)."""
+    from ..power_balance import discrete_series_raw
+
+    raws = None if args.exact else discrete_series_raw(branches, args.order, **opts)[0]
+    return [series_record(args, b, opts, None if raws is None else raws[b]) for b in branches]
+
+
+def series_record(args, branch: str, opts: dict, raw=None) -> dict:
+    """One branch as the JSON record {branch, mass, model, coefficients, ...}."""
     from ..power_balance import (discrete_series_raw, exact_series_raw, format_coefficient,
                                  substitute_raw)
 
@@ -129,7 +137,8 @@ def series_record(args, branch: str, opts: dict) -> dict:
         raw = exact_series_raw(branch, args.order)
         mass, model = "exact", "rayleigh-lamb"
     else:
-        raw, _ = discrete_series_raw(branch, args.order, **opts)
+        if raw is None:
+            raw = discrete_series_raw((branch,), args.order, **opts)[0][branch]
         mass = opts["mass"]
         model = opts["model"] if opts["model"] == "x-exact" else \
             f"bloch r={'r' if opts['r'] is None else opts['r']}"
@@ -193,7 +202,7 @@ def run(args) -> int:
         records = None
     else:
         branches = ("S0", "A0") if args.branch == "both" else (args.branch,)
-        records = [series_record(args, b, opts) for b in branches]
+        records = series_records(args, branches, opts)
         if args.format == "json":
             text = json.dumps(records[0] if len(records) == 1 else records, indent=2)
         elif args.format == "csv":

@@ -6,7 +6,7 @@ Two measurements, one result (:class:`SeriesSpeed`, stored as JSON by
 * **race**: the exact Rayleigh-Lamb S0 + A0 series to :math:`\\kappa^K`, nu symbolic,
   (a) whole process, cold: ``python -m dispersion series --exact --branch both --order K
   --format json`` against ``maxima --very-quiet -b <program>`` (the program
-  ``dispersion/maxima/rayleigh_lamb_series.mac``: CRE arithmetic truncated by
+  ``dispersion/data/rayleigh_lamb_series.mac``: CRE arithmetic truncated by
   ``ratweight``/``ratwtlvl``, Horner evaluation, leading balance once, one linear equation
   per order), wall clock and peak resident memory of each child (GNU ``time``);
   the same command through its lean entry ``python -m dispersion.cli.series`` (this
@@ -98,8 +98,8 @@ class SeriesSpeed:
 
 
 def maxima_program() -> Path:
-    """Path of the Maxima program shipped with the package (``dispersion/maxima/*.mac``)."""
-    return Path(str(resources.files("dispersion") / "maxima" / "rayleigh_lamb_series.mac"))
+    """Path of the Maxima program shipped with the package (``dispersion/data/*.mac``)."""
+    return Path(str(resources.files("dispersion") / "data" / "rayleigh_lamb_series.mac"))
 
 
 _COEF = re.compile(r"^COEF\s+(S0|A0)\s+(\d+)\s+(.+?)\s*$")

@@ -94,7 +94,7 @@ def render_tables(data: dict) -> str:
     return (
         headline
         + "Ours: `python -m dispersion series --exact --branch both --order K --format json`; "
-          "Maxima: `maxima --very-quiet -b` on `dispersion/maxima/rayleigh_lamb_series.mac` "
+          "Maxima: `maxima --very-quiet -b` on `dispersion/data/rayleigh_lamb_series.mac` "
           "(CRE arithmetic truncated with `ratweight`/`ratwtlvl`, Horner evaluation, leading "
           "balance once, one linear equation per order). Peak memory is each child's own "
           "resident peak. The lean entry `python -m dispersion.cli.series` runs the same "

@@ -77,11 +77,7 @@ def test_race_without_maxima_reports_ours_only():
     assert point.maxima_process_s is None and point.agree is None and point.ours_compute_s > 0
 
 
-def test_render_from_json_alone(tmp_path):
-    pytest.importorskip("matplotlib")
-    from dispersion.report.series_speed import render
-
-    data = {
+DATA = {
         "race": [{"order": 16, "ours_process_s": 0.5, "ours_compute_s": 0.01, "ours_peak_mib": 80.0,
                   "ours_lean_process_s": 0.2, "maxima_process_s": 0.25, "maxima_compute_s": 0.04,
                   "maxima_peak_mib": 60.0, "agree": True}],
@@ -90,8 +86,23 @@ def test_render_from_json_alone(tmp_path):
         "fits": [{"mass": "consistent", "p": 2, "exponent": 3.0, "residual": 0.0,
                   "monotone": True, "points": 4}],
         "maxima": "Maxima 5.x", "notes": [], "settings": {}}
-    md = render(json.loads(json.dumps(data)), tmp_path)
+
+
+def test_render_from_json_alone(tmp_path):
+    pytest.importorskip("matplotlib")
+    from dispersion.report.series_speed import render
+
+    md = render(json.loads(json.dumps(DATA)), tmp_path)
     assert (tmp_path / "series_speed.png").stat().st_size > 0
     # whole process 0.25 / 0.5 = 0.5x (slower), compute 0.04 / 0.01 = 4x: both stated
     assert "kappa^16: 0.5x" in md and "kappa^16: 4x" in md and "Headline (whole process" in md
     assert "takes 2x (n = 8) the time of the consistent mass" in md
+
+
+def test_readme_summary_quotes_the_data():
+    from dispersion.report.series_speed import summary
+
+    text = summary(json.loads(json.dumps(DATA)))
+    # n = 8: 2e-3 * 512 = 1.02 s and 1e-3 * 512 = 0.512 s, as stored in DATA
+    assert "ours 0.5 s" in text and "Maxima 0.25 s (Maxima/ours 0.5x)" in text
+    assert "singular mass 1.02 s, consistent 0.512 s" in text and "consistent n^3.00" in text

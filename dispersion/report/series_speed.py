@@ -12,7 +12,7 @@ from pathlib import Path
 from ..io import save_figure
 from ..series_speed import measure
 
-__all__ = ["measure", "render", "render_tables"]
+__all__ = ["measure", "render", "render_tables", "summary"]
 
 
 def _fmt(x, digits: int = 3) -> str:
@@ -109,3 +109,36 @@ def render_tables(data: dict) -> str:
         + (f"Notes:\n\n{notes}\n" if notes else "")
         + "Data: `series_speed.json`. Regenerate: `dispersion reproduce` (this section: "
           "`dispersion bench --out DIR`).\n")
+
+
+def summary(data: dict) -> str:
+    """The README block: every number from the stored result (``dispersion reproduce``)."""
+    race, points, fits = data["race"], data["scaling"], data["fits"]
+    lines = []
+    raced = [p for p in race if p.get("maxima_process_s")]
+    for p in raced:
+        lines.append(
+            f"- Rayleigh-Lamb S0 + A0 to kappa^{p['order']}, whole process (cold): ours "
+            f"{_fmt(p['ours_process_s'])} s (lean entry `python -m dispersion.cli.series`: "
+            f"{_fmt(p.get('ours_lean_process_s'))} s), Maxima {_fmt(p['maxima_process_s'])} s "
+            f"(Maxima/ours {_ratio(p['maxima_process_s'], p['ours_process_s'])}); compute only "
+            f"{_fmt(p['ours_compute_s'])} s vs {_fmt(p['maxima_compute_s'])} s "
+            f"({_ratio(p['maxima_compute_s'], p['ours_compute_s'])}); coefficients "
+            f"{'identical' if p.get('agree') else 'DIFFERENT'}.")
+    for p in race:
+        if not p.get("maxima_process_s") and p.get("ours_process_s"):
+            lines.append(f"- Ours alone to kappa^{p['order']}: {_fmt(p['ours_process_s'])} s "
+                         f"whole process, peak {_fmt(p['ours_peak_mib'], 3)} MiB.")
+    sizes = {(q["mass"], q["p"], q["n"]): q["seconds"] for q in points}
+    if ("singular", 2, 8) in sizes and ("consistent", 2, 8) in sizes:
+        lines.append(
+            f"- Discrete S0 + A0 to kappa^8, p = 2, n = 8: singular mass "
+            f"{_fmt(sizes[('singular', 2, 8)])} s, consistent {_fmt(sizes[('consistent', 2, 8)])} "
+            f"s (in-process).")
+    growth = ", ".join(f"{f['mass']} n^{f['exponent']:.2f} (rms {f['residual']:.2f})"
+                       for f in fits if f["p"] == 2)
+    if growth:
+        lines.append(f"- Time against n at p = 2 (least-squares fit): {growth}.")
+    if data.get("notes"):
+        lines += [f"- Note: {n}" for n in data["notes"]]
+    return "\n".join(lines) + "\n"

@@ -78,14 +78,14 @@ def test_race_without_maxima_reports_ours_only():
 
 
 DATA = {
-        "race": [{"order": 16, "ours_process_s": 0.5, "ours_compute_s": 0.01, "ours_peak_mib": 80.0,
-                  "ours_lean_process_s": 0.2, "maxima_process_s": 0.25, "maxima_compute_s": 0.04,
-                  "maxima_peak_mib": 60.0, "agree": True}],
-        "scaling": [{"mass": m, "p": 2, "n": n, "order": 8, "seconds": s * n**3}
-                    for m, s in (("consistent", 1e-3), ("singular", 2e-3)) for n in (3, 4, 6, 8)],
-        "fits": [{"mass": "consistent", "p": 2, "exponent": 3.0, "residual": 0.0,
-                  "monotone": True, "points": 4}],
-        "maxima": "Maxima 5.x", "notes": [], "settings": {}}
+    "race": [{"order": 16, "ours_process_s": 0.5, "ours_compute_s": 0.01, "ours_peak_mib": 80.0,
+              "ours_lean_process_s": 0.2, "maxima_process_s": 0.25, "maxima_compute_s": 0.04,
+              "maxima_peak_mib": 60.0, "agree": True}],
+    "scaling": [{"mass": m, "p": 2, "n": n, "order": 8, "seconds": s * n**3}
+                for m, s in (("consistent", 1e-3), ("singular", 2e-3)) for n in (3, 4, 6, 8)],
+    "fits": [{"mass": "consistent", "p": 2, "exponent": 3.0, "residual": 0.0,
+              "monotone": True, "points": 4}],
+    "maxima": "Maxima 5.x", "notes": [], "settings": {}}
 
 
 def test_render_from_json_alone(tmp_path):

@@ -252,14 +252,29 @@ def _exact_build(kind: str, sigma: int, form: str):
     return ctx, build
 
 
-def _g_to_nu(p, ctx_nu, exps: int):
-    """p(g) * (2 (1 - nu))^exps with g = (1 - 2 nu) / (2 (1 - nu)), as a polynomial in nu."""
-    nu = ctx_nu.gens()[1]
-    num, den = 1 - 2 * nu, 2 - 2 * nu
-    out = ctx_nu.from_dict({})
-    for mon, c in p.to_dict().items():
-        out += c * num ** mon[1] * den ** (exps - mon[1])
-    return out
+class _GToNu:
+    """p(g) (2 (1 - nu))^e with g = (1 - 2 nu) / (2 (1 - nu)): a polynomial in nu.
+
+    The powers of 1 - 2 nu and 2 (1 - nu) are computed once and shared by every coefficient.
+    """
+
+    def __init__(self, ctx_nu):
+        nu = ctx_nu.gens()[1]
+        self.ctx = ctx_nu
+        self.num, self.den = [ctx_nu.from_dict({}) + 1], [ctx_nu.from_dict({}) + 1]
+        self.factors = (1 - 2 * nu, 2 - 2 * nu)
+
+    def _pow(self, table: list, base, e: int):
+        while len(table) <= e:
+            table.append(table[-1] * base)
+        return table[e]
+
+    def __call__(self, p, e: int):
+        out = self.ctx.from_dict({})
+        for mon, c in p.to_dict().items():
+            out += c * self._pow(self.num, self.factors[0], mon[1]) \
+                * self._pow(self.den, self.factors[1], e - mon[1])
+        return out
 
 
 def exact_series_raw(branch: str, order: int, form: str = "standard") -> list[tuple]:
@@ -270,11 +285,11 @@ def exact_series_raw(branch: str, order: int, form: str = "standard") -> list[tu
     kind, sigma, order = check_request(branch, order, exact=True)
     ctx, build = _exact_build(kind, sigma, form)
     nums, dens = _solve(build, sigma, order, 4)
-    ctx_nu = _k.context(("nu",))
+    to_nu = _GToNu(_k.context(("nu",)))
     out = []
     for k, (a, b) in enumerate(zip(nums, dens)):
         e = max(a.degrees()[1], b.degrees()[1])
-        num, den = _g_to_nu(a, ctx_nu, e), _g_to_nu(b, ctx_nu, e)
+        num, den = to_nu(a, e), to_nu(b, e)
         g = num.gcd(den)
         out.append((2 * (sigma + k), num / g, den / g))
     return out

@@ -13,6 +13,7 @@ from __future__ import annotations
 import doctest
 import re
 import shlex
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -24,38 +25,45 @@ README = ROOT / "README.md"
 SLOW = {"reproduce", "bench"}  # minutes each: run by .ci/run, not by default
 
 
-def readme_commands() -> list[str]:
-    """``dispersion`` commands of the README's bash blocks (comments and install steps cut)."""
+def readme_commands() -> list[tuple[str, int]]:
+    """``(command, exit status)`` of the README's bash blocks (comments and install steps cut).
+
+    The status is 0 unless the line's comment says ``exit N`` (e.g. ``verify`` of a file with
+    a claim that does not hold).
+    """
     out = []
     for block in re.findall(r"```bash\n(.*?)```", README.read_text(), re.S):
         for line in block.splitlines():
-            command = line.split(" #")[0].split("&&")[-1].strip()
+            command, _, comment = line.partition(" #")
+            command = command.split("&&")[-1].strip()
             if command.startswith("dispersion "):
-                out.append(command)
+                status = re.search(r"\bexit (\d+)", comment)
+                out.append((command, int(status.group(1)) if status else 0))
     return out
 
 
-def _param(command: str):
+def _param(command: str, status: int):
     marks = [pytest.mark.slow] if shlex.split(command)[1] in SLOW else []
-    return pytest.param(command, marks=marks, id=command)
+    return pytest.param(command, status, marks=marks, id=command)
 
 
 def test_readme_has_the_main_job_and_the_commands_of_each_part():
-    names = {shlex.split(c)[1] for c in readme_commands()}
+    names = {shlex.split(c)[1] for c, _ in readme_commands()}
     assert {"reproduce", "series", "branches", "ring"} <= names
 
 
 def _named_outputs(args: list[str]) -> list[str]:
     return [args[i + 1] for i, a in enumerate(args[:-1])
-            if a in ("--out", "--figure", "--csv")]
+            if a in ("--out", "--figure", "--csv", "--junit") and args[i + 1] != "-"]
 
 
-@pytest.mark.parametrize("command", [_param(c) for c in readme_commands()])
-def test_readme_command_runs(command, tmp_path):
+@pytest.mark.parametrize(("command", "status"), [_param(*c) for c in readme_commands()])
+def test_readme_command_runs(command, status, tmp_path):
     args = shlex.split(command)[1:]
+    shutil.copytree(ROOT / "examples", tmp_path / "examples")  # inputs the README names
     proc = subprocess.run([sys.executable, "-m", "dispersion", *args], cwd=tmp_path,
-                          capture_output=True, text=True, timeout=1800, check=False)
-    assert proc.returncode == 0, proc.stderr[-2000:]
+                          capture_output=True, text=True, check=False)
+    assert proc.returncode == status, proc.stderr[-2000:]
     assert "Traceback" not in proc.stderr
     written = _named_outputs(args) or (["reports/index.md"] if args[0] == "reproduce" else [])
     assert proc.stdout.strip() or written

@@ -131,8 +131,7 @@ def run_child(cmd: list[str], timeout: float, cwd: str | None = None):
     """
     import tempfile
 
-    gnu_time = shutil.which("time") or ("/usr/bin/time" if Path("/usr/bin/time").exists()
-                                        else None)
+    gnu_time = _gnu_time()
     with tempfile.TemporaryDirectory(prefix="dispersion-rss-") as tmp:
         rss_file = Path(tmp) / "rss"
         full = [gnu_time, "-f", "%M", "-o", str(rss_file), *cmd] if gnu_time else cmd
@@ -149,6 +148,20 @@ def run_child(cmd: list[str], timeout: float, cwd: str | None = None):
             if text and text[-1].isdigit():
                 peak = int(text[-1]) / 1024.0
     return wall, peak, proc.stdout, proc.returncode
+
+
+def _gnu_time() -> str | None:
+    """Path of GNU ``time`` if it accepts ``-f %M -o FILE`` (Debian package ``time``)."""
+    import tempfile
+
+    exe = shutil.which("time") or ("/usr/bin/time" if Path("/usr/bin/time").exists() else None)
+    if exe is None:
+        return None
+    with tempfile.TemporaryDirectory() as tmp:
+        probe = subprocess.run([exe, "-f", "%M", "-o", str(Path(tmp) / "m"), sys.executable,
+                                "-c", "pass"], capture_output=True, check=False)
+        ok = probe.returncode == 0 and (Path(tmp) / "m").is_file()
+    return exe if ok else None
 
 
 def _ours_compute(order: int) -> tuple[float, dict[str, dict[int, str]]]:
@@ -308,6 +321,8 @@ def measure(quick: bool = False, executor=None, *, timeout: float = TIMEOUT,
     if exe is None:
         notes.append(f"Maxima not found ({maxima!r} on PATH): the race shows ours only "
                      "(apt-get install -y maxima)")
+    if _gnu_time() is None:
+        notes.append("GNU time not found: no peak memory (apt-get install -y time)")
     race_points = race(orders, timeout, maxima, notes, maxima_max_order)
     points, fits = scaling(grid)
     return SeriesSpeed(race_points, points, fits, _maxima_version(exe) if exe else None,

@@ -26,6 +26,7 @@ Maxima runs only if it is installed (``shutil.which("maxima")``); otherwise the 
 """
 from __future__ import annotations
 
+import functools
 import math
 import re
 import shutil
@@ -150,6 +151,7 @@ def run_child(cmd: list[str], timeout: float, cwd: str | None = None):
     return wall, peak, proc.stdout, proc.returncode
 
 
+@functools.lru_cache(maxsize=1)
 def _gnu_time() -> str | None:
     """Path of GNU ``time`` if it accepts ``-f %M -o FILE`` (Debian package ``time``)."""
     import tempfile

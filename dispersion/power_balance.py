@@ -284,7 +284,7 @@ def exact_series_raw(branch: str, order: int, form: str = "standard") -> list[tu
     """
     kind, sigma, order = check_request(branch, order, exact=True)
     ctx, build = _exact_build(kind, sigma, form)
-    nums, dens = _solve(build, sigma, order, 4)
+    nums, dens = _solve(build, sigma, order, 2 * sigma)  # the lowest power is t^(2 sigma)
     to_nu = _GToNu(_k.context(("nu",)))
     out = []
     for k, (a, b) in enumerate(zip(nums, dens)):

@@ -90,7 +90,7 @@ def test_series_through_a_patch():
 
 @pytest.mark.parametrize("call, match", [
     (lambda: dispersion.patch(model="x-exact", r=3), "r applies to the Bloch model only"),
-    (lambda: dispersion.series("S0", 4, exact=True, mass="lumped"), "exact=True takes no patch"),
+    (lambda: dispersion.series("S0", 4, exact=True, mass="lumped"), "do not apply with exact=True"),
     (lambda: dispersion.patch(r="r").branches([0.1]), "r must be a number > 0"),
     (lambda: dispersion.simulate_ring(t_end=1, wobble=2), "unknown scenario fields"),
     (lambda: dispersion.patch(mass="heavy"), "mass must be one of"),

@@ -99,3 +99,13 @@ def test_series_through_a_patch():
 def test_front_door_refuses(call, match):
     with pytest.raises(InputError, match=match):
         call()
+
+
+def test_cli_version(capsys):
+    # wired by the lead in dispersion/cli/__init__.py (see the safety branch report)
+    import dispersion.cli
+
+    with pytest.raises(SystemExit) as info:
+        dispersion.cli.main(["--version"])
+    assert info.value.code == 0
+    assert capsys.readouterr().out.strip() == f"dispersion {version('dispersion-iga')}"

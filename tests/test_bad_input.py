@@ -46,7 +46,8 @@ HEADROOM = 3 * 2**30
 #: A stated range: an interval, a comparison, a list of choices or an explicit rule.
 RANGE = re.compile(r"[\[(]\s*-?[\w.+-]+\s*,|>=|<=|>|<|one of|choose from|must be|must lie|"
                    r"must name|must not|only|not allowed|not apply|at most|at least|"
-                   r"exceeds|bound|does not exist|not a folder|not writable|existing",
+                   r"exceeds|bound|does not exist|not a folder|not writable|existing|no such file|"
+                   r"expected|malformed",
                    re.IGNORECASE)
 
 
@@ -260,17 +261,28 @@ BENCH = [
     Cli("bench", "--out {under_file}", r"--out"),
 ]
 
-# ------------------------------------------------- commands being written (issue 11)
+# ------------------------------------------------------------------------------ verify
+VERIFY = [
+    Cli("verify", "--paper --junit {dir}", r"--junit"),
+    Cli("verify", ["--paper", "--junit", ""], r"--junit"),
+    Cli("verify", "--paper --junit {missing}", r"--junit"),
+    Cli("verify", "--paper --junit {under_file}", r"--junit"),
+    Cli("verify", "--paper --format xml", r"format"),
+    Cli("verify", "--paper --jobs 0", r"jobs"),
+    Cli("verify", "--paper --jobs abc", r"jobs"),
+    Cli("verify", "--paper --jobs 100000", r"jobs"),
+    Cli("verify", "nosuch.toml", r"nosuch\.toml"),
+    Cli("verify", "{dir}", r"existing|FILE|claims"),
+    Cli("verify", "{file}", r"user\.txt"),
+]
+
+# ------------------------------------------------------- a command being written (issue 11)
 PENDING = [
-    Cli("verify", "--junit {dir}", r"--junit"),
-    Cli("verify", ["--junit", ""], r"--junit"),
-    Cli("verify", "--junit {missing}", r"--junit"),
-    Cli("verify", "--format xml", r"format"),
     Cli("impact", "--format xml", r"format"),
     Cli("impact", "--out {file}", r"--out"),
 ]
 
-CLI_CASES = SERIES + BRANCHES + RING + REPRODUCE + BENCH + PENDING
+CLI_CASES = SERIES + BRANCHES + RING + REPRODUCE + BENCH + VERIFY + PENDING
 
 
 # ----------------------------------------------------------------------------- the API

@@ -47,7 +47,7 @@ HEADROOM = 3 * 2**30
 RANGE = re.compile(r"[\[(]\s*-?[\w.+-]+\s*,|>=|<=|>|<|one of|choose from|must be|must lie|"
                    r"must name|must not|only|not allowed|not apply|at most|at least|"
                    r"exceeds|bound|does not exist|not a folder|not writable|existing|no such file|"
-                   r"expected|malformed",
+                   r"expected|malformed|new or empty",
                    re.IGNORECASE)
 
 

@@ -48,4 +48,9 @@ def test_wheel_installs_and_runs_outside_the_checkout(tmp_path):
                              "print(version('dispersion-iga'))"], cwd=elsewhere, env=env).strip()
     records = json.loads(_run([str(exe), "series", "--format", "json"], cwd=elsewhere, env=env))
     assert {r["branch"] for r in records} == {"S0", "A0"}
+    # package data: the paper's claims file ships in the wheel (exit 1: eqs 17 and 19 fail
+    # as printed, see tests/test_cli_verify.py)
+    verify = subprocess.run([str(exe), "verify", "--paper"], cwd=elsewhere, env=env,
+                            capture_output=True, text=True, timeout=600)
+    assert verify.returncode == 1 and "17" in verify.stdout, verify.stderr
     assert list(elsewhere.iterdir()) == []  # nothing written to the working folder

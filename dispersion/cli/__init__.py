@@ -39,12 +39,20 @@ class _Parser(argparse.ArgumentParser):
         self.exit(2, f"{self.prog}: error: {message}\n")
 
 
-def build_parser() -> argparse.ArgumentParser:
+def build_parser(only: str | None = None) -> argparse.ArgumentParser:
+    """The ``dispersion`` parser; with ``only``, just that subcommand's module is imported.
+
+    The others get an empty placeholder, so ``dispersion series ...`` pays neither the import
+    of sympy nor numpy unless the series command itself needs them.
+    """
     parser = _Parser(prog="dispersion", description=__doc__.splitlines()[0])
     parser.add_argument("--version", action="store_true",
                         help="print the version of the toolkit and exit")
     sub = parser.add_subparsers(dest="command", parser_class=_Parser)
     for name in _SUBCOMMANDS:
+        if only is not None and name != only:
+            sub.add_parser(name)
+            continue
         try:
             module = importlib.import_module(f".{name}", __name__)
         except ModuleNotFoundError as exc:
@@ -68,8 +76,10 @@ def version() -> str:
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = build_parser()
-    args = parser.parse_args(argv)
+    words = sys.argv[1:] if argv is None else list(argv)
+    chosen = next((w for w in words if not w.startswith("-")), None)
+    parser = build_parser(chosen if chosen in _SUBCOMMANDS else None)
+    args = parser.parse_args(words)
     if args.version:
         print(f"dispersion {version()}")
         return 0

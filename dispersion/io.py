@@ -159,6 +159,8 @@ def atomic_write(path, mode: str = "w", *, option: str | None = None, **kwargs):
     'done'
     """
     binary = "b" in mode
+    if not os.fspath(path).strip():
+        raise InputError(f"{option or 'output'} must be a file path or '-', got {os.fspath(path)!r}")
     name = "stdout" if str(path) == STDOUT else _STREAM_PATHS.get(os.path.abspath(path))
     if name is not None:
         stream = getattr(sys, name)

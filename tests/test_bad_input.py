@@ -133,10 +133,10 @@ SERIES = [
     Cli("series", "--paper --order 12", ORDER),
     Cli("series", "--paper --mass lumped", r"mass"),
     Cli("series", "--paper --exact", r"exact"),
-    Cli("series", ["--out", ""], r"--out"),
-    Cli("series", "--out {dir}", r"--out"),
-    Cli("series", "--out {missing}", r"--out"),
-    Cli("series", "--out {under_file}", r"--out"),
+    Cli("series", ["--json", ""], r"--json"),
+    Cli("series", "--json {dir}", r"--json"),
+    Cli("series", "--json {missing}", r"--json"),
+    Cli("series", "--json {under_file}", r"--json"),
 ]
 
 # ---------------------------------------------------------------------------- branches
@@ -254,7 +254,6 @@ BENCH = [
     Cli("bench", "--budget nan", BUDGET),
     Cli("bench", "--budget inf", BUDGET),
     Cli("bench", "--budget abc", BUDGET),
-    Cli("bench", "--model y", r"model"),
     Cli("bench", "--format xml", r"format"),
     Cli("bench", "--out {file}", r"--out"),
     Cli("bench", ["--out", ""], r"--out"),
@@ -276,13 +275,30 @@ VERIFY = [
     Cli("verify", "{file}", r"user\.txt"),
 ]
 
-# ------------------------------------------------------- a command being written (issue 11)
-PENDING = [
-    Cli("impact", "--format xml", r"format"),
-    Cli("impact", "--out {file}", r"--out"),
+# ------------------------------------------------------------------------------ impact
+SCENE = "signorini-1d"
+IMPACT = [
+    Cli("impact", "bogus-scene", r"scene"),
+    Cli("impact", f"{SCENE} --format xml", r"format"),
+    Cli("impact", f"{SCENE} --out {{file}}", r"--out"),
+    Cli("impact", [SCENE, "--out", ""], r"--out"),
+    Cli("impact", f"{SCENE} --out -", r"--out"),
+    Cli("impact", f"{SCENE} --out {{under_file}}", r"--out"),
+    Cli("impact", f"{SCENE} --dt 0", DT),
+    Cli("impact", f"{SCENE} --dt nan", DT),
+    Cli("impact", f"{SCENE} --dt -1", DT),
+    Cli("impact", f"{SCENE} --dt 1e-12", DT),
+    Cli("impact", f"{SCENE} --t-end 0", T_END),
+    Cli("impact", f"{SCENE} --t-end inf", T_END),
+    Cli("impact", f"{SCENE} --t-end 1e12", T_END),
+    Cli("impact", f"{SCENE} --elements 0", r"elements"),
+    Cli("impact", f"{SCENE} --elements 1000000000", r"elements"),
+    Cli("impact", f"{SCENE} --p 0", r"\bp\b|degree"),
+    Cli("impact", f"{SCENE} --mass heavy", r"mass"),
+    Cli("impact", f"{SCENE} --scheme euler", r"scheme"),
 ]
 
-CLI_CASES = SERIES + BRANCHES + RING + REPRODUCE + BENCH + VERIFY + PENDING
+CLI_CASES = SERIES + BRANCHES + RING + REPRODUCE + BENCH + VERIFY + IMPACT
 
 
 # ----------------------------------------------------------------------------- the API
@@ -374,7 +390,8 @@ API_CASES = [
     Api("Scenario(gap=inf)", lambda: scenario.Scenario(gap=math.inf), r"gap"),
     Api("Scenario(gap=-0.1)", lambda: scenario.Scenario(gap=-0.1), r"gap"),
     Api("Scenario(theta0_deg=nan)", lambda: scenario.Scenario(theta0_deg=math.nan), r"theta0"),
-    Api("Scenario(E=-1)", lambda: scenario.Scenario(E=-1.0), r"\bE\b"),
+    Api("Scenario(rho=-1)", lambda: scenario.Scenario(rho=-1.0), r"rho"),
+    Api("Scenario(v0_over_cT=0)", lambda: scenario.Scenario(v0_over_cT=0.0), r"v0_over_cT"),
     Api("Scenario(dt=0)", lambda: scenario.Scenario(dt=0.0), r"\bdt\b"),
     Api("Scenario(dt=1e-7)", lambda: scenario.Scenario(dt=1e-7), r"\bdt\b"),
     Api("Scenario(t_end=0.01)", lambda: scenario.Scenario(t_end=0.01), T_END),

@@ -141,6 +141,11 @@ def test_parent_is_a_file_is_input_error(tmp_path):
         io.write_text(tmp_path / "file" / "x.txt", "x", option="--out")
 
 
+def test_empty_path_is_refused_not_taken_as_the_current_folder():
+    with pytest.raises(InputError, match="--json must be a file path or '-', got ''"):
+        io.write_text("", "x", option="--json")
+
+
 def test_existing_folder_is_not_overwritten(tmp_path):
     (tmp_path / "d").mkdir()
     with pytest.raises(InputError, match="existing folder"):

@@ -29,7 +29,8 @@ DISTRIBUTION = "dispersion-iga"
 
 _API = ("Patch", "patch", "series", "exact_branches", "simulate_ring", "simulate_bar")
 _SUBMODULES = ("api", "bspline", "mass", "plate", "power_balance", "rayleigh_lamb", "branches",
-               "errata", "contact", "defaults", "io", "results", "sweep", "errors")
+               "errata", "claims", "contact", "defaults", "io", "results", "sweep", "errors",
+               "testing")
 
 __all__ = ["DispersionError", "InputError", "ConvergenceError", "IndefiniteMassWarning",
            "__version__", *_API]

@@ -155,7 +155,8 @@ def series(branch: str = "S0", order: int = 8, *, exact: bool = False, nu=None,
     """
     if exact:
         if patch_kwargs:
-            raise InputError(f"exact=True takes no patch parameters, got {sorted(patch_kwargs)}")
+            raise InputError(f"patch parameters {sorted(patch_kwargs)} do not apply with "
+                             "exact=True (the exact Rayleigh-Lamb series)")
         from .power_balance import exact_series
 
         return exact_series(branch, order, nu=nu)

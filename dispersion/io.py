@@ -62,8 +62,9 @@ __all__ = [
 
 #: The path that means standard output.
 STDOUT = "-"
-#: Name of the journal :func:`write_files` keeps while it renames staged files.
-JOURNAL = ".dispersion-write.json"
+#: Journal :func:`write_files` keeps while it renames staged files (``.format(pid=...)``):
+#: one per writing process, so concurrent writers into one folder never share one.
+JOURNAL = ".dispersion-write.{pid}.json"
 _TMP_SUFFIX = ".tmp"
 # errno values that mean "this path cannot be written by you": the user's choice, exit 2.
 _PATH_ERRORS = {errno.EACCES, errno.EPERM, errno.EROFS, errno.ENOENT, errno.ENOTDIR,
@@ -105,6 +106,26 @@ def _stat(path: Path) -> os.stat_result | None:
         return None
 
 
+_STREAM_PATHS = {"/dev/stdout": "stdout", "/dev/fd/1": "stdout", "/proc/self/fd/1": "stdout",
+                 "/dev/stderr": "stderr", "/dev/fd/2": "stderr", "/proc/self/fd/2": "stderr"}
+
+
+def _through_dev(path: Path) -> bool:
+    """True if ``path`` or a link on the way to its target lies in /dev or /proc.
+
+    Such paths name devices or open file descriptors (``/dev/stdout`` may resolve to the
+    file the shell redirected to): they are written through, never renamed over.
+    """
+    probe = os.path.abspath(path)
+    for _ in range(40):
+        if probe.startswith(("/dev/", "/proc/")):
+            return True
+        if not os.path.islink(probe):
+            return False
+        probe = os.path.join(os.path.dirname(probe), os.readlink(probe))
+    return False
+
+
 def make_dir(path, option: str | None = None) -> Path:
     """Create folder ``path`` (and parents) with modes from the umask; return it.
 
@@ -138,8 +159,12 @@ def atomic_write(path, mode: str = "w", *, option: str | None = None, **kwargs):
     'done'
     """
     binary = "b" in mode
-    if str(path) == STDOUT:
-        stream = sys.stdout.buffer if binary else sys.stdout
+    if not os.fspath(path).strip():
+        raise InputError(f"{option or 'output'} must be a file path or '-', got {os.fspath(path)!r}")
+    name = "stdout" if str(path) == STDOUT else _STREAM_PATHS.get(os.path.abspath(path))
+    if name is not None:
+        stream = getattr(sys, name)
+        stream = stream.buffer if binary else stream
         yield stream
         stream.flush()
         return
@@ -148,7 +173,7 @@ def atomic_write(path, mode: str = "w", *, option: str | None = None, **kwargs):
     if st is None and path.is_symlink():
         raise InputError(f"cannot write {option + ' ' if option else ''}{path}: "
                          "it is a dangling symbolic link")
-    if st is not None and _is_stream(st):
+    if st is not None and (_is_stream(st) or _through_dev(path)):
         try:
             fh = open(path, mode, **kwargs)
         except OSError as exc:
@@ -375,24 +400,28 @@ def remove_stale_temporaries(folder) -> list[Path]:
 
 
 def _recover(folder: Path) -> None:
-    """Finish the renames of a journal left by a killed :func:`write_files`."""
-    journal = folder / JOURNAL
-    try:
-        entries = json.loads(journal.read_text())["renames"]
-    except FileNotFoundError:
-        return
-    except (OSError, ValueError, KeyError, TypeError):
-        raise OutputError(f"{journal} is unreadable; remove it after checking the folder") \
-            from None
-    for tmp, name in entries:
-        if (folder / tmp).exists():
-            os.replace(folder / tmp, folder / name)
-    journal.unlink()
+    """Finish the renames of journals left by killed :func:`write_files` calls."""
+    for journal in sorted(folder.glob(JOURNAL.format(pid="*"))):
+        pid = journal.name.split(".")[2]
+        if not pid.isdigit() or _pid_alive(int(pid)):
+            continue  # not ours, or its writer is still at work
+        try:
+            entries = json.loads(journal.read_text())["renames"]
+        except FileNotFoundError:
+            continue
+        except (OSError, ValueError, KeyError, TypeError):
+            raise OutputError(f"{journal} is unreadable; remove it after checking the folder") \
+                from None
+        for tmp, name in entries:
+            if (folder / tmp).exists():
+                os.replace(folder / tmp, folder / name)
+        journal.unlink()
 
 
 def _check_name(name: str) -> str:
     parts = Path(name).parts
-    if not name or Path(name).is_absolute() or ".." in parts or name == JOURNAL:
+    if not name or Path(name).is_absolute() or ".." in parts \
+            or Path(name).name.startswith(".dispersion-write."):
         raise InputError(f"file names in write_files must be relative paths inside the folder "
                          f"without '..', got {name!r}")
     return name
@@ -408,9 +437,12 @@ def write_files(folder, files: Mapping[str, str | bytes], *, option: str | None 
     :func:`remove_stale_temporaries` deletes). Once all are staged, a journal
     (``.dispersion-write.json``, listing each rename) is written atomically, the files are
     renamed onto their targets one by one, and the journal is removed. A kill during that
-    last short phase leaves the journal; the next :func:`write_files` or
-    :func:`remove_stale_temporaries` on the folder completes the renames, so the folder
-    ends all new. Files not named in ``files`` are never touched.
+    last short phase leaves the journal (``.dispersion-write.PID.json``); the next
+    :func:`write_files` or :func:`remove_stale_temporaries` on the folder completes the
+    renames, so the folder ends all new. Until then a reader can see a mix: the guarantee
+    is "all old or all new once recovered", not a single atomic switch. Files not named in
+    ``files`` are never touched. Concurrent calls on one folder do not corrupt each other's
+    files (each has its own temporaries and journal); the last rename of a name wins.
 
     Parameters
     ----------
@@ -456,7 +488,8 @@ def write_files(folder, files: Mapping[str, str | bytes], *, option: str | None 
             except OSError as exc:
                 raise _error(exc, target, option) from None
         renames = [[os.path.relpath(t, folder), os.path.relpath(g, folder)] for t, g in staged]
-        write_text(folder / JOURNAL, json.dumps({"pid": os.getpid(), "renames": renames}))
+        journal = folder / JOURNAL.format(pid=os.getpid())
+        write_text(journal, json.dumps({"pid": os.getpid(), "renames": renames}))
     except BaseException:
         for tmp, _ in staged:
             with contextlib.suppress(FileNotFoundError):
@@ -464,5 +497,5 @@ def write_files(folder, files: Mapping[str, str | bytes], *, option: str | None 
         raise
     for tmp, target in staged:
         os.replace(tmp, target)
-    (folder / JOURNAL).unlink()
+    journal.unlink()
     return [target for _, target in staged]

@@ -53,6 +53,10 @@ def die_with_parent(parent_pid: int | None = None, sig: int = signal.SIGTERM) ->
     died before the request was made, the signal is sent at once. Returns False where
     ``prctl`` is unavailable (not Linux); the pool then relies on its SIGTERM handler.
     """
+    # a forked worker inherits the parent's Python handler of ``sig`` (the pool's own, which
+    # raises SystemExit: inside a task that is caught and the worker lives on); the default
+    # action ends the process
+    signal.signal(sig, signal.SIG_DFL)
     try:
         libc = ctypes.CDLL(None, use_errno=True)
         if libc.prctl(_PR_SET_PDEATHSIG, int(sig), 0, 0, 0) != 0:

@@ -69,6 +69,18 @@ def test_dash_is_stdout(tmp_path, capsys, monkeypatch):
     assert not (tmp_path / "-").exists()
 
 
+def test_dev_stdout_redirected_to_a_file_is_not_renamed_over(tmp_path):
+    # the shell's '> out.txt' with '--csv /dev/stdout': the data lands in out.txt, after
+    # what was printed before, and out.txt stays the very file the shell opened
+    out = tmp_path / "out.txt"
+    code = ("import sys; from dispersion import io; print('first', flush=True); "
+            "io.write_text('/dev/stdout', 'second\\n'); print('third')")
+    with open(out, "w") as fh:
+        subprocess.run([sys.executable, "-c", code], stdout=fh, check=True)
+        inode = os.fstat(fh.fileno()).st_ino
+    assert out.read_text() == "first\nsecond\nthird\n" and out.stat().st_ino == inode
+
+
 def test_device_is_written_through_not_replaced():
     before = os.stat("/dev/null")
     io.write_text("/dev/null", "discarded")
@@ -127,6 +139,11 @@ def test_parent_is_a_file_is_input_error(tmp_path):
     (tmp_path / "file").write_text("")
     with pytest.raises(InputError, match="--out"):
         io.write_text(tmp_path / "file" / "x.txt", "x", option="--out")
+
+
+def test_empty_path_is_refused_not_taken_as_the_current_folder():
+    with pytest.raises(InputError, match="--json must be a file path or '-', got ''"):
+        io.write_text("", "x", option="--json")
 
 
 def test_existing_folder_is_not_overwritten(tmp_path):
@@ -235,8 +252,8 @@ def test_write_files_finishes_a_journal_left_by_a_kill(tmp_path):
     (tmp_path / "a.csv").write_text("new a")
     (tmp_path / "b.csv").write_text("old b")
     (tmp_path / ".b.csv.1.w.tmp").write_text("new b")
-    (tmp_path / io.JOURNAL).write_text(
-        '{"pid": 1, "renames": [[".a.csv.1.w.tmp", "a.csv"], [".b.csv.1.w.tmp", "b.csv"]]}')
+    (tmp_path / io.JOURNAL.format(pid=_dead_pid())).write_text(
+        '{"renames": [[".a.csv.1.w.tmp", "a.csv"], [".b.csv.1.w.tmp", "b.csv"]]}')
     io.remove_stale_temporaries(tmp_path)
     assert (tmp_path / "b.csv").read_text() == "new b"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["a.csv", "b.csv"]
@@ -258,7 +275,14 @@ def test_write_files_kill_during_staging_keeps_old(tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["a.bin"]
 
 
-@pytest.mark.parametrize("name", ["", "/abs.csv", "../up.csv", io.JOURNAL])
+def test_journal_of_a_live_writer_is_left_alone(tmp_path):
+    journal = tmp_path / io.JOURNAL.format(pid=os.getppid())  # a live process
+    journal.write_text('{"renames": []}')
+    io.write_files(tmp_path, {"a.csv": "x"})
+    assert journal.exists()
+
+
+@pytest.mark.parametrize("name", ["", "/abs.csv", "../up.csv", io.JOURNAL.format(pid=7)])
 def test_write_files_refuses_names_outside(tmp_path, name):
     with pytest.raises(InputError, match="relative paths"):
         io.write_files(tmp_path, {name: "x"})

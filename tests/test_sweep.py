@@ -77,8 +77,10 @@ _PARENT = """
 import os, sys, time
 from dispersion.sweep import process_pool
 pool = {factory}
-print(pool.submit(os.getpid).result(), flush=True)
+worker = pool.submit(os.getpid).result()
 pool.submit(time.sleep, 60)
+time.sleep(0.5)  # the worker is inside the task when the parent dies
+print(worker, flush=True)
 time.sleep(60)
 """
 

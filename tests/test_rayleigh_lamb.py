@@ -14,10 +14,16 @@ from dispersion.rayleigh_lamb import (
     frequency_function,
     numeric_frequency_function,
     speed_ratio_squared,
-    trace_branches,
 )
+from dispersion.tracer import trace_branches
 
-mpmath.mp.dps = 40
+DPS = 40  # digits of the mpmath references, set locally with mpmath.workdps
+
+
+@pytest.fixture(autouse=True)
+def _forty_digits():
+    with mpmath.workdps(DPS):
+        yield
 
 
 def mp_C(z):
@@ -111,7 +117,8 @@ def test_s0_series_small_kappa():
 
 
 def test_series_against_power_balance():
-    pb = pytest.importorskip("dispersion.power_balance")
+    from dispersion import power_balance as pb
+
     nu = 0.3
     kappa = np.array([0.005, 0.01])  # truncation after k^8: relative remainder ~ k^6
     br = trace_branches(nu, kappa, 1.0)

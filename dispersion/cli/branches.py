@@ -64,7 +64,7 @@ def kappa_grid(kmin: float, kmax: float, count: int) -> np.ndarray:
 def run(args) -> int:
     from ..branches import discrete_branches, relative_error
     from ..plate import plate_patch
-    from ..rayleigh_lamb import trace_branches
+    from ..tracer import trace_branches
 
     kappa = kappa_grid(args.kappa_min, args.kappa_max, args.count)
     if not (math.isfinite(args.omega_max) and args.omega_max > 0):

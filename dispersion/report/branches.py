@@ -14,7 +14,7 @@ import numpy as np
 from ..branches import discrete_branches, fitted_order, relative_error
 from ..io import save_figure, write_text
 from ..plate import plate_patch
-from ..rayleigh_lamb import trace_branches
+from ..tracer import trace_branches
 
 __all__ = ["measure_discrete", "measure_tracer", "mpmath_check", "report"]
 

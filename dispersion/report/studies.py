@@ -52,7 +52,7 @@ from ..branches import pencil_frequencies
 from ..errors import ConvergenceError, InputError, check_nu, check_positive, check_positive_int
 from ..io import save_figure, write_text
 from ..plate import mirror_bases, numeric_pencil, plate_patch
-from ..rayleigh_lamb import trace_branches
+from ..tracer import trace_branches
 from ..sweep import parallel_map
 
 __all__ = [

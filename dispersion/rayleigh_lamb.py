@@ -41,6 +41,7 @@ __all__ = [
     "cutoff_frequencies",
     "deflated_frequency_function",
     "deflated_with_noise",
+    "evanescent_frequency_function",
     "frequency_slope",
     "frequency_function",
     "numeric_frequency_function",
@@ -221,6 +222,40 @@ def deflated_with_noise(kind: str, kappa, Omega, nu: float):
         raise InputError(f"kind must be 'S' or 'A', got {kind!r}")
     scale = (1 - s) * a2 * Dscale + np.abs(t2)
     return t1 + t2, 64 * np.finfo(float).eps * scale
+
+
+def evanescent_frequency_function(kind: str, kappa, Omega, nu: float):
+    """The frequency function scaled for the evanescent region :math:`P < 0` (no overflow).
+
+    With :math:`T(z) = S(z)/C(z)` (:math:`\\tanh\\sqrt{-z}/\\sqrt{-z}` for z < 0) and
+    :math:`c_Q = C(Q)` where :math:`Q < 0`, else 1,
+
+    .. math::
+
+        F_S / (C(P) c_Q) &= a^2 S(Q)/c_Q + 4\\kappa^2 P\\,T(P)\\,C(Q)/c_Q, \\\\
+        F_A / (C(P) c_Q) &= a^2 T(P)\\,C(Q)/c_Q + 4\\kappa^2 Q\\,S(Q)/c_Q,
+
+    which has the roots of F with :math:`P < 0` and stays of order one where F grows like
+    :math:`e^{2\\kappa}`: the form a root is polished on at large :math:`\\kappa` (the
+    Rayleigh-wave limit of S0 and A0).
+
+    >>> abs(float(evanescent_frequency_function("A", 10.0, 9.271134852299324, 0.3))) < 1e-12
+    True
+    """
+    kappa, Omega = np.asarray(kappa, dtype=float), np.asarray(Omega, dtype=float)
+    k2, W2 = kappa**2, Omega**2
+    s = speed_ratio_squared(nu)
+    P, Q = s * W2 - k2, W2 - k2
+    a2 = (Q - k2) ** 2
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        TP = sinc_sqrt(P) / cos_sqrt(P)
+        cq = np.where(Q < 0, cos_sqrt(Q), 1.0)
+        SQ, CQ = sinc_sqrt(Q) / cq, cos_sqrt(Q) / cq
+    if kind == "S":
+        return a2 * SQ + 4 * k2 * P * TP * CQ
+    if kind == "A":
+        return a2 * TP * CQ + 4 * k2 * Q * SQ
+    raise InputError(f"kind must be 'S' or 'A', got {kind!r}")
 
 
 def _sinc_sqrt_prime(z):

@@ -34,7 +34,12 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .errors import InputError, check_nu, check_positive, check_positive_int, check_wavenumbers
-from .rayleigh_lamb import cutoff_frequencies, deflated_with_noise
+from .rayleigh_lamb import (
+    cutoff_frequencies,
+    deflated_with_noise,
+    evanescent_frequency_function,
+    speed_ratio_squared,
+)
 
 __all__ = ["SERIES_KAPPA", "ExactBranches", "fundamental_series", "trace_branches"]
 
@@ -273,6 +278,7 @@ def _refine_and_solve(smp: _Samples, rtol, max_depth):
     roots, unconverged = _illinois(f, a, b, fa, fb, rtol)
     for i in np.flatnonzero(unconverged):
         failures.append((kind, float(kappa[kk[i]]), "root refinement did not converge"))
+    roots = _polish_evanescent(kind, kappa[kk], roots, smp.nu, unconverged)
     if doubles:
         dk, dw = np.array(doubles).T
         kk = np.concatenate([kk, dk.astype(int), dk.astype(int)])
@@ -281,6 +287,37 @@ def _refine_and_solve(smp: _Samples, rtol, max_depth):
         roots, kk = roots[order], kk[order]
     per_k = np.split(roots, np.searchsorted(kk, np.arange(1, kappa.size)))
     return per_k, failures
+
+
+def _polish_evanescent(kind, kappa, roots, nu, skip, width: float = 1e-9):
+    """Roots with P < 0 closed again on :func:`evanescent_frequency_function`.
+
+    At large kappa the deflated function carries cosh-sized terms whose cancellation costs
+    digits (2e-14 on A0 at kappa = 10); the scaled form does not. A root whose scaled
+    function has no sign change within ``width`` (relative) keeps its first value.
+    """
+    # only where cosh(sqrt(-P)) > 10: there the deflated function has lost a digit
+    ev = (kappa**2 - speed_ratio_squared(nu) * roots**2 > 9.0) & ~skip & (roots > 0)
+    if not np.any(ev):
+        return roots
+    k, r = kappa[ev], roots[ev]
+    a, b = r * (1 - width), r * (1 + width)
+    fa = evanescent_frequency_function(kind, k, a, nu)
+    fb = evanescent_frequency_function(kind, k, b, nu)
+    ok = np.isfinite(fa) & np.isfinite(fb) & (np.sign(fa) * np.sign(fb) < 0)
+    if not np.any(ok):
+        return roots
+    ko = k[ok]
+
+    def f(idx, x):
+        return evanescent_frequency_function(kind, ko[idx], x, nu)
+
+    polished, active = _illinois(f, a[ok], b[ok], fa[ok], fb[ok], 1e-17)
+    out = roots.copy()
+    sub = r.copy()
+    sub[ok] = np.where(active, sub[ok], polished)
+    out[ev] = sub
+    return out
 
 
 def trace_branches(
@@ -368,6 +405,8 @@ def trace_branches(
                 w0, _ = fundamental_series(f"{kind}0", nu, kp[small])
                 for i, w in zip(np.flatnonzero(small), w0):
                     roots[i] = np.concatenate([[w], roots[i]])
+                    if w < np.finfo(float).tiny:
+                        failures.append((kind, float(kp[i]), f"{kind}0 underflows ({w:.3g})"))
             for i, r in zip(positive, roots):
                 per_k[i] = r[r <= omega_max]
         n_br = max(len(r) for r in per_k)

@@ -14,6 +14,7 @@ truncated after :math:`\\kappa^8`, relative remainder :math:`\\le \\kappa^6`), w
 the function would lose digits to round-off (and :math:`\\Omega^2` of A0 underflows below
 :math:`\\kappa \\approx 10^{-77}`).
 
+>>> import math
 >>> br = trace_branches(0.3, [0.0, 1.0], 3.5)
 >>> sorted(br.omega)
 ['A0', 'A1', 'S0', 'S1', 'S2']
@@ -28,7 +29,6 @@ F. A. Amirkulova, PhD thesis, Rutgers 2011 (ref [1] of the paper).
 from __future__ import annotations
 
 import functools
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -89,6 +89,7 @@ def fundamental_series(label: str, nu: float, kappa) -> tuple[np.ndarray, np.nda
     :math:`\\kappa^8`); :math:`\\Omega` is formed as :math:`\\kappa^l \\sqrt{\\sum c_k \\kappa^{k-2l}}`
     so it never underflows before :math:`\\kappa` does.
 
+    >>> import math
     >>> w, cg = fundamental_series("S0", 0.3, [1e-200])
     >>> float(w[0] / 1e-200) == math.sqrt(2 / 0.7), float(cg[0]) == math.sqrt(2 / 0.7)
     (True, True)

@@ -31,18 +31,29 @@ computations*, 4th ed., section 8.7 (symmetric-definite pencils).
 """
 from __future__ import annotations
 
+import functools
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
+import sympy
 
 from .errors import InputError, check_nu, check_positive_int, check_wavenumbers
-from .plate import PlatePatch, mirror_bases, numeric_pencil
+from .plate import (
+    PlatePatch,
+    lame,
+    mass_block,
+    mirror_bases,
+    numeric_pencil,
+    stiffness_terms,
+    x_functions,
+)
 
 __all__ = [
     "DiscreteBranches",
     "congruence",
     "discrete_branches",
+    "extended_frequencies",
     "fitted_order",
     "pencil_frequencies",
     "predicted_error",
@@ -142,10 +153,107 @@ def _common_shape(M):
     return None
 
 
-def _geometric_mirror(n: int) -> np.ndarray:
-    """Mirror y -> -y on the DOFs: u_x even, u_y odd (J on x, -J on y)."""
-    J = np.fliplr(np.eye(n))
-    return np.block([[J, np.zeros((n, n))], [np.zeros((n, n)), -J]])
+#: Relative accuracy the float eigenvalues must reach; below it the extended-precision path runs.
+RTOL = 1e-11
+
+
+def _float_error(lam: np.ndarray) -> np.ndarray:
+    """Bound on the relative error of float eigenvalues of a symmetric matrix: eps ||A|| / lam."""
+    top = np.max(np.abs(lam), axis=-1, keepdims=True)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(lam > 0, 64 * np.finfo(float).eps * top / lam, np.inf)
+
+
+class _Key:
+    """A patch as a cache key (its sympy matrices are not hashable)."""
+
+    def __init__(self, patch: PlatePatch):
+        self.patch = patch
+        self.key = (patch.p, patch.n, patch.model, str(patch.r), str(patch.My), patch.x_lumped)
+
+    def __hash__(self):
+        return hash(self.key)
+
+    def __eq__(self, other):
+        return isinstance(other, _Key) and self.key == other.key
+
+
+def _mp_pencil(patch: PlatePatch, nu: float):
+    """``kappa -> (K, M)`` as mpmath matrices, from the exact terms of :func:`stiffness_terms`."""
+    return _mp_pencil_cached(_Key(patch), nu)
+
+
+@functools.lru_cache(maxsize=16)
+def _mp_pencil_cached(key: _Key, nu: float):
+    patch = key.patch
+    k = sympy.Symbol("kappa")
+    nu_q = sympy.nsimplify(nu, rational=True)
+    mat, xf = lame(nu_q), x_functions(patch, k)
+    K = sum((mat[m] * xf[f] * B for m, f, B in stiffness_terms(patch)), sympy.zeros(2 * patch.n))
+    M = xf["mx"] * mass_block(patch)
+    return sympy.lambdify(k, K, "mpmath"), sympy.lambdify(k, M, "mpmath")
+
+
+def extended_frequencies(patch: PlatePatch, nu: float, kappa: float, basis=None,
+                         dps: int = 40) -> np.ndarray:
+    """Finite :math:`\\Omega` of the pencil at one ``kappa`` in ``dps``-digit arithmetic.
+
+    The reference (and the fallback) where float eigenvalues lose their relative accuracy:
+    :math:`\\Omega^2` of A0 is about :math:`\\kappa^4`, so at :math:`\\kappa = 10^{-6}` it is
+    1e-24 beside eigenvalues of order one. K and M are formed from the exact matrices of
+    :func:`dispersion.plate.stiffness_terms` (nu rationalised), projected on ``basis``
+    (columns spanning a mirror block, or None), massless DOFs condensed, and solved with
+    :func:`mpmath.eigsy` under :func:`mpmath.workdps`.
+
+    >>> from dispersion.plate import plate_patch
+    >>> w = extended_frequencies(plate_patch(), 0.3, 1e-6)
+    >>> float(w[0] / 1e-12)  # A0: Omega ~ sqrt(2 / (3 (1 - nu))) kappa^2 (eq 16)
+    0.9759000729...
+    """
+    import mpmath
+
+    Kf, Mf = _mp_pencil(patch, float(nu))
+    with mpmath.workdps(dps):
+        K, M = Kf(mpmath.mpf(kappa)), Mf(mpmath.mpf(kappa))
+        if basis is not None:
+            E = mpmath.matrix(np.asarray(basis).tolist())
+            K, M = E.T * K * E, E.T * M * E
+        n = K.rows
+        zero = [i for i in range(n) if all(M[i, j] == 0 for j in range(n))]
+        keep = [i for i in range(n) if i not in zero]
+        Krr = _mp_sub(K, keep, keep)
+        Mrr = _mp_sub(M, keep, keep)
+        if zero:
+            Krm = _mp_sub(K, keep, zero)
+            Krr = Krr - Krm * mpmath.inverse(_mp_sub(K, zero, zero)) * Krm.T
+        L = mpmath.cholesky(Mrr)
+        Li = mpmath.inverse(L)
+        A = Li * Krr * Li.T
+        A = (A + A.T) / 2
+        lam = mpmath.eigsy(A, eigvals_only=True)
+        return np.sort(np.array([float(mpmath.sqrt(max(v, 0))) for v in lam]))
+
+
+def _mp_sub(A, rows, cols):
+    import mpmath
+
+    return mpmath.matrix([[A[i, j] for j in cols] for i in rows])
+
+
+def _refine_small(patch, nu, kappa, W, basis):
+    """Recompute in extended precision the kappas where some float eigenvalue of W is inaccurate.
+
+    Digits: 30 beyond the ratio of the largest eigenvalue to the smallest (guessed as
+    kappa^4 where the float value is lost in round-off).
+    """
+    lam = W**2
+    bad = np.flatnonzero(np.any(_float_error(lam) > RTOL, axis=1) & (kappa > 0))
+    for i in bad:
+        top = float(np.max(lam[i]))
+        small = max(float(np.min(lam[i])), 0.1 * kappa[i] ** 4, 1e-300)
+        dps = 30 + int(math.ceil(math.log10(max(top / small, 1.0))))
+        W[i] = extended_frequencies(patch, nu, float(kappa[i]), basis, dps=dps)
+    return W
 
 
 def discrete_branches(patch: PlatePatch, nu: float, kappa, chunk: int = 20000,
@@ -196,14 +304,15 @@ def _branches_block(patch: PlatePatch, nu: float, kappa: np.ndarray):
             if any(s & massless and not s <= massless for s in support):
                 raise InputError("mirror basis mixes massless and massive DOFs")
             Kb, Mb = congruence(E.T, K), congruence(E.T, M)
-            W = pencil_frequencies(Kb, Mb, ml)
+            W = _refine_small(patch, nu, kappa, pencil_frequencies(Kb, Mb, ml), E)
             for j in range(W.shape[1]):
                 omega[f"{kind}{j}"], symmetry[f"{kind}{j}"] = W[:, j], kind
         return omega, symmetry
     W, X = pencil_frequencies(K, M, tuple(massless), vectors=True)
-    P = _geometric_mirror(patch.n)
-    sym_part = 0.5 * (X + P @ X)
-    frac = np.sum(sym_part**2, axis=1) / np.sum(X**2, axis=1)
+    W = _refine_small(patch, nu, kappa, W, None)
+    # parity of each mode shape: its share in the symmetric mirror subspace of the patch
+    S = mirror_bases(replace(patch, My=patch.Y["00"]))["S"]
+    frac = np.sum((S.T @ X) ** 2, axis=1) / np.sum(X**2, axis=1)
     is_s = frac >= 0.5
     rank_s = np.cumsum(is_s, axis=1) - 1
     rank_a = np.cumsum(~is_s, axis=1) - 1

@@ -74,6 +74,8 @@ class DiscreteBranches:
     omega: dict[str, np.ndarray]
     symmetry: dict[str, str]
     zone_edge: float | None = None
+    #: ``label -> dOmega/dkappa`` (group velocity over c_T) when asked for, else None.
+    group: dict[str, np.ndarray] | None = None
 
 
 def _condense(K, M, massless):
@@ -194,8 +196,8 @@ def _mp_pencil_cached(key: _Key, nu: float):
     return sympy.lambdify(k, K, "mpmath"), sympy.lambdify(k, M, "mpmath")
 
 
-def extended_frequencies(patch: PlatePatch, nu: float, kappa: float, basis=None,
-                         dps: int = 40) -> np.ndarray:
+def extended_frequencies(patch: PlatePatch, nu: float, kappa, basis=None,
+                         dps: int = 40, as_mp: bool = False) -> np.ndarray:
     """Finite :math:`\\Omega` of the pencil at one ``kappa`` in ``dps``-digit arithmetic.
 
     The reference (and the fallback) where float eigenvalues lose their relative accuracy:
@@ -230,8 +232,9 @@ def extended_frequencies(patch: PlatePatch, nu: float, kappa: float, basis=None,
         Li = mpmath.inverse(L)
         A = Li * Krr * Li.T
         A = (A + A.T) / 2
-        lam = mpmath.eigsy(A, eigvals_only=True)
-        return np.sort(np.array([float(mpmath.sqrt(max(v, 0))) for v in lam]))
+        lam = sorted(mpmath.eigsy(A, eigvals_only=True))
+        roots = [mpmath.sqrt(max(v, 0)) for v in lam]
+        return roots if as_mp else np.array([float(v) for v in roots])
 
 
 def _mp_sub(A, rows, cols):
@@ -240,12 +243,16 @@ def _mp_sub(A, rows, cols):
     return mpmath.matrix([[A[i, j] for j in cols] for i in rows])
 
 
-def _refine_small(patch, nu, kappa, W, basis):
+def _refine_small(patch, nu, kappa, W, basis, G=None):
     """Recompute in extended precision the kappas where some float eigenvalue of W is inaccurate.
 
     Digits: 30 beyond the ratio of the largest eigenvalue to the smallest (guessed as
-    kappa^4 where the float value is lost in round-off).
+    kappa^4 where the float value is lost in round-off). With ``G`` (slopes) given, the
+    slopes there become central differences of the extended eigenvalues at
+    :math:`\\kappa (1 \\pm 10^{-20})`, exact to far below float resolution.
     """
+    import mpmath
+
     lam = W**2
     bad = np.flatnonzero(np.any(_float_error(lam) > RTOL, axis=1) & (kappa > 0))
     for i in bad:
@@ -253,11 +260,52 @@ def _refine_small(patch, nu, kappa, W, basis):
         small = max(float(np.min(lam[i])), 0.1 * kappa[i] ** 4, 1e-300)
         dps = 30 + int(math.ceil(math.log10(max(top / small, 1.0))))
         W[i] = extended_frequencies(patch, nu, float(kappa[i]), basis, dps=dps)
+        if G is not None:
+            with mpmath.workdps(dps + 25):
+                k = mpmath.mpf(float(kappa[i]))
+                h = k * mpmath.mpf("1e-20")
+                up = extended_frequencies(patch, nu, k + h, basis, dps + 25, as_mp=True)
+                dn = extended_frequencies(patch, nu, k - h, basis, dps + 25, as_mp=True)
+                G[i] = [float((a - b) / (2 * h)) for a, b in zip(up, dn)]
     return W
 
 
+def pencil_derivative(patch: PlatePatch, nu: float, kappa) -> tuple[np.ndarray, np.ndarray]:
+    """:math:`dK/d\\kappa` and :math:`dM/d\\kappa` as float stacks, by the complex step.
+
+    The x-functions of :func:`dispersion.plate.x_functions` (polynomials or trigonometric sums
+    in kappa) are evaluated at :math:`\\kappa + i\\,10^{-30}`; the imaginary part over the
+    step is the derivative to rounding, with no cancellation (Squire and Trapp 1998).
+
+    >>> from dispersion.plate import plate_patch
+    >>> dK, dM = pencil_derivative(plate_patch(), 0.3, [0.5])
+    >>> bool(np.allclose(dK, dK.transpose(0, 2, 1))), float(np.abs(dM).max())  # x-exact: M const
+    (True, 0.0)
+    """
+    nu = float(check_nu(nu))
+    h = 1e-30
+    kappa = np.atleast_1d(np.asarray(kappa, dtype=float)) + 1j * h
+    mat, xf = lame(nu), x_functions(patch, kappa)
+    n2 = 2 * patch.n
+    dK = np.zeros((kappa.size, n2, n2))
+    for m, f, B in stiffness_terms(patch):
+        dK += mat[m] * (np.imag(np.asarray(xf[f], dtype=complex)) / h)[:, None, None] \
+            * np.array(B, dtype=float)
+    dmx = np.imag(np.broadcast_to(np.asarray(xf["mx"], dtype=complex), kappa.shape)) / h
+    dM = dmx[:, None, None] * np.array(mass_block(patch), dtype=float)
+    return dK, dM
+
+
+def _slopes(W, X, dK, dM, M):
+    """Hellmann-Feynman :math:`d\\Omega/d\\kappa` of every mode (columns of X) of a stack."""
+    num = np.einsum("kim,kij,kjm->km", X, dK, X) - W**2 * np.einsum("kim,kij,kjm->km", X, dM, X)
+    den = 2 * W * np.einsum("kim,kij,kjm->km", X, M, X)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(W > 0, num / den, np.nan)
+
+
 def discrete_branches(patch: PlatePatch, nu: float, kappa, chunk: int = 20000,
-                      progress=None) -> DiscreteBranches:
+                      progress=None, group: bool = False) -> DiscreteBranches:
     """All finite discrete branches of ``patch`` on the grid ``kappa`` (see module docstring).
 
     Parameters
@@ -272,29 +320,38 @@ def discrete_branches(patch: PlatePatch, nu: float, kappa, chunk: int = 20000,
         Kappa points per batched solve (bounds the memory).
     progress : callable, optional
         Called with the number of kappa points finished after each chunk.
+    group : bool
+        Also the group velocity :math:`d\\Omega/d\\kappa` of every branch (eigenvector
+        formula, :mod:`dispersion.velocities`), in ``DiscreteBranches.group``.
     """
+    if patch.model == "bloch" and isinstance(patch.r, sympy.Symbol):
+        raise InputError("aspect ratio r must be a number for discrete branches, got the symbol r")
     nu = float(check_nu(nu))
     kappa = check_wavenumbers(kappa)
     chunk = check_positive_int("chunk", chunk)
     zone = math.pi / float(patch.r) if patch.model == "bloch" else None
     parts = []
     for lo in range(0, kappa.size, chunk):
-        parts.append(_branches_block(patch, nu, kappa[lo:lo + chunk]))
+        parts.append(_branches_block(patch, nu, kappa[lo:lo + chunk], group))
         if progress is not None:
             progress(min(chunk, kappa.size - lo))
     symmetry = {}
-    for _, sym in parts:
+    for _, sym, _ in parts:
         symmetry.update(sym)
     sizes = [min(chunk, kappa.size - lo) for lo in range(0, kappa.size, chunk)]
-    omega = {lab: np.concatenate([om.get(lab, np.full(m, np.nan))
-                                  for (om, _), m in zip(parts, sizes)]) for lab in symmetry}
-    return DiscreteBranches(kappa, omega, symmetry, zone)
+
+    def join(i):
+        return {lab: np.concatenate([part[i].get(lab, np.full(m, np.nan))
+                                     for part, m in zip(parts, sizes)]) for lab in symmetry}
+
+    return DiscreteBranches(kappa, join(0), symmetry, zone, join(2) if group else None)
 
 
-def _branches_block(patch: PlatePatch, nu: float, kappa: np.ndarray):
+def _branches_block(patch: PlatePatch, nu: float, kappa: np.ndarray, group: bool = False):
     K, M = numeric_pencil(patch, nu, kappa)
+    dK, dM = pencil_derivative(patch, nu, kappa) if group else (None, None)
     massless = set(patch.massless)
-    omega, symmetry = {}, {}
+    omega, symmetry, slopes = {}, {}, {}
     bases = mirror_bases(patch)
     if bases is not None:
         for kind in ("S", "A"):
@@ -304,12 +361,21 @@ def _branches_block(patch: PlatePatch, nu: float, kappa: np.ndarray):
             if any(s & massless and not s <= massless for s in support):
                 raise InputError("mirror basis mixes massless and massive DOFs")
             Kb, Mb = congruence(E.T, K), congruence(E.T, M)
-            W = _refine_small(patch, nu, kappa, pencil_frequencies(Kb, Mb, ml), E)
+            G = None
+            if group:
+                W, X = pencil_frequencies(Kb, Mb, ml, vectors=True)
+                G = _slopes(W, X, congruence(E.T, dK), congruence(E.T, dM), Mb)
+            else:
+                W = pencil_frequencies(Kb, Mb, ml)
+            W = _refine_small(patch, nu, kappa, W, E, G)
             for j in range(W.shape[1]):
                 omega[f"{kind}{j}"], symmetry[f"{kind}{j}"] = W[:, j], kind
-        return omega, symmetry
+                if group:
+                    slopes[f"{kind}{j}"] = G[:, j]
+        return omega, symmetry, slopes
     W, X = pencil_frequencies(K, M, tuple(massless), vectors=True)
-    W = _refine_small(patch, nu, kappa, W, None)
+    G = _slopes(W, X, dK, dM, M) if group else None
+    W = _refine_small(patch, nu, kappa, W, None, G)
     # parity of each mode shape: its share in the symmetric mirror subspace of the patch
     S = mirror_bases(replace(patch, My=patch.Y["00"]))["S"]
     frac = np.sum((S.T @ X) ** 2, axis=1) / np.sum(X**2, axis=1)
@@ -320,10 +386,15 @@ def _branches_block(patch: PlatePatch, nu: float, kappa: np.ndarray):
         for j in range(int(mask.sum(axis=1).max(initial=0))):
             sel = mask & (rank == j)
             has = sel.any(axis=1)
+            label = f"{kind}{j}"
             vals = np.full(kappa.size, np.nan)
             vals[has] = W[has][sel[has]]
-            omega[f"{kind}{j}"], symmetry[f"{kind}{j}"] = vals, "mixed"
-    return omega, symmetry
+            omega[label], symmetry[label] = vals, "mixed"
+            if group:
+                g = np.full(kappa.size, np.nan)
+                g[has] = G[has][sel[has]]
+                slopes[label] = g
+    return omega, symmetry, slopes
 
 
 def relative_error(discrete: DiscreteBranches, exact) -> dict[str, np.ndarray]:

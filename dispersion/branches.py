@@ -52,8 +52,11 @@ from .plate import (
 __all__ = [
     "DiscreteBranches",
     "congruence",
+    "critical_time_step",
     "discrete_branches",
     "extended_frequencies",
+    "fundamental_branches",
+    "pencil_derivative",
     "fitted_order",
     "pencil_frequencies",
     "predicted_error",
@@ -445,3 +448,34 @@ def predicted_error(branch: str, nu: float, order: int = 10, **patch_kwargs) -> 
         raise InputError(f"no error term up to kappa^{order}; raise order")
     m = nonzero[0]
     return m - lead, diff[m] / (2 * float(e[lead]))
+
+
+def fundamental_branches(patch: PlatePatch, nu: float, kappa) -> dict[str, np.ndarray]:
+    """Discrete S0 and A0 at ``kappa``: the labels of :func:`discrete_branches` (one rule).
+
+    >>> from dispersion.plate import plate_patch
+    >>> sorted(fundamental_branches(plate_patch(mass="singular"), 0.3, [0.1]))
+    ['A0', 'S0']
+    """
+    br = discrete_branches(patch, nu, kappa)
+    return {label: br.omega[label] for label in ("S0", "A0")}
+
+
+def critical_time_step(patch: PlatePatch, nu: float, n_theta: int = 257) -> float:
+    """Largest stable step of explicit central differences, :math:`2/\\max\\Omega`, in h/c_T.
+
+    .. math:: \\Delta t_{crit} = 2 / \\max_{\\theta \\in [0, \\pi]} \\Omega(\\theta / r)
+
+    over the Bloch phase :math:`\\theta = \\kappa r` on ``n_theta`` equally spaced points
+    (both zone ends included), massless DOFs condensed (Belytschko, Liu, Moran 2000, 6.3).
+
+    >>> from dispersion.plate import plate_patch
+    >>> 0 < critical_time_step(plate_patch(model="bloch", r=2), 0.3, n_theta=9) < 1
+    True
+    """
+    check_positive_int("n_theta", n_theta, minimum=2)
+    if patch.model != "bloch" or isinstance(patch.r, sympy.Symbol):
+        raise InputError("critical_time_step needs a Bloch patch with a numeric aspect ratio r")
+    theta = np.linspace(0.0, np.pi, n_theta)
+    K, M = numeric_pencil(patch, nu, theta / float(patch.r))
+    return float(2.0 / pencil_frequencies(K, M, patch.massless).max())

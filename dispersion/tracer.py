@@ -41,7 +41,11 @@ from .rayleigh_lamb import (
     speed_ratio_squared,
 )
 
-__all__ = ["SERIES_KAPPA", "ExactBranches", "fundamental_series", "trace_branches"]
+__all__ = [
+    "SERIES_KAPPA", "ExactBranches", "TracerAccuracy", "exact_fundamental",
+    "fundamental_series", "mpmath_error",
+    "trace_branches", "tracer_accuracy",
+]
 
 #: Below this kappa S0 and A0 come from their series truncated after kappa^8.
 SERIES_KAPPA = 1e-3
@@ -423,3 +427,114 @@ def trace_branches(
                 if max(y[i - 1], y[i + 1]) < omega_max - 4 * step:
                     failures.append((kind, float(kappa[i]), f"{kind}{j} lost between neighbours"))
     return ExactBranches(kappa, omega, nu, omega_max, list(dict.fromkeys(failures)))
+
+
+def mpmath_error(exact: ExactBranches, count: int = 20, dps: int = 40, seed: int = 0) -> float:
+    """Largest relative error of ``count`` random traced roots (kappa > 0) against roots of the
+    defining equation (:func:`dispersion.rayleigh_lamb.frequency_function`) found by mpmath
+    in ``dps`` digits (:func:`mpmath.workdps`, the global precision is left alone).
+
+    >>> mpmath_error(trace_branches(0.3, [0.5, 2.0], 4.0), count=3) < 1e-14
+    True
+    """
+    import mpmath
+
+    from .rayleigh_lamb import frequency_function
+
+    rng = np.random.default_rng(seed)
+    pts = [(lab, i) for lab, w in exact.omega.items() for i in np.flatnonzero(np.isfinite(w))
+           if exact.kappa[i] > 0]
+    worst = 0.0
+    with mpmath.workdps(dps):
+        nu = mpmath.mpf(exact.nu)
+        for j in rng.choice(len(pts), size=min(count, len(pts)), replace=False):
+            lab, i = pts[j]
+            k2, w0 = mpmath.mpf(exact.kappa[i]) ** 2, mpmath.mpf(exact.omega[lab][i])
+
+            def f(W, lab=lab, k2=k2):
+                F = frequency_function(lab[0], k2, W**2, nu, lambda z: mpmath.cos(mpmath.sqrt(z)),
+                                       lambda z: mpmath.sinc(mpmath.sqrt(z)))
+                return mpmath.re(F) / W**2
+
+            eps = mpmath.mpf("1e-9")
+            root = mpmath.findroot(f, (w0 * (1 - eps), w0 * (1 + eps)), solver="anderson",
+                                   verify=False)
+            worst = max(worst, float(abs(root - w0) / root))
+    return worst
+
+
+@dataclass(frozen=True)
+class TracerAccuracy:
+    """Speed and accuracy of :func:`trace_branches` over its (step, rtol) settings.
+
+    ``rows``: dicts ``step, rtol, time_s, error, failures``; ``error`` is the largest relative
+    deviation from the reference setting ``reference`` (step, rtol), whose own error against
+    40-digit mpmath roots is ``reference_mpmath_error`` (measured, on ``mpmath_points`` roots).
+    """
+
+    kappa_count: int
+    omega_max: float
+    reference: tuple[float, float]
+    reference_mpmath_error: float
+    mpmath_points: int
+    rows: tuple
+
+
+def _max_rel(a: dict, b: dict) -> float:
+    worst = 0.0
+    for lab, w in b.items():
+        v = a.get(lab)
+        if v is None:
+            return float("inf")  # a branch went missing
+        ok = np.isfinite(w) & (w > 0)
+        if not np.all(np.isfinite(v[ok])):
+            return float("inf")
+        worst = max(worst, float(np.max(np.abs(v[ok] - w[ok]) / w[ok], initial=0)))
+    return worst
+
+
+def tracer_accuracy(nu: float, kappa, omega_max: float = 6.0, settings=None, repeat: int = 3,
+                    mpmath_points: int = 40) -> TracerAccuracy:
+    """Time and error of :func:`trace_branches` per (step, rtol); see :class:`TracerAccuracy`."""
+    import time
+
+    settings = settings or [(s, t) for s in (0.05, 0.2) for t in (1e-4, 1e-6, 1e-9, 1e-12, 1e-15)]
+    reference = (0.02, 1e-16)
+    ref = trace_branches(nu, kappa, omega_max, step=reference[0], rtol=reference[1])
+    ref_err = mpmath_error(ref, count=mpmath_points)
+    rows = []
+    for step, rtol in settings:
+        best = np.inf
+        for _ in range(repeat):
+            t0 = time.perf_counter()
+            br = trace_branches(nu, kappa, omega_max, step=step, rtol=rtol)
+            best = min(best, time.perf_counter() - t0)
+        rows.append({"step": step, "rtol": rtol, "time_s": best,
+                     "error": _max_rel(br.omega, ref.omega), "failures": len(br.failures)})
+    return TracerAccuracy(int(np.size(kappa)), float(omega_max), reference, ref_err,
+                          mpmath_points, tuple(rows))
+
+
+def exact_fundamental(kind: str, kappa, nu: float) -> np.ndarray:
+    """Exact S0 (``kind="S"``) or A0 (``"A"``) :math:`\\Omega` at ``kappa``, certified.
+
+    The lowest root of the class, from :func:`trace_branches`; a root the tracer could not
+    certify raises :class:`~dispersion.errors.ConvergenceError`.
+
+    >>> round(float(exact_fundamental("S", [0.05], 0.3)[0]) ** 2 / 0.05**2, 3)  # eq 14
+    2.857
+    """
+    from .errors import ConvergenceError
+
+    if kind not in ("S", "A"):
+        raise InputError(f"kind must be 'S' or 'A', got {kind!r}")
+    nu = float(check_nu(nu))
+    kappa = np.atleast_1d(np.asarray(kappa, dtype=float))
+    # S0 and A0 lie below Omega = sqrt(2/(1-nu)) kappa < 2 kappa for nu < 1/2
+    traced = trace_branches(nu, kappa, omega_max=2.0 * float(kappa.max()) + 0.1, kinds=(kind,))
+    if traced.failures:
+        raise ConvergenceError(f"exact {kind}0 branch not certified: {traced.failures[0]}")
+    omega = traced.omega[f"{kind}0"]
+    if not np.all(np.isfinite(omega)):
+        raise ConvergenceError(f"exact {kind}0 branch missing at some kappa in {kappa}")
+    return omega

@@ -163,10 +163,17 @@ RTOL = 1e-11
 
 
 def _float_error(lam: np.ndarray) -> np.ndarray:
-    """Bound on the relative error of float eigenvalues of a symmetric matrix: eps ||A|| / lam."""
+    """Bound on the relative error of float eigenvalues of a symmetric m x m matrix.
+
+    A backward-stable symmetric eigensolver returns the eigenvalues of :math:`A + E` with
+    :math:`\\|E\\| \\le c\\, m\\, \\epsilon \\|A\\|` (forming A adds as much), so by Weyl's
+    theorem :math:`|\\delta\\lambda| / \\lambda \\lesssim m \\epsilon \\lambda_{max} / \\lambda`
+    (Golub and Van Loan, 4th ed., 8.1.2 and 8.7).
+    """
     top = np.max(np.abs(lam), axis=-1, keepdims=True)
+    m = lam.shape[-1]
     with np.errstate(divide="ignore", invalid="ignore"):
-        return np.where(lam > 0, 64 * np.finfo(float).eps * top / lam, np.inf)
+        return np.where(lam > 0, m * np.finfo(float).eps * top / lam, np.inf)
 
 
 class _Key:
@@ -196,11 +203,11 @@ def _mp_pencil_cached(key: _Key, nu: float):
     mat, xf = lame(nu_q), x_functions(patch, k)
     K = sum((mat[m] * xf[f] * B for m, f, B in stiffness_terms(patch)), sympy.zeros(2 * patch.n))
     M = xf["mx"] * mass_block(patch)
-    return sympy.lambdify(k, K, "mpmath"), sympy.lambdify(k, M, "mpmath")
+    return tuple(sympy.lambdify(k, X, "mpmath") for X in (K, M, K.diff(k), M.diff(k)))
 
 
 def extended_frequencies(patch: PlatePatch, nu: float, kappa, basis=None,
-                         dps: int = 40, as_mp: bool = False) -> np.ndarray:
+                         dps: int = 40, slopes: bool = False):
     """Finite :math:`\\Omega` of the pencil at one ``kappa`` in ``dps``-digit arithmetic.
 
     The reference (and the fallback) where float eigenvalues lose their relative accuracy:
@@ -208,7 +215,9 @@ def extended_frequencies(patch: PlatePatch, nu: float, kappa, basis=None,
     1e-24 beside eigenvalues of order one. K and M are formed from the exact matrices of
     :func:`dispersion.plate.stiffness_terms` (nu rationalised), projected on ``basis``
     (columns spanning a mirror block, or None), massless DOFs condensed, and solved with
-    :func:`mpmath.eigsy` under :func:`mpmath.workdps`.
+    :func:`mpmath.eigsy` under :func:`mpmath.workdps`. With ``slopes=True`` also
+    :math:`d\\Omega/d\\kappa` of every mode by the eigenvector formula in the same precision
+    (returns ``(Omega, slopes)``).
 
     >>> from dispersion.plate import plate_patch
     >>> w = extended_frequencies(plate_patch(), 0.3, 1e-6)
@@ -217,12 +226,14 @@ def extended_frequencies(patch: PlatePatch, nu: float, kappa, basis=None,
     """
     import mpmath
 
-    Kf, Mf = _mp_pencil(patch, float(nu))
+    Kf, Mf, dKf, dMf = _mp_pencil(patch, float(nu))
     with mpmath.workdps(dps):
-        K, M = Kf(mpmath.mpf(kappa)), Mf(mpmath.mpf(kappa))
+        k = mpmath.mpf(kappa)
+        mats = [Kf(k), Mf(k)] + ([dKf(k), dMf(k)] if slopes else [])
         if basis is not None:
             E = mpmath.matrix(np.asarray(basis).tolist())
-            K, M = E.T * K * E, E.T * M * E
+            mats = [E.T * X * E for X in mats]
+        K, M = mats[0], mats[1]
         n = K.rows
         zero = [i for i in range(n) if all(M[i, j] == 0 for j in range(n))]
         keep = [i for i in range(n) if i not in zero]
@@ -230,14 +241,33 @@ def extended_frequencies(patch: PlatePatch, nu: float, kappa, basis=None,
         Mrr = _mp_sub(M, keep, keep)
         if zero:
             Krm = _mp_sub(K, keep, zero)
-            Krr = Krr - Krm * mpmath.inverse(_mp_sub(K, zero, zero)) * Krm.T
+            Kmm_inv = mpmath.inverse(_mp_sub(K, zero, zero))
+            Krr = Krr - Krm * Kmm_inv * Krm.T
         L = mpmath.cholesky(Mrr)
         Li = mpmath.inverse(L)
         A = Li * Krr * Li.T
         A = (A + A.T) / 2
-        lam = sorted(mpmath.eigsy(A, eigvals_only=True))
-        roots = [mpmath.sqrt(max(v, 0)) for v in lam]
-        return roots if as_mp else np.array([float(v) for v in roots])
+        lam, Y = mpmath.eigsy(A)
+        order = sorted(range(len(lam)), key=lambda j: lam[j])
+        roots = [mpmath.sqrt(max(lam[j], 0)) for j in order]
+        W = np.array([float(v) for v in roots])
+        if not slopes:
+            return W
+        dK, dM = mats[2], mats[3]
+        G = []
+        for j, w in zip(order, roots):
+            xr = Li.T * Y[:, j]
+            x = mpmath.matrix(n, 1)
+            for a, i in enumerate(keep):
+                x[i] = xr[a]
+            if zero:
+                xm = -Kmm_inv * (_mp_sub(K, zero, keep) * xr)
+                for a, i in enumerate(zero):
+                    x[i] = xm[a]
+            num = (x.T * (dK - w**2 * dM) * x)[0]
+            den = 2 * w * (x.T * M * x)[0]
+            G.append(float(num / den) if w > 0 else float("nan"))
+        return W, np.array(G)
 
 
 def _mp_sub(A, rows, cols):
@@ -251,25 +281,19 @@ def _refine_small(patch, nu, kappa, W, basis, G=None):
 
     Digits: 30 beyond the ratio of the largest eigenvalue to the smallest (guessed as
     kappa^4 where the float value is lost in round-off). With ``G`` (slopes) given, the
-    slopes there become central differences of the extended eigenvalues at
-    :math:`\\kappa (1 \\pm 10^{-20})`, exact to far below float resolution.
+    slopes there come from the eigenvector formula in the same precision.
     """
-    import mpmath
-
     lam = W**2
     bad = np.flatnonzero(np.any(_float_error(lam) > RTOL, axis=1) & (kappa > 0))
     for i in bad:
         top = float(np.max(lam[i]))
         small = max(float(np.min(lam[i])), 0.1 * kappa[i] ** 4, 1e-300)
         dps = 30 + int(math.ceil(math.log10(max(top / small, 1.0))))
-        W[i] = extended_frequencies(patch, nu, float(kappa[i]), basis, dps=dps)
-        if G is not None:
-            with mpmath.workdps(dps + 25):
-                k = mpmath.mpf(float(kappa[i]))
-                h = k * mpmath.mpf("1e-20")
-                up = extended_frequencies(patch, nu, k + h, basis, dps + 25, as_mp=True)
-                dn = extended_frequencies(patch, nu, k - h, basis, dps + 25, as_mp=True)
-                G[i] = [float((a - b) / (2 * h)) for a, b in zip(up, dn)]
+        if G is None:
+            W[i] = extended_frequencies(patch, nu, float(kappa[i]), basis, dps=dps)
+        else:
+            W[i], G[i] = extended_frequencies(patch, nu, float(kappa[i]), basis, dps=dps,
+                                              slopes=True)
     return W
 
 

@@ -97,6 +97,11 @@ def exact_mode_shape(kind: str, kappa: float, Omega: float, nu: float, y=SAMPLES
     Phi, dPhi, Psi, dPsi = _profiles(kind, P, Q, y)
     ux, uy = kappa * Phi * A + dPsi * B, dPhi * A + kappa * Psi * B
     norm = np.sqrt(np.sum(ux**2 + uy**2))
+    if not norm > 0:
+        # (kappa, Omega) = (0, 0): the rigid limits of S0 (u_x uniform) and A0 (u_y uniform)
+        ux, uy = (np.ones_like(y), np.zeros_like(y)) if kind == "S" else \
+            (np.zeros_like(y), np.ones_like(y))
+        norm = np.sqrt(np.sum(ux**2 + uy**2))
     return ux / norm, uy / norm
 
 

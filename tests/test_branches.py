@@ -131,16 +131,6 @@ def test_bad_kappa(kappa):
         discrete_branches(plate_patch(), NU, kappa)
 
 
-def test_report_quick_writes_linked_files(tmp_path):
-    import re
-
-    from dispersion.report.branches import report
-
-    md = report(tmp_path, quick=True)
-    links = re.findall(r"\]\(([^)]+)\)", md)
-    assert links and all((tmp_path / link).is_file() for link in links)
-
-
 @pytest.mark.parametrize("mass", ["consistent", "singular"])
 def test_chunking_does_not_change_results(mass):
     patch = plate_patch(mass=mass)

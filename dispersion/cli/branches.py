@@ -240,7 +240,7 @@ def _emit(path: str, text: str) -> None:
 
 
 def run(args) -> int:
-    from ..branches import discrete_branches, relative_error
+    from ..branches import discrete_branches
     from ..plate import plate_patch
     from ..tracer import trace_branches
     from ..velocities import exact_velocities
@@ -261,8 +261,7 @@ def run(args) -> int:
     for mass in masses:
         patch = plate_patch(p=args.p, n=args.n, model=args.model, r=s["r"], mass=mass,
                             contact=s["contact"], gamma_s=s["gamma_s"])
-        d = discrete_branches(patch, nu, kappa, progress=tick, group=True)
-        results.append((mass, d, relative_error(d, exact)))
+        results.append((mass, discrete_branches(patch, nu, kappa, progress=tick, group=True)))
     if bar:
         bar.close()
     for kind, k, why in exact.failures:
@@ -270,7 +269,7 @@ def run(args) -> int:
     inputs = _inputs(args, s)
     rows = _rows(kappa, exact.omega, vel.group, lambda lab: lab[0], "exact", s["material"],
                  args.thickness, args.omega_max)
-    for mass, d, _ in results:
+    for mass, d in results:
         rows += _rows(kappa, d.omega, d.group, d.symmetry.get, mass, s["material"],
                       args.thickness, args.omega_max)
     if args.csv:
@@ -292,10 +291,15 @@ def run(args) -> int:
 
         model = args.model + (f", r = {s['r']:g}" if args.model == "bloch" else "")
         if results:
-            fig = figure2(exact, results, title=f"nu = {nu:g}, {model}, p = {args.p}, "
-                                                  f"n = {args.n}")
+            from ..branch_study import figure2_data
+
+            data, _ = figure2_data(nu, kappa, args.omega_max, {
+                mass: plate_patch(p=args.p, n=args.n, model=args.model, r=s["r"], mass=mass,
+                                  contact=s["contact"], gamma_s=s["gamma_s"])
+                for mass in masses})
+            fig = figure2(data, title=f"nu = {nu:g}, {model}, p = {args.p}, n = {args.n}")
         else:
-            ax = plot_exact(exact)
+            ax = plot_exact(kappa, exact.omega, args.omega_max)
             ax.set_title(f"Rayleigh-Lamb, nu = {nu:g}", fontsize="small")
             ax.legend(fontsize="small")
             fig = ax.figure

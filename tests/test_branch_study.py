@@ -1,0 +1,80 @@
+"""The branches study: data for Figure 2 and the renderer that reads it from JSON alone."""
+from __future__ import annotations
+
+import json
+import re
+
+import numpy as np
+import pytest
+
+from dispersion.bar_dispersion import bar_dispersion
+from dispersion.branch_study import figure2_data, measure_branches
+from dispersion.plate import plate_patch
+from dispersion.report.branches import render
+from dispersion.results import dumps
+
+NU = 0.3
+
+
+def _small_study() -> dict:
+    """A real but small study: Figure 2 data on 12 kappas, the other parts minimal."""
+    kappa = np.linspace(0, 3, 12)
+    fig2, exact = figure2_data(NU, kappa, 4.0, {
+        "consistent": plate_patch(model="bloch", r=0.5),
+        "singular": plate_patch(model="bloch", r=0.5, mass="singular")})
+    bd = bar_dispersion((1, 2), elements_per_wavelength=[4.0, 40.0])
+    shape = {"label": "S0", "omega": 1.0, "omega_h": 1.01, "mac": 0.99,
+             "exact": [[1.0, 1.0], [0.0, 0.0]], "discrete": [[1.0, 1.0], [0.0, 0.0]]}
+    data = {
+        "quick": True, "nu": NU, "r_figure2": 0.5, "kappa": fig2["kappa"], "omega_max": 4.0,
+        "exact": fig2["exact"], "exact_failures": [], "discrete": fig2["discrete"],
+        "mpmath_error": 1e-16, "mpmath_points": 1,
+        "zgv": [{"label": "S1", "kappa": 0.84, "omega": 2.73}],
+        "orders": [{"mass": "consistent", "branch": "S0", "fitted": 4.0, "max_log_residual": 0.01,
+                    "monotone": True, "series": 4}],
+        "per_wavelength": {"r": 2.0, "elements_per_wavelength": [4.0, 40.0],
+                           "curves": [{"p": 2, "n": 3, "mass": "consistent", "branch": "S0",
+                                       "error": [1e-3, 1e-7]}]},
+        "bar": {"elements_per_wavelength": bd.elements_per_wavelength.tolist(),
+                "error": {k: v.tolist() for k, v in bd.error.items()}},
+        "shapes": {"kappa": 1.0, "y": [-1.0, 1.0], "modes": [shape]},
+        "tracer": {"kappa_count": 12, "omega_max": 4.0, "reference": [0.02, 1e-16],
+                   "reference_mpmath_error": 2e-16, "mpmath_points": 1,
+                   "rows": [{"step": 0.05, "rtol": 1e-15, "time_s": 0.01, "error": 0.0,
+                             "failures": 0}]},
+        "discrete_speed": [{"p": 2, "n": 3, "mass": "consistent", "time_s": 0.1,
+                            "points_per_s": 1e4, "error": 1e-2}],
+        "fd_per_omega_aluminium": 3130 / np.pi * 1e-3,
+    }
+    return json.loads(dumps(data))  # exactly what the renderer gets from disk
+
+
+def test_figure2_data_pairs_by_shape_and_keeps_the_zone():
+    data = _small_study()
+    sing = data["discrete"]["singular"]
+    # shape pairing: the singular mass's second antisymmetric-like mode is not exact A1
+    a1 = [e for e, k in zip(sing["paired_error"]["A1"], data["kappa"]) if 0 < k < 1]
+    assert all(e is None for e in a1)
+    cons = data["discrete"]["consistent"]
+    assert all(e is not None and abs(e) < 1e-2 for e, k in
+               zip(cons["paired_error"]["S0"], data["kappa"]) if 0 < k < 1)
+
+
+def test_render_from_json_alone(tmp_path):
+    md = render(_small_study(), tmp_path)
+    links = re.findall(r"\]\(([^)]+)\)", md)
+    pngs = [link for link in links if link.endswith(".png")]
+    assert len(pngs) == 5
+    for link in pngs:
+        assert (tmp_path / link).read_bytes()[:4] == b"\x89PNG"
+    assert "same through-thickness shape" in md and "ZGV" not in md.split("###")[0]
+
+
+@pytest.mark.slow
+def test_quick_measure_then_render(tmp_path):
+    from dispersion.results import load, save
+
+    save(tmp_path / "branches.json", "branches", measure_branches(quick=True))
+    md = render(load(tmp_path / "branches.json")["result"], tmp_path)
+    for link in re.findall(r"\]\(([^)]+)\)", md):
+        assert (tmp_path / link).is_file()

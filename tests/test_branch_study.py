@@ -60,6 +60,19 @@ def test_figure2_data_pairs_by_shape_and_keeps_the_zone():
                zip(cons["paired_error"]["S0"], data["kappa"]) if 0 < k < 1)
 
 
+def test_figure2_draws_labels_and_signed_errors():
+    from dispersion.plotting.branches import figure2
+
+    fig = figure2(_small_study())
+    ax, ax_err = fig.axes[:2]
+    labels = {t.get_text() for t in ax.texts}
+    assert {"S0", "A0", "A1", "S1"} <= labels  # mode labels on the exact branches
+    assert ax_err.get_yscale() == "symlog"
+    names = ax_err.get_legend_handles_labels()[1]
+    assert "consistent S0" in names and "singular A1" not in names
+
+
+@pytest.mark.slow  # five PNGs: about 4 s on a loaded 2-core machine
 def test_render_from_json_alone(tmp_path):
     md = render(_small_study(), tmp_path)
     links = re.findall(r"\]\(([^)]+)\)", md)

@@ -16,7 +16,8 @@ from dispersion.results import dumps
 NU = 0.3
 
 
-def _small_study() -> dict:
+@pytest.fixture(scope="module")
+def small_study() -> dict:
     """A real but small study: Figure 2 data on 12 kappas, the other parts minimal."""
     kappa = np.linspace(0, 3, 12)
     fig2, exact = figure2_data(NU, kappa, 4.0, {
@@ -49,8 +50,8 @@ def _small_study() -> dict:
     return json.loads(dumps(data))  # exactly what the renderer gets from disk
 
 
-def test_figure2_data_pairs_by_shape_and_keeps_the_zone():
-    data = _small_study()
+def test_figure2_data_pairs_by_shape_and_keeps_the_zone(small_study):
+    data = small_study
     sing = data["discrete"]["singular"]
     # shape pairing: the singular mass's second antisymmetric-like mode is not exact A1
     a1 = [e for e, k in zip(sing["paired_error"]["A1"], data["kappa"]) if 0 < k < 1]
@@ -60,10 +61,10 @@ def test_figure2_data_pairs_by_shape_and_keeps_the_zone():
                zip(cons["paired_error"]["S0"], data["kappa"]) if 0 < k < 1)
 
 
-def test_figure2_draws_labels_and_signed_errors():
+def test_figure2_draws_labels_and_signed_errors(small_study):
     from dispersion.plotting.branches import figure2
 
-    fig = figure2(_small_study())
+    fig = figure2(small_study)
     ax, ax_err = fig.axes[:2]
     labels = {t.get_text() for t in ax.texts}
     assert {"S0", "A0", "A1", "S1"} <= labels  # mode labels on the exact branches
@@ -73,8 +74,8 @@ def test_figure2_draws_labels_and_signed_errors():
 
 
 @pytest.mark.slow  # five PNGs: about 4 s on a loaded 2-core machine
-def test_render_from_json_alone(tmp_path):
-    md = render(_small_study(), tmp_path)
+def test_render_from_json_alone(tmp_path, small_study):
+    md = render(small_study, tmp_path)
     links = re.findall(r"\]\(([^)]+)\)", md)
     pngs = [link for link in links if link.endswith(".png")]
     assert len(pngs) == 5

@@ -2,8 +2,60 @@
 
 Follows Tkachuk, Matzen, Kolman, Bischoff, "Singular mass matrices for isogeometric
 finite element analysis of dynamic contact".
+
+The public API (see :mod:`dispersion.api`), with the defaults of :mod:`dispersion.defaults`:
+
+- :func:`patch` -> :class:`Patch` with ``K()``, ``M()``, ``K_dyn()``, ``series()``,
+  ``branches()``;
+- :func:`series` (discrete or ``exact=True`` Rayleigh-Lamb), :func:`exact_branches`;
+- :func:`simulate_ring` (Figure 4) and :func:`simulate_bar`;
+- the errors :class:`InputError`, :class:`DispersionError`, ...
+
+``import dispersion`` is cheap: the names above load their modules (sympy, numpy) on first
+use.
+
+>>> import dispersion
+>>> dispersion.patch().K_dyn().shape
+(6, 6)
 """
+from __future__ import annotations
+
+import importlib
+
 from .errors import ConvergenceError, DispersionError, IndefiniteMassWarning, InputError
 
-__all__ = ["DispersionError", "InputError", "ConvergenceError", "IndefiniteMassWarning"]
-__version__ = "0.1.0"
+#: Distribution name on the package index (the import name is ``dispersion``).
+DISTRIBUTION = "dispersion-iga"
+
+_API = ("Patch", "patch", "series", "exact_branches", "simulate_ring", "simulate_bar")
+_SUBMODULES = ("api", "bspline", "mass", "plate", "power_balance", "rayleigh_lamb", "branches",
+               "errata", "contact", "defaults", "io", "results", "sweep", "errors")
+
+__all__ = ["DispersionError", "InputError", "ConvergenceError", "IndefiniteMassWarning",
+           "__version__", *_API]
+
+
+def _version() -> str:
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version(DISTRIBUTION)
+    except PackageNotFoundError:  # a source tree that was never installed
+        return "0+unknown"
+
+
+def __getattr__(name: str):
+    if name == "__version__":
+        value = _version()
+    elif name in _API:
+        value = getattr(importlib.import_module(".api", __name__), name)
+    elif name in _SUBMODULES:
+        return importlib.import_module(f".{name}", __name__)
+    else:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__) | set(_SUBMODULES))

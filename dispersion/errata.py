@@ -1,10 +1,12 @@
-"""Paper eqs (13)-(20) as printed, checked against the derivation of this toolkit.
+"""Errata of the paper's eqs (13)-(20): the printed terms against the derivation.
 
-The printed formulas below are transcribed from the paper as references to check, never used
-as results. Each row of :func:`errata_table` holds the equation, the power of kappa, the
-printed and the derived coefficient, the status, and which discrete models reproduce the
-printed term (x-exact; Bloch with square elements b = 2h, r = 2; Bloch with h/b = 2, r = 1/2,
-the aspect ratio of the paper's Figure 2 caption).
+The printed formulas are data, the claims file ``dispersion/data/paper_claims.toml``
+(:func:`dispersion.claims.paper_claims_path`), never results. Each row of :func:`errata_table`
+holds one printed term of a series claim of that file (eqs 14-20), the derived coefficient
+under the claim's model, the status, and which discrete models reproduce the printed term
+(Bloch with square elements b = 2h, r = 2; x-exact; Bloch with h/b = 2, r = 1/2, the aspect
+ratio of the paper's Figure 2 caption). ``dispersion verify`` on the same file exits 1 and
+names eqs 17 and 19; the table is a report and never fails.
 
 >>> rows = errata_table(equations=("18",))
 >>> [(r.power, r.status) for r in rows]
@@ -16,84 +18,94 @@ A. Tkachuk, M. Matzen, R. Kolman, M. Bischoff, eqs (13)-(20).
 """
 from __future__ import annotations
 
+import dataclasses
+import re
 from dataclasses import dataclass
 
 import sympy
 
-from .power_balance import NU, discrete_series, exact_leading_balance, exact_series
+from . import defaults
+from .claims import (Claim, ClaimResult, _same, _series, load_claims, paper_claims_path,
+                     verify_claims)
+from .power_balance import exact_leading_balance
 
-__all__ = ["PRINTED", "MODELS_TRIED", "PAPER_SETTINGS", "ErrataRow", "errata_table",
-           "format_table", "eq13_note"]
+__all__ = ["MODELS_TRIED", "ErrataRow", "PaperErrata", "paper_claims", "errata_table",
+           "format_table", "errata_document", "eq13_note", "paper_errata"]
 
-nu = NU
-_R = sympy.Rational
-
-#: eqs (14)-(20) as printed: {equation: (branch, {power of kappa: coefficient of Omega^2})}
-PRINTED: dict[str, tuple[str, dict[int, sympy.Expr]]] = {
-    "14": ("S0", {2: 2 / (1 - nu), 4: -2 * nu**2 / (3 * (1 - nu) ** 3),
-                  6: 2 * nu**2 * (7 * nu**2 + 10 * nu - 6) / (45 * (1 - nu) ** 5)}),
-    "15": ("A0", {4: 2 / (3 * (1 - nu)), 6: 2 * (7 * nu - 17) / (45 * (1 - nu) ** 2)}),
-    "17": ("S0", {2: 2 / (1 - nu), 4: -2 * nu**2 / (3 * (1 - nu) ** 3),
-                  6: -(2 * nu**6 - 18 * nu**5 + nu**4 + 10 * nu**2 - 6 * nu + 1)
-                  / (45 * (1 - nu) ** 5 * (1 - 2 * nu))}),
-    "18": ("A0", {4: 2 / (3 * (1 - nu)), 6: (2 * nu**2 + 8 * nu - 29) / (45 * (1 - nu) ** 2)}),
-    "19": ("S0", {2: 2 / (1 - nu), 4: -2 * (41 * nu**2 - 10 * nu - 35) / (45 * (1 - nu) ** 3)}),
-    "20": ("A0", {4: 2 / (3 * (1 - nu)), 6: (2 * nu**2 - 16 * nu - 25) / (45 * (1 - nu) ** 2)}),
-}
-
-#: mass settings of each discrete equation (singular: contact on the top surface, the
-#: contact shape function moved wholly to its neighbour through the thickness)
-PAPER_SETTINGS = {
-    "17": dict(mass="consistent"), "18": dict(mass="consistent"),
-    "19": dict(mass="singular", contact="top", gamma_s=0),
-    "20": dict(mass="singular", contact="top", gamma_s=0),
-}
-
-#: candidate x-models, label -> plate_patch keywords; the first is the one derived in the table
+#: candidate x-models, label -> Model fields; the claim's own model is derived first
 MODELS_TRIED = {
-    "bloch r=2": dict(model="bloch", r=2),
-    "x-exact": dict(model="x-exact"),
-    "bloch r=1/2": dict(model="bloch", r=_R(1, 2)),
+    "bloch r=2": dict(name="bloch", r=defaults.R),
+    "x-exact": dict(name="x-exact"),
+    "bloch r=1/2": dict(name="bloch", r=defaults.FIGURE2_R),
 }
 
 
 @dataclass(frozen=True)
 class ErrataRow:
+    """One printed term: ``equation`` is the claim's label, e.g. ``"17"``."""
+
     equation: str
     branch: str
     power: int
     printed: sympy.Expr
     derived: sympy.Expr
-    status: str
+    status: str  # "match" or "differs"
     reproduced_by: tuple[str, ...]
     setting: str
+    printed_latex: str = ""
+    derived_latex: str = ""
 
 
-def _same(a, b) -> bool:
-    return sympy.cancel(sympy.together(a - b)) == 0
+@dataclass(frozen=True)
+class PaperErrata:
+    """The paper's claims file verified, its errata rows and the eq (13) leading balances."""
+
+    claims_file: str
+    claims: tuple[ClaimResult, ...]
+    rows: tuple[ErrataRow, ...]
+    eq13: tuple[tuple[str, str, str], ...]
+    seconds: float
+    passed: bool
+
+
+def _label(claim: Claim) -> str:
+    return re.sub(r"^eq\s*", "", claim.name)
+
+
+def paper_claims(equations=None) -> list[Claim]:
+    """Series claims of the paper's file, optionally only those of the given equations."""
+    claims = [c for c in load_claims(paper_claims_path()) if c.kind == "series"]
+    if equations is None:
+        return claims
+    return [c for c in claims if _label(c).split(",")[0].strip() in equations]
+
+
+def _reproduced(claim: Claim, power: int, printed, models: dict) -> tuple[str, ...]:
+    if claim.model.exact:
+        return ("exact",) if _same(_series(claim.model, claim.branch, claim.order)[power],
+                                   printed) else ()
+    hits = []
+    for label, fields in models.items():
+        model = dataclasses.replace(claim.model, **fields)
+        if _same(_series(model, claim.branch, claim.order).get(power, 0), printed):
+            hits.append(label)
+    return tuple(hits)
 
 
 def errata_table(equations=("14", "15", "17", "18", "19", "20"),
                  models: dict | None = None) -> list[ErrataRow]:
-    """Derive every printed term and compare; see the module docstring."""
+    """Derive every printed term of the paper's series claims and compare; see the module doc."""
     models = MODELS_TRIED if models is None else models
     rows = []
-    for eq in equations:
-        branch, printed = PRINTED[eq]
-        order = max(printed)
-        if eq in PAPER_SETTINGS:
-            derived = {label: discrete_series(branch, order, **kw, **PAPER_SETTINGS[eq])
-                       for label, kw in models.items()}
-            first = next(iter(models))
-            setting = f"{first}, " + ", ".join(f"{k}={v}" for k, v in PAPER_SETTINGS[eq].items())
-        else:
-            derived = {"exact": exact_series(branch, order)}
-            first, setting = "exact", "Rayleigh-Lamb (standard form)"
-        for power, value in sorted(printed.items()):
-            ours = derived[first][power]
-            hits = tuple(label for label, ser in derived.items() if _same(ser[power], value))
-            rows.append(ErrataRow(eq, branch, power, sympy.factor(value), ours,
-                                  "match" if _same(ours, value) else "differs", hits, setting))
+    for claim in paper_claims(equations):
+        derived = _series(claim.model, claim.branch, claim.order)
+        for power, printed in claim.printed:
+            ours = derived.get(power, sympy.Integer(0))
+            rows.append(ErrataRow(
+                _label(claim), claim.branch, power, printed, ours,
+                "match" if _same(ours, printed) else "differs",
+                _reproduced(claim, power, printed, models), claim.model.label(),
+                sympy.latex(printed), sympy.latex(ours)))
     return rows
 
 
@@ -103,14 +115,49 @@ def eq13_note() -> list[tuple[str, str, str]]:
             for b in ("S0", "A0")]
 
 
-def format_table(rows: list[ErrataRow], fmt: str = "text") -> str:
-    """Render the errata rows as ``text`` (aligned), ``markdown`` or ``latex``."""
+def paper_errata(quick: bool = False, executor=None) -> PaperErrata:
+    """Verify the paper's claims file and build its errata rows (the coefficients section).
+
+    ``quick`` is accepted for the report protocol (the work is the same); ``executor`` runs
+    independent derivations (see :func:`dispersion.claims.verify_claims`).
+    """
+    claims = load_claims(paper_claims_path())
+    verified = verify_claims(claims, executor=executor, jobs=None if executor else 1)
+    rows = errata_table()
+    return PaperErrata(str(paper_claims_path().name), verified.results, tuple(rows),
+                       tuple(tuple(x) for x in eq13_note()), verified.seconds, verified.passed)
+
+
+def _get(row, name):
+    return row[name] if isinstance(row, dict) else getattr(row, name)
+
+
+_TEX_SPECIAL = {"\\": r"\textbackslash{}", "&": r"\&", "%": r"\%", "$": r"\$", "#": r"\#",
+                "_": r"\_", "{": r"\{", "}": r"\}", "~": r"\textasciitilde{}",
+                "^": r"\^{}"}
+
+
+def _tex(text: str) -> str:
+    """Plain text escaped for LaTeX."""
+    return "".join(_TEX_SPECIAL.get(ch, ch) for ch in str(text))
+
+
+def format_table(rows, fmt: str = "text") -> str:
+    """Render errata rows (objects or their JSON dictionaries) as ``text``, ``markdown``, ``latex``.
+
+    The LaTeX form is a ``tabular`` that compiles inside any document; :func:`errata_document`
+    wraps it into a complete one.
+    """
     head = ("eq", "term", "printed", "derived", "status", "reproduced by")
 
     def cells(r):
-        show = sympy.latex if fmt == "latex" else str
-        return (f"({r.equation})", f"kappa^{r.power}", show(r.printed), show(r.derived), r.status,
-                ", ".join(r.reproduced_by) or "none")
+        if fmt == "latex":
+            printed = _get(r, "printed_latex") or sympy.latex(sympy.sympify(_get(r, "printed")))
+            derived = _get(r, "derived_latex") or sympy.latex(sympy.sympify(_get(r, "derived")))
+        else:
+            printed, derived = str(_get(r, "printed")), str(_get(r, "derived"))
+        return (f"({_get(r, 'equation')})", f"kappa^{_get(r, 'power')}", printed, derived,
+                _get(r, "status"), ", ".join(_get(r, "reproduced_by")) or "none")
 
     body = [cells(r) for r in rows]
     if fmt == "markdown":
@@ -119,9 +166,34 @@ def format_table(rows: list[ErrataRow], fmt: str = "text") -> str:
         return "\n".join(lines)
     if fmt == "latex":
         lines = [r"\begin{tabular}{llllll}", " & ".join(head) + r" \\ \hline"]
-        lines += [" & ".join(f"${c}$" if i in (2, 3) else c.replace("^", r"\^{}")
-                             for i, c in enumerate(row)) + r" \\" for row in body]
+        for row in body:
+            tex = [f"${c}$" if i in (2, 3) else _tex(c) for i, c in enumerate(row)]
+            tex[1] = rf"$\kappa^{{{row[1].split('^')[1]}}}$"
+            lines.append(" & ".join(tex) + r" \\")
         return "\n".join(lines + [r"\end{tabular}"])
     widths = [max(len(x) for x in col) for col in zip(head, *body)]
     return "\n".join("  ".join(c.ljust(w) for c, w in zip(row, widths)).rstrip()
                      for row in [head, *body])
+
+
+def errata_document(rows, eq13=None, title: str = "Errata of eqs (13)-(20)") -> str:
+    """A complete LaTeX document: the errata table and, if given, the eq (13) balances.
+
+    ``eq13`` is :func:`eq13_note` (or its JSON form). Compiles with ``pdflatex`` from
+    ``texlive-latex-base`` alone (packages: amsmath, geometry, longtable): a landscape page,
+    the table breaking across pages.
+    """
+    table = format_table(rows, "latex").replace(r"{tabular}", r"{longtable}")
+    parts = [r"\documentclass{article}", r"\usepackage{amsmath}",
+             r"\usepackage[a4paper,landscape,margin=1.5cm]{geometry}", r"\usepackage{longtable}",
+             r"\renewcommand{\arraystretch}{2.2}", r"\begin{document}",
+             rf"\section*{{{_tex(title)}}}", r"\small", table, r"\normalsize"]
+    if eq13:
+        parts += [r"\subsection*{Eq (13): leading balance $q_0(w)$ for "
+                  r"$\Omega^2 = w\,\kappa^{2\sigma}$}", r"\begin{itemize}"]
+        for branch, standard, printed in eq13:
+            parts.append(rf"\item {_tex(branch)}: standard "
+                         rf"${sympy.latex(sympy.sympify(standard))}$; printed "
+                         rf"${sympy.latex(sympy.sympify(printed))}$")
+        parts.append(r"\end{itemize}")
+    return "\n".join(parts + [r"\end{document}"]) + "\n"

@@ -1,17 +1,134 @@
-"""Atomic file output: a result file is either complete or absent, never partial."""
+"""Safe file output: complete or absent, never a user's file lost, paths checked up front.
+
+Every file the toolkit writes goes through this module, with these guarantees:
+
+- **Atomic files.** :func:`atomic_write` writes a hidden temporary beside the target, flushes
+  and ``fsync``\\ s it, then renames it onto the target: a reader sees the old file or the
+  new one, never a partial one. On any error the temporary is removed. A process killed with
+  SIGKILL can leave its temporary (``.NAME.PID.tmp``); :func:`stale_temporaries` finds those
+  whose writer is gone and :func:`remove_stale_temporaries` deletes them.
+- **Modes follow the umask.** A new file gets ``0o666 & ~umask`` (not ``mkstemp``'s 0600);
+  a file that is replaced keeps its permission bits; new folders get ``0o777 & ~umask``.
+- **``-`` is standard output.** Devices, FIFOs and sockets (``/dev/stdout``, ``/dev/null``,
+  a named pipe) are written through, never replaced; a symbolic link is never renamed over:
+  the file it points to is replaced and the link stays.
+- **Paths are checked before the work.** :func:`check_output_file` and
+  :func:`check_output_dir` raise :class:`~dispersion.errors.InputError` naming the option
+  (an existing folder where a file is wanted, a missing or read-only parent, ``''``...).
+- **Write errors are one line.** A full disk, a read-only file system or a permission error
+  while writing raises :class:`OutputError` (a :class:`~dispersion.errors.DispersionError`)
+  or :class:`~dispersion.errors.InputError` (the path is not writable), with no partial file.
+- **Several files as one unit.** :func:`write_files` stages every file first and renames
+  them only once all are staged, under a journal; see its docstring for the exact guarantee.
+
+>>> import tempfile, pathlib
+>>> folder = pathlib.Path(tempfile.mkdtemp())
+>>> check_output_file(folder, option="--csv")
+Traceback (most recent call last):
+...
+dispersion.errors.InputError: --csv must name a file, but ... is an existing folder
+>>> write_text(folder / "a.txt", "one").read_text()
+'one'
+"""
 from __future__ import annotations
 
 import contextlib
+import errno
+import json
 import os
-import tempfile
+import stat
+import sys
+from collections.abc import Mapping
 from pathlib import Path
 
-__all__ = ["atomic_write", "write_text", "save_figure"]
+from .errors import DispersionError, InputError
+
+__all__ = [
+    "OutputError",
+    "STDOUT",
+    "atomic_write",
+    "write_text",
+    "write_bytes",
+    "save_figure",
+    "write_files",
+    "check_output_file",
+    "check_output_dir",
+    "make_dir",
+    "umask",
+    "stale_temporaries",
+    "remove_stale_temporaries",
+    "JOURNAL",
+]
+
+#: The path that means standard output.
+STDOUT = "-"
+#: Name of the journal :func:`write_files` keeps while it renames staged files.
+JOURNAL = ".dispersion-write.json"
+_TMP_SUFFIX = ".tmp"
+# errno values that mean "this path cannot be written by you": the user's choice, exit 2.
+_PATH_ERRORS = {errno.EACCES, errno.EPERM, errno.EROFS, errno.ENOENT, errno.ENOTDIR,
+                errno.EISDIR, errno.ENAMETOOLONG, errno.ELOOP}
+
+
+class OutputError(DispersionError):
+    """Writing an output failed (full disk, I/O error); no partial file was left."""
+
+
+def umask() -> int:
+    """The process umask, read without changing it where Linux allows (``/proc``)."""
+    with contextlib.suppress(OSError, ValueError):
+        for line in Path("/proc/self/status").read_text().splitlines():
+            if line.startswith("Umask:"):
+                return int(line.split()[1], 8)
+    old = os.umask(0o022)  # pragma: no cover - not Linux
+    os.umask(old)  # pragma: no cover
+    return old  # pragma: no cover
+
+
+def _error(exc: OSError, path, option: str | None) -> DispersionError:
+    """One-line toolkit error for an ``OSError`` met while writing ``path``."""
+    what = f"{option} {path}" if option else str(path)
+    reason = exc.strerror or type(exc).__name__
+    if exc.errno in _PATH_ERRORS:
+        return InputError(f"cannot write {what}: {reason} (choose a writable path)")
+    return OutputError(f"cannot write {what}: {reason}; nothing was written")
+
+
+def _is_stream(st: os.stat_result) -> bool:
+    return stat.S_ISCHR(st.st_mode) or stat.S_ISFIFO(st.st_mode) or stat.S_ISSOCK(st.st_mode)
+
+
+def _stat(path: Path) -> os.stat_result | None:
+    try:
+        return path.stat()
+    except (FileNotFoundError, NotADirectoryError):
+        return None
+
+
+def make_dir(path, option: str | None = None) -> Path:
+    """Create folder ``path`` (and parents) with modes from the umask; return it.
+
+    >>> import tempfile, pathlib
+    >>> make_dir(pathlib.Path(tempfile.mkdtemp()) / "a" / "b").is_dir()
+    True
+    """
+    path = Path(path)
+    try:
+        path.mkdir(parents=True, exist_ok=True)  # mkdir applies 0o777 & ~umask
+    except FileExistsError:
+        raise InputError(f"{option or 'folder'} {path} exists and is not a folder") from None
+    except OSError as exc:
+        raise _error(exc, path, option) from None
+    return path
 
 
 @contextlib.contextmanager
-def atomic_write(path, mode: str = "w", **kwargs):
+def atomic_write(path, mode: str = "w", *, option: str | None = None, **kwargs):
     """Open a temporary file beside ``path``; rename it onto ``path`` only on success.
+
+    ``path`` ``"-"`` yields standard output (text or binary by ``mode``); a device, FIFO or
+    socket is opened and written through; a symbolic link to a regular file has its target
+    replaced (the link stays). ``option`` names the CLI option in error messages.
 
     >>> import tempfile, pathlib
     >>> target = pathlib.Path(tempfile.mkdtemp()) / "out.txt"
@@ -20,29 +137,332 @@ def atomic_write(path, mode: str = "w", **kwargs):
     >>> target.read_text()
     'done'
     """
+    binary = "b" in mode
+    if str(path) == STDOUT:
+        stream = sys.stdout.buffer if binary else sys.stdout
+        yield stream
+        stream.flush()
+        return
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    st = _stat(path)
+    if st is None and path.is_symlink():
+        raise InputError(f"cannot write {option + ' ' if option else ''}{path}: "
+                         "it is a dangling symbolic link")
+    if st is not None and _is_stream(st):
+        try:
+            fh = open(path, mode, **kwargs)
+        except OSError as exc:
+            raise _error(exc, path, option) from None
+        try:
+            with fh:
+                yield fh
+        except OSError as exc:
+            raise _error(exc, path, option) from None
+        return
+    if st is not None and stat.S_ISDIR(st.st_mode):
+        raise InputError(f"{option or 'output'} must name a file, but {path} is an existing folder")
+    target = Path(os.path.realpath(path)) if path.is_symlink() else path
+    make_dir(target.parent, option)
+    perms = stat.S_IMODE(st.st_mode) if st is not None else 0o666 & ~umask()
+    tmp = target.parent / f".{target.name}.{os.getpid()}{_TMP_SUFFIX}"
+    try:
+        fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
+    except FileExistsError:  # a re-entrant write to the same target in this process
+        import tempfile
+
+        fd, name = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.{os.getpid()}.x",
+                                    suffix=_TMP_SUFFIX)
+        tmp = Path(name)
+    except OSError as exc:
+        raise _error(exc, target, option) from None
     try:
         with os.fdopen(fd, mode, **kwargs) as fh:
             yield fh
-        os.replace(tmp, path)
-    except BaseException:
+            try:
+                fh.flush()
+                os.fsync(fh.fileno())
+            except OSError as exc:
+                raise _error(exc, target, option) from None
+        try:
+            os.chmod(tmp, perms)
+            os.replace(tmp, target)
+        except OSError as exc:
+            raise _error(exc, target, option) from None
+    except BaseException as exc:
         with contextlib.suppress(FileNotFoundError):
             os.unlink(tmp)
+        if isinstance(exc, OSError) and exc.errno in (errno.ENOSPC, errno.EDQUOT, errno.EFBIG):
+            raise _error(exc, target, option) from None  # full disk on close of the file
         raise
 
 
-def write_text(path, text: str) -> Path:
-    """Write ``text`` to ``path`` atomically and return the path."""
-    with atomic_write(path) as fh:
+def write_text(path, text: str, *, option: str | None = None) -> Path:
+    """Write ``text`` to ``path`` atomically and return the path (``"-"``: stdout)."""
+    with atomic_write(path, option=option) as fh:
         fh.write(text)
     return Path(path)
 
 
-def save_figure(fig, path, **kwargs) -> Path:
-    """Save a matplotlib figure atomically (format from the suffix of ``path``)."""
-    path = Path(path)
-    with atomic_write(path, "wb") as fh:
-        fig.savefig(fh, format=path.suffix.lstrip(".") or "png", **kwargs)
+def write_bytes(path, data: bytes, *, option: str | None = None) -> Path:
+    """Write ``data`` to ``path`` atomically and return the path (``"-"``: stdout)."""
+    with atomic_write(path, "wb", option=option) as fh:
+        fh.write(data)
+    return Path(path)
+
+
+def save_figure(fig, path, *, option: str | None = None, **kwargs) -> Path:
+    """Save a matplotlib figure atomically (format from the suffix of ``path``; PNG if none)."""
+    path = Path(path) if str(path) != STDOUT else path
+    fmt = Path(str(path)).suffix.lstrip(".") or "png"
+    with atomic_write(path, "wb", option=option) as fh:
+        fig.savefig(fh, format=fmt, **kwargs)
+    return Path(path)
+
+
+def _nearest_existing(path: Path) -> Path:
+    probe = path
+    while not probe.exists() and not probe.is_symlink():
+        if probe.parent == probe:
+            break
+        probe = probe.parent
+    return probe
+
+
+def _check_parent(path: Path, option: str, create_parents: bool) -> None:
+    parent = path.parent
+    if not parent.exists():
+        if not create_parents:
+            raise InputError(f"{option}: folder {parent} does not exist (create it first)")
+        parent = _nearest_existing(parent)
+        if not parent.is_dir():
+            raise InputError(f"{option}: {parent} is a file, so {path} cannot be created")
+    elif not parent.is_dir():
+        raise InputError(f"{option}: {parent} is not a folder")
+    if not os.access(parent, os.W_OK | os.X_OK):
+        raise InputError(f"{option}: folder {parent} is not writable")
+
+
+def check_output_file(path, option: str = "--out", *, allow_stdout: bool = True,
+                      suffixes: tuple[str, ...] | None = None,
+                      create_parents: bool = False) -> Path | str:
+    """Check, before any work, that ``path`` can receive a file; return it.
+
+    Parameters
+    ----------
+    path : str or Path
+        The output file; ``"-"`` means standard output when ``allow_stdout``.
+    option : str
+        The option (or parameter) name used in the error message, e.g. ``"--csv"``.
+    allow_stdout : bool
+        Accept ``"-"``.
+    suffixes : tuple of str, optional
+        Accepted file name endings (case-insensitive), e.g. ``(".png", ".pdf")``.
+    create_parents : bool
+        Accept a missing parent folder (it will be created); default: refuse it.
+
+    Returns
+    -------
+    Path or str
+        ``Path(path)``, or ``"-"``.
+
+    Raises
+    ------
+    InputError
+        ``''``; an existing folder; a dangling link; a missing (unless ``create_parents``),
+        non-folder or read-only parent; a read-only existing file; a wrong suffix.
+
+    >>> check_output_file("-", option="--csv")
+    '-'
+    >>> check_output_file("", option="--csv")
+    Traceback (most recent call last):
+    ...
+    dispersion.errors.InputError: --csv must be a file path or '-' (standard output), got ''
+    """
+    text = os.fspath(path) if path is not None else ""
+    if text == STDOUT:
+        if allow_stdout:
+            return STDOUT
+        raise InputError(f"{option} must be a file path ('-' is not accepted here)")
+    if not text.strip():
+        alt = " or '-' (standard output)" if allow_stdout else ""
+        raise InputError(f"{option} must be a file path{alt}, got {text!r}")
+    if "\0" in text:
+        raise InputError(f"{option} must not contain a NUL character")
+    path = Path(text)
+    if text.endswith(os.sep):
+        raise InputError(f"{option} must name a file, got the folder path {text!r}")
+    if suffixes and not text.lower().endswith(tuple(s.lower() for s in suffixes)):
+        raise InputError(f"{option} must end in {', '.join(suffixes)}, got {text!r}")
+    st = _stat(path)
+    if st is None and path.is_symlink():
+        raise InputError(f"{option}: {path} is a dangling symbolic link")
+    if st is not None:
+        if stat.S_ISDIR(st.st_mode):
+            raise InputError(f"{option} must name a file, but {path} is an existing folder")
+        if not os.access(path, os.W_OK):
+            raise InputError(f"{option}: {path} is not writable")
+        if _is_stream(st):
+            return path
+    real = Path(os.path.realpath(path)) if path.is_symlink() else path
+    _check_parent(real, option, create_parents)
     return path
+
+
+def check_output_dir(path, option: str = "--out") -> Path:
+    """Check, before any work, that ``path`` is or can become a writable folder; return it.
+
+    A missing folder (and missing parents) is accepted: it will be created.
+
+    >>> check_output_dir("-", option="--out")
+    Traceback (most recent call last):
+    ...
+    dispersion.errors.InputError: --out must be a folder path, got '-'
+    """
+    text = os.fspath(path) if path is not None else ""
+    if not text.strip() or text == STDOUT or "\0" in text:
+        raise InputError(f"{option} must be a folder path, got {text!r}")
+    path = Path(text)
+    st = _stat(path)
+    if st is None and path.is_symlink():
+        raise InputError(f"{option}: {path} is a dangling symbolic link")
+    if st is not None:
+        if not stat.S_ISDIR(st.st_mode):
+            raise InputError(f"{option} must be a folder, but {path} is an existing file")
+        if not os.access(path, os.W_OK | os.X_OK):
+            raise InputError(f"{option}: folder {path} is not writable")
+        return path
+    _check_parent(path, option, create_parents=True)
+    return path
+
+
+def _pid_alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
+def stale_temporaries(folder) -> list[Path]:
+    """Temporaries ``.NAME.PID[.x].tmp`` in ``folder`` whose writing process is gone."""
+    stale = []
+    folder = Path(folder)
+    if not folder.is_dir():
+        return stale
+    for entry in folder.iterdir():
+        name = entry.name
+        if not (name.startswith(".") and name.endswith(_TMP_SUFFIX)) or not entry.is_file():
+            continue
+        parts = name[1:-len(_TMP_SUFFIX)].split(".")
+        if parts and (parts[-1] == "w" or parts[-1].startswith("x")):
+            parts = parts[:-1]  # write_files / re-entrant atomic_write temporaries
+        if len(parts) >= 2 and parts[-1].isdigit() and not _pid_alive(int(parts[-1])):
+            stale.append(entry)
+    return sorted(stale)
+
+
+def remove_stale_temporaries(folder) -> list[Path]:
+    """Delete :func:`stale_temporaries` of ``folder`` (after finishing a left journal)."""
+    _recover(Path(folder))
+    removed = []
+    for path in stale_temporaries(folder):
+        with contextlib.suppress(FileNotFoundError):
+            path.unlink()
+            removed.append(path)
+    return removed
+
+
+def _recover(folder: Path) -> None:
+    """Finish the renames of a journal left by a killed :func:`write_files`."""
+    journal = folder / JOURNAL
+    try:
+        entries = json.loads(journal.read_text())["renames"]
+    except FileNotFoundError:
+        return
+    except (OSError, ValueError, KeyError, TypeError):
+        raise OutputError(f"{journal} is unreadable; remove it after checking the folder") \
+            from None
+    for tmp, name in entries:
+        if (folder / tmp).exists():
+            os.replace(folder / tmp, folder / name)
+    journal.unlink()
+
+
+def _check_name(name: str) -> str:
+    parts = Path(name).parts
+    if not name or Path(name).is_absolute() or ".." in parts or name == JOURNAL:
+        raise InputError(f"file names in write_files must be relative paths inside the folder "
+                         f"without '..', got {name!r}")
+    return name
+
+
+def write_files(folder, files: Mapping[str, str | bytes], *, option: str | None = None
+                ) -> list[Path]:
+    """Write several files into ``folder`` as one unit: all new, or all old.
+
+    Every file is first staged as a hidden temporary beside its target (``fsync``\\ ed).
+    If anything fails or the process is interrupted while staging, the temporaries are
+    removed and every target keeps its old content (a SIGKILL leaves temporaries that
+    :func:`remove_stale_temporaries` deletes). Once all are staged, a journal
+    (``.dispersion-write.json``, listing each rename) is written atomically, the files are
+    renamed onto their targets one by one, and the journal is removed. A kill during that
+    last short phase leaves the journal; the next :func:`write_files` or
+    :func:`remove_stale_temporaries` on the folder completes the renames, so the folder
+    ends all new. Files not named in ``files`` are never touched.
+
+    Parameters
+    ----------
+    folder : str or Path
+        Target folder, created if missing.
+    files : mapping ``{relative name: text or bytes}``
+    option : str, optional
+        Option name for error messages (e.g. ``"--out"``).
+
+    Returns
+    -------
+    list of Path
+        The written paths, in the order of ``files``.
+
+    >>> import tempfile, pathlib
+    >>> out = pathlib.Path(tempfile.mkdtemp())
+    >>> [p.name for p in write_files(out, {"a.csv": "x\\n", "b.json": b"{}"})]
+    ['a.csv', 'b.json']
+    """
+    folder = check_output_dir(folder, option or "folder")
+    names = [_check_name(n) for n in files]
+    make_dir(folder, option)
+    _recover(folder)
+    staged: list[tuple[Path, Path]] = []
+    try:
+        for name in names:
+            data = files[name]
+            target = folder / name
+            st = _stat(target)
+            if target.is_symlink() or (st is not None and not stat.S_ISREG(st.st_mode)):
+                raise InputError(f"{option or 'folder'}: {target} is not a regular file; "
+                                 "refusing to replace it")
+            make_dir(target.parent, option)
+            tmp = target.parent / f".{target.name}.{os.getpid()}.w{_TMP_SUFFIX}"
+            perms = stat.S_IMODE(st.st_mode) if st is not None else 0o666 & ~umask()
+            staged.append((tmp, target))
+            try:
+                with open(tmp, "wb") as fh:
+                    fh.write(data.encode() if isinstance(data, str) else bytes(data))
+                    fh.flush()
+                    os.fsync(fh.fileno())
+                os.chmod(tmp, perms)
+            except OSError as exc:
+                raise _error(exc, target, option) from None
+        renames = [[os.path.relpath(t, folder), os.path.relpath(g, folder)] for t, g in staged]
+        write_text(folder / JOURNAL, json.dumps({"pid": os.getpid(), "renames": renames}))
+    except BaseException:
+        for tmp, _ in staged:
+            with contextlib.suppress(FileNotFoundError):
+                tmp.unlink()
+        raise
+    for tmp, target in staged:
+        os.replace(tmp, target)
+    (folder / JOURNAL).unlink()
+    return [target for _, target in staged]

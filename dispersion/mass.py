@@ -35,7 +35,8 @@ from collections.abc import Mapping
 import numpy as np
 import sympy
 
-from .errors import IndefiniteMassWarning, InputError
+from .errors import (IndefiniteMassWarning, InputError, as_real, check_choice,
+                     check_positive_int, check_real_in_range)
 
 __all__ = [
     "MASS_VARIANTS",
@@ -60,12 +61,9 @@ def contact_weights(n: int, contact: str = "top", gamma_s=0) -> dict[int, dict[i
     >>> contact_weights(3, "top", 0)
     {2: {1: 1}}
     """
-    if contact not in CONTACT_SETS:
-        raise InputError(f"contact must be one of {', '.join(CONTACT_SETS)}; got {contact!r}")
-    if isinstance(gamma_s, bool) or not (0 <= gamma_s <= 1):
-        raise InputError(f"gamma_s must lie in [0, 1], got {gamma_s!r}")
-    if n < 3:
-        raise InputError(f"n (control points through the thickness) must be >= 3, got {n}")
+    check_choice("contact", contact, CONTACT_SETS)
+    gamma_s = check_real_in_range("gamma_s", gamma_s, 0, 1)
+    check_positive_int("n (control points through the thickness)", n, minimum=3)
     top = {n - 1: {n - 2: 1 - gamma_s, n - 3: gamma_s}}
     bottom = {0: {1: 1 - gamma_s, 2: gamma_s}}
     weights = {"top": top, "bottom": bottom, "both": {**bottom, **top}}[contact]
@@ -91,6 +89,17 @@ def redistribution_matrix(
         Weights outside [0, 1] raise :class:`InputError` unless this is set; then they give
         an :class:`IndefiniteMassWarning` (the lumped singular mass loses definiteness).
     """
+    n = check_positive_int("n (number of basis functions)", n, minimum=2)
+    check_real_in_range("tol", tol, 0, 1)
+    if not isinstance(weights, Mapping) or not all(isinstance(ws, Mapping)
+                                                   for ws in weights.values()):
+        raise InputError("weights must be a mapping {contact index: {neighbour index: weight}}")
+    indices = list(weights) + [j for ws in weights.values() for j in ws]
+    if any(isinstance(i, bool) or not isinstance(i, (int, np.integer)) for i in indices):
+        raise InputError(f"weight indices must be integers in [0, {n - 1}], got {indices}")
+    for c, ws in weights.items():
+        for j, w in ws.items():
+            as_real(f"weight w[{c}][{j}]", w, "a finite real number")
     contact = set(weights)
     if not contact:
         raise InputError("the contact set must hold at least one control point")
@@ -141,8 +150,13 @@ def mass_variant(M, variant: str, R=None):
     ``"consistent"``: M; ``"lumped"``: row sums of M; ``"singular"``: R^T M R (eq 1 left);
     ``"singular-lumped"``: row sums of R^T M R (eq 1 right).
     """
-    if variant not in MASS_VARIANTS:
-        raise InputError(f"mass must be one of {', '.join(MASS_VARIANTS)}; got {variant!r}")
+    check_choice("mass", variant, MASS_VARIANTS)
+    shape = getattr(M, "shape", None)
+    if shape is None or len(shape) != 2 or shape[0] != shape[1]:
+        raise InputError(f"M must be a square matrix, got shape {shape}")
+    if R is not None and tuple(getattr(R, "shape", np.shape(R))) != tuple(shape):
+        raise InputError(f"R must have the shape of M {tuple(shape)}, got "
+                         f"{tuple(getattr(R, 'shape', np.shape(R)))}")
     if variant == "consistent":
         return M
     if variant == "lumped":

@@ -42,6 +42,7 @@ T. J. R. Hughes, "Isogeometric analysis of structural vibrations", CMAME 195 (20
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from functools import lru_cache
 
@@ -49,7 +50,7 @@ import numpy as np
 import sympy
 
 from . import bspline
-from .errors import InputError, check_nu, check_positive, check_positive_int
+from .errors import InputError, check_nu, check_positive_int
 from .mass import MASS_VARIANTS, contact_weights, mass_variant, redistribution_matrix
 
 __all__ = [
@@ -64,15 +65,25 @@ __all__ = [
     "dynamic_stiffness",
     "numeric_pencil",
     "mirror_bases",
+    "x_taylor",
 ]
 
 MODELS = ("x-exact", "bloch")
 _y = sympy.Symbol("y")
 
 
+def thickness_matrices(p: int, n: int) -> dict[str, sympy.ImmutableMatrix]:
+    """Exact :math:`Y_{ab} = \\int_{-1}^{1} N^{(a)}_i N^{(b)}_j dy` for ``n`` open B-splines of degree p.
+
+    >>> thickness_matrices(1, 2)["11"].tolist()
+    [[1/2, -1/2], [-1/2, 1/2]]
+    """
+    return dict(zip(("00", "01", "10", "11"), _thickness_matrices(p, n)))
+
+
 @lru_cache(maxsize=None)
-def thickness_matrices(p: int, n: int) -> dict[str, sympy.Matrix]:
-    """Exact :math:`Y_{ab} = \\int_{-1}^{1} N^{(a)}_i N^{(b)}_j dy` for ``n`` open B-splines of degree p."""
+def _thickness_matrices(p: int, n: int) -> tuple[sympy.ImmutableMatrix, ...]:
+    # cached and shared, hence immutable
     kv = bspline.open_knot_vector(p, n - p, -1, 1)
     Y = {k: sympy.zeros(n, n) for k in ("00", "01", "10", "11")}
     for (a, b), polys, active in bspline.basis_polynomials(kv, _y, local=False):
@@ -83,36 +94,52 @@ def thickness_matrices(p: int, n: int) -> dict[str, sympy.Matrix]:
                 for j, gj in zip(active, ders[db]):
                     prim = (gi * gj).integrate()
                     Ymat[i, j] += prim.eval(b) - prim.eval(a)
-    return Y
+    return tuple(sympy.ImmutableMatrix(Y[k]) for k in ("00", "01", "10", "11"))
 
 
-@lru_cache(maxsize=None)
 def bloch_coefficients(p: int) -> dict[str, dict[int, sympy.Rational]]:
     """Gram integrals :math:`c^{ab}_L = \\int N_0^{(a)} N_L^{(b)} d\\xi` of the unit cardinal B-spline.
 
     >>> bloch_coefficients(1)["00"]
     {-1: 1/6, 0: 2/3, 1: 1/6}
     """
+    return {key: dict(val) for key, val in _bloch_coefficients(p)}
+
+
+@lru_cache(maxsize=None)
+def _bloch_coefficients(p: int) -> tuple:
     u = sympy.Symbol("u")
     pieces = [sympy.Poly(f, u) for f in bspline.cardinal_pieces(p, u)]
     ders = [pieces, [f.diff(u) for f in pieces]]
-    out = {}
+    out = []
     for key in ("00", "10", "11"):
         da, db = int(key[0]), int(key[1])
-        coeffs = {}
+        coeffs = []
         for L in range(-p, p + 1):
             total = sympy.Integer(0)
             for j in range(p + 1):
                 if 0 <= j - L <= p:
                     prim = (ders[da][j] * ders[db][j - L]).integrate()
                     total += prim.eval(1) - prim.eval(0)
-            coeffs[L] = total
-        out[key] = coeffs
-    return out
+            coeffs.append((L, total))
+        out.append((key, tuple(coeffs)))
+    return tuple(out)
 
 
-def lame(nu) -> dict[str, object]:
-    """Lame constants over :math:`\\mu` in plane strain: ``{"L": lambda, "M": mu, "L2M": lambda + 2 mu}``."""
+def lame(nu, scaled: bool = False) -> dict[str, object]:
+    """Lame constants over :math:`\\mu` in plane strain: ``{"L": lambda, "M": mu, "L2M": lambda + 2 mu}``.
+
+    ``scaled=True`` gives them times :math:`1 - 2\\nu` (polynomials in nu: ``2 nu``,
+    ``1 - 2 nu``, ``2 (1 - nu)``), for exact polynomial arithmetic in any ring holding nu.
+
+    >>> lame(sympy.Rational(1, 4))
+    {'L': 1, 'M': 1, 'L2M': 3}
+    >>> lame(sympy.Symbol("nu"), scaled=True)["L2M"]
+    2 - 2*nu
+    """
+    poly = {"L": 2 * nu, "M": 1 - 2 * nu, "L2M": 2 - 2 * nu}
+    if scaled:
+        return poly
     lam = 2 * nu / (1 - 2 * nu)
     return {"L": lam, "M": sympy.Integer(1) if isinstance(nu, sympy.Basic) else 1.0,
             "L2M": lam + 2}
@@ -165,8 +192,9 @@ def plate_patch(
     p, n : int
         Degree and number of control points through the thickness (``n >= p + 1``).
     model : ``"x-exact"`` or ``"bloch"``
-    r : number, sympy expression or None
-        Aspect ratio b/h of the Bloch model (None: kept as the symbol ``r``). Unused for x-exact.
+    r : number, sympy Rational or None
+        Aspect ratio b/h of the Bloch model, in ``R_RANGE`` = [1/1000, 1000] (None: kept as
+        the symbol ``r``). Checked but unused for x-exact (the CLI refuses it there).
     mass : ``"consistent"``, ``"lumped"``, ``"singular"``, ``"singular-lumped"``
     contact, gamma_s :
         Contact set and the paper's weight (see :func:`dispersion.mass.contact_weights`).
@@ -185,10 +213,13 @@ def plate_patch(
         if r is None:
             r = sympy.Symbol("r", positive=True)
         elif not isinstance(r, sympy.Symbol):
-            check_positive("aspect ratio r", r)
-            r = sympy.nsimplify(r)
+            r = _aspect_ratio(r)
     else:
+        if r is not None:  # checked, so that a bad value is never silently accepted
+            _aspect_ratio(r)
         r = None
+    if gamma_s is not None:
+        gamma_s = _rational("gamma_s", gamma_s)
     Y = thickness_matrices(p, n)
     R = None
     if mass.startswith("singular"):
@@ -197,6 +228,37 @@ def plate_patch(
         R = redistribution_matrix(n, weights, allow_negative=allow_negative)
     My = mass_variant(Y["00"], mass, R)
     return PlatePatch(p, n, model, r, mass, R, Y, My, x_lumped=mass.endswith("lumped"))
+
+
+#: Valid aspect ratios r = b/h of the Bloch model. Outside, the float pencil of the numeric
+#: branches loses its digits (the d-function is a difference of O(1) terms divided by r^2,
+#: and the S0 frequency at r = 1e-8 came out 100 % wrong), and exact rationals grow huge.
+R_RANGE = (sympy.Rational(1, 1000), sympy.Integer(1000))
+
+
+def _rational(name: str, value) -> sympy.Rational:
+    """``value`` as an exact sympy Rational (floats by their shortest decimal); finite only."""
+    try:
+        if isinstance(value, float):
+            if not math.isfinite(value):
+                raise ValueError
+            out = sympy.Rational(repr(value))
+        else:
+            out = sympy.sympify(value)
+        if not out.is_Rational:
+            raise ValueError
+    except (TypeError, ValueError, sympy.SympifyError):
+        raise InputError(f"{name} must be a finite rational number, got {value!r}") from None
+    return out
+
+
+def _aspect_ratio(r) -> sympy.Rational:
+    r = _rational("aspect ratio r", r)
+    lo, hi = R_RANGE
+    if not lo <= r <= hi:
+        shown = str(r) if len(str(r)) <= 20 else str(sympy.Float(r, 3))
+        raise InputError(f"aspect ratio r must lie in [{lo}, {hi}], got {shown}")
+    return r
 
 
 def x_functions(patch: PlatePatch, kappa) -> dict[str, object]:
@@ -220,6 +282,40 @@ def x_functions(patch: PlatePatch, kappa) -> dict[str, object]:
             "d": sum(conv(v) * cos(L * th) for L, v in c["11"].items()) / r**2,
         }
     out["mx"] = (np.ones_like(out["m"]) if numeric else sympy.Integer(1)) if patch.x_lumped \
+        else out["m"]
+    return out
+
+
+def x_taylor(patch: PlatePatch, D: int) -> dict[str, list[tuple[sympy.Rational, int]]]:
+    """Taylor coefficients in :math:`t = \\kappa^2` of the x-functions of :func:`x_functions`.
+
+    Returns ``{"m", "s", "d", "mx"}``, each a list of ``D + 1`` pairs ``(c_k, e_k)`` meaning
+    :math:`[t^k] f = c_k r^{e_k}`; ``"s"`` is :math:`s / \\kappa` (s is odd in kappa). From
+    :math:`\\cos L\\theta = \\sum_k (-1)^k (L r)^{2k} t^k / (2k)!` and the same Gram
+    integrals :func:`bloch_coefficients`; ``tests/test_plate.py`` checks them against the
+    ``sympy.series`` of :func:`x_functions`.
+
+    >>> x_taylor(plate_patch(model="bloch", r=2), 1)["d"]
+    [(0, -2), (1, 0)]
+    """
+    if patch.model == "x-exact":
+        out = {"m": [(sympy.Integer(1), 0)] + [(sympy.Integer(0), 0)] * D,
+               "s": [(sympy.Integer(1), 0)] + [(sympy.Integer(0), 0)] * D,
+               "d": [(sympy.Integer(0), 0), (sympy.Integer(1), 0)][: D + 1]
+               + [(sympy.Integer(0), 0)] * (D - 1)}
+    else:
+        c = bloch_coefficients(patch.p)
+        out = {"m": [], "s": [], "d": []}
+        for k in range(D + 1):
+            sign = (-1) ** k
+            out["m"].append((sign * sum(v * L ** (2 * k) for L, v in c["00"].items())
+                             / sympy.factorial(2 * k), 2 * k))
+            out["s"].append((-2 * sign * sum(c["10"][L] * L ** (2 * k + 1)
+                                             for L in range(1, patch.p + 1))
+                             / sympy.factorial(2 * k + 1), 2 * k))
+            out["d"].append((sign * sum(v * L ** (2 * k) for L, v in c["11"].items())
+                             / sympy.factorial(2 * k), 2 * k - 2))
+    out["mx"] = [(sympy.Integer(1), 0)] + [(sympy.Integer(0), 0)] * D if patch.x_lumped \
         else out["m"]
     return out
 
@@ -288,44 +384,55 @@ def numeric_pencil(patch: PlatePatch, nu: float, kappa) -> tuple[np.ndarray, np.
     return K, M
 
 
-def mirror_bases(patch: PlatePatch) -> dict[str, np.ndarray] | None:
-    """Orthonormal bases of the symmetric ("S") and antisymmetric ("A") DOF subspaces.
+def mirror_bases(patch_or_n, exact: bool = False):
+    """Bases of the symmetric ("S") and antisymmetric ("A") DOF subspaces of the mirror y -> -y.
 
-    S: u_x even and u_y odd in y; A: the reverse. ``None`` if the mass breaks the symmetry.
+    S: u_x even and u_y odd in y; A: the reverse (DOF order u_x 0..n-1, u_y 0..n-1; the
+    mirror maps control point i to n-1-i). This is the one definition of the mirror split.
+
+    Parameters
+    ----------
+    patch_or_n : PlatePatch or int
+        A patch (``None`` is returned if its mass breaks the symmetry) or the number n of
+        control points through the thickness (the geometric mirror, whatever the mass).
+    exact : bool
+        False: orthonormal float arrays of shape (2n, n_S) and (2n, n_A). True: integer
+        ``sympy.ImmutableMatrix`` columns :math:`e_i \\pm e_{n-1-i}` (same span, unnormalised).
+
+    >>> B = mirror_bases(3)
+    >>> B["S"].shape, B["A"].shape
+    ((6, 3), (6, 3))
+    >>> mirror_bases(2, exact=True)["S"].tolist()
+    [[1, 0], [1, 0], [0, 1], [0, -1]]
     """
-    if not patch.symmetric:
-        return None
-    return {k: np.array(v, dtype=float) for k, v in _mirror_bases_exact(patch.n).items()}
+    if isinstance(patch_or_n, PlatePatch):
+        if not patch_or_n.symmetric:
+            return None
+        n = patch_or_n.n
+    else:
+        n = check_positive_int("control points n", patch_or_n)
+    bases = dict(zip(("S", "A"), _mirror_integer_bases(n)))
+    if exact:
+        return bases
+    out = {}
+    for k, E in bases.items():
+        F = np.array(E, dtype=float)
+        out[k] = F / np.linalg.norm(F, axis=0) if F.shape[1] else F
+    return out
 
 
 @lru_cache(maxsize=None)
-def _mirror_bases_exact(n: int) -> dict[str, sympy.Matrix]:
-    """Exact (unnormalised -> normalised) mirror bases, shape (2n, n) each."""
+def _mirror_integer_bases(n: int) -> tuple[sympy.ImmutableMatrix, sympy.ImmutableMatrix]:
+    """Integer mirror bases (S, A), shape (2n, n_S) and (2n, n_A); immutable (cached)."""
     half = n // 2
+    even = [[1 if i in (c, n - 1 - c) else 0 for i in range(n)] for c in range(half)]
+    if n % 2:
+        even.append([1 if i == half else 0 for i in range(n)])
+    odd = [[1 if i == c else (-1 if i == n - 1 - c else 0) for i in range(n)]
+           for c in range(half)]
 
-    def even():
-        cols = []
-        for i in range(half):
-            v = sympy.zeros(n, 1)
-            v[i] = v[n - 1 - i] = 1 / sympy.sqrt(2)
-            cols.append(v)
-        if n % 2:
-            v = sympy.zeros(n, 1)
-            v[half] = 1
-            cols.append(v)
-        return sympy.Matrix.hstack(*cols)
+    def stack(top, bottom):
+        cols = [v + [0] * n for v in top] + [[0] * n + v for v in bottom]
+        return sympy.ImmutableMatrix(2 * n, len(cols), lambda i, j: cols[j][i])
 
-    def odd():
-        cols = []
-        for i in range(half):
-            v = sympy.zeros(n, 1)
-            v[i], v[n - 1 - i] = 1 / sympy.sqrt(2), -1 / sympy.sqrt(2)
-            cols.append(v)
-        return sympy.Matrix.hstack(*cols) if cols else sympy.zeros(n, 0)
-
-    E, O = even(), odd()
-    Zx, Zy = sympy.zeros(n, O.cols), sympy.zeros(n, E.cols)
-    return {
-        "S": sympy.Matrix(sympy.BlockMatrix([[E, Zx], [sympy.zeros(n, E.cols), O]])),
-        "A": sympy.Matrix(sympy.BlockMatrix([[O, Zy], [sympy.zeros(n, O.cols), E]])),
-    }
+    return stack(even, odd), stack(odd, even)

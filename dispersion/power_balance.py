@@ -13,16 +13,16 @@ power of t is linear in the next coefficient:
     w = w_0 + \\delta(t), \\quad \\delta = -\\frac{Q(t, w_0 + \\delta) - Q_w(0, w_0)\\,\\delta}
     {Q_w(0, w_0)}.
 
-All algebra is exact: F is built as a sparse polynomial over QQ in (t, w, nu[, r]) truncated
-in t after every product (sympy ``PolyRing``, flint ground types), the determinant by Laplace
-expansion over column subsets (n 2^(n-1) products, no division), and the order-by-order
-solve in the rational function field QQ(nu[, r]).
+All algebra is exact and runs on python-flint (:mod:`dispersion.series_kernel`): F is a
+truncated power series in t whose coefficients are polynomials over QQ in (w, nu[, r]),
+truncated after every product; the determinant is fraction-free elimination over truncated
+series (cost polynomial in the matrix size, for every mass); the order-by-order solve is
+division-free. sympy appears only at the edge, to hand out ``sympy.Expr`` coefficients.
 
 For the discrete plate the characteristic function is :math:`\\det K_{dyn}` (paper eq 16),
 split into its symmetric/antisymmetric block when the mass keeps the mirror symmetry; for the
 exact plate it is the entire-function Rayleigh-Lamb equation of :mod:`dispersion.rayleigh_lamb`.
 
->>> nu = sympy.Symbol("nu")
 >>> exact_series("S0", 4)[2]
 -2/(nu - 1)
 
@@ -33,165 +33,59 @@ Rutgers University 2011 (method of power balance). A. Tkachuk et al., eqs (14)-(
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
-from math import factorial
+import math
+from fractions import Fraction
 
-import sympy
-from sympy import QQ
-from sympy.polys.fields import field as _field
-from sympy.polys.rings import ring as _ring
+import flint
 
-from . import plate as _plate
+from . import series_kernel as _k
 from .errors import DispersionError, InputError, check_nu, check_positive_int
 from .rayleigh_lamb import frequency_function
 
 __all__ = [
-    "BRANCHES", "discrete_series", "exact_series", "exact_leading_balance",
-    "series_from_characteristic",
+    "BRANCHES", "MAX_ORDER", "MAX_WORK", "check_request", "discrete_series",
+    "discrete_series_raw", "exact_leading_balance", "exact_series", "exact_series_raw",
+    "format_coefficient", "substitute_raw",
 ]
 
 BRANCHES = {"S0": ("S", 1), "A0": ("A", 2)}
-NU = sympy.Symbol("nu")
-R_SYM = sympy.Symbol("r", positive=True)
-_G = sympy.Symbol("g")
 
 
-@dataclass(frozen=True)
-class _Setup:
-    """Series ring (t, w, *params) over QQ and the images of params in the field QQ(nu[, r])."""
+def __getattr__(name: str):
+    # sympy symbols on demand: the flint path (exact_series_raw, the CLI's JSON) never
+    # imports sympy
+    if name == "NU":
+        import sympy
 
-    ring: object
-    field: object
-    images: tuple  # field elements that the params generators stand for
-    symbols: tuple  # sympy symbols of the field generators
+        return sympy.Symbol("nu")
+    if name == "R_SYM":
+        import sympy
 
+        return sympy.Symbol("r", positive=True)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
-def _setup(params: tuple[str, ...], field_symbols: tuple[sympy.Symbol, ...], images) -> _Setup:
-    R = _ring(",".join(("t", "w") + params), QQ)[0]
-    F, *gens = _field(",".join(str(s) for s in field_symbols), QQ)
-    return _Setup(R, F, tuple(images(*gens)), field_symbols)
-
-
-def _trunc(f, D: int):
-    """Drop every term of degree > D in t (the first generator)."""
-    if all(m[0] <= D for m in f.itermonoms()):
-        return f
-    return f.ring({m: c for m, c in f.items() if m[0] <= D})
+#: Highest power of kappa accepted, per kind of request (see :func:`check_request`).
+MAX_ORDER = {"exact": 128, "discrete": 32}
+#: Largest matrix (2 n) of a discrete request times its order, see :func:`check_request`.
+MAX_WORK = 12_000
 
 
-def _det(rows: list[list], D: int):
-    """Determinant by Laplace expansion over column subsets, truncated at t^D."""
-    n = len(rows)
-    if n == 0:
-        raise DispersionError("empty characteristic matrix")
-    minors = {0: rows[0][0].ring.one}
-    for i in range(n):
-        nxt = {}
-        for mask, val in minors.items():
-            for j in range(n):
-                if mask >> j & 1 or not rows[i][j]:
-                    continue
-                term = _trunc(val * rows[i][j], D)
-                if bin(mask >> (j + 1)).count("1") % 2:
-                    term = -term
-                key = mask | (1 << j)
-                nxt[key] = nxt[key] + term if key in nxt else term
-        minors = nxt
-    return minors.get((1 << n) - 1, rows[0][0].ring.zero)
+def check_request(branch: str, order, exact: bool, n: int | None = None) -> tuple[str, int, int]:
+    """Validate ``branch`` and ``order`` (and the size ``n``); raise :class:`InputError` early.
 
+    The rule: a request that would take more than about a minute on a 2-core machine is
+    refused. Measured (S0 + A0, one process, nu symbolic, both machine cores busy with other
+    work): exact kappa^64 1.1 s / 129 MiB, kappa^96 5.9 s / 156 MiB, kappa^128 35 s / 217 MiB,
+    growing like order^6 (kappa^160 would take about 2 minutes): hence exact orders
+    <= 128. Discrete, singular mass (the dearest): n = 12 kappa^8 7.3 s, n = 12 kappa^20
+    40 s / 184 MiB, n = 16 kappa^10 22 s / 176 MiB. Elimination costs (2n)^2 series products
+    per row pivot and the product length grows with the order, so the discrete bound is
+    (2n)^2 * order <= 12 000 (both measured cases inside it) and order <= 32. Memory stays far
+    below the machine's 24 GiB in every case; time is the binding limit.
 
-def _balance(build, N: int, setup: _Setup) -> list[dict]:
-    """Coefficients Q_k(w), k = 0..N, of F(t, t^sigma w) = t^m sum_k Q_k(w) t^k, in the field."""
-    D = N + 2
-    while True:
-        F = build(D)
-        if not F:
-            if D > 8 * (N + 8):
-                raise DispersionError("characteristic function vanishes identically near the origin")
-            D *= 2
-            continue
-        m = min(mon[0] for mon in F.itermonoms())
-        if m + N <= D:
-            break
-        D = m + N
-    K = setup.field
-    Q = [dict() for _ in range(N + 1)]
-    for mon, c in F.items():
-        k = mon[0] - m
-        if k > N:
-            continue
-        val = c if getattr(c, "field", None) == K else K(c)
-        for img, e in zip(setup.images, mon[2:]):
-            if e:
-                val *= img**e
-        Q[k][mon[1]] = Q[k].get(mon[1], K.zero) + val
-    return Q
-
-
-def series_from_characteristic(build, sigma: int, order: int, setup: _Setup,
-                               factor: bool = True) -> dict[int, sympy.Expr]:
-    """Solve ``build(D) = F(t, t^sigma w) mod t^(D+1) = 0`` for the branch Omega^2 ~ kappa^(2 sigma).
-
-    ``build(D)`` returns F as an element of ``setup.ring`` truncated at t^D. Returns
-    ``{power of kappa: coefficient}`` up to kappa^order.
+    >>> check_request("S0", 8, exact=True)
+    ('S', 1, 8)
     """
-    N = order // 2 - sigma  # corrections beyond the leading coefficient
-    Q = _balance(build, N, setup)
-    K = setup.field
-    w0 = _leading_root(Q[0], setup)
-    # Taylor shift at w0: Qs[j][k] = [delta^j t^k] Q(t, w0 + delta)
-    deg = max((max(q) for q in Q if q), default=0)
-    Qs = [[K.zero] * (N + 1) for _ in range(deg + 1)]
-    w0_pows = [K.one]
-    for _ in range(deg):
-        w0_pows.append(w0_pows[-1] * w0)
-    for k, q in enumerate(Q):
-        for e, c in q.items():
-            for j in range(e + 1):
-                Qs[j][k] += c * sympy.binomial(e, j) * w0_pows[e - j]
-    q1 = Qs[1][0] if deg >= 1 else K.zero
-    if q1 == 0:
-        raise DispersionError("the branch is not a simple root at the origin; cannot isolate it")
-    delta = [K.zero] * (N + 1)
-
-    def mul(a, b):
-        return [sum((a[i] * b[k - i] for i in range(k + 1)), K.zero) for k in range(N + 1)]
-
-    for _ in range(N):
-        # evaluate sum_j Qs[j](t) delta^j, excluding the linear constant q1*delta
-        total = list(Qs[0])
-        power = [K.one] + [K.zero] * N
-        for j in range(1, deg + 1):
-            power = mul(power, delta)
-            total = [a + b for a, b in zip(total, mul(Qs[j], power))]
-        delta = [K.zero] + [delta[k] - total[k] / q1 for k in range(1, N + 1)]
-    coeffs = [w0] + delta[1:]
-    return {2 * (sigma + k): _to_expr(c, setup, factor) for k, c in enumerate(coeffs)}
-
-
-def _to_expr(c, setup: _Setup, factor: bool = True) -> sympy.Expr:
-    expr = c.as_expr(*setup.symbols)
-    return sympy.factor(expr) if factor else expr
-
-
-def _leading_root(q0: dict, setup: _Setup):
-    """The unique non-zero simple root w0 of the leading balance q0(w) = 0, in the field."""
-    w = sympy.Dummy("w")
-    expr = sum(c.as_expr(*setup.symbols) * w**e for e, c in q0.items())
-    num = sympy.numer(sympy.together(expr))
-    roots = []
-    for fac, mult in sympy.factor_list(num, w)[1]:
-        if sympy.degree(fac, w) == 1:
-            root = sympy.cancel(sympy.solve(fac, w)[0])
-            if root != 0:
-                roots.append((root, mult))
-    if len(roots) != 1 or roots[0][1] != 1:
-        raise DispersionError(
-            f"leading balance {sympy.factor(num)} = 0 has no unique simple non-zero root")
-    return setup.field.from_expr(roots[0][0])
-
-
-def _check_order(branch: str, order) -> tuple[str, int, int]:
     if branch not in BRANCHES:
         raise InputError(f"branch must be one of {', '.join(BRANCHES)}; got {branch!r}")
     kind, sigma = BRANCHES[branch]
@@ -200,163 +94,397 @@ def _check_order(branch: str, order) -> tuple[str, int, int]:
         raise InputError(
             f"order (highest power of kappa) must be an even integer >= {2 * sigma} for {branch}, "
             f"got {order}")
+    limit = MAX_ORDER["exact" if exact else "discrete"]
+    if order > limit:
+        raise InputError(f"order must be <= {limit} for the {'exact' if exact else 'discrete'} "
+                         f"series (bounded time and memory), got {order}")
+    if n is not None and (2 * n) ** 2 * order > MAX_WORK:
+        raise InputError(f"control points n must satisfy (2n)^2 * order <= {MAX_WORK} "
+                         f"(bounded time and memory), got n = {n}, order = {order}")
     return kind, sigma, order
 
 
+def _to_expr(num, den, symbols: tuple, factor: bool = True):
+    """num/den (fmpq_mpoly free of w) as a sympy expression; cancelled, factored by flint."""
+    from sympy.core.mul import _keep_coeff
+    import sympy
+
+    g = num.gcd(den)
+    if not g.is_one():
+        num, den = num / g, den / g
+    if not factor:
+        return _poly_expr(num, symbols) / _poly_expr(den, symbols)
+    cn, fn = _factored(num, symbols)
+    cd, fd = _factored(den, symbols)
+    return _keep_coeff(cn / cd, sympy.Mul(*fn, *(1 / f for f in fd)))
+
+
+def _poly_expr(p, symbols):
+    import sympy
+
+    terms = []
+    for mon, c in p.to_dict().items():
+        term = sympy.Rational(int(c.p), int(c.q))
+        for sym, e in zip(symbols, mon[1:]):
+            if e:
+                term *= sym**e
+        terms.append(term)
+    return sympy.Add(*terms)
+
+
+def _primitive_factors(p) -> tuple[Fraction, list[tuple[object, int]]]:
+    """Flint factorisation as (rational constant, [(primitive integer factor, power)])."""
+    const, factors = p.factor()
+    c = Fraction(int(const.p), int(const.q))
+    out = []
+    for f, e in factors:
+        coeffs = list(f.to_dict().values())
+        den = math.lcm(*(int(v.q) for v in coeffs))
+        num = math.gcd(*(int(v.p) for v in coeffs))
+        out.append((f * flint.fmpq(den, num), e))
+        c *= Fraction(num, den) ** e
+    return c, out
+
+
+def _factored(p, symbols):
+    import sympy
+
+    c, factors = _primitive_factors(p)
+    return sympy.Rational(c.numerator, c.denominator), \
+        [_poly_expr(f, symbols) ** e for f, e in factors]
+
+
+def format_coefficient(num, den) -> str:
+    """``num/den`` as factored Python/sympy syntax, by flint alone (no sympy).
+
+    >>> ctx = _k.context(("nu",))
+    >>> nu = ctx.gens()[1]
+    >>> format_coefficient(ctx.from_dict({}) + 2, 1 - nu)
+    '-2/(nu - 1)'
+    """
+    g = num.gcd(den)
+    if not g.is_one():
+        num, den = num / g, den / g
+    if num.is_zero():
+        return "0"
+    cn, fn = _primitive_factors(num)
+    cd, fd = _primitive_factors(den)
+    c = cn / cd
+
+    def product(factors):
+        parts = []
+        for f, e in factors:
+            text = str(f).replace("^", "**")
+            if len(f.to_dict()) > 1:
+                text = f"({text})"
+            parts.append(text + (f"**{e}" if e > 1 else ""))
+        return "*".join(parts)
+
+    top, bottom = product(fn), product(fd)
+    sign = "-" if c < 0 else ""
+    c = abs(c)
+    head = str(c.numerator) if (c.numerator != 1 or not top) else ""
+    numerator = "*".join(x for x in (head, top) if x)
+    if c.denominator != 1:
+        bottom = f"{c.denominator}*{bottom}" if bottom else str(c.denominator)
+    if not bottom:
+        return sign + numerator
+    if len(fd) + (c.denominator != 1) > 1:
+        bottom = f"({bottom})"
+    return f"{sign}{numerator}/{bottom}"
+
+
+def substitute_raw(raw: list[tuple], name: str, value) -> list[tuple]:
+    """Substitute a rational ``value`` for the parameter ``name`` in ``[(power, num, den)]``."""
+    v = Fraction(value)
+    v = flint.fmpq(v.numerator, v.denominator)
+    out = []
+    for k, a, b in raw:
+        a, b = a.subs({name: v}), b.subs({name: v})
+        if b.is_zero():
+            raise InputError(f"{name} = {value} is a pole of the kappa^{k} coefficient")
+        out.append((k, a, b))
+    return out
+
+
 def _substitute_nu(series: dict, nu) -> dict:
+    import sympy
+
     if nu is None:
         return series
     nu = check_nu(sympy.nsimplify(nu) if isinstance(nu, float) else nu)
-    return {k: sympy.factor(v.subs(NU, nu)) for k, v in series.items()}
+    symbol = sympy.Symbol("nu")
+    return {k: sympy.factor(v.subs(symbol, nu)) for k, v in series.items()}
+
+
+def _solve(build, sigma: int, order: int, D0: int):
+    """Coefficients (num, den) of the branch from ``build(D)`` = F mod t^(D+1)."""
+    N = order // 2 - sigma
+    D = D0 + N
+    while True:
+        F = build(D)
+        m = F.valuation()
+        if m is None:
+            if D > 8 * (N + 8):
+                raise DispersionError(
+                    "characteristic function vanishes identically near the origin")
+            D *= 2
+            continue
+        if m + N <= D:
+            return _k.branch_coefficients(F, N)
+        D = m + N
 
 
 # --------------------------------------------------------------------------- exact plate
 
-def _entire_series(z, kind: str, D: int):
-    """Truncated series of C(z) = cos(sqrt z) ("C") or S(z) = sin(sqrt z)/sqrt z ("S")."""
-    out, power = z.ring.zero, z.ring.one
-    for j in range(D + 1):
-        den = factorial(2 * j) if kind == "C" else factorial(2 * j + 1)
-        out += power * QQ((-1) ** j, den)
-        power = _trunc(power * z, D)
-        if not power:
-            break
+
+def _exact_build(kind: str, sigma: int, form: str):
+    # Over QQ[w, g], g = (c_T/c_L)^2 = (1 - 2 nu)/(2 (1 - nu)): polynomial arithmetic only.
+    ctx = _k.context(("g",))
+    w, g = ctx.gens()
+
+    def build(D):
+        t = _k.Series.gen_t(ctx, D)
+        W = _k.Series(ctx, [0] * sigma + [w], D)
+        return frequency_function(kind, t, W, None, lambda z: _k.entire(z, "C"),
+                                  lambda z: _k.entire(z, "S"), form, ratio=g)
+
+    return ctx, build
+
+
+class _GToNu:
+    """p(g) (2 (1 - nu))^e with g = (1 - 2 nu) / (2 (1 - nu)): a polynomial in nu.
+
+    The powers of 1 - 2 nu and 2 (1 - nu) are computed once and shared by every coefficient.
+    """
+
+    def __init__(self, ctx_nu):
+        nu = ctx_nu.gens()[1]
+        self.ctx = ctx_nu
+        self.num, self.den = [ctx_nu.from_dict({}) + 1], [ctx_nu.from_dict({}) + 1]
+        self.factors = (1 - 2 * nu, 2 - 2 * nu)
+
+    def _pow(self, table: list, base, e: int):
+        while len(table) <= e:
+            table.append(table[-1] * base)
+        return table[e]
+
+    def __call__(self, p, e: int):
+        out = self.ctx.from_dict({})
+        for mon, c in p.to_dict().items():
+            out += c * self._pow(self.num, self.factors[0], mon[1]) \
+                * self._pow(self.den, self.factors[1], e - mon[1])
+        return out
+
+
+def exact_series_raw(branch: str, order: int, form: str = "standard") -> list[tuple]:
+    """``[(power of kappa, num, den)]`` as flint polynomials in nu (context ``(w, nu)``).
+
+    The sympy-free core of :func:`exact_series` (the CLI prints these directly).
+    """
+    kind, sigma, order = check_request(branch, order, exact=True)
+    ctx, build = _exact_build(kind, sigma, form)
+    nums, dens = _solve(build, sigma, order, 2 * sigma)  # the lowest power is t^(2 sigma)
+    to_nu = _GToNu(_k.context(("nu",)))
+    out = []
+    for k, (a, b) in enumerate(zip(nums, dens)):
+        e = max(a.degrees()[1], b.degrees()[1])
+        num, den = to_nu(a, e), to_nu(b, e)
+        g = num.gcd(den)
+        out.append((2 * (sigma + k), num / g, den / g))
     return out
 
 
-def exact_series(branch: str, order: int, nu=None, form: str = "standard") -> dict[int, sympy.Expr]:
+def exact_series(branch: str, order: int, nu=None, form: str = "standard",
+                 factor: bool = True) -> dict:
     """Series of the exact Rayleigh-Lamb branch S0 or A0 (paper eqs 14-15) to kappa^order.
 
     The characteristic function is :func:`dispersion.rayleigh_lamb.frequency_function` itself,
-    evaluated on truncated power series over QQ(nu). ``form="printed"`` uses eq (13) as
+    evaluated on truncated power series over QQ[g]. ``form="printed"`` uses eq (13) as
     printed; it has no such branch and raises :class:`DispersionError`.
 
     >>> exact_series("A0", 6, nu=0)
     {4: 2/3, 6: -34/45}
     """
-    kind, sigma, order = _check_order(branch, order)
+    import sympy
+
     if nu is not None:
         check_nu(nu)
-    setup, build = _exact_characteristic(kind, sigma, form)
-    series = series_from_characteristic(build, sigma, order, setup, factor=False)
-    g_of_nu = (1 - 2 * NU) / (2 * (1 - NU))
-    series = {k: sympy.factor(v.subs(_G, g_of_nu)) for k, v in series.items()}
+    series = {k: _to_expr(a, b, (sympy.Symbol("nu"),), factor)
+              for k, a, b in exact_series_raw(branch, order, form)}
     return _substitute_nu(series, nu)
 
 
-def _exact_characteristic(kind: str, sigma: int, form: str):
-    # Work over QQ[g] with g = (c_T/c_L)^2 = (1 - 2 nu)/(2 (1 - nu)): polynomial arithmetic
-    # only; the map nu <-> g is an involution, so nu = (1 - 2 g)/(2 (1 - g)) at the end.
-    setup = _setup(("g",), (_G,), lambda g: (g,))
-    t, w, g = setup.ring.gens
-
-    def build(D):
-        C = lambda z: _entire_series(z, "C", D)
-        S = lambda z: _entire_series(z, "S", D)
-        return _trunc(frequency_function(kind, t, t**sigma * w, None, C, S, form, ratio=g), D)
-
-    return setup, build
-
-
-def exact_leading_balance(branch: str, form: str = "standard") -> sympy.Expr:
+def exact_leading_balance(branch: str, form: str = "standard"):
     """Leading balance q0(w) of the Rayleigh-Lamb equation for Omega^2 = w kappa^(2 sigma).
 
     Its non-zero roots are the admissible leading coefficients; used by the errata to show
     that the printed eq (13) has no A0 branch and a wrong S0 speed.
 
-    >>> sympy.factor(exact_leading_balance("S0"))
+    >>> exact_leading_balance("S0")
     w*(nu*w - w + 2)/(nu - 1)
     """
-    kind, sigma, _ = _check_order(branch, 2 * BRANCHES[branch][1])
-    setup, build = _exact_characteristic(kind, sigma, form)
-    q0 = _balance(build, 0, setup)[0]
-    w = sympy.Symbol("w")
-    expr = sum(c.as_expr(_G) * w**e for e, c in q0.items())
-    return sympy.factor(expr.subs(_G, (1 - 2 * NU) / (2 * (1 - NU))))
+    kind, sigma, _ = check_request(branch, 2 * BRANCHES[branch][1], exact=True)
+    _, build = _exact_build(kind, sigma, form)
+    D = 4
+    F = build(D)
+    while F.valuation() is None or F.valuation() > D:
+        D *= 2
+        F = build(D)
+    import sympy
+
+    q0 = F.coeffs[F.valuation()]
+    w, g, nu = sympy.symbols("w g nu")
+    expr = 0
+    for mon, c in q0.to_dict().items():
+        expr += sympy.Rational(int(c.p), int(c.q)) * w ** mon[0] * g ** mon[1]
+    return sympy.factor(expr.subs(g, (1 - 2 * nu) / (2 * (1 - nu))))
 
 
 # --------------------------------------------------------------------------- discrete plate
 
-def _x_series(patch, setup: _Setup, D: int) -> dict:
-    """Per-unit-length x-functions m, s^2 / kappa^2 ... as truncated series in t = kappa^2.
 
-    Returns ``{"m", "s2", "d", "mx"}`` where ``s2 = s^2`` (the pencil is made even in kappa
-    by the similarity diag(I, s I), which moves s^2 onto one off-diagonal block).
+def _discrete_build(patch, block: str | None, sigma: int, ctx):
+    """Return build(D) -> det((1 - 2 nu)(K - t^sigma w M)) over the chosen mirror block.
+
+    The pencil is made even in kappa by the similarity diag(I, s I), which moves
+    :math:`s^2 = t (s/\\kappa)^2` onto one off-diagonal block.
     """
-    R = setup.ring
-    t = R.gens[0]
-    if patch.model == "x-exact":
-        out = {"m": R.one, "s2": t, "d": t}
-    else:
-        c = _plate.bloch_coefficients(patch.p)
-        r = R.gens[-1] if isinstance(patch.r, sympy.Symbol) else QQ(int(patch.r.p), int(patch.r.q))
-        m, sig, d = R.zero, R.zero, R.zero
-        for k in range(D + 1):
-            tk = t**k * (-1) ** k
-            m += tk * r ** (2 * k) * _rat(sum(v * L ** (2 * k) for L, v in c["00"].items())
-                                          / factorial(2 * k))
-            sig += tk * r ** (2 * k) * _rat(-2 * sum(c["10"][L] * L ** (2 * k + 1)
-                                                      for L in range(1, patch.p + 1))
-                                            / factorial(2 * k + 1))
-            if k >= 1:
-                d += tk * r ** (2 * k - 2) * _rat(sum(v * L ** (2 * k) for L, v in c["11"].items())
-                                                  / factorial(2 * k))
-        out = {"m": m, "s2": _trunc(t * _trunc(sig * sig, D), D), "d": d}
-    out["mx"] = R.one if patch.x_lumped else out["m"]
-    return out
+    from . import plate as _plate
 
-
-def _rat(x) -> object:
-    x = sympy.Rational(x)
-    return QQ(int(x.p), int(x.q))
-
-
-def _exact_matrix(M: sympy.Matrix, R) -> list[list]:
-    return [[R(_rat(v)) if v != 0 else R.zero for v in M.row(i)] for i in range(M.rows)]
-
-
-def _discrete_characteristic(patch, block: str | None, sigma: int, setup: _Setup):
-    """Return build(D) -> det((1-2nu)(K - t^sigma w M)) over the chosen mirror block."""
-    R = setup.ring
-    t, w, nu = R.gens[:3]
-    mats = {"L2M": 2 * (1 - nu), "M": 1 - 2 * nu, "L": 2 * nu}  # times (1 - 2 nu)
-    n2 = 2 * patch.n
+    gens = ctx.gens()
+    w, nu = gens[0], gens[1]
+    r_gen = gens[2] if len(gens) > 2 else None
+    mats = _plate.lame(nu, scaled=True)
     if block is None:
-        E, nx = sympy.eye(n2), patch.n
+        def project(B):
+            return B
+        nx, size = patch.n, 2 * patch.n
     else:
-        E = _basis_exact(patch.n, block)
+        E = _plate.mirror_bases(patch.n, exact=True)[block]
         nx = sum(1 for j in range(E.cols) if any(E[i, j] != 0 for i in range(patch.n)))
-    terms = [(mats[m], f, _exact_matrix(E.T * B * E, R)) for m, f, B in _plate.stiffness_terms(patch)]
-    Mb = _exact_matrix(E.T * _plate.mass_block(patch) * E, R)
-    size = E.cols
+        size = E.cols
+
+        def project(B):
+            return E.T * B * E
+    # interleave x and y unknowns: the matrix is banded, and elimination keeps the band
+    xs, ys = list(range(nx)), list(range(nx, size))
+    order = [v for pair in zip(xs, ys) for v in pair] + xs[len(ys):] + ys[len(xs):]
+    is_x = [c < nx for c in order]
+
+    def rows_of(B):
+        R = _rational_rows(project(B))
+        return [[R[i][j] for j in order] for i in order]
+
+    terms = [(mats[m], f, rows_of(B)) for m, f, B in _plate.stiffness_terms(patch)]
+    Mb = rows_of(_plate.mass_block(patch))
+    zero = ctx.from_dict({})
+
+    def r_power(e: int):
+        if r_gen is not None:
+            return r_gen ** e
+        if patch.r is None:  # x-exact: no aspect ratio
+            return 1
+        r = flint.fmpq(int(patch.r.p), int(patch.r.q))
+        return r**e
 
     def build(D):
-        xf = _x_series(patch, setup, D)
-        W = t**sigma * w
-        rows = [[R.zero] * size for _ in range(size)]
+        taylor = _plate.x_taylor(patch, D)
+        xf = {}
+        for name, pairs in taylor.items():
+            coeffs = []
+            for c, e in pairs:
+                c = flint.fmpq(int(c.p), int(c.q))
+                coeffs.append(zero if c == 0 else c * r_power(e) + zero)
+            xf[name] = _k.Series(ctx, coeffs, D)
+        t = _k.Series.gen_t(ctx, D)
+        xf["s2"] = t * xf["s"] * xf["s"]
+        mass = (1 - 2 * nu) * (_k.Series(ctx, [0] * sigma + [w], D) * xf["mx"])
+        rows = []
         for i in range(size):
+            row = []
             for j in range(size):
-                e = R.zero
+                e = _k.Series(ctx, [], D)
                 for mat, f, B in terms:
                     if not B[i][j]:
                         continue
                     if f == "s":
-                        x = xf["s2"] if (i < nx <= j) else R.one
+                        x = xf["s2"] if is_x[i] and not is_x[j] else None
                     else:
                         x = xf[f]
-                    e += mat * B[i][j] * x
+                    e = e + (x * (mat * B[i][j]) if x is not None else mat * B[i][j])
                 if Mb[i][j]:
-                    e -= (1 - 2 * nu) * W * Mb[i][j] * xf["mx"]
-                rows[i][j] = _trunc(e, D)
-        return _det(rows, D)
+                    e = e - mass * Mb[i][j]
+                row.append(e)
+            rows.append(row)
+        return _k.determinant(rows)
 
     return build
 
 
-def _basis_exact(n: int, block: str) -> sympy.Matrix:
-    """Unnormalised integer mirror basis (columns e_i +- e_(n-1-i)); same span as mirror_bases."""
-    E = _plate._mirror_bases_exact(n)[block]
-    return E.applyfunc(lambda v: sympy.sign(v))
+def _rational_rows(M) -> list[list]:
+    return [[flint.fmpq(int(v.p), int(v.q)) if v else 0 for v in row] for row in M.tolist()]
+
+
+def discrete_series_raw(branches=("S0",), order: int = 8, *, p: int = 2, n: int = 3,
+                        model: str = "x-exact", r=None, mass: str = "consistent",
+                        contact: str = "top", gamma_s=0, weights=None,
+                        split: bool | None = None) -> tuple[dict[str, list[tuple]], tuple]:
+    """``({branch: [(power of kappa, num, den)]}, params)``: the flint core of
+    :func:`discrete_series`, for one or both branches.
+
+    Without the mirror split, one determinant :math:`F_1(t, w) = \\det(K - t w M)` serves
+    both branches: A0 (:math:`\\Omega^2 = t^2 w`) reads :math:`F_1(t, t w)`, i.e. the term
+    :math:`t^k w^e` moves to :math:`t^{k+e}`, which truncation at :math:`t^D` keeps exact.
+    """
+    import sympy
+
+    from . import plate as _plate
+
+    if isinstance(branches, str):
+        branches = (branches,)
+    checked = {b: check_request(b, order, exact=False, n=n) for b in branches}
+    patch = _plate.plate_patch(p, n, model, r, mass, contact, gamma_s, weights)
+    if split is None:
+        split = patch.symmetric
+    elif split and not patch.symmetric:
+        raise InputError("split=True needs a mass that keeps the mirror symmetry")
+    params = ("nu", "r") if isinstance(patch.r, sympy.Symbol) else ("nu",)
+    ctx = _k.context(params)
+    shared = None if split else _Shared(_discrete_build(patch, None, 1, ctx),
+                                        order // 2 + 4)
+    out = {}
+    for branch, (kind, sigma, order) in checked.items():
+        if split:
+            build = _discrete_build(patch, kind, sigma, ctx)
+        else:
+            build = shared if sigma == 1 else (lambda D: _w_times_t(shared(D)))
+        nums, dens = _solve(build, sigma, order, 2 + 2 * sigma)
+        out[branch] = [(2 * (sigma + k), a, b) for k, (a, b) in enumerate(zip(nums, dens))]
+    return out, params
+
+
+class _Shared:
+    """``build(D)`` computed once at the highest precision asked for, truncated on demand."""
+
+    def __init__(self, build, D0: int):
+        self.build, self.F = build, None
+        self.D0 = D0
+
+    def __call__(self, D: int):
+        if self.F is None or self.F.D < D:
+            self.F = self.build(max(D, self.D0))
+        return _k.Series(self.F.ctx, self.F.coeffs[: D + 1], D)
+
+
+def _w_times_t(F):
+    """F(t, t w) from F(t, w), truncated at the same t^D."""
+    out = [F.ctx.from_dict({}) for _ in range(F.D + 1)]
+    for k, c in enumerate(F.coeffs):
+        for mon, v in c.to_dict().items():
+            if k + mon[0] <= F.D:
+                out[k + mon[0]] += F.ctx.from_dict({mon: v})
+    return _k.Series(F.ctx, out, F.D)
 
 
 def discrete_series(
@@ -373,29 +501,26 @@ def discrete_series(
     weights=None,
     nu=None,
     split: bool | None = None,
-) -> dict[int, sympy.Expr]:
+    factor: bool = True,
+) -> dict:
     """Series of the discrete S0 / A0 branch of the plate patch (paper eqs 17-20).
 
     Parameters are those of :func:`dispersion.plate.plate_patch`; ``order`` is the highest
     power of kappa; ``nu`` substitutes a number for the symbol nu at the end; ``split``
     (default: whenever the mass keeps the mirror symmetry) works on the symmetric (S0) or
-    antisymmetric (A0) block instead of the full determinant.
+    antisymmetric (A0) block instead of the full determinant (a speed-up only: both give
+    the same series); ``factor`` factors the output (flint, cheap).
 
     >>> discrete_series("A0", 6)[4]
     -2/(3*(nu - 1))
     """
-    kind, sigma, order = _check_order(branch, order)
+    import sympy
+
     if nu is not None:
         check_nu(nu)
-    patch = _plate.plate_patch(p, n, model, r, mass, contact, gamma_s, weights)
-    if split is None:
-        split = patch.symmetric
-    elif split and not patch.symmetric:
-        raise InputError("split=True needs a mass that keeps the mirror symmetry")
-    symbolic_r = isinstance(patch.r, sympy.Symbol)
-    if symbolic_r:
-        setup = _setup(("nu", "r"), (NU, R_SYM), lambda nu_f, r_f: (nu_f, r_f))
-    else:
-        setup = _setup(("nu",), (NU,), lambda nu_f: (nu_f,))
-    build = _discrete_characteristic(patch, kind if split else None, sigma, setup)
-    return _substitute_nu(series_from_characteristic(build, sigma, order, setup), nu)
+    raws, params = discrete_series_raw((branch,), order, p=p, n=n, model=model, r=r,
+                                       mass=mass, contact=contact, gamma_s=gamma_s,
+                                       weights=weights, split=split)
+    raw = raws[branch]
+    symbols = (sympy.Symbol("nu"), sympy.Symbol("r", positive=True))[: len(params)]
+    return _substitute_nu({k: _to_expr(a, b, symbols, factor) for k, a, b in raw}, nu)

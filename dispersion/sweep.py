@@ -3,7 +3,10 @@
 A sweep maps one function over a list of parameter sets. The work is handed to an
 executor, so the same code runs on a local process pool (the default), a thread pool,
 or a cluster: a ``dask.distributed`` ``Client`` offers one through
-``client.get_executor()``. Nothing here manages workers itself.
+``client.get_executor()`` (tested on a ``LocalCluster``; install the ``distributed``
+extra). The local pool of :func:`process_pool` ties its workers to this process: on Linux
+each worker asks the kernel (``prctl(PR_SET_PDEATHSIG, SIGTERM)``) for SIGTERM when its
+parent dies, even by SIGKILL, and a SIGTERM to this process terminates the workers first.
 
 >>> parallel_map(abs, [-3, 1, -2], jobs=1, progress=False)
 [3, 1, 2]
@@ -16,13 +19,20 @@ dask.distributed, ``Client.get_executor`` (a ``concurrent.futures.Executor``).
 from __future__ import annotations
 
 import concurrent.futures as cf
+import contextlib
+import ctypes
+import multiprocessing
 import os
+import signal
+import threading
 from collections.abc import Callable, Iterable
 from typing import Any, TypeVar
 
 from .errors import check_positive_int
 
-__all__ = ["parallel_map", "default_jobs"]
+__all__ = ["parallel_map", "default_jobs", "process_pool", "die_with_parent"]
+
+_PR_SET_PDEATHSIG = 1  # <linux/prctl.h>
 
 T = TypeVar("T")
 R = TypeVar("R")
@@ -34,6 +44,91 @@ def default_jobs() -> int:
         return max(1, len(os.sched_getaffinity(0)))
     except AttributeError:  # pragma: no cover - not on Linux
         return max(1, os.cpu_count() or 1)
+
+
+def die_with_parent(parent_pid: int | None = None, sig: int = signal.SIGTERM) -> bool:
+    """Have the kernel send ``sig`` to this process when its parent dies (Linux only).
+
+    Used as the initializer of :func:`process_pool` workers. If the parent ``parent_pid``
+    died before the request was made, the signal is sent at once. Returns False where
+    ``prctl`` is unavailable (not Linux); the pool then relies on its SIGTERM handler.
+    """
+    try:
+        libc = ctypes.CDLL(None, use_errno=True)
+        if libc.prctl(_PR_SET_PDEATHSIG, int(sig), 0, 0, 0) != 0:
+            return False
+    except (OSError, AttributeError):  # pragma: no cover - not Linux
+        return False
+    if parent_pid is not None and os.getppid() != parent_pid:
+        os.kill(os.getpid(), sig)
+    return True
+
+
+class _Pool(cf.ProcessPoolExecutor):
+    """A process pool whose workers die with this process (see :func:`process_pool`)."""
+
+    def __init__(self, max_workers: int, mp_context=None):
+        ctx = mp_context or multiprocessing.get_context()
+        parent = os.getpid() if ctx.get_start_method() == "fork" else None
+        super().__init__(max_workers=max_workers, mp_context=ctx,
+                         initializer=die_with_parent, initargs=(parent,))
+        self._previous_handler = None
+        self._handler_installed = False
+        if threading.current_thread() is threading.main_thread():
+            self._previous_handler = signal.signal(signal.SIGTERM, self._on_sigterm)
+            self._handler_installed = True
+
+    def terminate_workers(self) -> None:
+        """Send SIGTERM to every worker process now."""
+        for proc in list((getattr(self, "_processes", None) or {}).values()):
+            with contextlib.suppress(Exception):
+                proc.terminate()
+
+    def _restore_handler(self) -> None:
+        if self._handler_installed and signal.getsignal(signal.SIGTERM) == self._on_sigterm:
+            signal.signal(signal.SIGTERM, self._previous_handler)
+        self._handler_installed = False
+
+    def _on_sigterm(self, signum, frame):
+        self.terminate_workers()
+        previous = self._previous_handler
+        self._restore_handler()
+        if callable(previous):
+            return previous(signum, frame)
+        if previous == signal.SIG_IGN:
+            return None
+        raise SystemExit(128 + signum)  # unwinds: finally blocks remove temporaries
+
+    def shutdown(self, wait: bool = True, *, cancel_futures: bool = False) -> None:
+        try:
+            super().shutdown(wait=wait, cancel_futures=cancel_futures)
+        finally:
+            self._restore_handler()
+
+
+def process_pool(max_workers: int | None = None, mp_context=None) -> cf.ProcessPoolExecutor:
+    """A :class:`~concurrent.futures.ProcessPoolExecutor` whose workers die with this process.
+
+    Each worker runs :func:`die_with_parent` first, so a SIGKILL of this process still ends
+    the workers within moments (Linux; the kernel ties them to the thread that started them:
+    create the pool from a thread that outlives it). While the pool is open, SIGTERM to this
+    process (when the pool was made in the main thread) terminates the workers, then runs the
+    previous handler, or exits with status 143 through ``SystemExit``.
+
+    Parameters
+    ----------
+    max_workers : int, optional
+        Number of worker processes (default: :func:`default_jobs`).
+    mp_context : multiprocessing context, optional
+        Start method (default: the platform's).
+
+    >>> with process_pool(1) as pool:
+    ...     pool.submit(abs, -2).result()
+    2
+    """
+    workers = default_jobs() if max_workers is None else check_positive_int(
+        "max_workers", max_workers)
+    return _Pool(workers, mp_context)
 
 
 def _progress(total: int, enabled: bool, desc: str | None):
@@ -103,7 +198,7 @@ def parallel_map(
             return results
         if executor is None:
             workers = min(jobs or default_jobs(), len(items))
-            with cf.ProcessPoolExecutor(max_workers=workers) as pool:
+            with process_pool(workers) as pool:
                 return _run(pool, func, items, bar)
         return _run(executor, func, items, bar)
     finally:

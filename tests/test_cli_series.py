@@ -32,7 +32,11 @@ def test_exact_and_latex(capsys):
 
 def test_paper_table(capsys):
     code, out, _ = run(["series", "--paper"], capsys)
-    assert code == 0 and out.count("differs") == 2 and "(20)" in out
+    differs = {line.split("  ")[0] for line in out.splitlines() if " differs " in line}
+    # the paper's two misprints (eq 17 kappa^6, eq 19 kappa^4) differ; the exact series
+    # (eqs 14, 15) and the CMM A0 series (eq 18) are printed right
+    assert code == 0 and {"(17)", "(19)"} <= differs and "(20)" in out
+    assert not differs & {"(14)", "(15)", "(18)"}
 
 
 @pytest.mark.parametrize("args,msg", [
@@ -54,10 +58,45 @@ def test_console_script_bad_choice_exit_2(tmp_path):
     assert proc.returncode == 2 and "Traceback" not in proc.stderr
 
 
-def test_out_file_written_atomically(tmp_path, capsys):
+def test_json_file_written_atomically(tmp_path, capsys):
     target = tmp_path / "s.json"
-    assert main(["series", "--branch", "S0", "--order", "4", "--format", "json",
-                 "--out", str(target)]) == 0
+    assert main(["series", "--branch", "S0", "--order", "4", "--json", str(target)]) == 0
     assert json.loads(target.read_text())["branch"] == "S0"
-    assert main(["series", "--nu", "2", "--out", str(tmp_path / "bad.txt")]) == 2
-    assert not (tmp_path / "bad.txt").exists()
+    assert main(["series", "--nu", "2", "--json", str(tmp_path / "bad.json")]) == 2
+    assert not (tmp_path / "bad.json").exists()
+
+
+@pytest.mark.parametrize("args,msg", [
+    (["--exact", "--mass", "lumped"], "--mass does not apply to --exact"),
+    (["--exact", "--n", "4"], "--n does not apply to --exact"),
+    (["--model", "x-exact", "--r", "-3"], "--r (aspect ratio) applies to --model bloch only"),
+    (["--r", "1e-8"], "aspect ratio r must lie in [1/1000, 1000]"),
+    (["--r", "1e-200"], "aspect ratio r must lie in [1/1000, 1000]"),
+    (["--mass", "lumped", "--gamma-s", "1/2"], "--gamma-s applies to singular masses only"),
+    (["--order", "400"], "order must be <= 32"),
+    (["--exact", "--order", "100000"], "order must be <= 128"),
+    (["--p", "40", "--n", "41"], "control points n must satisfy (2n)^2 * order <= 12000"),
+    (["--mass", "heavy"], "mass must be one of"),
+])
+def test_options_that_do_not_apply_and_bounds_fail_in_one_line(args, msg, capsys):
+    code, out, err = run(["series", *args], capsys)
+    assert code == 2 and msg in err and err.count("\n") == 1 and out == ""
+
+
+def test_csv_with_substituted_nu(capsys):
+    # eq 14 at nu = 3/10: 2/(1 - nu) = 20/7, -2 nu^2 / (3 (1 - nu)^3) = -60/343
+    code, out, _ = run(["series", "--exact", "--branch", "S0", "--order", "4", "--nu", "0.3",
+                        "--format", "csv"], capsys)
+    assert code == 0 and out.splitlines() == ["branch,power,coefficient", 'S0,2,"20/7"',
+                                              'S0,4,"-60/343"']
+
+
+def test_lean_entry_prints_the_exact_series_without_importing_sympy():
+    code = ("import sys, io, contextlib\n"
+            "from dispersion.cli.series import lean_main\n"
+            "buf = io.StringIO()\n"
+            "with contextlib.redirect_stdout(buf):\n"
+            "    rc = lean_main(['--exact', '--order', '6', '--format', 'json'])\n"
+            "print(rc, 'sympy' in sys.modules, buf.getvalue().count('coefficients'))\n")
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert proc.stdout.split() == ["0", "False", "2"], proc.stderr

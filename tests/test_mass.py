@@ -73,3 +73,33 @@ def test_numeric_and_sparse_paths_agree_with_exact():
     sparse = mass_variant(sp.csr_matrix(np.array(M, dtype=float)), "singular-lumped",
                           sp.csr_matrix(np.array(R, dtype=float)))
     assert np.allclose(exact, dense) and np.allclose(exact, sparse.toarray())
+
+
+@pytest.mark.parametrize("weights, match", [
+    ({2: {1: float("nan"), 0: float("nan")}}, r"weight w\[2\]\[1\] must be a finite real"),
+    ({2: {1: sympy.nan}}, r"weight w\[2\]\[1\]"),
+    ({2: {1: sympy.zoo}}, r"weight w\[2\]\[1\]"),
+    ({2: {1: float("inf"), 0: -float("inf")}}, r"weight w\[2\]\[1\]"),
+    ({2: {1: "1"}}, r"weight w\[2\]\[1\]"),
+    ({"2": {1: 1}}, "indices must be integers"),
+    ({2.0: {1: 1}}, "indices must be integers"),
+    ([(2, 1)], "weights must be a mapping"),
+])
+def test_redistribution_rejects_non_finite_weights(weights, match):
+    # allow_negative only relaxes [0, 1]: NaN never passes (it used to, with a warning)
+    with pytest.raises(InputError, match=match):
+        redistribution_matrix(3, weights, allow_negative=True)
+
+
+@pytest.mark.parametrize("gamma_s", [sympy.nan, sympy.zoo, float("nan"), 10**400, -1e-300, "0.5",
+                                     True, sympy.Symbol("g")])
+def test_contact_weights_gamma_s_range(gamma_s):
+    with pytest.raises(InputError, match=r"gamma_s must .*\[0, 1\]"):
+        contact_weights(3, "top", gamma_s)
+
+
+def test_mass_variant_shape_mismatch_is_input_error():
+    with pytest.raises(InputError, match=r"R must have the shape of M \(3, 3\)"):
+        mass_variant(np.eye(3), "singular", np.eye(2))
+    with pytest.raises(InputError, match="M must be a square matrix"):
+        mass_variant(np.ones((2, 3)), "lumped")

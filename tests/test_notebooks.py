@@ -11,13 +11,18 @@ from pathlib import Path
 import pytest
 
 NOTEBOOKS = sorted((Path(__file__).resolve().parents[1] / "notebooks").glob("*.py"))
-CELL_TIMEOUT = 120  # seconds per cell; a notebook is meant to take < 30 s in total
+# A notebook is meant to take seconds; the limit only catches a hang, so a loaded machine
+# cannot trip it while the work is small.
+CELL_TIMEOUT = 900
+#: The notebooks the README promises (series, errata, branches, ring, verify).
+EXPECTED = {"01_series", "02_errata", "03_branches", "04_ring", "05_verify"}
 
 
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=[p.stem for p in NOTEBOOKS])
 def test_notebook_executes(path, tmp_path):
-    jupytext = pytest.importorskip("jupytext")
-    nbclient = pytest.importorskip("nbclient")
+    import jupytext
+    import nbclient
+
     nb = jupytext.read(path)
     assert any(cell.cell_type == "code" for cell in nb.cells), f"{path.name} has no code"
     client = nbclient.NotebookClient(
@@ -35,8 +40,12 @@ def test_notebook_executes(path, tmp_path):
         if out.get("output_type") == "error"
     ]
     assert not errors
+    source = path.read_text()
+    if "plotting" in source or "plot_" in source:  # a notebook that draws shows its figures
+        images = [out for cell in nb.cells if cell.cell_type == "code"
+                  for out in cell.get("outputs", []) if "image/png" in out.get("data", {})]
+        assert images, f"{path.name} draws figures but shows none inline"
 
 
-def test_there_are_notebooks():
-    # the issue asks for notebooks on the series, the errata, the branches and the ring
-    assert len(NOTEBOOKS) >= 2
+def test_every_promised_notebook_exists():
+    assert {p.stem for p in NOTEBOOKS} == EXPECTED

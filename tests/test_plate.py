@@ -64,3 +64,57 @@ def test_bad_input():
             plate_patch(**kw)
     with pytest.raises(InputError, match="nu must lie"):
         numeric_pencil(plate_patch(), 0.5, [0.1])
+
+
+@pytest.mark.parametrize("kw", [dict(model="bloch", r=2), dict(model="bloch", r=sympy.Rational(1, 2),
+                                                              p=3, n=4, mass="lumped"),
+                                dict(model="bloch"), dict()])
+def test_x_taylor_is_the_taylor_series_of_x_functions(kw):
+    # the series path's coefficients against sympy.series of the closed forms (one definition)
+    from dispersion.plate import x_functions, x_taylor
+
+    patch = plate_patch(**kw)
+    D = 4
+    xf = x_functions(patch, kappa)
+    taylor = x_taylor(patch, D)
+    r = patch.r if patch.r is not None else 1
+    for name, f in (("m", xf["m"]), ("s", xf["s"] / kappa), ("d", xf["d"]), ("mx", xf["mx"])):
+        ser = sympy.series(f, kappa, 0, 2 * D + 1).removeO()
+        for k, (c, e) in enumerate(taylor[name]):
+            assert sympy.simplify(ser.coeff(kappa, 2 * k) - c * r**e) == 0, (name, k)
+
+
+def test_mirror_bases_of_n_and_of_patch_are_the_same_split():
+    B = mirror_bases(4)
+    P = mirror_bases(plate_patch(n=4))
+    for k in ("S", "A"):
+        assert np.allclose(B[k], P[k]) and np.allclose(B[k].T @ B[k], np.eye(B[k].shape[1]))
+    J = np.zeros((8, 8))  # the mirror y -> -y: u_x(i) -> u_x(n-1-i), u_y(i) -> -u_y(n-1-i)
+    for i in range(4):
+        J[3 - i, i], J[4 + 3 - i, 4 + i] = 1, -1
+    assert np.allclose(J @ B["S"], B["S"]) and np.allclose(J @ B["A"], -B["A"])
+
+
+def test_cached_matrices_cannot_be_mutated_by_a_caller():
+    Y = plate_patch().Y["00"]
+    with pytest.raises(TypeError):
+        Y[0, 0] = 99
+    E = mirror_bases(3, exact=True)["S"]
+    with pytest.raises(TypeError):
+        E[0, 0] = 5
+    from dispersion.plate import bloch_coefficients as bc
+    bc(2)["00"][0] = 99  # a copy: the next caller still sees the true Gram integral
+    assert bc(2)["00"][0] == sympy.Rational(66, 120)
+
+
+@pytest.mark.parametrize("kw,msg", [
+    (dict(model="bloch", r=10**400), r"aspect ratio r must lie in \[1/1000, 1000\]"),
+    (dict(model="bloch", r=1e-8), r"aspect ratio r must lie in"),
+    (dict(model="bloch", r=1e-200), r"aspect ratio r must lie in"),
+    (dict(model="bloch", r=float("nan")), "aspect ratio r must be a finite rational"),
+    (dict(model="x-exact", r=-3), r"aspect ratio r must lie in"),
+    (dict(mass="singular", gamma_s=sympy.nan), "gamma_s must be a finite rational"),
+])
+def test_bad_aspect_ratio_and_weight_are_refused(kw, msg):
+    with pytest.raises(InputError, match=msg):
+        plate_patch(**kw)

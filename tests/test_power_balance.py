@@ -5,7 +5,8 @@ import sympy
 
 from dispersion.errors import DispersionError, InputError
 from dispersion.plate import dynamic_stiffness, plate_patch
-from dispersion.power_balance import discrete_series, exact_series
+from dispersion.power_balance import (MAX_ORDER, MAX_WORK, discrete_series, exact_series,
+                                      exact_series_raw, format_coefficient)
 
 nu = sympy.Symbol("nu")
 SING = dict(mass="singular", contact="top", gamma_s=0)
@@ -37,7 +38,11 @@ def test_exact_a0_leading_term_is_kirchhoff_plate():
 
 def test_exact_series_against_mpmath_root():
     # independent: solve the tan-form Rayleigh-Lamb equation (Rose 2004) at kappa = 0.1, 40 digits
-    mpmath.mp.dps = 40
+    with mpmath.workdps(40):
+        _check_exact_series_at_kappa_01()
+
+
+def _check_exact_series_at_kappa_01():
     k, v = mpmath.mpf("0.1"), mpmath.mpf("0.3")
     g = (1 - 2 * v) / (2 * (1 - v))
     for branch, order in (("S0", 16), ("A0", 16)):
@@ -79,26 +84,34 @@ def test_eq19_eq20_singular_mass_bloch_square_elements():
 
 def _numeric_omega2(patch, branch, kval, nuval, guess):
     """Root of det K_dyn near ``guess`` at 40 digits (independent of the series engine)."""
-    mpmath.mp.dps = 40
     k, W = sympy.symbols("k W")
     Kd = dynamic_stiffness(patch, k, sympy.sqrt(W), sympy.Rational(nuval))
     f = sympy.lambdify((k, W), Kd, "mpmath")
-    return mpmath.findroot(lambda w: mpmath.det(mpmath.matrix(f(kval, w))), mpmath.mpf(guess))
+    with mpmath.workdps(40):
+        return mpmath.findroot(lambda w: mpmath.det(mpmath.matrix(f(kval, w))), mpmath.mpf(guess))
 
 
-@pytest.mark.parametrize("eq,branch,kw,power", [("17", "S0", {}, 6), ("19", "S0", SING, 4)])
-def test_disputed_terms_against_high_precision_eigenvalue(eq, branch, kw, power):
+# the printed terms in dispute, as the paper prints them (dispersion/data/paper_claims.toml)
+PRINTED_17_6 = -(2 * nu**6 - 18 * nu**5 + nu**4 + 10 * nu**2 - 6 * nu + 1) / (
+    45 * (1 - nu) ** 5 * (1 - 2 * nu))
+PRINTED_19_4 = -2 * (41 * nu**2 - 10 * nu - 35) / (45 * (1 - nu) ** 3)
+
+
+@pytest.mark.parametrize("printed,branch,kw,power", [(PRINTED_17_6, "S0", {}, 6),
+                                                     (PRINTED_19_4, "S0", SING, 4)])
+def test_disputed_terms_against_high_precision_eigenvalue(printed, branch, kw, power):
     # (W(kappa) - sum_{j < power} a_j kappa^j) / kappa^power -> a_power as kappa -> 0:
-    # the derived coefficient fits, the printed one (Omega^2 table in dispersion.errata) does not
-    from dispersion.errata import PRINTED
+    # the derived coefficient fits, the printed one does not
     patch = plate_patch(**BLOCH2, **kw)
     ser = discrete_series(branch, power + 2, **BLOCH2, **kw, nu=sympy.Rational(3, 10))
-    printed = PRINTED[eq][1][power].subs(nu, sympy.Rational(3, 10))
-    kval = mpmath.mpf("0.01")
+    printed = printed.subs(nu, sympy.Rational(3, 10))
     guess = sum(float(c) * 0.01**p for p, c in ser.items())
-    W = _numeric_omega2(patch, branch, kval, "0.3", guess)
-    lower = sum(mpmath.mpf(float(c)) * kval**p for p, c in ser.items() if p < power)
-    fitted = (W - lower) / kval**power
+    with mpmath.workdps(40):
+        kval = mpmath.mpf("0.01")
+        W = _numeric_omega2(patch, branch, kval, "0.3", guess)
+        lower = sum(mpmath.mpf(sympy.Rational(c).p) / sympy.Rational(c).q * kval**p
+                    for p, c in ser.items() if p < power)
+        fitted = (W - lower) / kval**power
     tol = 10 * abs(float(ser[power + 2])) * float(kval) ** 2
     assert abs(fitted - float(ser[power])) < tol
     assert abs(fitted - float(printed)) > 100 * tol
@@ -158,3 +171,48 @@ def test_bad_input():
         exact_series("S1", 4)
     with pytest.raises(InputError, match="nu must lie"):
         exact_series("S0", 4, nu=-2)
+
+
+def test_bounds_refuse_up_front_naming_parameter_and_bound():
+    with pytest.raises(InputError, match=f"order must be <= {MAX_ORDER['exact']}"):
+        exact_series("S0", 100_000)
+    with pytest.raises(InputError, match=f"order must be <= {MAX_ORDER['discrete']}"):
+        discrete_series("S0", 400)
+    with pytest.raises(InputError, match=f"<= {MAX_WORK}"):
+        discrete_series("S0", 8, p=40, n=41)
+
+
+@pytest.mark.parametrize("kw", [
+    dict(mass="singular", contact="top", gamma_s=sympy.Rational(1, 2)),
+    dict(mass="singular-lumped", contact="top", gamma_s=0),
+    dict(mass="singular", contact="bottom", gamma_s=sympy.Rational(1, 3)),
+])
+def test_one_sided_masses_against_high_precision_eigenvalue(kw):
+    # any mass without the mirror symmetry goes through the full determinant: the series must
+    # predict the 40-digit root of det K_dyn at kappa = 0.01 to within its next term
+    patch = plate_patch(p=2, n=5, **BLOCH2, **kw)
+    for branch in ("S0", "A0"):
+        ser = discrete_series(branch, 8, p=2, n=5, **BLOCH2, **kw, nu=sympy.Rational(3, 10))
+        nxt = ser.pop(8)
+        guess = sum(float(c) * 0.01**p for p, c in ser.items())
+        with mpmath.workdps(40):
+            k = mpmath.mpf("0.01")
+            W = _numeric_omega2(patch, branch, k, "0.3", guess)
+            W0 = sum(mpmath.mpf(sympy.Rational(c).p) / sympy.Rational(c).q * k**p
+                     for p, c in ser.items())
+            assert abs((W - W0) / (float(nxt) * k**8) - 1) < 0.05
+
+
+def test_mirror_split_is_only_a_speed_up_for_every_symmetric_mass():
+    for mass in ("lumped", "singular"):
+        kw = dict(p=2, n=4, **BLOCH2, mass=mass, contact="both")
+        for branch in ("S0", "A0"):
+            assert discrete_series(branch, 6, split=True, **kw) == \
+                discrete_series(branch, 6, split=False, **kw)
+
+
+def test_printed_coefficients_parse_back_to_the_sympy_output():
+    # the CLI's flint-only strings are the same rational functions as the API's sympy values
+    for k, num, den in exact_series_raw("S0", 10):
+        text = format_coefficient(num, den)
+        assert same(sympy.sympify(text, locals={"nu": nu}), exact_series("S0", 10)[k])

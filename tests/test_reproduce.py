@@ -1,23 +1,33 @@
-"""Tests of ``dispersion reproduce`` (dispersion/cli/reproduce.py, dispersion/report/index.py).
+"""Tests of ``dispersion reproduce`` (dispersion/cli/reproduce.py, dispersion/report/).
 
-The fast tests run the orchestration on stub sections: every file index.md links exists, a
-failing section leaves the previous output untouched and no temporary directory behind. The
-slow test runs the real quick subset end to end.
+The fast tests run the driver on stub sections (a ``measure`` and a ``render`` each): the
+JSON envelope, rendering from JSON alone, the index, and the safety of the output folder
+(a user's folder is refused, a failed or killed run leaves the old report whole, a section run
+keeps the other sections, temporaries of a killed run are cleaned with a notice, a concurrent
+run is refused). The slow test runs the real quick subset end to end.
 """
 from __future__ import annotations
 
+import fcntl
+import json
+import math
+import os
 import re
+import signal
+import subprocess
 import sys
+import textwrap
+import time
 import types
 from pathlib import Path
 
 import pytest
 
 from dispersion.cli import main
-from dispersion.cli.reproduce import SECTIONS, build_reports, load_sections
-from dispersion.errors import DispersionError
 from dispersion.io import write_text
-from dispersion.report.index import PACKAGES
+from dispersion.report import SECTIONS
+from dispersion.report.folder import MARKER
+from dispersion.results import PACKAGES
 
 LINK = re.compile(r"\]\(([^)#]+)\)")
 
@@ -26,93 +36,204 @@ def _linked_files(index: Path) -> list[str]:
     return [m for m in LINK.findall(index.read_text()) if "://" not in m]
 
 
-def _stub(name: str, fail: bool = False):
-    def report(out, quick=False, executor=None):
+def _stub_module(name: str, calls: list, fail: bool = False, value: float = 1.5):
+    module = types.ModuleType(f"dispersion.report.{name}")
+
+    def measure(quick=False, executor=None):
+        calls.append(("measure", name, quick))
         if fail:
             raise RuntimeError(f"{name} broke")
-        write_text(Path(out) / f"{name}.csv", f"quick,{quick}\n")
+        return {"name": name, "value": value, "quick": quick, "missing": math.nan}
+
+    def render(data, out):
+        calls.append(("render", name, data["value"]))
+        write_text(Path(out) / f"{name}.csv", f"value,{data['value']}\n")
         return f"## {name}\n\nThe [{name} data]({name}.csv)."
 
-    return report
+    module.measure, module.render = measure, render
+    return module
 
 
-def _leftovers(parent: Path, name: str) -> list[Path]:
-    return [p for p in parent.iterdir() if p.name.startswith(f".{name}.")]
+@pytest.fixture
+def stubs(monkeypatch):
+    """Replace every report section by a stub; returns the call log and a setter for failures."""
+    calls: list = []
+
+    def install(fail=(), value=1.5):
+        for name in SECTIONS:
+            monkeypatch.setitem(sys.modules, f"dispersion.report.{name}",
+                                _stub_module(name, calls, fail=name in fail, value=value))
+        return calls
+
+    install()
+    return install
 
 
-def test_index_links_every_section_file(tmp_path):
-    out = tmp_path / "reports"
-    sections = [(n, _stub(n)) for n in ("alpha", "beta")]
-    results = build_reports(out, sections, quick=True, command="dispersion reproduce --quick",
-                            progress=False)
-    assert [r.name for r in results] == ["alpha", "beta"]
-    index = out / "index.md"
-    links = _linked_files(index)
-    assert sorted(links) == ["alpha.csv", "beta.csv"]
-    for link in links:
-        assert (out / link).read_text() == "quick,True\n"
-    text = index.read_text()
-    assert "dispersion reproduce --quick" in text
-    for pkg in PACKAGES:  # the page names the version of every package it promises
-        assert f"| {pkg} |" in text
-    assert _leftovers(tmp_path, "reports") == []
+def _leftovers(parent: Path) -> list[str]:
+    return sorted(p.name for p in parent.iterdir() if p.name.startswith("."))
 
 
-def test_failed_section_leaves_previous_output_untouched(tmp_path):
-    out = tmp_path / "reports"
-    build_reports(out, [("alpha", _stub("alpha"))], progress=False)
-    before = {p.name: p.read_text() for p in out.iterdir()}
-    sections = [("beta", _stub("beta")), ("gamma", _stub("gamma", fail=True))]
-    with pytest.raises(RuntimeError, match="gamma broke"):
-        build_reports(out, sections, progress=False)
-    assert {p.name: p.read_text() for p in out.iterdir()} == before
-    assert not (out / "beta.csv").exists()
-    assert _leftovers(tmp_path, "reports") == []
-
-
-def test_failed_first_run_creates_nothing(tmp_path):
-    out = tmp_path / "fresh"
-    with pytest.raises(RuntimeError):
-        build_reports(out, [("gamma", _stub("gamma", fail=True))], progress=False)
-    assert list(tmp_path.iterdir()) == []
-
-
-def test_cli_runs_all_sections_in_order(tmp_path, monkeypatch, capsys):
-    calls = []
-    for name in SECTIONS:
-        module = types.ModuleType(f"dispersion.report.{name}")
-
-        def report(out, quick=False, executor=None, _name=name):
-            calls.append((_name, quick, executor is not None))
-            return _stub(_name)(out, quick, executor)
-
-        module.report = report
-        monkeypatch.setitem(sys.modules, f"dispersion.report.{name}", module)
+def test_measure_then_render_writes_envelopes_and_index(stubs, tmp_path, capsys):
+    calls = stubs()
     out = tmp_path / "rep"
     assert main(["reproduce", "--quick", "--out", str(out), "--jobs", "1"]) == 0
-    assert calls == [(n, True, True) for n in SECTIONS]
+    assert [c[:2] for c in calls] == ([("measure", n) for n in SECTIONS]
+                                      + [("render", n) for n in SECTIONS])
+    env = json.loads((out / "ring.json").read_text())
+    # strict JSON: the NaN the stub measured is stored as null
+    assert env["result"] == {"name": "ring", "value": 1.5, "quick": True, "missing": None}
+    assert env["inputs"] == {"quick": True} and env["section"] == "ring"
+    assert env["command"].startswith("dispersion reproduce") and "--quick" in env["command"]
+    assert set(env["versions"]) == set(PACKAGES) and env["machine"]
     assert sorted(_linked_files(out / "index.md")) == sorted(f"{n}.csv" for n in SECTIONS)
-    assert "--quick" in (out / "index.md").read_text()
+    for name in SECTIONS:
+        assert (out / f"{name}.csv").read_text() == "value,1.5\n"
+    assert (out / MARKER).is_file()
+    assert _leftovers(tmp_path) == []
     assert "index.md" in capsys.readouterr().out
 
 
-def test_bad_input_is_one_line_exit_2(tmp_path, capsys):
+def test_render_rebuilds_pages_from_json_without_measuring(stubs, tmp_path):
+    out = tmp_path / "rep"
+    calls = stubs()
+    assert main(["reproduce", "--out", str(out), "--jobs", "1"]) == 0
+    (out / "ring.csv").unlink()
+    env = json.loads((out / "ring.json").read_text())
+    env["result"]["value"] = 7.25  # an edited measurement shows up in the rendered page
+    (out / "ring.json").write_text(json.dumps(env))
+    calls.clear()
+    assert main(["reproduce", "--render", "--out", str(out)]) == 0
+    assert all(c[0] == "render" for c in calls) and len(calls) == len(SECTIONS)
+    assert (out / "ring.csv").read_text() == "value,7.25\n"
+
+
+def test_section_run_keeps_other_sections_and_user_files(stubs, tmp_path):
+    out = tmp_path / "rep"
+    stubs()
+    assert main(["reproduce", "--out", str(out), "--jobs", "1"]) == 0
+    (out / "notes.txt").write_text("mine")
+    stubs(value=2.5)
+    assert main(["reproduce", "--out", str(out), "--jobs", "1", "--sections", "ring"]) == 0
+    assert (out / "ring.csv").read_text() == "value,2.5\n"
+    assert (out / "branches.csv").read_text() == "value,1.5\n"  # not re-run, kept
+    assert (out / "notes.txt").read_text() == "mine"
+    assert sorted(_linked_files(out / "index.md")) == sorted(f"{n}.csv" for n in SECTIONS)
+
+
+def test_failed_section_leaves_previous_output_untouched(stubs, tmp_path, capsys):
+    out = tmp_path / "rep"
+    stubs()
+    assert main(["reproduce", "--out", str(out), "--jobs", "1"]) == 0
+    before = {p.name: p.read_bytes() for p in out.iterdir()}
+    stubs(fail=("studies",), value=9.0)
+    with pytest.raises(RuntimeError, match="studies broke"):
+        main(["reproduce", "--out", str(out), "--jobs", "1"])
+    assert {p.name: p.read_bytes() for p in out.iterdir()} == before
+    assert _leftovers(tmp_path) == []
+
+
+def test_a_users_folder_or_file_is_refused_and_kept(stubs, tmp_path, capsys):
+    user = tmp_path / "thesis"
+    (user / "data").mkdir(parents=True)
+    (user / "chapter1.tex").write_text("\\chapter{One}")
+    (user / "data" / "run.csv").write_text("1,2\n")
+    calls = stubs()
+    assert main(["reproduce", "--quick", "--sections", "coefficients", "--out", str(user)]) == 2
+    assert main(["reproduce", "--out", str(user / "chapter1.tex")]) == 2
+    assert main(["reproduce", "--out", ""]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 3 and all(line.startswith("dispersion reproduce: error: --out") for line in err)
+    assert "Traceback" not in "".join(err)
+    assert sorted(p.name for p in user.rglob("*")) == ["chapter1.tex", "data", "run.csv"]
+    assert (user / "chapter1.tex").read_text() == "\\chapter{One}"
+    assert calls == []  # refused before any work
+
+
+def test_concurrent_run_is_refused_in_one_line(stubs, tmp_path, capsys):
+    out = tmp_path / "rep"
+    fd = os.open(tmp_path, os.O_RDONLY)
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX)
+        assert main(["reproduce", "--out", str(out), "--jobs", "1"]) == 2
+    finally:
+        os.close(fd)
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "another dispersion run" in err[0]
+    assert not out.exists()
+
+
+_KILLED_RUN = textwrap.dedent("""
+    import sys, time, types
+    from dispersion.report import SECTIONS
+    for name in SECTIONS:
+        m = types.ModuleType("dispersion.report." + name)
+        def measure(quick=False, executor=None):
+            print("measuring", flush=True)
+            time.sleep(60)
+        m.measure, m.render = measure, (lambda data, out: "")
+        sys.modules["dispersion.report." + name] = m
+    from dispersion.cli import main
+    main(["reproduce", "--out", sys.argv[1], "--jobs", "1"])
+""")
+
+
+def test_killed_run_keeps_old_report_and_next_run_cleans_up(stubs, tmp_path, capsys):
+    out = tmp_path / "rep"
+    stubs()
+    assert main(["reproduce", "--out", str(out), "--jobs", "1"]) == 0
+    before = {p.name: p.read_bytes() for p in out.iterdir()}
+    proc = subprocess.Popen([sys.executable, "-c", _KILLED_RUN, str(out)],
+                            stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
+    try:
+        assert proc.stdout.readline().strip() == "measuring"
+        proc.send_signal(signal.SIGKILL)
+        proc.wait(timeout=30)
+    finally:
+        proc.kill()
+    assert {p.name: p.read_bytes() for p in out.iterdir()} == before
+    stale = _leftovers(tmp_path)
+    assert len(stale) == 1 and stale[0].startswith(".rep.tmp-")
+    capsys.readouterr()
+    assert main(["reproduce", "--out", str(out), "--jobs", "1", "--sections", "ring"]) == 0
+    err = capsys.readouterr().err
+    assert "removed 1 temporary folder(s) left by an interrupted run" in err and stale[0] in err
+    assert _leftovers(tmp_path) == []
+
+
+def test_outputs_follow_the_umask(stubs, tmp_path):
+    old = os.umask(0o022)
+    try:
+        assert main(["reproduce", "--out", str(tmp_path / "rep"), "--jobs", "1"]) == 0
+    finally:
+        os.umask(old)
+    assert (tmp_path / "rep").stat().st_mode & 0o777 == 0o755
+    assert (tmp_path / "rep" / "index.md").stat().st_mode & 0o777 == 0o644
+
+
+def test_bad_input_is_one_line_exit_2(stubs, tmp_path, capsys):
     assert main(["reproduce", "--out", str(tmp_path / "x"), "--jobs", "0"]) == 2
     assert main(["reproduce", "--out", str(tmp_path / "x"), "--sections", "nope"]) == 2
+    assert main(["reproduce", "--out", str(tmp_path / "x"), "--render", "--quick"]) == 2
+    assert main(["reproduce", "--out", str(tmp_path / "x"), "--render"]) == 2  # nothing to render
     err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 2 and "jobs" in err[0] and "sections" in err[1]
+    assert len(err) == 4
+    assert "jobs" in err[0] and "sections" in err[1] and "--quick" in err[2] and "*.json" in err[3]
     assert not (tmp_path / "x").exists()
 
 
 def test_missing_section_module_is_an_error(monkeypatch):
+    from dispersion.errors import DispersionError
+    from dispersion.report import section_module
+
     monkeypatch.setitem(sys.modules, "dispersion.report.ring", None)
     with pytest.raises((DispersionError, ImportError)):
-        load_sections(["ring"])
+        section_module("ring")
 
 
 @pytest.mark.slow
 def test_quick_reproduce_end_to_end(tmp_path):
     out = tmp_path / "reports"
+    t0 = time.perf_counter()
     assert main(["reproduce", "--quick", "--out", str(out)]) == 0
     index = out / "index.md"
     links = _linked_files(index)
@@ -120,4 +241,9 @@ def test_quick_reproduce_end_to_end(tmp_path):
     for link in links:
         assert (out / link).is_file(), link
     for name in SECTIONS:
+        assert (out / f"{name}.json").is_file()
         assert f"| {name} |" in index.read_text()
+    before = index.read_text()
+    assert main(["reproduce", "--render", "--out", str(out)]) == 0
+    assert index.read_text() == before  # rendering is a pure function of the JSON
+    print(f"reproduce --quick took {time.perf_counter() - t0:.1f} s")

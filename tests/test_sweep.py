@@ -69,3 +69,109 @@ def test_progress_bar_goes_to_stderr(capsys):
     captured = capsys.readouterr()
     assert captured.out == ""
     assert "sweep-test" in captured.err
+
+
+# --- workers die with their parent --------------------------------------------------------
+
+_PARENT = """
+import os, sys, time
+from dispersion.sweep import process_pool
+pool = {factory}
+print(pool.submit(os.getpid).result(), flush=True)
+pool.submit(time.sleep, 60)
+time.sleep(60)
+"""
+
+
+def _gone(pid: int) -> bool:
+    """True once ``pid`` no longer runs (a zombie awaiting its reaper counts as gone)."""
+    try:
+        with open(f"/proc/{pid}/stat") as fh:
+            return fh.read().rsplit(")", 1)[1].split()[0] in ("Z", "X")
+    except FileNotFoundError:
+        return True
+
+
+def _start_parent(factory: str):
+    import subprocess
+    import sys
+
+    proc = subprocess.Popen([sys.executable, "-c", _PARENT.format(factory=factory)],
+                            stdout=subprocess.PIPE, text=True)
+    worker = int(proc.stdout.readline())
+    assert not _gone(worker)
+    return proc, worker
+
+
+def _wait_gone(pid: int, seconds: float) -> bool:
+    deadline = time.monotonic() + seconds
+    while time.monotonic() < deadline:
+        if _gone(pid):
+            return True
+        time.sleep(0.05)
+    return _gone(pid)
+
+
+@pytest.mark.parametrize("sig, status", [(9, -9), (15, 143)])
+def test_workers_die_with_their_parent(sig, status):
+    import os
+
+    proc, worker = _start_parent("process_pool(1)")
+    try:
+        os.kill(proc.pid, sig)
+        assert proc.wait(10) == status
+        assert _wait_gone(worker, 5), "worker outlived its parent"
+    finally:
+        if not _gone(worker):
+            os.kill(worker, 9)
+
+
+@pytest.mark.slow
+def test_plain_pool_worker_outlives_a_killed_parent():
+    # the control: without die_with_parent the worker keeps sleeping, so the test above can fail
+    import os
+
+    proc, worker = _start_parent("__import__('concurrent.futures').futures"
+                                 ".ProcessPoolExecutor(1)")
+    try:
+        os.kill(proc.pid, 9)
+        proc.wait(10)
+        assert not _wait_gone(worker, 2)
+    finally:
+        if not _gone(worker):
+            os.kill(worker, 9)
+
+
+def test_process_pool_restores_the_sigterm_handler():
+    import signal
+
+    from dispersion.sweep import process_pool
+
+    before = signal.getsignal(signal.SIGTERM)
+    with process_pool(1) as pool:
+        assert signal.getsignal(signal.SIGTERM) != before
+        assert pool.submit(abs, -3).result() == 3
+    assert signal.getsignal(signal.SIGTERM) == before
+
+
+def test_process_pool_rejects_bad_worker_count():
+    from dispersion.sweep import process_pool
+
+    for bad in (0, -1, 1.5, "2"):
+        with pytest.raises(InputError, match="max_workers must be an integer >= 1"):
+            process_pool(bad)
+
+
+# --- dask.distributed --------------------------------------------------------------------
+
+def test_parallel_map_on_a_dask_local_cluster():
+    distributed = pytest.importorskip("distributed")  # the optional 'distributed' extra
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=2, processes=False,
+                                  dashboard_address=None) as cluster, \
+            distributed.Client(cluster) as client:
+        got = parallel_map(_slow_inverse, [1, 2, 3, 4], executor=client.get_executor(),
+                           progress=False)
+        assert got == [1 / x for x in [1, 2, 3, 4]]
+        with pytest.raises(ValueError, match="bad item 2"):
+            parallel_map(functools.partial(_fail_on, 2), [1, 2, 3],
+                         executor=client.get_executor(), progress=False)

@@ -1,9 +1,14 @@
-"""Command line: ``dispersion series | branches | ring | reproduce | bench``.
+"""Command line: ``dispersion series | branches | ring | impact | verify | reproduce | bench``.
 
 A thin layer over the API. Each subcommand lives in its own module exposing
 ``register(subparsers)``, which adds the parser and sets ``func(args) -> int``.
-Errors the toolkit raises on purpose print one line to stderr: exit status 2 for bad
-input (:class:`~dispersion.errors.InputError`), 1 for other toolkit errors.
+Errors print one line to stderr, never a traceback: exit status 2 for bad input
+(:class:`~dispersion.errors.InputError`, and argparse's own errors), 1 for other toolkit
+errors and for failures of the file system (a full disk, a vanished folder).
+
+>>> main(["--version"])  # doctest: +ELLIPSIS
+dispersion ...
+0
 """
 from __future__ import annotations
 
@@ -13,7 +18,7 @@ import sys
 
 from ..errors import DispersionError, InputError
 
-_SUBCOMMANDS = ("series", "branches", "ring", "reproduce", "bench")
+_SUBCOMMANDS = ("series", "branches", "ring", "impact", "verify", "reproduce", "bench")
 
 
 def number(name: str, convert=float):
@@ -34,10 +39,20 @@ class _Parser(argparse.ArgumentParser):
         self.exit(2, f"{self.prog}: error: {message}\n")
 
 
-def build_parser() -> argparse.ArgumentParser:
+def build_parser(only: str | None = None) -> argparse.ArgumentParser:
+    """The ``dispersion`` parser; with ``only``, just that subcommand's module is imported.
+
+    The others get an empty placeholder, so ``dispersion series ...`` pays neither the import
+    of sympy nor numpy unless the series command itself needs them.
+    """
     parser = _Parser(prog="dispersion", description=__doc__.splitlines()[0])
-    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
+    parser.add_argument("--version", action="store_true",
+                        help="print the version of the toolkit and exit")
+    sub = parser.add_subparsers(dest="command", parser_class=_Parser)
     for name in _SUBCOMMANDS:
+        if only is not None and name != only:
+            sub.add_parser(name)
+            continue
         try:
             module = importlib.import_module(f".{name}", __name__)
         except ModuleNotFoundError as exc:
@@ -48,8 +63,28 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def version() -> str:
+    """Version of the installed distribution (``dispersion-iga``)."""
+    from importlib import metadata
+
+    try:
+        return metadata.version("dispersion-iga")
+    except metadata.PackageNotFoundError:  # pragma: no cover - running from a bare checkout
+        from .. import __version__
+
+        return __version__
+
+
 def main(argv: list[str] | None = None) -> int:
-    args = build_parser().parse_args(argv)
+    words = sys.argv[1:] if argv is None else list(argv)
+    chosen = next((w for w in words if not w.startswith("-")), None)
+    parser = build_parser(chosen if chosen in _SUBCOMMANDS else None)
+    args = parser.parse_args(words)
+    if args.version:
+        print(f"dispersion {version()}")
+        return 0
+    if args.command is None:
+        parser.error(f"a command is required: {', '.join(_SUBCOMMANDS)}")
     try:
         return int(args.func(args) or 0)
     except InputError as exc:
@@ -57,6 +92,13 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     except DispersionError as exc:
         print(f"dispersion {args.command}: {type(exc).__name__}: {exc}", file=sys.stderr)
+        return 1
+    except BrokenPipeError:  # the reader of stdout went away (e.g. `| head`)
+        sys.stderr.close()
+        return 1
+    except OSError as exc:
+        print(f"dispersion {args.command}: error: {exc.strerror or exc}"
+              + (f": {exc.filename}" if exc.filename else ""), file=sys.stderr)
         return 1
     except KeyboardInterrupt:
         print("dispersion: interrupted", file=sys.stderr)

@@ -1,42 +1,39 @@
-"""``dispersion reproduce``: regenerate every result of the paper and of our studies.
+"""``dispersion reproduce``: measure every result of the paper and the studies, then render.
 
-Runs the report sections (:mod:`dispersion.report`) in order, each timed, with a progress
-bar on stderr, then writes ``index.md``. The run builds into a temporary directory beside
-the target and swaps it in only when every section succeeded, so a failed or interrupted run
-leaves the previous ``reports/`` untouched and never a half-written one.
+Each report section (:mod:`dispersion.report`) is measured by a function of the toolkit and
+saved as ``<section>.json`` (result, inputs, versions, machine, seconds, command); then every
+section present is rendered from its JSON into Markdown and figures, and ``index.md`` is
+written. ``--render`` skips the measurements and rebuilds the pages from the JSON alone.
+The output folder is written as one unit (:mod:`dispersion.report.folder`): an interrupted
+or failed run leaves the previous one untouched, and a folder the toolkit did not write is
+refused, never overwritten.
 
 >>> import argparse
 >>> parser = argparse.ArgumentParser(prog="dispersion")
 >>> register(parser.add_subparsers())
 >>> args = parser.parse_args(["reproduce", "--quick", "--jobs", "2"])
->>> (args.out, args.quick, args.jobs)
-('reports', True, 2)
+>>> (args.out, args.quick, args.jobs, args.render)
+('reports', True, 2, False)
 """
 from __future__ import annotations
 
 import argparse
 import concurrent.futures as cf
-import contextlib
-import datetime as _dt
-import importlib
 import shlex
-import shutil
 import sys
-import tempfile
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from pathlib import Path
 
-from ..errors import DispersionError, InputError, check_positive_int
-from ..report.index import SectionResult, write_index
-from ..sweep import default_jobs
+from .. import results
+from ..errors import InputError, check_positive_int
+from ..io import write_text
+from ..report import SECTIONS, section_module
+from ..report.folder import check_target, open_report
+from ..report.index import SectionResult, render_index
+from ..sweep import default_jobs, process_pool
 
-__all__ = ["SECTIONS", "register", "load_sections", "build_reports", "swap_in"]
-
-#: Report sections in the order they run: module names in :mod:`dispersion.report`.
-SECTIONS = ("coefficients", "branches", "ring", "series_speed", "studies")
-
-Section = Callable[..., str]
+__all__ = ["register", "measure_sections", "render_folder", "handler"]
 
 
 def register(subparsers) -> None:
@@ -45,118 +42,80 @@ def register(subparsers) -> None:
         "reproduce",
         help="regenerate reports/: the paper's results and the studies beyond it",
         description=__doc__.splitlines()[0],
+        formatter_class=argparse.ArgumentDefaultsHelpFormatter,
     )
-    parser.add_argument("--out", default="reports", help="output directory (default: reports)")
-    parser.add_argument(
-        "--quick", action="store_true",
-        help="quick subset (coarser grids, lower orders), as CI runs",
-    )
-    parser.add_argument(
-        "--jobs", type=int, default=None, help="worker processes for sweeps (default: CPU count)"
-    )
-    parser.add_argument(
-        "--sections",
-        default=",".join(SECTIONS),
-        help=f"comma-separated subset of {','.join(SECTIONS)} (default: all, in that order)",
-    )
+    parser.add_argument("--out", default="reports",
+                        help="report folder (new, empty, or written by dispersion before)")
+    parser.add_argument("--quick", action="store_true",
+                        help="quick subset (coarser grids, lower orders, a short ring), as CI runs")
+    parser.add_argument("--render", action="store_true",
+                        help="do not measure: rebuild every page and figure from the JSON in --out")
+    parser.add_argument("--readme", default=None, metavar="FILE",
+                        help="also rewrite the generated blocks of this Markdown file "
+                             "(e.g. README.md) from the new results")
+    parser.add_argument("--jobs", type=int, default=None,
+                        help="worker processes for sweeps (default: usable CPU count)")
+    parser.add_argument("--sections", default=",".join(SECTIONS),
+                        help="comma-separated subset of the sections, run in this order")
     parser.set_defaults(func=handler)
 
 
-def load_sections(names: Sequence[str]) -> list[tuple[str, Section]]:
-    """Import ``dispersion.report.<name>`` for each name and return ``(name, report)`` pairs.
-
-    Raises
-    ------
-    InputError
-        A name is not a known section.
-    DispersionError
-        A known section's module is not installed (a broken installation).
-    """
-    pairs = []
+def _names(text: str) -> list[str]:
+    names = [s.strip() for s in text.split(",") if s.strip()]
+    if not names:
+        raise InputError(f"--sections must name at least one of {', '.join(SECTIONS)}")
     for name in names:
         if name not in SECTIONS:
-            raise InputError(f"sections must be among {', '.join(SECTIONS)}, got {name!r}")
-        module_name = f"dispersion.report.{name}"
-        try:
-            module = importlib.import_module(module_name)
-        except ModuleNotFoundError as exc:
-            if exc.name != module_name:
-                raise
-            raise DispersionError(f"report section {name!r} is missing ({module_name})") from exc
-        pairs.append((name, module.report))
-    return pairs
+            raise InputError(f"--sections must be among {', '.join(SECTIONS)}, got {name!r}")
+    return names
 
 
-def swap_in(built: Path, target: Path) -> None:
-    """Replace ``target`` by the directory ``built`` (same file system), keeping it whole.
-
-    The old ``target`` is renamed aside first and deleted only after ``built`` took its
-    place; if that rename fails the old one is put back.
-    """
-    old = None
-    if target.exists():
-        old = Path(tempfile.mkdtemp(dir=target.parent, prefix=f".{target.name}.old-"))
-        old.rmdir()
-        target.rename(old)
-    try:
-        built.rename(target)
-    except BaseException:
-        if old is not None:
-            old.rename(target)
-        raise
-    if old is not None:
-        shutil.rmtree(old, ignore_errors=True)
-
-
-def build_reports(
-    out: Path,
-    sections: Sequence[tuple[str, Section]],
+def measure_sections(
+    folder: Path,
+    names: Sequence[str],
+    *,
     quick: bool = False,
     executor: cf.Executor | None = None,
     command: str = "dispersion reproduce",
-    jobs: int | None = None,
     progress: bool = True,
-) -> list[SectionResult]:
-    """Run ``sections`` into a fresh directory and swap it onto ``out`` when all succeeded.
-
-    Each section is called as ``report(tmp, quick=quick, executor=executor)`` and timed;
-    then ``index.md`` is written from their Markdown. On any error the temporary directory
-    is removed, ``out`` is left as it was, and the error propagates.
-    """
+) -> dict[str, float]:
+    """Measure each section and save ``folder/<name>.json``; return the seconds per section."""
     from tqdm.auto import tqdm
 
-    out = Path(out).absolute()
-    out.parent.mkdir(parents=True, exist_ok=True)
-    started = _dt.datetime.now(_dt.timezone.utc)
-    t0 = time.perf_counter()
-    tmp = Path(tempfile.mkdtemp(dir=out.parent, prefix=f".{out.name}.tmp-"))
-    results = []
-    try:
-        bar = tqdm(sections, desc="reproduce", unit="section", disable=not progress)
-        for name, report in bar:
-            bar.set_postfix_str(name)
-            t = time.perf_counter()
-            try:
-                markdown = report(tmp, quick=quick, executor=executor)
-            except BaseException:
-                print(f"dispersion reproduce: section {name!r} failed", file=sys.stderr)
-                raise
-            results.append(SectionResult(name, markdown, time.perf_counter() - t))
-        bar.close()
-        write_index(
-            tmp,
-            results,
-            command=command,
-            total_seconds=time.perf_counter() - t0,
-            quick=quick,
-            jobs=jobs,
-            started=started,
-        )
-        swap_in(tmp, out)
-    except BaseException:
-        shutil.rmtree(tmp, ignore_errors=True)
-        raise
-    return results
+    seconds = {}
+    bar = tqdm(names, desc="reproduce", unit="section", disable=not progress, file=sys.stderr)
+    for name in bar:
+        bar.set_postfix_str(name)
+        module = section_module(name)
+        t0 = time.perf_counter()
+        try:
+            result = module.measure(quick=quick, executor=executor)
+        except BaseException:
+            print(f"dispersion reproduce: section {name!r} failed", file=sys.stderr)
+            raise
+        seconds[name] = time.perf_counter() - t0
+        results.save(Path(folder) / f"{name}.json", name, result,
+                     inputs={"quick": quick}, seconds=seconds[name], command=command)
+    bar.close()
+    return seconds
+
+
+def render_folder(folder: Path) -> list[SectionResult]:
+    """Render every section whose JSON is in ``folder`` and write ``index.md``; measure nothing."""
+    folder = Path(folder)
+    parts, envelopes = [], []
+    for name in SECTIONS:
+        path = folder / f"{name}.json"
+        if not path.is_file():
+            continue
+        env = results.load(path)
+        markdown = section_module(name).render(env["result"], folder)
+        parts.append(SectionResult(name, markdown, env.get("seconds") or 0.0))
+        envelopes.append(env)
+    if not parts:
+        raise InputError(f"--out {folder} holds no section results (*.json) to render")
+    write_text(folder / "index.md", render_index(parts, envelopes))
+    return parts
 
 
 def _command(args: argparse.Namespace) -> str:
@@ -172,26 +131,41 @@ def _command(args: argparse.Namespace) -> str:
     return shlex.join(words)
 
 
-def handler(args: argparse.Namespace) -> int:
-    names = [s.strip() for s in args.sections.split(",") if s.strip()]
-    if not names:
-        raise InputError("sections must name at least one section")
-    jobs = check_positive_int("jobs", args.jobs) if args.jobs is not None else default_jobs()
-    sections = load_sections(names)
+def _pool(jobs: int) -> cf.Executor:
     if jobs == 1:
-        pool = cf.ThreadPoolExecutor(max_workers=1)  # in-process, one call at a time
-    else:
-        pool = cf.ProcessPoolExecutor(max_workers=jobs)
-    with contextlib.ExitStack() as stack:
-        stack.callback(pool.shutdown, cancel_futures=True)
-        results = build_reports(
-            Path(args.out),
-            sections,
-            quick=args.quick,
-            executor=pool,
-            command=_command(args),
-            jobs=jobs,
-        )
-    total = sum(r.seconds for r in results)
-    print(f"wrote {Path(args.out) / 'index.md'} ({len(results)} sections, {total:.1f} s)")
+        return cf.ThreadPoolExecutor(max_workers=1)  # in-process, one call at a time
+    return process_pool(jobs)  # workers die with this process
+
+
+def handler(args: argparse.Namespace) -> int:
+    names = _names(args.sections)
+    if args.render and (args.quick or args.jobs is not None):
+        raise InputError("--render measures nothing: --quick and --jobs do not apply")
+    if args.render and args.sections != ",".join(SECTIONS):
+        raise InputError("--render renders every section present: --sections does not apply")
+    jobs = check_positive_int("--jobs", args.jobs) if args.jobs is not None else default_jobs()
+    out = check_target(Path(args.out))
+    readme = Path(args.readme) if args.readme is not None else None
+    if readme is not None and not readme.is_file():
+        raise InputError(f"--readme must name an existing Markdown file, got {args.readme!r}")
+    for name in names:
+        section_module(name)  # a broken installation fails before any work
+    t0 = time.perf_counter()
+    with open_report(out) as staged:
+        if not args.render:
+            pool = _pool(jobs)
+            try:
+                measure_sections(staged, names, quick=args.quick, executor=pool,
+                                 command=_command(args))
+            finally:
+                pool.shutdown(wait=True, cancel_futures=True)
+        parts = render_folder(staged)
+    if readme is not None:
+        from ..report.readme import update_readme
+
+        changed = update_readme(readme, out)
+        print(f"{'updated' if changed else 'unchanged'}: generated blocks of {readme}")
+    verb = "rendered" if args.render else "wrote"
+    print(f"{verb} {Path(args.out) / 'index.md'} ({len(parts)} sections, "
+          f"{time.perf_counter() - t0:.1f} s)")
     return 0

@@ -1,111 +1,248 @@
-"""``dispersion series``: power-balance series of S0/A0 (discrete or exact), and ``--paper``."""
+"""``dispersion series``: power-balance series of S0/A0 (discrete or exact), and ``--paper``.
+
+The text, JSON and CSV formats are printed from the flint kernel directly
+(:func:`dispersion.power_balance.format_coefficient`); sympy is used only for LaTeX and the
+errata table.
+"""
 from __future__ import annotations
 
+import argparse
 import json
 import sys
-
-import sympy
+from fractions import Fraction
 
 from ..errors import InputError
-from ..io import write_text
-from ..mass import CONTACT_SETS, MASS_VARIANTS
-from ..plate import MODELS
-from . import number
+
+#: Options of the discrete patch, with their defaults (None: not given on the command line).
+_PATCH_OPTIONS = ("mass", "contact", "gamma_s", "model", "r", "p", "n")
+
+
+class _Default:
+    """A default read from :mod:`dispersion.defaults` only when shown or used.
+
+    ``dispersion.defaults`` imports sympy (0.3 s); the exact series prints without it.
+    """
+
+    def __init__(self, name: str):
+        self.name = name
+
+    def value(self):
+        from .. import defaults
+
+        return getattr(defaults, self.name)
+
+    def __str__(self) -> str:
+        return str(self.value())
+
+
+def _fraction(name):
+    def parse(text):
+        try:
+            return Fraction(text)
+        except (TypeError, ValueError, ZeroDivisionError):
+            raise argparse.ArgumentTypeError(f"{name} must be a rational number such as 0.3 "
+                                             f"or 3/10, got {text!r}") from None
+    return parse
 
 
 def _aspect(text):
-    return sympy.Symbol("r", positive=True) if text == "r" else number("r", sympy.Rational)(text)
+    return "r" if text == "r" else _fraction("r")(text)
 
 
 def register(sub) -> None:
-    p = sub.add_parser("series", help="power-balance series of the S0/A0 branches",
-                       description="Taylor coefficients of Omega^2 in kappa^2 for the S0/A0 "
-                                   "branches, derived by power balance (paper eqs 14-20).")
-    p.add_argument("--branch", choices=("S0", "A0", "both"), default="both")
-    p.add_argument("--exact", action="store_true", help="exact Rayleigh-Lamb series (eqs 14-15)")
-    p.add_argument("--mass", choices=MASS_VARIANTS, default="consistent")
-    p.add_argument("--contact", choices=CONTACT_SETS, default="top")
-    p.add_argument("--gamma-s", type=number("gamma_s", sympy.Rational), default=sympy.Integer(0),
-                   help="share of a contact shape function sent to the second neighbour "
-                        "(paper's gamma_s), in [0, 1]")
-    p.add_argument("--model", choices=MODELS, default="bloch")
-    p.add_argument("--r", type=_aspect, default=sympy.Integer(2),
-                   help="aspect ratio b/h of the Bloch model, or 'r' to keep it symbolic")
-    p.add_argument("--p", type=int, default=2, help="degree through the thickness (>= 1)")
-    p.add_argument("--n", type=int, default=3, help="control points through the thickness (>= p+1)")
+    p = sub.add_parser(
+        "series", help="power-balance series of the S0/A0 branches",
+        description="Taylor coefficients of Omega^2 in kappa^2 for the S0/A0 branches, derived "
+                    "by power balance (paper eqs 14-20); Omega = omega h / c_T, kappa = k h "
+                    "(dimensionless), nu symbolic unless --nu is given.",
+        formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+    p.add_argument("--branch", choices=("S0", "A0", "both"), default="both",
+                   help="which branch through the origin")
+    p.add_argument("--exact", action="store_true",
+                   help="exact Rayleigh-Lamb series (eqs 14-15); takes none of the patch options")
+    p.add_argument("--mass", default=_Default("MASS"),
+                   help="mass variant: consistent, lumped, singular, singular-lumped "
+                        "(default %(default)s)")
+    p.add_argument("--contact", default=_Default("CONTACT"),
+                   help="contact set of a singular mass: top, bottom, both "
+                        "(default %(default)s)")
+    p.add_argument("--gamma-s", type=_fraction("gamma_s"), default=_Default("GAMMA_S"),
+                   help="singular mass: share of a contact shape function sent to the second "
+                        "neighbour (paper's gamma_s), in [0, 1] (default %(default)s)")
+    p.add_argument("--model", default=_Default("MODEL"),
+                   help="x-model of the patch: bloch or x-exact (default %(default)s)")
+    p.add_argument("--r", type=_aspect, default=_Default("R"),
+                   help="aspect ratio b/h of the Bloch model (dimensionless), or 'r' to keep it "
+                        "symbolic (default %(default)s)")
+    p.add_argument("--p", type=int, default=_Default("P"),
+                   help="degree through the thickness, >= 1 (default %(default)s)")
+    p.add_argument("--n", type=int, default=_Default("N"),
+                   help="control points through the thickness, >= p + 1 (default %(default)s)")
     p.add_argument("--order", type=int, default=8, help="highest power of kappa (even)")
-    p.add_argument("--nu", type=number("nu", sympy.Rational), default=None, help="substitute a value for nu")
-    p.add_argument("--format", choices=("text", "latex", "json"), default="text")
+    p.add_argument("--nu", type=_fraction("nu"), default=None,
+                   help="substitute a value for Poisson's ratio nu, in (-1, 0.5); "
+                        "None: symbolic")
+    p.add_argument("--format", choices=("text", "latex", "json", "csv"), default="text",
+                   help="what goes to stdout")
+    p.add_argument("--json", metavar="FILE", default=None,
+                   help="also write the JSON records to FILE (atomically; '-' is stdout)")
     p.add_argument("--paper", action="store_true",
                    help="regenerate eqs 14-20 and print the errata table (printed vs derived)")
-    p.add_argument("--out", help="write the output to this file (atomically) instead of stdout")
     p.set_defaults(func=run)
 
 
-def series_record(args, branch: str) -> dict:
-    """Derive one branch; return the JSON record {branch, mass, model, coefficients, ...}."""
-    from ..power_balance import discrete_series, exact_series
+def _resolve(args) -> dict:
+    """The patch options with defaults filled in; options that do not apply are errors."""
+    given = {k: getattr(args, k) for k in _PATCH_OPTIONS
+             if not isinstance(getattr(args, k), _Default)}
+    if args.exact or args.paper:
+        if given:
+            name = next(iter(given)).replace("_", "-")
+            mode = "--exact" if args.exact else "--paper"
+            raise InputError(f"--{name} does not apply to {mode} (the exact plate has no patch)")
+        return {}
+    opts = {k: getattr(args, k).value() for k in _PATCH_OPTIONS
+            if isinstance(getattr(args, k), _Default)}
+    opts.update(given)
+    if not opts["mass"].startswith("singular"):
+        for key in ("contact", "gamma_s"):
+            if key in given:
+                raise InputError(f"--{key.replace('_', '-')} applies to singular masses only, "
+                                 f"not to --mass {opts['mass']}")
+    if opts["model"] == "x-exact":
+        if "r" in given:
+            raise InputError("--r (aspect ratio) applies to --model bloch only")
+        opts["r"] = None
+    elif opts["r"] == "r":
+        opts["r"] = None  # plate_patch keeps r symbolic
+    if opts["gamma_s"] is not None:
+        opts["gamma_s"] = Fraction(str(opts["gamma_s"]))
+    return opts
+
+
+def series_records(args, branches: tuple[str, ...], opts: dict) -> list[dict]:
+    """Derive the branches (one determinant for both where the mass breaks the mirror)."""
+    from ..power_balance import discrete_series_raw
+
+    raws = None if args.exact else discrete_series_raw(branches, args.order, **opts)[0]
+    return [series_record(args, b, opts, None if raws is None else raws[b]) for b in branches]
+
+
+def series_record(args, branch: str, opts: dict, raw=None) -> dict:
+    """One branch as the JSON record {branch, mass, model, coefficients, ...}."""
+    from ..power_balance import (discrete_series_raw, exact_series_raw, format_coefficient,
+                                 substitute_raw)
 
     if args.exact:
-        coeffs = exact_series(branch, args.order, nu=args.nu)
+        raw = exact_series_raw(branch, args.order)
         mass, model = "exact", "rayleigh-lamb"
     else:
-        coeffs = discrete_series(branch, args.order, p=args.p, n=args.n, model=args.model,
-                                 r=args.r, mass=args.mass, contact=args.contact,
-                                 gamma_s=args.gamma_s, nu=args.nu)
-        mass = args.mass
-        model = args.model if args.model == "x-exact" else f"bloch r={args.r}"
+        if raw is None:
+            raw = discrete_series_raw((branch,), args.order, **opts)[0][branch]
+        mass = opts["mass"]
+        model = opts["model"] if opts["model"] == "x-exact" else \
+            f"bloch r={'r' if opts['r'] is None else opts['r']}"
+    if args.nu is not None:
+        from ..errors import check_nu
+
+        check_nu(args.nu)
+        raw = substitute_raw(raw, "nu", args.nu)
     record = {"branch": branch, "mass": mass, "model": model,
-              "coefficients": {str(k): str(v) for k, v in coeffs.items()}}
+              "coefficients": {str(k): format_coefficient(a, b) for k, a, b in raw}}
     if not args.exact:
-        record.update(p=args.p, n=args.n)
+        record.update(p=opts["p"], n=opts["n"])
         if mass.startswith("singular"):
-            record.update(contact=args.contact, gamma_s=str(args.gamma_s))
+            record.update(contact=opts["contact"], gamma_s=str(opts["gamma_s"]))
+    if args.nu is not None:
+        record["nu"] = str(args.nu)
     return record
 
 
 def _render(record: dict, fmt: str) -> str:
-    terms = [(int(k), sympy.sympify(v, locals={"nu": sympy.Symbol("nu"),
-                                               "r": sympy.Symbol("r", positive=True)}))
-             for k, v in record["coefficients"].items()]
     label = f"Omega_{record['branch']}^2 [{record['mass']}, {record['model']}]"
+    terms = list(record["coefficients"].items())
+    last = int(terms[-1][0])
     if fmt == "latex":
-        body = " + ".join(f"\\left({sympy.latex(c)}\\right)\\kappa^{{{k}}}" for k, c in terms)
-        return f"% {label}\n\\Omega_{{{record['branch']}}}^2 = {body} + O(\\kappa^{{{terms[-1][0] + 2}}})"
-    lines = [f"{label} =" ] + [f"  + ({c}) * kappa^{k}" for k, c in terms]
-    return "\n".join(lines + [f"  + O(kappa^{terms[-1][0] + 2})"])
+        import sympy
+
+        local = {"nu": sympy.Symbol("nu"), "r": sympy.Symbol("r", positive=True)}
+        body = " + ".join(f"\\left({sympy.latex(sympy.sympify(c, locals=local))}\\right)"
+                          f"\\kappa^{{{k}}}" for k, c in terms)
+        return f"% {label}\n\\Omega_{{{record['branch']}}}^2 = {body} + O(\\kappa^{{{last + 2}}})"
+    if fmt == "csv":
+        return "\n".join(f"{record['branch']},{k},\"{c}\"" for k, c in terms)
+    lines = [f"{label} ="] + [f"  + ({c}) * kappa^{k}" for k, c in terms]
+    return "\n".join(lines + [f"  + O(kappa^{last + 2})"])
+
+
+def _paper(fmt: str) -> str:
+    from ..errata import eq13_note, errata_table, format_table
+
+    rows = errata_table()
+    if fmt == "json":
+        return json.dumps({"errata": [
+            {"equation": r.equation, "branch": r.branch, "power": r.power,
+             "printed": str(r.printed), "derived": str(r.derived), "status": r.status,
+             "reproduced_by": list(r.reproduced_by), "setting": r.setting} for r in rows],
+            "eq13_leading_balance": [dict(zip(("branch", "standard", "printed"), x))
+                                     for x in eq13_note()]}, indent=2)
+    notes = "\n".join(f"  {b}: standard q0(w) = {s};  printed q0(w) = {pr}"
+                      for b, s, pr in eq13_note())
+    return (format_table(rows, "latex" if fmt == "latex" else "text")
+            + "\n\nEq (13), leading balance for Omega^2 = w kappa^(2 sigma) (non-zero roots are "
+              "admissible leading coefficients):\n" + notes)
 
 
 def run(args) -> int:
-    from ..errata import eq13_note, errata_table, format_table
-
-    if args.gamma_s < 0 or args.gamma_s > 1:
-        raise InputError(f"gamma_s must lie in [0, 1], got {args.gamma_s}")
+    opts = _resolve(args)
     if args.paper:
-        rows = errata_table()
-        if args.format == "json":
-            text = json.dumps({"errata": [
-                {"equation": r.equation, "branch": r.branch, "power": r.power,
-                 "printed": str(r.printed), "derived": str(r.derived), "status": r.status,
-                 "reproduced_by": list(r.reproduced_by), "setting": r.setting} for r in rows],
-                "eq13_leading_balance": [dict(zip(("branch", "standard", "printed"), x))
-                                         for x in eq13_note()]}, indent=2)
-        else:
-            fmt = "latex" if args.format == "latex" else "text"
-            notes = "\n".join(f"  {b}: standard q0(w) = {s};  printed q0(w) = {pr}"
-                              for b, s, pr in eq13_note())
-            text = (format_table(rows, fmt) + "\n\nEq (13), leading balance for Omega^2 = w "
-                    "kappa^(2 sigma) (non-zero roots are admissible leading coefficients):\n"
-                    + notes)
+        if args.format == "csv":
+            raise InputError("--format csv does not apply to --paper (use text, latex or json)")
+        text = _paper(args.format)
+        records = None
     else:
         branches = ("S0", "A0") if args.branch == "both" else (args.branch,)
-        records = [series_record(args, b) for b in branches]
+        records = series_records(args, branches, opts)
         if args.format == "json":
             text = json.dumps(records[0] if len(records) == 1 else records, indent=2)
+        elif args.format == "csv":
+            text = "\n".join(["branch,power,coefficient"]
+                              + [_render(r, "csv") for r in records])
         else:
             text = "\n\n".join(_render(r, args.format) for r in records)
-    if args.out:
-        write_text(args.out, text + "\n")
-    else:
-        sys.stdout.write(text + "\n")
+    if args.json is not None:
+        if records is None:
+            raise InputError("--json FILE applies to series records, not to --paper")
+        payload = json.dumps(records[0] if len(records) == 1 else records, indent=2) + "\n"
+        if args.json == "-":
+            sys.stdout.write(payload)
+        else:
+            from ..io import write_text
+
+            write_text(args.json, payload)
+    sys.stdout.write(text + "\n")
     return 0
+
+
+
+def lean_main(argv: list[str] | None = None) -> int:
+    """``python -m dispersion.cli.series ...``: this command alone, without the other
+    subcommands' imports (same options, output and exit status as ``dispersion series``)."""
+    from . import _Parser
+    from ..errors import DispersionError
+
+    parser = _Parser(prog="dispersion")
+    register(parser.add_subparsers(dest="command", required=True, parser_class=_Parser))
+    args = parser.parse_args(["series", *(sys.argv[1:] if argv is None else argv)])
+    try:
+        return run(args)
+    except InputError as exc:
+        print(f"dispersion series: error: {exc}", file=sys.stderr)
+        return 2
+    except DispersionError as exc:
+        print(f"dispersion series: {type(exc).__name__}: {exc}", file=sys.stderr)
+        return 1
+
+
+if __name__ == "__main__":
+    sys.exit(lean_main())

@@ -1,9 +1,9 @@
-"""Speed charts of the series engine (:mod:`dispersion.benchmarking`).
+"""Speed charts of the series engine (data of :func:`dispersion.series_speed.measure`).
 
->>> ax = plot_time_vs_order({"ours": [[4, 0.01], [8, 0.05]], "textbook": [[4, 3.0]]},
-...                         budget=60.0)
+>>> ax = plot_race([{"order": 8, "ours_process_s": 0.3, "ours_compute_s": 0.01,
+...                  "maxima_process_s": 0.2, "maxima_compute_s": 0.03}])
 >>> ax.get_ylabel()
-'seconds (S0 + A0)'
+'seconds (S0 + A0, nu symbolic)'
 """
 from __future__ import annotations
 
@@ -11,35 +11,52 @@ from collections.abc import Mapping, Sequence
 
 from . import axes
 
-__all__ = ["plot_time_vs_order"]
+__all__ = ["plot_race", "plot_scaling"]
 
-_STYLE = {"ours": ("C0", "o", "-"), "maxima": ("C2", "s", "--"), "textbook": ("C3", "^", ":")}
+_RACE = (("ours_process_s", "ours, whole process (cold)", "C0", "o", "-"),
+         ("ours_lean_process_s", "ours, lean entry (no sympy import)", "C9", "D", "--"),
+         ("maxima_process_s", "Maxima, whole process (cold)", "C2", "s", "-"),
+         ("ours_compute_s", "ours, compute only", "C0", "o", ":"),
+         ("maxima_compute_s", "Maxima, compute only (its own timer)", "C2", "s", ":"))
+_MASS = {"consistent": "C0", "lumped": "C1", "singular": "C3"}
+_DEGREE = {2: ("o", "-"), 3: ("s", "--"), 4: ("^", ":")}
 
 
-def plot_time_vs_order(routes: Mapping[str, Sequence[Sequence[float]]], ax=None,
-                       budget: float | None = None, title: str | None = None):
-    """Seconds to reach each power of kappa, one line per route (log scale).
-
-    A dotted line at ``budget`` marks where the textbook route was stopped: orders it did not
-    reach took longer than that.
-    """
-    ax = axes(ax, (5.0, 3.8))
-    for name, points in routes.items():
-        color, marker, line = _STYLE.get(name, ("C7", "x", "-"))
-        if points:
-            k, s = zip(*points)
-            ax.plot(k, s, color=color, marker=marker, linestyle=line, label=name)
-        else:
-            ax.plot([], [], color=color, marker=marker, linestyle=line,
-                    label=f"{name} (no order within budget)")
-    if budget is not None:
-        ax.axhline(budget, color="C3", linewidth=0.8, linestyle=(0, (1, 3)),
-                   label=f"textbook stopped at {budget:g} s per branch")
+def plot_race(race: Sequence[Mapping], ax=None):
+    """Seconds to the S0 + A0 series against the highest power of kappa, ours and Maxima."""
+    ax = axes(ax, (5.5, 4.0))
+    for key, label, color, marker, line in _RACE:
+        pts = [(p["order"], p[key]) for p in race if p.get(key)]
+        if pts:
+            k, s = zip(*pts)
+            ax.plot(k, s, color=color, marker=marker, linestyle=line, label=label)
     ax.set_yscale("log")
-    ax.xaxis.get_major_locator().set_params(integer=True)
-    ax.set_xlabel("highest power of $\\kappa$ reached")
-    ax.set_ylabel("seconds (S0 + A0)")
-    if title:
-        ax.set_title(title, fontsize="small")
+    ax.set_xlabel("highest power of $\\kappa$ (exact Rayleigh-Lamb series)")
+    ax.set_ylabel("seconds (S0 + A0, nu symbolic)")
+    ax.grid(True, which="major", alpha=0.3)
     ax.legend(fontsize="small")
+    return ax
+
+
+def plot_scaling(points: Sequence[Mapping], fits: Sequence[Mapping] = (), ax=None):
+    """Seconds of the discrete S0 + A0 series against n, per mass and degree (log-log)."""
+    ax = axes(ax, (5.5, 4.0))
+    exponent = {(f["mass"], f["p"]): f["exponent"] for f in fits}
+    for (mass, p) in sorted({(q["mass"], q["p"]) for q in points}):
+        pts = sorted((q["n"], q["seconds"]) for q in points if q["mass"] == mass and q["p"] == p)
+        n, s = zip(*pts)
+        marker, line = _DEGREE.get(p, ("x", "-."))
+        fit = exponent.get((mass, p))
+        label = f"{mass}, p = {p}" + (f" (t ~ n^{fit:.1f})" if fit is not None else "")
+        ax.plot(n, s, color=_MASS.get(mass, "C7"), marker=marker, linestyle=line, label=label)
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ns = sorted({q["n"] for q in points})
+    ax.set_xticks(ns, [str(v) for v in ns])
+    ax.minorticks_off()
+    order = points[0]["order"] if points else None
+    ax.set_xlabel("control points n through the thickness")
+    ax.set_ylabel(f"seconds (S0 + A0 to $\\kappa^{{{order}}}$)")
+    ax.grid(True, which="major", alpha=0.3)
+    ax.legend(fontsize="x-small", ncol=1)
     return ax

@@ -1,67 +1,54 @@
-"""Report section: eqs 14-20 as derived, beside the printed forms, with the errata table.
+"""Report section: the paper's eqs 14-20, printed beside derived, and the errata table.
 
-Writes ``coefficients.md``, ``coefficients.tex`` and ``coefficients.json`` (the JSON form of
-``dispersion series --format json``: a list of records plus the errata rows).
+``measure`` is :func:`dispersion.errata.paper_errata`: it verifies the claims file shipped
+with the package (``dispersion/data/paper_claims.toml``) and builds the errata rows.
+``render`` writes ``coefficients.md`` and ``coefficients.tex`` (a complete LaTeX document)
+from the stored JSON alone.
 """
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
-from ..errata import PAPER_SETTINGS, PRINTED, eq13_note, errata_table, format_table
+from ..errata import errata_document, format_table
+from ..errata import paper_errata as measure
 from ..io import write_text
-from ..power_balance import discrete_series, exact_series
 
-__all__ = ["report"]
-
-
-def _records(order: int) -> list[dict]:
-    recs = []
-    for eq, (branch, _) in PRINTED.items():
-        if eq in PAPER_SETTINGS:
-            kw = PAPER_SETTINGS[eq]
-            coeffs = discrete_series(branch, order, model="bloch", r=2, **kw)
-            rec = {"equation": eq, "branch": branch, "mass": kw["mass"], "model": "bloch r=2",
-                   "p": 2, "n": 3}
-            if kw["mass"] == "singular":
-                rec.update(contact=kw["contact"], gamma_s=str(kw["gamma_s"]))
-        else:
-            coeffs = exact_series(branch, order)
-            rec = {"equation": eq, "branch": branch, "mass": "exact", "model": "rayleigh-lamb"}
-        rec["coefficients"] = {str(k): str(v) for k, v in coeffs.items()}
-        recs.append(rec)
-    return recs
+__all__ = ["measure", "render"]
 
 
-def report(out: Path, quick: bool = False, executor=None) -> str:
-    """Write the coefficient files into ``out``; return the Markdown section."""
+def _claims_table(claims: list[dict]) -> str:
+    lines = ["| claim | source | model | printed | derived | status | difference |",
+             "|---|---|---|---|---|---|---|"]
+    for c in claims:
+        cells = [c["name"], c["source"] or "", c["model"], f"`{c['printed']}`",
+                 f"`{c['derived']}`", c["status"], c["difference"] or ""]
+        lines.append("| " + " | ".join(x.replace("|", "\\|") for x in cells) + " |")
+    return "\n".join(lines)
+
+
+def render(data: dict, out: Path) -> str:
+    """Write ``coefficients.md`` and ``coefficients.tex`` from the measured JSON; return Markdown."""
     out = Path(out)
-    order = 8 if quick else 10
-    rows = errata_table()
-    records = _records(order)
-    eq13 = eq13_note()
-    write_text(out / "coefficients.json", json.dumps({"series": records, "errata": [
-        {"equation": r.equation, "branch": r.branch, "power": r.power, "printed": str(r.printed),
-         "derived": str(r.derived), "status": r.status, "reproduced_by": list(r.reproduced_by),
-         "setting": r.setting} for r in rows]}, indent=2) + "\n")
-    series_md = "\n".join(
-        f"- eq ({r['equation']}) {r['branch']}, {r['mass']}, {r['model']}: "
-        + " + ".join(f"({c}) kappa^{k}" for k, c in r["coefficients"].items()) for r in records)
+    claims, rows, eq13 = data["claims"], data["rows"], data["eq13"]
+    failing = [c["name"] for c in claims if not c["passed"]]
+    verdict = ("every claim holds as recorded" if not failing else
+               "claims that do not hold as printed: " + ", ".join(failing))
     eq13_md = "\n".join(f"- {b}: standard `{s}`; printed `{p}`" for b, s, p in eq13)
     text = (
-        "## Series coefficients, eqs 14-20 (derived), and errata\n\n"
-        "Every coefficient below is derived by power balance (`dispersion series --paper`), "
-        f"to kappa^{order}. Discrete equations use the Bloch model with square elements "
-        "(b = 2h, r = 2), p = 2, n = 3; singular mass: contact on the top surface, the contact "
-        "shape function moved wholly to its neighbour through the thickness (gamma_s = 0).\n\n"
-        "### Errata: printed vs derived\n\n" + format_table(rows, "markdown") + "\n\n"
-        "Eq (13): leading balance q0(w) for Omega^2 = w kappa^(2 sigma). The standard "
+        "## Series coefficients, eqs 14-20: printed vs derived\n\n"
+        f"The printed equations are the claims file `{data['claims_file']}` shipped with the "
+        "package; each is derived again by power balance and compared exactly "
+        f"(`dispersion verify --paper`: {verdict}). Discrete equations: Bloch model with square "
+        "elements (b = 2h, r = 2), p = 2, n = 3; singular mass with contact on the top surface "
+        "and gamma_s as stated per claim.\n\n"
+        "### Claims\n\n" + _claims_table(claims) + "\n\n"
+        "### Errata: printed vs derived, term by term\n\n" + format_table(rows, "markdown")
+        + "\n\nEq (13): leading balance q0(w) for Omega^2 = w kappa^(2 sigma). The standard "
         "Rayleigh-Lamb form gives w = 2/(1-nu) (S0) and 2/(3(1-nu)) (A0); the printed form "
         "with (p^2 - q^2)^2 has no A0 root and an S0 root that is not the bar speed:\n\n"
-        + eq13_md + "\n\n### Derived series\n\n" + series_md + "\n")
+        + eq13_md + "\n")
     write_text(out / "coefficients.md", text)
-    write_text(out / "coefficients.tex", "% generated by dispersion reproduce\n"
-               + format_table(rows, "latex") + "\n")
-    return (text.replace("## Series coefficients", "## Series coefficients", 1)
-            + "\nFiles: [coefficients.md](coefficients.md), [coefficients.tex](coefficients.tex), "
-              "[coefficients.json](coefficients.json).\n")
+    write_text(out / "coefficients.tex", errata_document(rows, eq13))
+    return text + ("\nFiles: [coefficients.md](coefficients.md), "
+                   "[coefficients.tex](coefficients.tex) (standalone LaTeX), "
+                   "[coefficients.json](coefficients.json).\n")

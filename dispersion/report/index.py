@@ -1,15 +1,17 @@
-"""The front page of ``reports/``: ``index.md``.
+"""The front page of ``reports/``: ``index.md``, rendered from the sections' JSON.
 
-It gathers the Markdown of every report section, in the order they ran, with the facts a
-reader needs to trust and repeat the run: the machine, the package versions, the time each
-part took and the command that regenerated the page. Nothing on it is typed by hand: every
-number comes from the run that wrote it.
+It gathers the Markdown of every report section with the facts a reader needs to trust and
+repeat each measurement, read from the section's stored envelope
+(:func:`dispersion.results.envelope`): the command, the machine, the package versions and the
+time each measurement took. Nothing on it is typed by hand.
 
+>>> from dispersion.results import envelope
 >>> part = SectionResult("demo", "## Demo\\n\\nA [table](demo.csv).", 0.25)
->>> text = render_index([part], command="dispersion reproduce --quick", total_seconds=0.3)
+>>> env = envelope("demo", {}, inputs={"quick": True}, seconds=0.25, command="dispersion reproduce --quick")
+>>> text = render_index([part], [env])
 >>> text.splitlines()[0]
 '# Singular mass matrices for isogeometric contact: reproduction package'
->>> "| demo | 0.25 |" in text
+>>> "| demo | 0.25 | dispersion reproduce --quick |" in text
 True
 
 References
@@ -19,27 +21,10 @@ finite element analysis of dynamic contact".
 """
 from __future__ import annotations
 
-import datetime as _dt
-import os
-import platform
 from collections.abc import Sequence
 from dataclasses import dataclass
-from importlib import metadata
-from pathlib import Path
 
-from ..io import write_text
-
-__all__ = [
-    "SectionResult",
-    "PACKAGES",
-    "machine_facts",
-    "package_versions",
-    "render_index",
-    "write_index",
-]
-
-#: Distributions whose versions the page records (import name differs for python-flint).
-PACKAGES = ("dispersion", "sympy", "numpy", "scipy", "matplotlib", "mpmath", "python-flint")
+__all__ = ["SectionResult", "render_index"]
 
 TITLE = "# Singular mass matrices for isogeometric contact: reproduction package"
 
@@ -59,87 +44,35 @@ INTRO = (
 
 @dataclass(frozen=True)
 class SectionResult:
-    """One report section as it ran: its name, its Markdown and its wall-clock time (s)."""
+    """One rendered report section: its name, its Markdown and the seconds its measurement took."""
 
     name: str
     markdown: str
     seconds: float
 
 
-def machine_facts() -> dict[str, str]:
-    """CPU count, platform, processor and Python of the machine running the report."""
-    try:
-        usable = len(os.sched_getaffinity(0))
-    except AttributeError:  # pragma: no cover - not on Linux
-        usable = os.cpu_count() or 1
-    return {
-        "CPU count (usable / total)": f"{usable} / {os.cpu_count()}",
-        "platform": platform.platform(),
-        "machine": platform.machine() or "unknown",
-        "processor": _cpu_model() or platform.processor() or "unknown",
-        "Python": f"{platform.python_implementation()} {platform.python_version()}",
-    }
-
-
-def _cpu_model() -> str | None:
-    try:
-        with open("/proc/cpuinfo", encoding="utf-8") as fh:
-            for line in fh:
-                if line.startswith("model name"):
-                    return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return None
-
-
-def package_versions(packages: Sequence[str] = PACKAGES) -> dict[str, str]:
-    """Installed version of each distribution, or ``"not installed"``."""
-    versions = {}
-    for name in packages:
-        try:
-            versions[name] = metadata.version(name)
-        except metadata.PackageNotFoundError:
-            versions[name] = "not installed"
-    return versions
-
-
-def _table(header: tuple[str, str], rows) -> list[str]:
-    lines = [f"| {header[0]} | {header[1]} |", "|---|---|"]
-    lines += [f"| {key} | {value} |" for key, value in rows]
+def _table(header: tuple[str, ...], rows) -> list[str]:
+    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    lines += ["| " + " | ".join(str(v) for v in row) + " |" for row in rows]
     return lines
 
 
-def render_index(
-    sections: Sequence[SectionResult],
-    command: str,
-    total_seconds: float,
-    quick: bool = False,
-    jobs: int | None = None,
-    started: _dt.datetime | None = None,
-) -> str:
-    """Markdown of ``index.md`` for the sections that ran.
+def render_index(sections: Sequence[SectionResult], envelopes: Sequence[dict]) -> str:
+    """Markdown of ``index.md``: the sections, then how and where each was measured.
 
     Parameters
     ----------
     sections : sequence of SectionResult
-        In the order they ran; each one's Markdown is included verbatim.
-    command : str
-        The command line that regenerates the page.
-    total_seconds : float
-        Wall-clock time of the whole run, s.
-    quick : bool
-        Whether this was the quick subset (stated on the page).
-    jobs : int, optional
-        Worker processes of the parameter sweeps.
-    started : datetime, optional
-        Start of the run (UTC); default now.
+        In report order; each one's Markdown is included verbatim.
+    envelopes : sequence of dict
+        The stored envelope of each section (same order), from :func:`dispersion.results.load`.
     """
-    started = started or _dt.datetime.now(_dt.timezone.utc)
     lines = [TITLE, "", INTRO, ""]
-    if quick:
+    if any(env.get("inputs", {}).get("quick") for env in envelopes):
+        quick = [s.name for s, env in zip(sections, envelopes) if env.get("inputs", {}).get("quick")]
         lines += [
-            "**Quick subset** (`--quick`): coarser grids and lower orders than the full run; "
-            "run the command without `--quick` for the paper's full set.",
+            f"**Quick subset** (`--quick`) for: {', '.join(quick)}. Coarser grids, lower orders "
+            "and a short ring; run `dispersion reproduce` without `--quick` for the paper's full set.",
             "",
         ]
     lines += ["## Contents", ""]
@@ -147,28 +80,24 @@ def render_index(
     lines.append("")
     for s in sections:
         lines += [f'<a id="{_anchor(s)}"></a>', "", s.markdown.strip(), ""]
-    lines += ["## How this page was made", "", "Regenerate it with", "", "```", command, "```", ""]
-    timing = [(s.name, f"{s.seconds:.2f}") for s in sections]
-    timing.append(("**total**", f"{total_seconds:.2f}"))
-    lines += ["Time each part took (wall clock):", ""]
-    lines += _table(("part", "seconds"), timing)
+    lines += ["## How this page was made", "",
+              "Each section was measured by the command in its row and stored as "
+              "`<section>.json` with its inputs, versions and machine; this page and its figures "
+              "were rendered from those files (`dispersion reproduce --render` renders them again "
+              "without measuring).", ""]
+    rows = [(s.name, f"{s.seconds:.2f}", env.get("command") or "", env.get("created", ""))
+            for s, env in zip(sections, envelopes)]
+    lines += _table(("section", "seconds", "command", "measured (UTC)"), rows)
     lines.append("")
-    facts = list(machine_facts().items())
-    facts.append(("started (UTC)", started.strftime("%Y-%m-%d %H:%M:%S")))
-    if jobs is not None:
-        facts.append(("sweep workers (--jobs)", str(jobs)))
-    lines += ["Machine:", ""] + _table(("fact", "value"), facts) + [""]
-    lines += ["Package versions:", ""]
-    lines += _table(("package", "version"), package_versions().items())
-    lines.append("")
+    machines = {tuple(sorted(env.get("machine", {}).items())) for env in envelopes}
+    versions = {tuple(sorted(env.get("versions", {}).items())) for env in envelopes}
+    for title, kinds, header in (("Machine", machines, ("fact", "value")),
+                                 ("Package versions", versions, ("package", "version"))):
+        for i, kind in enumerate(sorted(kinds)):
+            label = title if len(kinds) == 1 else f"{title} ({i + 1} of {len(kinds)})"
+            lines += [f"{label}:", ""] + _table(header, kind) + [""]
     return "\n".join(lines)
 
 
 def _anchor(section: SectionResult) -> str:
     return f"section-{section.name}".replace("_", "-")
-
-
-def write_index(out: Path, *args, **kwargs) -> Path:
-    """Render with :func:`render_index` and write ``out / "index.md"`` atomically."""
-    return write_text(Path(out) / "index.md", render_index(*args, **kwargs))
-

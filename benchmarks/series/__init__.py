@@ -1,0 +1,1 @@
+"""Helpers of ``benchmarks/bench_series.py`` (baselines that are not part of the package)."""

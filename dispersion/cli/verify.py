@@ -1,0 +1,53 @@
+"""``dispersion verify FILE...``: check every claim of claims files against the derivation.
+
+Exit status 0 if every claim holds as recorded, 1 if any does not, 2 for a malformed file
+(one line naming the file, line, entry and field). ``--junit FILE`` (``-``: stdout) writes a
+JUnit XML report, one test case per claim. The file format is described in
+:mod:`dispersion.claims`; the paper's eqs 14-20 are ``--paper``.
+"""
+from __future__ import annotations
+
+import sys
+
+from ..errors import InputError
+from ..io import write_text
+
+
+def register(sub) -> None:
+    p = sub.add_parser("verify", help="check claimed series/values against the derivation",
+                       description="Derive every claim of the claims files (TOML, see "
+                                   "dispersion.claims) and compare exactly; exit 1 if any "
+                                   "claim does not hold, 2 for a malformed file.")
+    p.add_argument("files", nargs="*", metavar="FILE", help="claims files (TOML)")
+    p.add_argument("--paper", action="store_true",
+                   help="also verify the paper's eqs 14-20 (the claims file shipped with the package)")
+    p.add_argument("--junit", metavar="FILE", help="write a JUnit XML report ('-' for stdout)")
+    p.add_argument("--format", choices=("text", "markdown"), default="text")
+    p.add_argument("--jobs", type=int, default=None,
+                   help="worker processes for independent derivations (default: in-process "
+                        "for series to kappa^8 or less, else the CPU count)")
+    p.set_defaults(func=run)
+
+
+def run(args) -> int:
+    from ..claims import format_results, junit_xml, load_claims, paper_claims_path, verify_claims
+
+    paths = list(args.files) + ([paper_claims_path()] if args.paper else [])
+    if not paths:
+        raise InputError("give at least one claims FILE (or --paper)")
+    if args.jobs is not None and args.jobs < 1:
+        raise InputError(f"jobs must be >= 1, got {args.jobs}")
+    claims = [c for path in paths for c in load_claims(path)]
+    result = verify_claims(claims, jobs=args.jobs)
+    if args.junit == "-":
+        sys.stdout.write(junit_xml(result))
+    else:
+        sys.stdout.write(format_results(result.results, args.format) + "\n")
+        failed = [r for r in result.results if not r.passed]
+        summary = (f"{len(result.results) - len(failed)} of {len(result.results)} claims hold "
+                   "as recorded" + (": not " + ", ".join(repr(r.name) for r in failed)
+                                    if failed else ""))
+        print(summary)
+        if args.junit:
+            write_text(args.junit, junit_xml(result))
+    return 0 if result.passed else 1

@@ -1,0 +1,335 @@
+"""Speed of the series engine: a race against Maxima and the growth of its cost with the patch.
+
+Two measurements, one result (:class:`SeriesSpeed`, stored as JSON by
+:func:`dispersion.results.save`):
+
+* **race**: the exact Rayleigh-Lamb S0 + A0 series to :math:`\\kappa^K`, nu symbolic,
+  (a) whole process, cold: ``python -m dispersion series --exact --branch both --order K
+  --format json`` against ``maxima --very-quiet -b <program>`` (the program
+  ``dispersion/data/rayleigh_lamb_series.mac``: CRE arithmetic truncated by
+  ``ratweight``/``ratwtlvl``, Horner evaluation, leading balance once, one linear equation
+  per order), wall clock and peak resident memory of each child (GNU ``time``);
+  the same command through its lean entry ``python -m dispersion.cli.series`` (this
+  subcommand alone, without the other subcommands' imports, sympy-free) is timed too;
+  (b) compute only: our in-process time for the same work (flint kernel and the printed
+  strings) against the compute time Maxima reports itself (``elapsed_run_time()``).
+  Every coefficient of both is compared exactly at two rational values of nu.
+* **scaling**: seconds for the discrete S0 + A0 series to :math:`\\kappa^8` against the number
+  n of control points (degree p = 2, 3, 4) for the consistent, lumped and singular masses,
+  with the growth exponent fitted by least squares on log t = a + b log n (at least 4 points;
+  the residual is the rms of the log misfit).
+
+Maxima runs only if it is installed (``shutil.which("maxima")``); otherwise the result says so.
+
+>>> fit_growth([3, 4, 6, 8], [1.0, 8 / 3.375, 8.0, 8 / 0.421875])["exponent"]
+3.0
+"""
+from __future__ import annotations
+
+import functools
+import math
+import re
+import shutil
+import subprocess
+import sys
+import time
+from dataclasses import dataclass, field
+from fractions import Fraction
+from importlib import resources
+from pathlib import Path
+
+from .errors import InputError
+
+__all__ = [
+    "TIMEOUT", "TIMEOUT_MAX", "RacePoint", "ScalingPoint", "GrowthFit", "SeriesSpeed",
+    "fit_growth", "maxima_program", "measure", "parse_maxima_output", "race", "run_child",
+    "scaling",
+]
+
+#: Default and largest ceiling (seconds) for one child process of the race.
+TIMEOUT = 120.0
+TIMEOUT_MAX = 600.0
+_NU_PROBES = (Fraction(3, 10), Fraction(-2, 7))
+
+
+@dataclass(frozen=True)
+class RacePoint:
+    """One order of the race: seconds and peak MiB of each side (None: not run / failed)."""
+
+    order: int
+    ours_process_s: float | None
+    ours_compute_s: float | None
+    ours_peak_mib: float | None
+    ours_lean_process_s: float | None = None  # ``python -m dispersion.cli.series``: no sympy
+    maxima_process_s: float | None = None
+    maxima_compute_s: float | None = None
+    maxima_peak_mib: float | None = None
+    agree: bool | None = None  # every coefficient equal (None: Maxima not run)
+
+
+@dataclass(frozen=True)
+class ScalingPoint:
+    mass: str
+    p: int
+    n: int
+    order: int
+    seconds: float
+
+
+@dataclass(frozen=True)
+class GrowthFit:
+    """t ~ C n^exponent fitted on ``points`` (n, seconds); ``monotone``: t increases with n."""
+
+    mass: str
+    p: int
+    exponent: float
+    residual: float
+    monotone: bool
+    points: int
+
+
+@dataclass(frozen=True)
+class SeriesSpeed:
+    race: tuple[RacePoint, ...]
+    scaling: tuple[ScalingPoint, ...]
+    fits: tuple[GrowthFit, ...]
+    maxima: str | None  # Maxima's version, None if not installed
+    notes: tuple[str, ...] = ()
+    settings: dict = field(default_factory=dict)
+
+
+def maxima_program() -> Path:
+    """Path of the Maxima program shipped with the package (``dispersion/data/*.mac``)."""
+    return Path(str(resources.files("dispersion") / "data" / "rayleigh_lamb_series.mac"))
+
+
+_COEF = re.compile(r"^COEF\s+(S0|A0)\s+(\d+)\s+(.+?)\s*$")
+_TIME = re.compile(r"^TIME\s+([0-9.eE+-]+)\s*$")
+
+
+def parse_maxima_output(text: str) -> tuple[dict[str, dict[int, str]], float | None]:
+    """The ``COEF <branch> <power> <expr>`` and ``TIME <s>`` lines of the Maxima program.
+
+    >>> parse_maxima_output("junk\\nCOEF S0 2 -2/(nu-1)\\nTIME 0.25\\n")
+    ({'S0': {2: '-2/(nu-1)'}}, 0.25)
+    """
+    coeffs: dict[str, dict[int, str]] = {}
+    seconds = None
+    for line in text.splitlines():
+        if m := _COEF.match(line.strip()):
+            coeffs.setdefault(m[1], {})[int(m[2])] = m[3]
+        elif m := _TIME.match(line.strip()):
+            seconds = float(m[1])
+    return coeffs, seconds
+
+
+def run_child(cmd: list[str], timeout: float, cwd: str | None = None):
+    """Run ``cmd``; return ``(wall seconds, peak RSS MiB, stdout, exit status)``, None on timeout.
+
+    The peak memory is the child's own, read by GNU ``time -f %M`` (a forked child's own
+    ``ru_maxrss`` starts at the parent's size, so the parent cannot measure it directly);
+    None if ``/usr/bin/time`` is absent.
+    """
+    import tempfile
+
+    gnu_time = _gnu_time()
+    with tempfile.TemporaryDirectory(prefix="dispersion-rss-") as tmp:
+        rss_file = Path(tmp) / "rss"
+        full = [gnu_time, "-f", "%M", "-o", str(rss_file), *cmd] if gnu_time else cmd
+        start = time.perf_counter()
+        try:
+            proc = subprocess.run(full, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
+                                  text=True, cwd=cwd, timeout=timeout, check=False)
+        except subprocess.TimeoutExpired:
+            return None
+        wall = time.perf_counter() - start
+        peak = None
+        if gnu_time and rss_file.exists():
+            text = rss_file.read_text().strip().splitlines()
+            if text and text[-1].isdigit():
+                peak = int(text[-1]) / 1024.0
+    return wall, peak, proc.stdout, proc.returncode
+
+
+@functools.lru_cache(maxsize=1)
+def _gnu_time() -> str | None:
+    """Path of GNU ``time`` if it accepts ``-f %M -o FILE`` (Debian package ``time``)."""
+    import tempfile
+
+    exe = shutil.which("time") or ("/usr/bin/time" if Path("/usr/bin/time").exists() else None)
+    if exe is None:
+        return None
+    with tempfile.TemporaryDirectory() as tmp:
+        probe = subprocess.run([exe, "-f", "%M", "-o", str(Path(tmp) / "m"), sys.executable,
+                                "-c", "pass"], capture_output=True, check=False)
+        ok = probe.returncode == 0 and (Path(tmp) / "m").is_file()
+    return exe if ok else None
+
+
+def _ours_compute(order: int) -> tuple[float, dict[str, dict[int, str]]]:
+    """In-process: the same work as the CLI's JSON path (flint kernel + printed strings)."""
+    from .power_balance import exact_series_raw, format_coefficient
+
+    start = time.perf_counter()
+    out = {b: {k: format_coefficient(a, d) for k, a, d in exact_series_raw(b, order)}
+           for b in ("S0", "A0")}
+    return time.perf_counter() - start, out
+
+
+def _value(text: str, nu: Fraction) -> Fraction:
+    """Exact value of a coefficient string (ours or Maxima's linear syntax) at a rational nu."""
+    expr = text.replace("^", "**")
+    if not re.fullmatch(r"[0-9nu+\-*/() ]+", expr):
+        raise InputError(f"unexpected coefficient text {text!r}")
+    expr = re.sub(r"(\d+)", r"F(\1)", expr)
+    return eval(expr, {"__builtins__": {}}, {"F": Fraction, "nu": nu})  # noqa: S307 - checked
+
+
+def _agree(ours: dict, theirs: dict) -> bool:
+    for branch, coeffs in ours.items():
+        if set(coeffs) != set(theirs.get(branch, {})):
+            return False
+        for power, text in coeffs.items():
+            for nu in _NU_PROBES:
+                if _value(text, nu) != _value(theirs[branch][power], nu):
+                    return False
+    return True
+
+
+def _maxima_version(exe: str) -> str:
+    try:
+        out = subprocess.run([exe, "--version"], capture_output=True, text=True, timeout=30)
+        return out.stdout.strip() or "unknown"
+    except (OSError, subprocess.SubprocessError):
+        return "unknown"
+
+
+def race(orders, timeout: float = TIMEOUT, maxima: str | None = "maxima",
+         notes: list | None = None, maxima_max_order: int = 64) -> tuple[RacePoint, ...]:
+    """Race ours against Maxima at each order of ``orders`` (Maxima skipped if ``None`` and
+    above ``maxima_max_order``)."""
+    notes = [] if notes is None else notes
+    exe = shutil.which(maxima) if maxima else None
+    program = maxima_program()
+    points = []
+    for order in orders:
+        cmd = [sys.executable, "-m", "dispersion", "series", "--exact", "--branch", "both",
+               "--order", str(order), "--format", "json"]
+        run = run_child(cmd, timeout)
+        if run is None or run[3] != 0:
+            notes.append(f"ours at kappa^{order}: " + ("timeout" if run is None else
+                                                       f"exit {run[3]}"))
+            points.append(RacePoint(order, None, None, None))
+            continue
+        lean = run_child([sys.executable, "-m", "dispersion.cli.series", *cmd[4:]], timeout)
+        compute, ours = _ours_compute(order)
+        point = dict(order=order, ours_process_s=run[0], ours_compute_s=compute,
+                     ours_peak_mib=run[1],
+                     ours_lean_process_s=lean[0] if lean and lean[3] == 0 else None)
+        if exe is not None and order <= maxima_max_order:
+            with _batch_file(order, program) as (folder, name):
+                mrun = run_child([exe, "--very-quiet", "-b", name], timeout, cwd=folder)
+            if mrun is None:
+                notes.append(f"Maxima at kappa^{order}: stopped after {timeout:g} s")
+            else:
+                coeffs, seconds = parse_maxima_output(mrun[2])
+                point.update(maxima_process_s=mrun[0], maxima_compute_s=seconds,
+                             maxima_peak_mib=mrun[1], agree=_agree(ours, coeffs))
+        points.append(RacePoint(**point))
+    return tuple(points)
+
+
+class _batch_file:
+    """A temporary folder with ``run.mac``: ``N : order/2$`` then the shipped program."""
+
+    def __init__(self, order: int, program: Path):
+        self.order, self.program = order, program
+
+    def __enter__(self):
+        import tempfile
+
+        self._tmp = tempfile.TemporaryDirectory(prefix="dispersion-maxima-")
+        folder = Path(self._tmp.name)
+        path = str(self.program).replace("\\", "/").replace('"', '\\"')
+        (folder / "run.mac").write_text(f'N : {self.order // 2}$\nbatchload("{path}")$\n',
+                                        encoding="utf-8")
+        return str(folder), "run.mac"
+
+    def __exit__(self, *exc):
+        self._tmp.cleanup()
+
+
+def fit_growth(ns, seconds) -> dict:
+    """Least-squares fit of log t = a + b log n: ``{"exponent": b, "residual": rms}``.
+
+    Needs at least 4 points with t > 0; the residual is the rms of the log misfit.
+    """
+    pts = [(math.log(n), math.log(t)) for n, t in zip(ns, seconds) if t and t > 0]
+    if len(pts) < 4:
+        raise InputError(f"a growth fit needs at least 4 points, got {len(pts)}")
+    mx = sum(x for x, _ in pts) / len(pts)
+    my = sum(y for _, y in pts) / len(pts)
+    sxx = sum((x - mx) ** 2 for x, _ in pts)
+    b = sum((x - mx) * (y - my) for x, y in pts) / sxx
+    a = my - b * mx
+    rms = math.sqrt(sum((y - a - b * x) ** 2 for x, y in pts) / len(pts))
+    return {"exponent": round(b, 6), "residual": rms}
+
+
+def scaling(grid: dict[int, tuple[int, ...]], masses=("consistent", "lumped", "singular"),
+            order: int = 8) -> tuple[tuple[ScalingPoint, ...], tuple[GrowthFit, ...]]:
+    """Seconds of the discrete S0 + A0 series to kappa^order on ``grid`` = {p: (n, ...)}."""
+    from . import defaults
+    from .power_balance import discrete_series_raw
+
+    discrete_series_raw(("S0",), 2, n=3, model="x-exact")  # warm-up: imports and flint
+    points, fits = [], []
+    for mass in masses:
+        for p, ns in grid.items():
+            times = []
+            for n in ns:
+                start = time.perf_counter()
+                discrete_series_raw(("S0", "A0"), order, p=p, n=n, model=defaults.MODEL,
+                                    r=defaults.R, mass=mass, contact=defaults.CONTACT,
+                                    gamma_s=defaults.GAMMA_S)
+                times.append(time.perf_counter() - start)
+                points.append(ScalingPoint(mass, p, n, order, times[-1]))
+            if len(ns) >= 4:
+                f = fit_growth(ns, times)
+                fits.append(GrowthFit(mass, p, f["exponent"], f["residual"],
+                                      all(b > a for a, b in zip(times, times[1:])), len(ns)))
+    return tuple(points), tuple(fits)
+
+
+def measure(quick: bool = False, executor=None, *, timeout: float = TIMEOUT,
+            maxima: str | None = "maxima", extended: bool = False) -> SeriesSpeed:
+    """The race and the scaling table (``quick``: fewer orders and sizes, for CI).
+
+    Full: ours at kappa^8, 16, 32, 64 and Maxima to kappa^32; scaling at kappa^8 for p = 2
+    (n = 3..10), 3 and 4 (four sizes each), about half a minute on a quiet 2-core machine as
+    ``dispersion reproduce`` needs. ``extended`` (``dispersion bench``) adds Maxima at
+    kappa^64 and n = 12. ``executor`` is not used: the timings run one after the other so
+    that they do not compete for the cores.
+    """
+    if not (isinstance(timeout, (int, float)) and 0 < timeout <= TIMEOUT_MAX):
+        raise InputError(f"timeout (seconds per child process) must lie in (0, {TIMEOUT_MAX:g}], "
+                         f"got {timeout!r}")
+    notes: list[str] = []
+    orders = (8, 16) if quick else (8, 16, 32, 64)
+    grid = {2: (3, 4, 5, 6)} if quick else {2: (3, 4, 6, 8, 10) + ((12,) if extended else ()),
+                                             3: (4, 5, 6, 7), 4: (5, 6, 7, 8)}
+    maxima_max_order = 64 if extended else 32
+    exe = shutil.which(maxima) if maxima else None
+    if exe is None:
+        notes.append(f"Maxima not found ({maxima!r} on PATH): the race shows ours only "
+                     "(apt-get install -y maxima)")
+    if _gnu_time() is None:
+        notes.append("GNU time not found: no peak memory (apt-get install -y time)")
+    race_points = race(orders, timeout, maxima, notes, maxima_max_order)
+    points, fits = scaling(grid)
+    return SeriesSpeed(race_points, points, fits, _maxima_version(exe) if exe else None,
+                       tuple(notes), {"quick": quick, "orders": list(orders),
+                                      "grid": {str(k): list(v) for k, v in grid.items()},
+                                      "scaling_order": 8, "timeout_s": timeout,
+                                      "maxima_max_order": maxima_max_order,
+                                      "extended": extended})

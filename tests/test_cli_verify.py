@@ -1,0 +1,95 @@
+"""``dispersion verify``: the acceptance test of issue 13 and the exit statuses."""
+from __future__ import annotations
+
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import pytest
+
+import dispersion.cli as cli
+from dispersion.testing import assert_claims_file
+
+EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "claims.toml"
+
+# eq (14) to kappa^4 (exact S0) and eq (15) to kappa^6 (exact A0), as printed in the paper
+CLAIMS = """\
+[[claim]]
+name = "S0 bar speed"
+source = "eq (14)"
+model = "rayleigh-lamb"
+branch = "S0"
+coefficients = {{2 = "2/(1 - nu)", 4 = "-2*nu^2/(3*(1 - nu)^3)"}}
+
+[[claim]]
+name = "A0 flexural"
+source = "eq (15)"
+model = "rayleigh-lamb"
+branch = "A0"
+coefficients = {{4 = "2/(3*(1 - nu))", 6 = "2*(7*nu - {a0})/(45*(1 - nu)^2)"}}
+"""
+
+
+@pytest.fixture
+def main(monkeypatch):
+    """``dispersion`` with the verify subcommand registered (until the lead registers it)."""
+    if "verify" not in cli._SUBCOMMANDS:
+        monkeypatch.setattr(cli, "_SUBCOMMANDS", cli._SUBCOMMANDS + ("verify",))
+    return cli.main
+
+
+def test_stranger_mistypes_one_coefficient_then_fixes_it(main, tmp_path, capsys):
+    path = tmp_path / "manuscript.toml"
+    path.write_text(CLAIMS.format(a0=71))  # eq (15) has 17: digits swapped
+    assert main(["verify", str(path)]) == 1
+    out = capsys.readouterr().out
+    bad = [line for line in out.splitlines() if line.startswith("A0 flexural")]
+    assert len(bad) == 1 and "differs" in bad[0]
+    # 2 (7 nu - 17) = 14 nu - 34 over the same denominator 45 (1 - nu)^2: one term changed
+    assert "kappa^6: numerator term -34 -> -142 (same denominator 45*(nu - 1)**2)" in bad[0]
+    assert "S0 bar speed" in out and "holds" in next(
+        line for line in out.splitlines() if line.startswith("S0 bar speed"))
+    assert "not 'A0 flexural'" in out
+    with pytest.raises(AssertionError, match="(?s)A0 flexural.*printed.*derived"):
+        assert_claims_file(path)
+
+    path.write_text(CLAIMS.format(a0=17))
+    junit = tmp_path / "junit.xml"
+    assert main(["verify", str(path), "--junit", str(junit)]) == 0
+    assert "2 of 2 claims hold as recorded" in capsys.readouterr().out
+    root = ET.parse(junit).getroot()
+    assert [c.get("name") for c in root.iter("testcase")] == ["S0 bar speed", "A0 flexural"]
+    assert root.get("failures") == "0" and root.get("errors") == "0"
+    assert len(assert_claims_file(path)) == 2
+
+
+def test_paper_file_exits_1_naming_eqs_17_and_19(main, capsys):
+    assert main(["verify", "--paper"]) == 1
+    out = capsys.readouterr().out
+    assert "not 'eq 17', 'eq 19'" in out.splitlines()[-1]
+
+
+def test_junit_to_stdout(main, capsys):
+    assert main(["verify", str(EXAMPLE), "--junit", "-"]) == 0
+    root = ET.fromstring(capsys.readouterr().out)
+    assert int(root.get("tests")) == 4 and root.get("failures") == "0"
+
+
+@pytest.mark.parametrize("text, field", [
+    ('[[claim]]\nname = "a"\nbranch = "S0"\nmodel = "rayleigh-lamb"\nwho = 1\n', "field 'who'"),
+    ('[[claim]]\nname = "a"\nbranch = "S0"\nmodel = "rayleigh-lamb"\n'
+     'coefficients = {2 = "2/(1-"}\n', "field '2'"),
+    ('[[claim]]\nname = "a"\nbranch = "S0"\nmass = "heavy"\ncoefficients = {2 = "1"}\n',
+     "field 'mass'"),
+    ('[[claim\nname = "a"\n', "malformed TOML"),
+])
+def test_bad_file_is_one_line_and_exit_2(main, tmp_path, capsys, text, field):
+    path = tmp_path / "bad.toml"
+    path.write_text(text)
+    assert main(["verify", str(path)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and str(path) in err and field in err
+
+
+def test_missing_file_and_no_file_exit_2(main, tmp_path, capsys):
+    assert main(["verify", str(tmp_path / "none.toml")]) == 2
+    assert main(["verify"]) == 2

@@ -1,0 +1,278 @@
+"""Output safety of dispersion.io: atomic, umask modes, stdout/devices/links, checks, units."""
+from __future__ import annotations
+
+import errno
+import os
+import stat
+import subprocess
+import sys
+import threading
+from pathlib import Path
+
+import pytest
+
+from dispersion import io
+from dispersion.errors import DispersionError, InputError
+
+
+@pytest.fixture
+def umask_022():
+    old = os.umask(0o022)
+    yield
+    os.umask(old)
+
+
+def _mode(path) -> int:
+    return stat.S_IMODE(os.stat(path).st_mode)
+
+
+def _dead_pid() -> int:
+    proc = subprocess.Popen([sys.executable, "-c", "pass"])
+    proc.wait()
+    return proc.pid
+
+
+def test_umask_read_without_change():
+    old = os.umask(0o027)
+    try:
+        assert io.umask() == 0o027
+        assert io.umask() == 0o027
+    finally:
+        os.umask(old)
+
+
+@pytest.mark.parametrize("mask, expected", [(0o022, 0o644), (0o077, 0o600), (0o002, 0o664)])
+def test_new_files_and_folders_follow_umask(tmp_path, mask, expected):
+    old = os.umask(mask)
+    try:
+        f = io.write_text(tmp_path / "sub" / "a.txt", "x")
+        g = io.write_files(tmp_path / "unit", {"b.csv": "y"})[0]
+    finally:
+        os.umask(old)
+    assert _mode(f) == expected and _mode(g) == expected
+    assert _mode(tmp_path / "sub") == 0o777 & ~mask
+    assert _mode(tmp_path / "unit") == 0o777 & ~mask
+
+
+def test_replaced_file_keeps_its_mode(tmp_path, umask_022):
+    target = tmp_path / "a.txt"
+    target.write_text("old")
+    os.chmod(target, 0o640)
+    io.write_text(target, "new")
+    assert target.read_text() == "new" and _mode(target) == 0o640
+
+
+def test_dash_is_stdout(tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    io.write_text("-", "to stdout\n")
+    assert capsys.readouterr().out == "to stdout\n"
+    assert not (tmp_path / "-").exists()
+
+
+def test_device_is_written_through_not_replaced():
+    before = os.stat("/dev/null")
+    io.write_text("/dev/null", "discarded")
+    after = os.stat("/dev/null")
+    assert stat.S_ISCHR(after.st_mode) and after.st_ino == before.st_ino
+
+
+def test_symlink_to_device_stays(tmp_path):
+    link = tmp_path / "out.csv"
+    link.symlink_to("/dev/null")
+    io.write_text(link, "data")
+    assert link.is_symlink() and os.readlink(link) == "/dev/null"
+
+
+def test_symlink_to_file_keeps_link_and_replaces_target(tmp_path):
+    target = tmp_path / "real.txt"
+    target.write_text("old")
+    link = tmp_path / "link.txt"
+    link.symlink_to(target)
+    io.write_text(link, "new")
+    assert link.is_symlink() and target.read_text() == "new"
+
+
+def test_fifo_is_written_through(tmp_path):
+    fifo = tmp_path / "pipe"
+    os.mkfifo(fifo)
+    got = []
+    reader = threading.Thread(target=lambda: got.append(fifo.read_text()))
+    reader.start()
+    io.write_text(fifo, "through the pipe")
+    reader.join(5)
+    assert got == ["through the pipe"] and stat.S_ISFIFO(os.stat(fifo).st_mode)
+
+
+def test_full_device_is_one_line_error():
+    with pytest.raises(io.OutputError) as info:
+        io.write_text("/dev/full", "x" * 100000, option="--csv")
+    assert "--csv /dev/full" in str(info.value) and "\n" not in str(info.value)
+
+
+def test_full_disk_leaves_old_file_and_no_temporary(tmp_path, monkeypatch):
+    target = tmp_path / "a.txt"
+    target.write_text("old")
+
+    def full(fd):
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    monkeypatch.setattr(io.os, "fsync", full)
+    with pytest.raises(io.OutputError, match="No space left"):
+        io.write_text(target, "new")
+    assert target.read_text() == "old"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.txt"]
+
+
+def test_parent_is_a_file_is_input_error(tmp_path):
+    (tmp_path / "file").write_text("")
+    with pytest.raises(InputError, match="--out"):
+        io.write_text(tmp_path / "file" / "x.txt", "x", option="--out")
+
+
+def test_existing_folder_is_not_overwritten(tmp_path):
+    (tmp_path / "d").mkdir()
+    with pytest.raises(InputError, match="existing folder"):
+        io.write_text(tmp_path / "d", "x")
+
+
+def test_error_inside_body_leaves_nothing(tmp_path):
+    with pytest.raises(ZeroDivisionError), io.atomic_write(tmp_path / "a.txt") as fh:
+        fh.write("partial")
+        1 / 0
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("make, path, match", [
+    (None, "", "must be a file path"),
+    (None, "   ", "must be a file path"),
+    ("dir", "d", "existing folder"),
+    (None, "missing/x.csv", "does not exist"),
+    ("file", "f/x.csv", "not a folder"),
+    (None, "x/", "folder path"),
+    ("dangling", "link.csv", "dangling"),
+])
+def test_check_output_file_refuses(tmp_path, make, path, match):
+    if make == "dir":
+        (tmp_path / "d").mkdir()
+    elif make == "file":
+        (tmp_path / "f").write_text("")
+    elif make == "dangling":
+        (tmp_path / "link.csv").symlink_to(tmp_path / "nowhere")
+    arg = str(tmp_path / path) if path.strip() else path
+    if path == "x/":
+        arg = str(tmp_path) + "/x/"
+    with pytest.raises(InputError, match=match) as info:
+        io.check_output_file(arg, option="--csv")
+    assert str(info.value).startswith("--csv") and "\n" not in str(info.value)
+
+
+def test_check_output_file_accepts(tmp_path):
+    assert io.check_output_file("-", option="--csv") == "-"
+    assert io.check_output_file("/dev/null", option="--csv") == Path("/dev/null")
+    assert io.check_output_file(tmp_path / "a.csv", option="--csv") == tmp_path / "a.csv"
+    assert io.check_output_file(tmp_path / "n" / "a.csv", create_parents=True) \
+        == tmp_path / "n" / "a.csv"
+    with pytest.raises(InputError, match="'-' is not accepted"):
+        io.check_output_file("-", option="--figure", allow_stdout=False)
+    with pytest.raises(InputError, match=r"--figure must end in \.png, \.pdf"):
+        io.check_output_file(tmp_path / "f.txt", option="--figure", suffixes=(".png", ".pdf"))
+    assert not list(tmp_path.iterdir())  # a check creates nothing
+
+
+@pytest.mark.skipif(os.geteuid() == 0, reason="root ignores permission bits")
+def test_check_output_refuses_read_only_folder(tmp_path):
+    ro = tmp_path / "ro"
+    ro.mkdir(mode=0o555)
+    with pytest.raises(InputError, match="not writable"):
+        io.check_output_file(ro / "a.csv", option="--csv")
+    with pytest.raises(InputError, match="not writable"):
+        io.check_output_dir(ro / "out", option="--out")
+
+
+@pytest.mark.parametrize("path, match", [("", "folder path"), ("-", "folder path"),
+                                         ("file", "existing file"), ("file/sub", "not a folder")])
+def test_check_output_dir_refuses(tmp_path, path, match):
+    (tmp_path / "file").write_text("")
+    arg = str(tmp_path / path) if path not in ("", "-") else path
+    with pytest.raises(InputError, match=match):
+        io.check_output_dir(arg, option="--out")
+
+
+def test_check_output_dir_accepts_new_and_existing(tmp_path):
+    assert io.check_output_dir(tmp_path / "a" / "b") == tmp_path / "a" / "b"
+    assert io.check_output_dir(tmp_path) == tmp_path
+    assert not (tmp_path / "a").exists()
+
+
+def test_write_files_all_or_old_on_failure(tmp_path, monkeypatch):
+    (tmp_path / "a.csv").write_text("old a")
+    (tmp_path / "b.png").write_text("old b")
+    (tmp_path / "user.tex").write_text("mine")
+    calls = []
+    real = os.fsync
+
+    def fail_second(fd):
+        calls.append(fd)
+        if len(calls) == 2:
+            raise OSError(errno.ENOSPC, "No space left on device")
+        real(fd)
+
+    monkeypatch.setattr(io.os, "fsync", fail_second)
+    with pytest.raises(DispersionError):
+        io.write_files(tmp_path, {"a.csv": "new a", "b.png": b"new b"})
+    monkeypatch.undo()
+    assert (tmp_path / "a.csv").read_text() == "old a"
+    assert (tmp_path / "b.png").read_text() == "old b"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.csv", "b.png", "user.tex"]
+    io.write_files(tmp_path, {"a.csv": "new a", "b.png": b"new b"})
+    assert (tmp_path / "a.csv").read_text() == "new a"
+    assert (tmp_path / "user.tex").read_text() == "mine"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.csv", "b.png", "user.tex"]
+
+
+def test_write_files_finishes_a_journal_left_by_a_kill(tmp_path):
+    # the state a SIGKILL between the renames leaves: a.csv renamed, b.csv still staged
+    (tmp_path / "a.csv").write_text("new a")
+    (tmp_path / "b.csv").write_text("old b")
+    (tmp_path / ".b.csv.1.w.tmp").write_text("new b")
+    (tmp_path / io.JOURNAL).write_text(
+        '{"pid": 1, "renames": [[".a.csv.1.w.tmp", "a.csv"], [".b.csv.1.w.tmp", "b.csv"]]}')
+    io.remove_stale_temporaries(tmp_path)
+    assert (tmp_path / "b.csv").read_text() == "new b"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.csv", "b.csv"]
+
+
+def test_write_files_kill_during_staging_keeps_old(tmp_path):
+    # a child stages two big files and is SIGKILLed: the targets keep their old content
+    (tmp_path / "a.bin").write_text("old")
+    code = ("import os, signal, dispersion.io as io\n"
+            "real = os.fsync\n"
+            "def kill(fd):\n"
+            "    real(fd); os.kill(os.getpid(), signal.SIGKILL)\n"
+            "io.os.fsync = kill\n"
+            f"io.write_files({str(tmp_path)!r}, {{'a.bin': b'new', 'b.bin': b'new'}})\n")
+    proc = subprocess.Popen([sys.executable, "-c", code])
+    assert proc.wait(60) == -9
+    assert (tmp_path / "a.bin").read_text() == "old" and not (tmp_path / "b.bin").exists()
+    assert [p.name for p in io.remove_stale_temporaries(tmp_path)] == [f".a.bin.{proc.pid}.w.tmp"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.bin"]
+
+
+@pytest.mark.parametrize("name", ["", "/abs.csv", "../up.csv", io.JOURNAL])
+def test_write_files_refuses_names_outside(tmp_path, name):
+    with pytest.raises(InputError, match="relative paths"):
+        io.write_files(tmp_path, {name: "x"})
+
+
+def test_write_files_refuses_to_replace_a_link(tmp_path):
+    (tmp_path / "l.csv").symlink_to("/dev/null")
+    with pytest.raises(InputError, match="not a regular file"):
+        io.write_files(tmp_path, {"l.csv": "x"})
+
+
+def test_stale_temporaries_only_of_dead_writers(tmp_path):
+    dead = _dead_pid()
+    (tmp_path / f".a.csv.{dead}.tmp").write_text("")
+    (tmp_path / f".b.csv.{os.getpid()}.tmp").write_text("")
+    (tmp_path / ".hidden.tmp").write_text("")  # not ours: no pid
+    assert [p.name for p in io.stale_temporaries(tmp_path)] == [f".a.csv.{dead}.tmp"]

@@ -203,9 +203,9 @@ def measure_branches(quick: bool = False, executor: Executor | None = None) -> B
     settings = [(0.05, 1e-6), (0.05, 1e-15)] if quick else None
     acc = tracer_accuracy(nu, tr_k, settings=settings, repeat=1 if quick else 3,
                           mpmath_points=n_check)
-    d_k = np.linspace(0, 5, 2000 if quick else 20000)
+    d_k = np.linspace(0, 5, 1000 if quick else 2000)
     configs = ([(2, 3, "consistent"), (2, 3, "singular"), (3, 4, "consistent")] if quick else
-               [(p, n, m) for p in (2, 3) for n in (p + 1, p + 3, p + 7)
+               [(p, n, m) for p in (2, 3) for n in (p + 1, p + 3)
                 for m in ("consistent", "lumped", "singular")])
     bd = bar_dispersion((1, 2, 3, 4))
     return BranchesStudy(
@@ -224,6 +224,6 @@ def measure_branches(quick: bool = False, executor: Executor | None = None) -> B
                 "reference": list(acc.reference),
                 "reference_mpmath_error": acc.reference_mpmath_error,
                 "mpmath_points": acc.mpmath_points, "rows": list(acc.rows)},
-        discrete_speed=tuple(discrete_speed(nu, d_k, configs, repeat=1 if quick else 3)),
+        discrete_speed=tuple(discrete_speed(nu, d_k, configs, repeat=1 if quick else 2)),
         fd_per_omega_aluminium=ALUMINIUM.c_T / math.pi * 1e-3,
     )

@@ -190,90 +190,145 @@ class _Key:
         return isinstance(other, _Key) and self.key == other.key
 
 
-def _mp_pencil(patch: PlatePatch, nu: float):
-    """``kappa -> (K, M)`` as mpmath matrices, from the exact terms of :func:`stiffness_terms`."""
-    return _mp_pencil_cached(_Key(patch), nu)
+def _arb_eval(expr, k):
+    """A sympy expression in kappa (sums, products, integer powers, rationals, cos, sin) as an
+    arb ball at ``k``: the exact formulas of :func:`x_functions`, evaluated without rounding
+    the rational coefficients to floats."""
+    import flint
+
+    if expr.is_Symbol:
+        return k
+    if expr.is_Rational:
+        return flint.arb(int(expr.p)) / int(expr.q)
+    if expr.is_Add:
+        return sum((_arb_eval(a, k) for a in expr.args), flint.arb(0))
+    if expr.is_Mul:
+        out = flint.arb(1)
+        for a in expr.args:
+            out = out * _arb_eval(a, k)
+        return out
+    if expr.is_Pow and expr.exp.is_Integer:
+        return _arb_eval(expr.base, k) ** int(expr.exp)
+    if isinstance(expr, sympy.cos):
+        return _arb_eval(expr.args[0], k).cos()
+    if isinstance(expr, sympy.sin):
+        return _arb_eval(expr.args[0], k).sin()
+    raise InputError(f"cannot evaluate {expr} in interval arithmetic")
 
 
 @functools.lru_cache(maxsize=16)
-def _mp_pencil_cached(key: _Key, nu: float):
+def _exact_terms(key: _Key, nu: float):
+    """``[(coefficient expr, B)]`` for K, dK/dkappa, M, dM/dkappa (exact sympy data)."""
     patch = key.patch
     k = sympy.Symbol("kappa")
     nu_q = sympy.nsimplify(nu, rational=True)
     mat, xf = lame(nu_q), x_functions(patch, k)
-    K = sum((mat[m] * xf[f] * B for m, f, B in stiffness_terms(patch)), sympy.zeros(2 * patch.n))
-    M = xf["mx"] * mass_block(patch)
-    return tuple(sympy.lambdify(k, X, "mpmath") for X in (K, M, K.diff(k), M.diff(k)))
+    K = [(sympy.sympify(mat[m] * xf[f]), B) for m, f, B in stiffness_terms(patch)]
+    M = [(sympy.sympify(xf["mx"]), mass_block(patch))]
+    return {"K": K, "dK": [(c.diff(k), B) for c, B in K], "M": M,
+            "dM": [(c.diff(k), B) for c, B in M]}
+
+
+def _arb_rational_matrix(B):
+    import flint
+
+    return flint.arb_mat([[flint.arb(int(v.p)) / int(v.q) for v in row] for row in B.tolist()])
+
+
+@functools.lru_cache(maxsize=64)
+def _projected_terms(key: _Key, nu: float, which: str, basis: bytes | None, shape, prec: int):
+    """``[(coefficient expr, E^T B E as arb_mat)]`` at working precision ``prec`` (cached)."""
+    import flint
+
+    n2 = 2 * key.patch.n
+    Ef = np.eye(n2) if basis is None else np.frombuffer(basis).reshape(shape)
+    E = flint.arb_mat(Ef.tolist())
+    Et = E.transpose()
+    return [(c, Et * _arb_rational_matrix(B) * E)
+            for c, B in _exact_terms(key, nu)[which] if c != 0]
+
+
+def _arb_matrix(key, nu, which, basis, k):
+    import flint
+
+    raw = None if basis is None else np.ascontiguousarray(basis, dtype=float)
+    terms = _projected_terms(key, nu, which, None if raw is None else raw.tobytes(),
+                             None if raw is None else raw.shape, flint.ctx.prec)
+    n = (2 * key.patch.n) if basis is None else np.shape(basis)[1]
+    out = flint.arb_mat(n, n)
+    for c, PB in terms:
+        out += _arb_eval(c, k) * PB
+    return out
 
 
 def extended_frequencies(patch: PlatePatch, nu: float, kappa, basis=None,
                          dps: int = 40, slopes: bool = False):
-    """Finite :math:`\\Omega` of the pencil at one ``kappa`` in ``dps``-digit arithmetic.
+    """Finite :math:`\\Omega` of the pencil at one ``kappa`` in ``dps``-digit ball arithmetic.
 
     The reference (and the fallback) where float eigenvalues lose their relative accuracy:
     :math:`\\Omega^2` of A0 is about :math:`\\kappa^4`, so at :math:`\\kappa = 10^{-6}` it is
     1e-24 beside eigenvalues of order one. K and M are formed from the exact matrices of
-    :func:`dispersion.plate.stiffness_terms` (nu rationalised), projected on ``basis``
-    (columns spanning a mirror block, or None), massless DOFs condensed, and solved with
-    :func:`mpmath.eigsy` under :func:`mpmath.workdps`. With ``slopes=True`` also
-    :math:`d\\Omega/d\\kappa` of every mode by the eigenvector formula in the same precision
-    (returns ``(Omega, slopes)``).
+    :func:`dispersion.plate.stiffness_terms` and the exact x-functions (nu rationalised) in
+    arb ball arithmetic (python-flint), projected on ``basis`` (columns spanning a mirror
+    block, or None), massless DOFs condensed, and the eigenvalues of :math:`M^{-1}K` enclosed
+    by :meth:`flint.acb_mat.eig`. With ``slopes=True`` also :math:`d\\Omega/d\\kappa` of every
+    mode by the eigenvector formula in the same precision (returns ``(Omega, slopes)``).
 
     >>> from dispersion.plate import plate_patch
     >>> w = extended_frequencies(plate_patch(), 0.3, 1e-6)
     >>> float(w[0] / 1e-12)  # A0: Omega ~ sqrt(2 / (3 (1 - nu))) kappa^2 (eq 16)
     0.9759000729...
     """
-    import mpmath
+    import flint
 
-    Kf, Mf, dKf, dMf = _mp_pencil(patch, float(nu))
-    with mpmath.workdps(dps):
-        k = mpmath.mpf(kappa)
-        mats = [Kf(k), Mf(k)] + ([dKf(k), dMf(k)] if slopes else [])
-        if basis is not None:
-            E = mpmath.matrix(np.asarray(basis).tolist())
-            mats = [E.T * X * E for X in mats]
-        K, M = mats[0], mats[1]
-        n = K.rows
+    key, nu = _Key(patch), float(nu)
+    old = flint.ctx.prec
+    flint.ctx.prec = int(dps * 3.33) + 20
+    try:
+        k = flint.arb(float(kappa)) if not isinstance(kappa, flint.arb) else kappa
+        K, M = _arb_matrix(key, nu, "K", basis, k), _arb_matrix(key, nu, "M", basis, k)
+        n = K.nrows()
         zero = [i for i in range(n) if all(M[i, j] == 0 for j in range(n))]
         keep = [i for i in range(n) if i not in zero]
-        Krr = _mp_sub(K, keep, keep)
-        Mrr = _mp_sub(M, keep, keep)
+        Krr, Mrr = _arb_sub(K, keep, keep), _arb_sub(M, keep, keep)
         if zero:
-            Krm = _mp_sub(K, keep, zero)
-            Kmm_inv = mpmath.inverse(_mp_sub(K, zero, zero))
-            Krr = Krr - Krm * Kmm_inv * Krm.T
-        L = mpmath.cholesky(Mrr)
-        Li = mpmath.inverse(L)
-        A = Li * Krr * Li.T
-        A = (A + A.T) / 2
-        lam, Y = mpmath.eigsy(A)
-        order = sorted(range(len(lam)), key=lambda j: lam[j])
-        roots = [mpmath.sqrt(max(lam[j], 0)) for j in order]
+            Krm = _arb_sub(K, keep, zero)
+            Kmm = _arb_sub(K, zero, zero)
+            Krr = Krr - Krm * Kmm.solve(Krm.transpose())
+        A = flint.acb_mat(Mrr.solve(Krr))
+        if slopes:
+            lam, R = A.eig(right=True)
+        else:
+            lam = A.eig()
+        order = sorted(range(len(lam)), key=lambda j: float(lam[j].real.mid()))
+        roots = [max(lam[j].real.mid(), flint.arb(0)).sqrt() for j in order]
         W = np.array([float(v) for v in roots])
         if not slopes:
             return W
-        dK, dM = mats[2], mats[3]
+        dK, dM = _arb_matrix(key, nu, "dK", basis, k), _arb_matrix(key, nu, "dM", basis, k)
         G = []
         for j, w in zip(order, roots):
-            xr = Li.T * Y[:, j]
-            x = mpmath.matrix(n, 1)
+            x = flint.acb_mat(n, 1)
+            xr = flint.acb_mat([[R[a, j]] for a in range(len(keep))])
             for a, i in enumerate(keep):
-                x[i] = xr[a]
+                x[i, 0] = xr[a, 0]
             if zero:
-                xm = -Kmm_inv * (_mp_sub(K, zero, keep) * xr)
+                xm = flint.acb_mat(Kmm).solve(-flint.acb_mat(_arb_sub(K, zero, keep)) * xr)
                 for a, i in enumerate(zero):
-                    x[i] = xm[a]
-            num = (x.T * (dK - w**2 * dM) * x)[0]
-            den = 2 * w * (x.T * M * x)[0]
-            G.append(float(num / den) if w > 0 else float("nan"))
+                    x[i, 0] = xm[a, 0]
+            w_ = flint.acb(w)
+            num = (x.transpose() * flint.acb_mat(dK - w * w * dM) * x)[0, 0]
+            den = 2 * w_ * (x.transpose() * flint.acb_mat(M) * x)[0, 0]
+            G.append(float((num / den).real.mid()) if float(w) > 0 else float("nan"))
         return W, np.array(G)
+    finally:
+        flint.ctx.prec = old
 
 
-def _mp_sub(A, rows, cols):
-    import mpmath
+def _arb_sub(A, rows, cols):
+    import flint
 
-    return mpmath.matrix([[A[i, j] for j in cols] for i in rows])
+    return flint.arb_mat([[A[i, j] for j in cols] for i in rows])
 
 
 def _refine_small(patch, nu, kappa, W, basis, G=None):

@@ -323,7 +323,7 @@ def figure_speed_accuracy(tracer: Mapping, discrete_rows: Sequence[Mapping]):
                  f"{tracer['reference_mpmath_error']:.1e}", fontsize="small")
     a1.set_ylabel("max relative error of the roots")
     plot_speed_accuracy(discrete_rows, a2, label=lambda r: f"p = {r['p']}, {r['mass']}")
-    a2.set_title("discrete branches (points: n = p+1, p+3, p+7 control points)",
+    a2.set_title("discrete branches (points: n = p+1, p+3 control points)",
                  fontsize="small")
     a2.set_ylabel("max |relative error| S0/A0, kappa <= 1")
     return fig

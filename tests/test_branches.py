@@ -183,3 +183,9 @@ def test_fundamental_branches_follow_their_series_at_small_kappa():
         coef = discrete_series(label, 8, nu=NU)
         series = np.sqrt(sum(float(c) * kappa**k for k, c in coef.items()))
         assert np.allclose(br.omega[label], series, rtol=1e-10, atol=0), label
+
+
+def test_symbolic_aspect_ratio_is_refused():
+    # issue 11: a Bloch patch with the symbol r has no numeric branches
+    with pytest.raises(InputError, match="aspect ratio r"):
+        discrete_branches(plate_patch(model="bloch"), NU, [0.5])

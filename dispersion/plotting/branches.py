@@ -182,8 +182,8 @@ def figure_velocities(data: Mapping, discrete: str = "consistent", fd_per_omega=
         w, cp = _a(data["exact"][lab]["omega"]), _a(data["exact"][lab]["phase"])
         ok = np.flatnonzero(np.isfinite(cp) & (cp < 4) & (w < wmax))
         if ok.size:
-            ax_p.annotate(lab, (w[ok[-1]], cp[ok[-1]]), fontsize="x-small", xytext=(2, 2),
-                          textcoords="offset points")
+            ax_p.annotate(lab, (w[ok[-1]], cp[ok[-1]]), fontsize="x-small", textcoords="offset points",
+                          xytext=(2, 2) if lab[1:] != "0" else (-12, 5 if lab[0] == "S" else -10))
     d = data["discrete"].get(discrete)
     if d is not None:
         # folded Bloch branches (beyond the zone edge) have no exact counterpart: not drawn
@@ -276,8 +276,10 @@ def figure_shapes(shapes: Mapping):
     return fig
 
 
-def plot_speed_accuracy(rows: Sequence[Mapping], ax=None, label=None, floor: float | None = None):
-    """Error against wall time, one line per group of ``rows`` (``label(row)`` names it).
+def plot_speed_accuracy(rows: Sequence[Mapping], ax=None, label=None, floor: float | None = None,
+                        order=None):
+    """Error against wall time, one line per group of ``rows`` (``label(row)`` names it),
+    points joined in the order of ``order(row)`` (default: time).
 
     Errors below ``floor`` (the reference's own accuracy) carry no information: they are
     drawn at the floor as open markers.
@@ -288,7 +290,7 @@ def plot_speed_accuracy(rows: Sequence[Mapping], ax=None, label=None, floor: flo
     for row in rows:
         groups.setdefault(label(row), []).append(row)
     for i, (name, rs) in enumerate(groups.items()):
-        rs = sorted(rs, key=lambda r: r["time_s"])
+        rs = sorted(rs, key=order or (lambda r: r["time_s"]))
         t = np.array([r["time_s"] for r in rs])
         e = np.array([np.nan if r["error"] is None else r["error"] for r in rs])
         lo = floor if floor else 0.0
@@ -316,13 +318,14 @@ def figure_speed_accuracy(tracer: Mapping, discrete_rows: Sequence[Mapping]):
     a1, a2 = fig.subplots(1, 2)
     ref = tracer["reference"]
     plot_speed_accuracy(tracer["rows"], a1, label=lambda r: f"scan step {r['step']:g}",
-                        floor=tracer["reference_mpmath_error"])
+                        floor=tracer["reference_mpmath_error"], order=lambda r: -r["rtol"])
     a1.set_title(f"Rayleigh-Lamb tracer, {tracer['kappa_count']} kappa, Omega <= "
                  f"{tracer['omega_max']:g}; points: rtol\nerror vs reference (step {ref[0]:g}, "
-                 f"rtol {ref[1]:g}), itself vs 40-digit mpmath: "
+                 f"rtol {ref[1]:g}; rtol falls along each line), itself vs 40-digit mpmath: "
                  f"{tracer['reference_mpmath_error']:.1e}", fontsize="small")
     a1.set_ylabel("max relative error of the roots")
-    plot_speed_accuracy(discrete_rows, a2, label=lambda r: f"p = {r['p']}, {r['mass']}")
+    plot_speed_accuracy(discrete_rows, a2, label=lambda r: f"p = {r['p']}, {r['mass']}",
+                        order=lambda r: r["n"])
     a2.set_title("discrete branches (points: n = p+1, p+3 control points)",
                  fontsize="small")
     a2.set_ylabel("max |relative error| S0/A0, kappa <= 1")

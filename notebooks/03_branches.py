@@ -20,6 +20,7 @@
 # against the exact partner, and the order of accuracy fitted from it.
 
 # %%
+# %matplotlib inline
 import numpy as np
 
 from dispersion.branch_study import figure2_data

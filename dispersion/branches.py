@@ -11,6 +11,11 @@ of K, *by construction* (their eigenvalues are infinite), then
     \\hat K = K_{rr} - K_{rm} K_{mm}^{-1} K_{mr}, \\qquad
     \\det(\\hat K - \\Omega^2 M_{rr}) = 0.
 
+Accuracy at every kappa: a float eigenvalue is trusted to relative :data:`RTOL` only where
+the backward-error bound :math:`m\\epsilon\\lambda_{max}/\\lambda` says so; elsewhere (A0 and S0
+at small kappa, where :math:`\\Omega^2 \\sim \\kappa^4` or :math:`\\kappa^2` sits beside eigenvalues
+of order one) that kappa is solved again in ball arithmetic (:func:`extended_frequencies`).
+
 Where the mass keeps the mirror symmetry y -> -y (:func:`dispersion.plate.mirror_bases`),
 the pencil splits into a symmetric and an antisymmetric block and the branches are labelled
 ``S0, S1, ...`` and ``A0, A1, ...`` in increasing :math:`\\Omega` (within a block they cannot

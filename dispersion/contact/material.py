@@ -1,4 +1,4 @@
-"""St.Venant-Kirchhoff material in plane stress (geometrically nonlinear, linear in Green strain).
+"""St.Venant-Kirchhoff material in plane stress or plane strain (linear in Green strain).
 
 .. math::
 
@@ -7,11 +7,14 @@
     \\mathbf E = \\tfrac12 (\\mathbf F^T \\mathbf F - \\mathbf I),
 
 with the plane-stress modulus :math:`\\bar\\lambda = 2 \\lambda \\mu / (\\lambda + 2 \\mu)
-= E \\nu / (1 - \\nu^2)` and :math:`\\mu = E / (2 (1 + \\nu))`.
+= E \\nu / (1 - \\nu^2)` (plane strain: :math:`\\bar\\lambda = \\lambda = E \\nu /
+((1 + \\nu)(1 - 2 \\nu))`) and :math:`\\mu = E / (2 (1 + \\nu))`.
 
 >>> mat = StVenantKirchhoff(E=1.0, nu=0.25)
 >>> round(mat.lam_bar, 6), round(mat.mu, 6)
 (0.266667, 0.4)
+>>> round(StVenantKirchhoff(E=1.0, nu=0.25, plane="strain").lam_bar, 6)
+0.4
 
 References
 ----------
@@ -23,21 +26,27 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import check_nu, check_positive
+from ..errors import InputError, check_nu, check_positive
 
-__all__ = ["StVenantKirchhoff"]
+__all__ = ["PLANES", "StVenantKirchhoff"]
+
+PLANES = ("stress", "strain")
 
 
 @dataclass(frozen=True)
 class StVenantKirchhoff:
-    """Plane-stress St.Venant-Kirchhoff material: Young's modulus ``E`` (Pa), Poisson ``nu``."""
+    """St.Venant-Kirchhoff material: Young's modulus ``E`` (Pa), Poisson ``nu``, ``plane``
+    ``"stress"`` (thin) or ``"strain"`` (long)."""
 
     E: float
     nu: float
+    plane: str = "stress"
 
     def __post_init__(self):
         check_positive("E", self.E)
         check_nu(self.nu)
+        if self.plane not in PLANES:
+            raise InputError(f"plane must be one of {', '.join(PLANES)}; got {self.plane!r}")
 
     @property
     def mu(self) -> float:
@@ -45,6 +54,8 @@ class StVenantKirchhoff:
 
     @property
     def lam_bar(self) -> float:
+        if self.plane == "strain":
+            return self.E * self.nu / ((1 + self.nu) * (1 - 2 * self.nu))
         return self.E * self.nu / (1 - self.nu**2)
 
     def voigt(self) -> np.ndarray:

@@ -1,35 +1,35 @@
-"""Newmark time stepping with Lagrange-multiplier contact: standard, and contact-modified (Kane).
+"""Time stepping with Lagrange-multiplier contact: Kane's Newmark, standard Newmark, explicit.
 
 Semi-discrete problem (paper eq 5) with a linear gap :math:`\\mathbf g = \\mathbf g_0 + \\mathbf G
-\\mathbf U \\ge 0` (rigid frictionless plane) and contact force
+\\mathbf U \\ge 0` (rigid frictionless obstacle) and contact force
 :math:`\\mathbf f^c = -\\mathbf G^T \\boldsymbol\\lambda`, :math:`\\boldsymbol\\lambda \\ge 0`:
 
 .. math::
 
     \\mathbf M \\ddot{\\mathbf U} = \\mathbf f^{ext} - \\mathbf f^{int}(\\mathbf U) - \\mathbf f^c .
 
-``scheme="kane"`` (paper eqs 6-10): the acceleration splits into an internal part and a
-contact part; the predictor (8) uses only the internal part, the corrector (7) treats the
-contact part fully implicitly, giving the step equation (9)
+``scheme="kane"`` (paper eqs 6-10): the predictor (8) uses only the internal acceleration, the
+corrector (7) treats the contact part fully implicitly, giving the step equation (9)
 
 .. math::
 
     \\frac{1}{\\beta \\Delta t^2} \\mathbf M (\\mathbf U_{n+1} - \\tilde{\\mathbf U}_{n+1})
     = \\mathbf f^{ext}_{n+1} - \\mathbf f^{int}_{n+1} - \\frac{1}{2\\beta} \\mathbf f^c_{n+1}.
 
-For a singular mass the contact DOFs carry no inertia; their rows are the algebraic equations
-(12) :math:`0 = \\mathbf f^{ext,c} - \\mathbf f^{int,c} - \\mathbf f^c` and the inner rows are
-(11). Both cases are one saddle-point system in :math:`(\\mathbf U, \\boldsymbol\\mu)` with
-:math:`\\boldsymbol\\lambda = 2 \\beta \\boldsymbol\\mu` (regular mass, eq 9) or
-:math:`\\boldsymbol\\lambda = \\boldsymbol\\mu` (massless contact DOFs, eq 12, or
-``scheme="standard"``). It is solved by a semismooth Newton method on
-:math:`\\min(\\boldsymbol\\mu, c \\mathbf g) = 0` (a primal-dual active set method); the
-contact stiffness :math:`\\mathbf K_c` of eq 10 vanishes because the gap is linear.
+``beta = 0`` is the explicit central-difference scheme with the same implicit contact impulse:
+:math:`\\tfrac{2}{\\Delta t^2} \\mathbf M (\\mathbf U_{n+1} - \\tilde{\\mathbf U}_{n+1}) =
+\\mathbf G^T \\boldsymbol\\lambda` on the rows with mass. Rows without mass (singular mass,
+eqs 11-12) are the algebraic equations :math:`\\mathbf 0 = \\mathbf f^{ext} - \\mathbf f^{int}
+- \\mathbf f^c` in every scheme. One step is a saddle-point system in
+:math:`(\\mathbf U, \\boldsymbol\\mu)`, solved by a semismooth Newton method on
+:math:`\\min(\\boldsymbol\\mu, c \\mathbf g) = 0` (primal-dual active set). For a linear problem
+(``ContactProblem.K`` given) the step matrix never changes: it is factorized once and the
+contact is a small linear complementarity problem on the constrained DOFs.
 
 >>> import scipy.sparse as sp
->>> M = sp.identity(1, format="csr")   # unit mass on a unit spring, no contact
->>> prob = ContactProblem(M, lambda u: (u.copy(), sp.identity(1, format="csr")),
-...                       sp.csr_matrix((0, 1)), np.zeros(0), lambda u: 0.5 * float(u @ u))
+>>> K = sp.identity(1, format="csr")   # unit mass on a unit spring, no contact
+>>> prob = ContactProblem(K, lambda u: (K @ u, K), sp.csr_matrix((0, 1)), np.zeros(0),
+...                       lambda u: 0.5 * float(u @ u), K=K)
 >>> hist = integrate(prob, np.array([1.0]), np.zeros(1), dt=0.1, n_steps=100)
 >>> bool(abs(hist.total[-1] - 0.5) < 1e-12)   # trapezoidal rule conserves energy
 True
@@ -39,6 +39,8 @@ References
 C. Kane, E. Repetto, M. Ortiz, J. E. Marsden, "Finite element analysis of nonsmooth contact",
 CMAME 180 (1999) 1-26. Paper eqs (6)-(12). M. Hintermueller, K. Ito, K. Kunisch, "The
 primal-dual active set strategy as a semismooth Newton method", SIAM J. Optim. 13 (2003).
+T. J. R. Hughes, *The Finite Element Method*, Dover 2000, sec. 9.3 (central differences:
+stable for :math:`\\omega_{max} \\Delta t \\le 2`).
 """
 from __future__ import annotations
 
@@ -46,21 +48,35 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
+import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from ..errors import ConvergenceError, InputError, check_positive, check_positive_int
 
-__all__ = ["SCHEMES", "ContactProblem", "History", "Newmark", "State", "integrate", "step"]
+__all__ = ["SCHEMES", "DENSE_MAX", "ContactProblem", "History", "Newmark", "State",
+           "critical_step", "consistent_state", "integrate", "step"]
 
 SCHEMES = ("kane", "standard")
+
+#: Largest step matrix factorized with dense LAPACK; sparse SuperLU above. Chosen by
+#: measurement (``python benchmarks/bench_ring.py``, table 1, 2-core machine): at the ring's
+#: 144 DOFs the two factorize within 2x of each other when the machine is quiet, and
+#: threaded LAPACK is up to 20x slower when it is loaded; from 408 DOFs on SuperLU wins
+#: outright (0.74 vs 1.6 ms, 12 vs 74 ms at 1320). Dense stays for the bar's few dozen DOFs.
+DENSE_MAX = 64
+#: Largest problem whose mass and constraint matrices are kept dense for products.
+_MATVEC_DENSE_MAX = 400
 
 
 @dataclass(frozen=True)
 class ContactProblem:
     """Mass ``M``, ``internal(u) -> (f_int, K_T)``, gap ``g0 + G u``, ``energy(u)`` (strain).
 
-    ``directions`` (``(k, n)``) maps ``M v`` to the momentum components; ``f_ext`` is constant.
+    ``f_ext`` is a constant external force (its potential ``-f_ext . u`` enters the total
+    energy); ``directions`` (``(k, n)``) maps ``M v`` to momentum components; ``K`` (constant
+    stiffness) marks a linear problem, ``internal(u) = (K u, K)``, whose step matrix is
+    factorized once; ``force(u)`` (optional) is ``f_int`` alone, cheaper than ``internal``.
     """
 
     M: sp.csr_matrix
@@ -70,6 +86,8 @@ class ContactProblem:
     energy: Callable
     f_ext: np.ndarray | None = None
     directions: np.ndarray | None = None
+    K: sp.csr_matrix | None = None
+    force: Callable | None = None
 
     @property
     def n(self) -> int:
@@ -80,8 +98,11 @@ class ContactProblem:
 class Newmark:
     """Newmark parameters (``beta``, ``gamma``), ``scheme`` and Newton controls.
 
-    ``tol`` bounds the total residual (force residual and complementarity) relative to
-    ``max(1, |inertia|, |f_int|)``; ``solver="dense"`` is the benchmark baseline.
+    ``beta = 0`` (with ``gamma = 1/2``) is the explicit central-difference scheme. ``tol``
+    bounds the total residual (force residual and complementarity) relative to
+    ``max(|inertia|, |f_int|, |f_ext|)`` of the step; ``solver`` is ``"auto"`` (dense up to
+    ``dense_max`` unknowns), ``"dense"`` or ``"sparse"``. ``reuse_tangent=False`` rebuilds
+    and refactors the tangent at every Newton iteration (full Newton: the speed baseline).
     """
 
     beta: float = 0.25
@@ -89,17 +110,28 @@ class Newmark:
     scheme: str = "kane"
     tol: float = 1e-8
     max_iter: int = 25
-    solver: str = "sparse"
+    solver: str = "auto"
+    dense_max: int = DENSE_MAX
+    reuse_tangent: bool = True
 
     def __post_init__(self):
-        check_positive("beta", self.beta)
+        if not (np.isfinite(self.beta) and 0 <= self.beta <= 0.5):
+            raise InputError(f"beta must lie in [0, 0.5] (0: explicit), got {self.beta}")
         check_positive("gamma", self.gamma)
         if self.scheme not in SCHEMES:
             raise InputError(f"scheme must be one of {', '.join(SCHEMES)}; got {self.scheme!r}")
-        if self.solver not in ("sparse", "dense"):
-            raise InputError(f"solver must be 'sparse' or 'dense', got {self.solver!r}")
+        if self.explicit and (self.gamma != 0.5 or self.scheme != "kane"):
+            raise InputError("beta = 0 (explicit) needs gamma = 0.5 and scheme 'kane', got "
+                             f"gamma = {self.gamma}, scheme {self.scheme!r}")
+        if self.solver not in ("auto", "sparse", "dense"):
+            raise InputError(f"solver must be 'auto', 'sparse' or 'dense', got {self.solver!r}")
         check_positive("tol", self.tol)
         check_positive_int("max_iter", self.max_iter)
+        check_positive_int("dense_max", self.dense_max, minimum=0)
+
+    @property
+    def explicit(self) -> bool:
+        return self.beta == 0
 
 
 @dataclass
@@ -119,130 +151,360 @@ class State:
 
 @dataclass
 class History:
-    """Time histories; ``contact_force`` is the total normal force :math:`\\sum \\lambda_k`."""
+    """Time histories; ``contact_force`` is the total normal force :math:`\\sum \\lambda_k`.
+
+    ``initial_energy_change`` is the total energy the consistent initial state added to the
+    given one (negative: removed), ``lam`` the multipliers per step (rows: constraints).
+    """
 
     t: list = field(default_factory=list)
     contact_force: list = field(default_factory=list)
     kinetic: list = field(default_factory=list)
     strain: list = field(default_factory=list)
+    potential: list = field(default_factory=list)
     momentum: list = field(default_factory=list)
     gap_min: list = field(default_factory=list)
     iterations: list = field(default_factory=list)
     states: list = field(default_factory=list)
+    lam: list = field(default_factory=list)
+    initial_energy_change: float = 0.0
 
     @property
     def total(self) -> np.ndarray:
-        return np.asarray(self.kinetic) + np.asarray(self.strain)
+        return np.asarray(self.kinetic) + np.asarray(self.strain) + np.asarray(self.potential)
 
     def arrays(self) -> dict[str, np.ndarray]:
         out = {k: np.asarray(getattr(self, k)) for k in
-               ("t", "contact_force", "kinetic", "strain", "momentum", "gap_min", "iterations")}
+               ("t", "contact_force", "kinetic", "strain", "potential", "momentum", "gap_min",
+                "iterations")}
         out["total"] = self.total
         return out
+
+
+class _Solver:
+    """Linear solves of one problem: dense LAPACK or sparse SuperLU, chosen by size."""
+
+    def __init__(self, n_unknowns: int, nm: Newmark):
+        self.dense = nm.solver == "dense" or (nm.solver == "auto" and n_unknowns <= nm.dense_max)
+
+    def matrix(self, A):
+        if self.dense:
+            return A.toarray() if sp.issparse(A) else np.asarray(A)
+        return sp.csc_matrix(A)
+
+    def solve(self, A, b):
+        if self.dense:
+            return np.linalg.solve(A, b)
+        return spla.spsolve(A, b)
+
+    def factor(self, A):
+        if self.dense:
+            # a few dozen unknowns: one product with the inverse beats any solve call
+            inv = np.linalg.inv(A.toarray() if sp.issparse(A) else A)
+            return lambda b: inv @ b
+        return spla.splu(A).solve
 
 
 class _Split:
     """Massive / massless DOF split and a factorization of the massive block of ``M``."""
 
-    def __init__(self, prob: ContactProblem):
+    def __init__(self, prob: ContactProblem, nm: Newmark):
         M = sp.csr_matrix(prob.M)
         rowmax = np.asarray(abs(M).max(axis=1).todense()).ravel()
         self.massless = np.flatnonzero(rowmax <= 1e-14 * rowmax.max())
         self.massive = np.setdiff1d(np.arange(M.shape[0]), self.massless)
-        Mmm = M[self.massive][:, self.massive].tocsc()
-        self.solve = spla.factorized(Mmm)
-        touched = np.unique(sp.csr_matrix(prob.G).indices)
-        self.contact_massless = bool(len(touched)) and bool(np.all(np.isin(touched, self.massless)))
+        Mmm = M[self.massive][:, self.massive]
+        self.diagonal = Mmm.nnz == Mmm.shape[0] and np.all(Mmm.indices == np.arange(Mmm.shape[0]))
+        if self.diagonal:
+            d = Mmm.diagonal()
+            self.solve = lambda b: b / d
+        else:
+            solver = _Solver(Mmm.shape[0], nm)
+            self.solve = solver.factor(solver.matrix(Mmm.tocsc()))
+        G = sp.csr_matrix(prob.G)
+        # a constraint that acts only on massless DOFs carries lambda = mu (eq 12)
+        only_massless = np.ones(G.shape[0], bool)
+        for k in range(G.shape[0]):
+            cols = G.indices[G.indptr[k]:G.indptr[k + 1]]
+            only_massless[k] = bool(np.all(np.isin(cols, self.massless)))
+        self.only_massless = only_massless
+        self.M = M
+        small = M.shape[0] <= _MATVEC_DENSE_MAX
+        self.Md = M.toarray() if small else None
+        self.G = G
+        self.Gd = G.toarray() if small else None
+        self.f_ext = np.zeros(prob.n) if prob.f_ext is None else np.asarray(prob.f_ext, float)
+        self.rows = np.zeros(prob.n, bool)  # rows whose internal force is implicit (explicit)
+        self.rows[self.massless] = True
+
+    def a_int(self, f: np.ndarray) -> np.ndarray:
+        """Internal acceleration ``M^-1 (f_ext - f)`` on the massive DOFs (0 elsewhere)."""
+        a = np.zeros(len(f))
+        a[self.massive] = self.solve((self.f_ext - f)[self.massive])
+        return a
 
 
-def _kinetic(M, v) -> float:
-    return 0.5 * float(v @ (M @ v))
+def _lcp(S: np.ndarray, q: np.ndarray, max_iter: int) -> np.ndarray:
+    """``mu >= 0`` with ``S mu + q >= 0`` and ``mu . (S mu + q) = 0`` (primal-dual active set)."""
+    if len(q) == 1:  # one contact point: the complementarity solution in closed form
+        return np.array([max(0.0, -q[0] / S[0, 0])])
+    act = q < 0
+    mu = np.zeros(len(q))
+    for _ in range(max_iter + len(q)):
+        mu[:] = 0
+        if act.any():
+            mu[act] = np.linalg.solve(S[np.ix_(act, act)], -q[act])
+        w = S @ mu + q
+        new = (mu - w) > 0
+        if np.array_equal(new, act):
+            return mu
+        act = new
+    raise ConvergenceError(f"contact active set did not settle in {max_iter + len(q)} sweeps")
 
 
-def step(prob: ContactProblem, nm: Newmark, state: State, dt: float, split=None) -> State:
-    """Advance ``state`` by ``dt``; raises :class:`ConvergenceError` if Newton fails."""
-    split = split or _Split(prob)
+class _Linear:
+    """Factorized step matrix ``c1 M + P K`` and its response to the constraints (linear)."""
+
+    def __init__(self, prob: ContactProblem, split: _Split, nm: Newmark, c1: float):
+        K = sp.csr_matrix(prob.K)
+        if nm.explicit:
+            K = sp.diags(split.rows.astype(float)) @ K
+        A = (c1 * split.M + K).tocsc()
+        solver = _Solver(prob.n, nm)
+        self.solve = solver.factor(solver.matrix(A))
+        G = split.G
+        self.W = self.solve(split.G.T.toarray()) if G.shape[0] else np.zeros((prob.n, 0))
+        self.S = G @ self.W
+        self.K = K
+
+
+def step(prob: ContactProblem, nm: Newmark, state: State, dt: float, split=None,
+         linear=None, tangent=None) -> State:
+    """Advance ``state`` by ``dt``; raises :class:`ConvergenceError` if Newton fails.
+
+    ``split``, ``linear`` and ``tangent`` carry what does not change between steps (built
+    on first use when omitted).
+    """
+    split = split or _Split(prob, nm)
     beta, gamma = nm.beta, nm.gamma
     u, v = state.u, state.v
+    explicit = nm.explicit
+    c1 = 2.0 / dt**2 if explicit else 1.0 / (beta * dt**2)
     a_pred = state.a_int if nm.scheme == "kane" else state.a_int + state.a_c
     ut = u + dt * v + 0.5 * dt**2 * (1 - 2 * beta) * a_pred
     vt = v + dt * (1 - gamma) * a_pred
-    f_ext = np.zeros(prob.n) if prob.f_ext is None else prob.f_ext
-    M, G = prob.M, sp.csr_matrix(prob.G)
-    c1 = 1.0 / (beta * dt**2)
-    c1M = c1 * M
-    # Newton starts from the last converged configuration: the predictor itself carries the
-    # high-frequency part of a_n and lies far from equilibrium in the stiff directions
-    U = u.copy()
+    f_ext = split.f_ext
+    rows = split.rows if explicit else None  # rows with an implicit internal force
+    G = split.G
+    if prob.K is not None:
+        linear = linear or _Linear(prob, split, nm, c1)
+        M = split.Md if split.Md is not None else split.M
+        rhs = c1 * (M @ ut) + (f_ext if rows is None else np.where(rows, f_ext, 0.0))
+        U0 = linear.solve(rhs)
+        mu = np.zeros(G.shape[0])
+        if G.shape[0]:
+            Gm = split.Gd if split.Gd is not None else G
+            mu = _lcp(linear.S, prob.g0 + Gm @ U0, nm.max_iter)
+        U = U0 + linear.W @ mu
+        it = 1
+        f = prob.internal(U)[0] if explicit else None
+    else:
+        # start from the second-order Taylor guess of the internal motion
+        guess = u + dt * v + 0.5 * dt**2 * state.a_int
+        U, mu, it, f = _newton(prob, nm, split, state, ut, c1, rows, tangent=tangent,
+                               guess=guess)
+    m, z = split.massive, split.massless
+    n = prob.n
+    a_int = np.zeros(n)
+    a_c = np.zeros(n)
+    v_new = np.zeros(n)
+    lam_scale = np.where(split.only_massless, 1.0, 1.0 if explicit else 2 * beta)
+    if explicit:
+        a_int = split.a_int(f)
+        a_c[m] = c1 * (U - ut)[m]
+        v_new[m] = vt[m] + dt * gamma * a_int[m] + dt * a_c[m]
+    else:
+        a_tot = c1 * (U - ut)[m]
+        if nm.scheme == "kane":
+            GT = split.Gd.T if split.Gd is not None else G.T
+            y = split.solve((GT @ mu)[m]) if np.any(mu) else np.zeros(len(m))
+            a_int[m], a_c[m] = a_tot - y, 2 * beta * y
+        else:
+            a_int[m] = a_tot
+            lam_scale = np.ones(G.shape[0])
+        v_new[m] = vt[m] + dt * gamma * a_int[m] + dt * a_c[m]
+    v_new[z] = (U[z] - u[z]) / dt
+    return State(state.t + dt, U, v_new, a_int, a_c, lam_scale * mu, it, mu)
+
+
+class _Tangent:
+    """Factorized step matrix ``c1 M + P K_T`` at some configuration, reused across iterations
+    and steps while Newton still contracts (a modified Newton method); the constraints enter
+    through ``W = A^-1 G^T`` and the Schur complement ``S = G W`` on the active set."""
+
+    def __init__(self):
+        self.solve = None
+        self.c_ncp = None
+        self.fresh = False
+
+    def refresh(self, prob, nm, split, U, c1, mask, keep):
+        n = prob.n
+        solver = _Solver(n, nm)
+        K = prob.internal(U)[1]
+        if solver.dense:
+            K = K.toarray() if sp.issparse(K) else np.asarray(K)
+            M = split.M.toarray()
+            if mask is not None:
+                K = K * mask[:, None]
+            A = c1 * M + K
+            if keep is not None:
+                A = A * keep[:, None] + np.diag(1 - keep)
+        else:
+            K = sp.csr_matrix(K)
+            if mask is not None:
+                K = sp.diags(mask) @ K
+            A = c1 * split.M + K
+            if keep is not None:
+                A = sp.diags(keep) @ A + sp.diags(1 - keep)
+            A = sp.csc_matrix(A)
+        self.solve = solver.factor(A)
+        if self.c_ncp is None:
+            d = np.diag(A) if solver.dense else A.diagonal()
+            self.c_ncp = float(np.abs(d).max())
+        G = split.G
+        self.W = self.solve(split.G.T.toarray()) if G.shape[0] else np.zeros((n, 0))
+        if self.W.ndim == 1:
+            self.W = self.W[:, None]
+        self.S = np.asarray(G @ self.W)
+        self.fresh = True
+
+
+def _newton(prob, nm, split, state, ut, c1, rows, fixed=None, tangent=None, guess=None):
+    """Semismooth Newton for ``c1 M (U - ut) + P (f(U) - f_ext) - G^T mu = 0``, complementarity.
+
+    ``rows`` (bool) restricts the internal force to those rows (explicit scheme); ``fixed``
+    (bool) holds DOFs at ``state.u`` (consistent initial state). ``tangent`` (a
+    :class:`_Tangent`) carries the factorized matrix between steps; it is refreshed at the
+    current iterate whenever an iteration fails to reduce the residual tenfold. Returns
+    ``(U, mu, iterations, f(U))``.
+    """
+    tangent = tangent if tangent is not None else _Tangent()
+    tangent.fresh = False
+    M = split.Md if split.Md is not None else split.M
+    G = split.Gd if split.Gd is not None else split.G
+    GT = G.T
+    f_ext = split.f_ext
+    U = state.u.copy() if guess is None else guess.copy()
     mu = state.mu.copy() if state.mu is not None else np.zeros(G.shape[0])  # warm start
-    c_ncp = None
+    mask = None if rows is None else rows.astype(float)
+    keep = None if fixed is None else (~fixed).astype(float)
+    if tangent.solve is None or not nm.reuse_tangent:
+        tangent.refresh(prob, nm, split, U, c1, mask, keep)
 
     def residual(U, mu):
-        f, K = prob.internal(U)
+        f = prob.force(U) if prob.force is not None else prob.internal(U)[0]
         inertia = c1 * (M @ (U - ut))
-        g = prob.g0 + G @ U
-        phi = np.minimum(mu, c_ncp * g) if c_ncp is not None else None
-        return f, K, inertia, inertia + f - f_ext - G.T @ mu, g, phi
+        fr = f - f_ext if mask is None else mask * (f - f_ext)
+        r = inertia + fr - GT @ mu
+        if keep is not None:
+            r = keep * r
+        return f, inertia, r, prob.g0 + G @ U
 
-    f, K, inertia, r, g, _ = residual(U, mu)
+    f, inertia, r, g = residual(U, mu)
+    # the scale of the step's forces, independent of the starting guess
+    scale = max(np.linalg.norm(c1 * (M @ (state.u - ut))), np.linalg.norm(f),
+                np.linalg.norm(f_ext), 1e-300)
+    c = tangent.c_ncp
+    merit = np.hypot(np.linalg.norm(r), np.linalg.norm(np.minimum(mu, c * g)))
     for it in range(1, nm.max_iter + 1):
-        Keff = c1M + K
-        if c_ncp is None:
-            c_ncp = float(Keff.diagonal().max())
-        phi = np.minimum(mu, c_ncp * g)
-        merit = np.hypot(np.linalg.norm(r), np.linalg.norm(phi))
-        scale = max(1.0, np.linalg.norm(inertia), np.linalg.norm(f))
-        if it > 1 and merit <= nm.tol * scale:
-            break
-        act = np.flatnonzero(mu - c_ncp * g > 0)
-        rhs = np.concatenate([-(inertia + f - f_ext), -g[act]])
-        # the saddle-point matrix is only needed while a constraint is active
-        A = sp.bmat([[Keff, -G[act].T], [G[act], None]], format="csc") if len(act) else Keff
-        sol = np.linalg.solve(A.toarray(), rhs) if nm.solver == "dense" else spla.spsolve(A, rhs)
-        if not np.all(np.isfinite(sol)):
-            raise ConvergenceError(f"singular Newton matrix at t = {state.t + dt:.6g}")
-        dU = sol[:prob.n]
+        act = (mu - c * g) > 0
+        d0 = tangent.solve(-(r + GT @ mu))
         mu_new = np.zeros_like(mu)
-        mu_new[act] = sol[prob.n:]
+        if act.any():
+            mu_new[act] = np.linalg.solve(tangent.S[np.ix_(act, act)],
+                                          -g[act] - G[act] @ d0)
+        dU = d0 + tangent.W[:, act] @ mu_new[act]
+        if not (np.all(np.isfinite(dU)) and np.all(np.isfinite(mu_new))):
+            raise ConvergenceError(f"singular Newton matrix at t = {state.t:.6g}")
         # backtracking on the total residual: full steps near the solution, damped far away
         alpha = 1.0
         while True:
-            trial = residual(U + alpha * dU, mu + alpha * (mu_new - mu))
-            m_trial = np.hypot(np.linalg.norm(trial[3]), np.linalg.norm(trial[5]))
+            mu_t = mu + alpha * (mu_new - mu)
+            trial = residual(U + alpha * dU, mu_t)
+            m_trial = np.hypot(np.linalg.norm(trial[2]),
+                               np.linalg.norm(np.minimum(mu_t, c * trial[3])))
             if m_trial <= (1 - 1e-4 * alpha) * merit or alpha <= 1 / 32:
                 break
             alpha /= 2
-        U, mu = U + alpha * dU, mu + alpha * (mu_new - mu)
-        f, K, inertia, r, g, _ = trial
-    else:
-        raise ConvergenceError(
-            f"Newton did not reach tol = {nm.tol:g} in {nm.max_iter} iterations at "
-            f"t = {state.t + dt:.6g} (dt = {dt:g}); residual {np.linalg.norm(r):.3e}")
-    m, z = split.massive, split.massless
-    a_int = np.zeros(prob.n)
-    a_c = np.zeros(prob.n)
-    v_new = np.zeros(prob.n)
-    a_tot = c1 * (U - ut)[m]
-    if nm.scheme == "kane":
-        y = split.solve((G.T @ mu)[m]) if np.any(mu) else np.zeros(len(m))
-        a_int[m], a_c[m] = a_tot - y, 2 * beta * y
-        lam_scale = 1.0 if split.contact_massless else 2 * beta
-    else:
-        a_int[m] = a_tot
-        lam_scale = 1.0
-    v_new[m] = vt[m] + dt * gamma * a_int[m] + dt * a_c[m]
-    v_new[z] = (U[z] - u[z]) / dt
-    return State(state.t + dt, U, v_new, a_int, a_c, lam_scale * mu, it - 1, mu)
+        U, mu = U + alpha * dU, mu_t
+        f, inertia, r, g = trial
+        if m_trial <= nm.tol * scale:
+            return U, mu, it, f
+        if not nm.reuse_tangent or (m_trial > 0.1 * merit and not tangent.fresh):
+            tangent.refresh(prob, nm, split, U, c1, mask, keep)
+        merit = m_trial
+    raise ConvergenceError(
+        f"Newton did not reach tol = {nm.tol:g} in {nm.max_iter} iterations at "
+        f"t = {state.t:.6g}; residual {np.linalg.norm(r):.3e}")
 
 
-def _record(hist: History, prob: ContactProblem, s: State, keep_states: bool):
+def critical_step(prob: ContactProblem, u: np.ndarray | None = None) -> float:
+    """Largest stable explicit step :math:`2 / \\omega_{max}` (s) of the massive DOFs.
+
+    :math:`\\omega_{max}^2` is the largest eigenvalue of :math:`\\mathbf K_{mm} \\mathbf x =
+    \\omega^2 \\mathbf M_{mm} \\mathbf x` with the tangent at ``u`` (default 0) restricted to the
+    DOFs with mass: massless DOFs held fixed (in contact) make the system stiffest; condensing
+    them out (free) only lowers :math:`\\omega_{max}`.
+
+    >>> import scipy.sparse as sp
+    >>> K = sp.csr_matrix([[4.0]])
+    >>> critical_step(ContactProblem(sp.identity(1, format="csr"), lambda u: (K @ u, K),
+    ...               sp.csr_matrix((0, 1)), np.zeros(0), lambda u: 0.0))
+    1.0
+    """
+    split = _Split(prob, Newmark())
+    u = np.zeros(prob.n) if u is None else np.asarray(u, float)
+    K = prob.internal(u)[1]
+    K = K.toarray() if sp.issparse(K) else np.asarray(K)
+    m = split.massive
+    Kmm = K[np.ix_(m, m)]
+    Mmm = split.M[m][:, m].toarray()
+    w2 = float(sla.eigh(Kmm, Mmm, eigvals_only=True, subset_by_index=[len(m) - 1, len(m) - 1])[0])
+    return float(2.0 / np.sqrt(w2)) if w2 > 0 else float("inf")
+
+
+def consistent_state(prob: ContactProblem, u0: np.ndarray, nm: Newmark | None = None,
+                     split=None) -> tuple[np.ndarray, np.ndarray]:
+    """Displacement and multipliers at t = 0 with the massless DOFs in equilibrium.
+
+    The DOFs with mass keep ``u0``; the massless ones solve :math:`\\mathbf f^{int}_z(\\mathbf u)
+    = \\mathbf f^{ext}_z + (\\mathbf G^T \\boldsymbol\\lambda)_z`, :math:`\\mathbf g \\ge 0`,
+    :math:`\\boldsymbol\\lambda \\ge 0`, :math:`\\boldsymbol\\lambda \\cdot \\mathbf g = 0`
+    (eq 12 at t = 0). Without massless DOFs ``u0`` is returned unchanged.
+    """
+    nm = nm or Newmark()
+    split = split or _Split(prob, nm)
+    u0 = np.asarray(u0, float)
+    if len(split.massless) == 0:
+        return u0.copy(), np.zeros(prob.G.shape[0])
+    s = State(0.0, u0, np.zeros(prob.n), np.zeros(prob.n), np.zeros(prob.n),
+              np.zeros(prob.G.shape[0]))
+    fixed = ~split.rows
+    U, mu, _, _ = _newton(prob, nm, split, s, u0, 0.0, split.rows, fixed)
+    return U, mu
+
+
+def _record(hist: History, prob: ContactProblem, split: _Split, s: State, keep_states: bool):
     hist.t.append(s.t)
     hist.contact_force.append(float(np.sum(s.lam)))
-    hist.kinetic.append(_kinetic(prob.M, s.v))
+    hist.lam.append(s.lam)
+    M = split.Md if split.Md is not None else split.M
+    mv = M @ s.v
+    hist.kinetic.append(0.5 * float(s.v @ mv))
     hist.strain.append(float(prob.energy(s.u)))
-    mv = prob.M @ s.v
+    hist.potential.append(-float(split.f_ext @ s.u))
     hist.momentum.append(mv.sum(keepdims=True) if prob.directions is None else prob.directions @ mv)
-    g = prob.g0 + prob.G @ s.u
+    g = prob.g0 + (split.Gd if split.Gd is not None else split.G) @ s.u
     hist.gap_min.append(float(g.min()) if len(g) else np.inf)
     hist.iterations.append(s.iterations)
     if keep_states:
@@ -251,26 +513,54 @@ def _record(hist: History, prob: ContactProblem, s: State, keep_states: bool):
 
 def integrate(prob: ContactProblem, u0: np.ndarray, v0: np.ndarray, dt: float, n_steps: int,
               newmark: Newmark | None = None, progress: Callable | None = None,
-              keep_states: bool = False) -> History:
-    """Run ``n_steps`` steps of size ``dt`` from ``(u0, v0)`` (no initial contact force).
+              keep_states: bool = False, consistent: bool = True,
+              penetration_tol: float = 1e-12) -> History:
+    """Run ``n_steps`` steps of size ``dt`` from ``(u0, v0)``.
 
-    ``progress(k)`` is called after each step (e.g. ``tqdm.update``).
+    ``consistent`` (default) first puts the massless DOFs in equilibrium with contact
+    (:func:`consistent_state`); ``History.initial_energy_change`` reports what that changed.
+    An initial gap below ``-penetration_tol * max(1, |g0|)`` is refused, as is an explicit
+    step above :func:`critical_step`. ``progress(k)`` is called after each step.
     """
     nm = newmark or Newmark()
     check_positive("dt", dt)
     check_positive_int("n_steps", n_steps)
-    split = _Split(prob)
-    f0 = prob.internal(np.asarray(u0, float))[0]
-    f_ext = np.zeros(prob.n) if prob.f_ext is None else prob.f_ext
-    a0 = np.zeros(prob.n)
-    a0[split.massive] = split.solve((f_ext - f0)[split.massive])
-    s = State(0.0, np.asarray(u0, float), np.asarray(v0, float), a0, np.zeros(prob.n),
-              np.zeros(prob.G.shape[0]))
+    u0 = np.asarray(u0, float)
+    v0 = np.asarray(v0, float)
+    if u0.shape != (prob.n,) or v0.shape != (prob.n,):
+        raise InputError(f"u0 and v0 must have shape ({prob.n},), got {u0.shape}, {v0.shape}")
+    if not (np.all(np.isfinite(u0)) and np.all(np.isfinite(v0))):
+        raise InputError("u0 and v0 must be finite")
+    split = _Split(prob, nm)
+    g = prob.g0 + split.G @ u0
+    tol = penetration_tol * max(1.0, float(np.abs(prob.g0).max()) if len(g) else 1.0)
+    if len(g) and g.min() < -tol:
+        raise InputError(f"u0 penetrates the obstacle (min gap {g.min():.3g}); the initial "
+                         "gap must be >= 0")
+    if nm.explicit:
+        dt_crit = critical_step(prob, u0)
+        if dt > dt_crit:
+            raise InputError(f"dt must be <= the explicit stability limit {dt_crit:.6g} "
+                             f"(2 / omega_max), got {dt:g}")
     hist = History()
-    _record(hist, prob, s, keep_states)
+    mu0 = np.zeros(prob.G.shape[0])
+    if consistent and len(split.massless):
+        E_given = (0.5 * float(v0 @ (split.M @ v0)) + float(prob.energy(u0))
+                   - float(split.f_ext @ u0))
+        u0, mu0 = consistent_state(prob, u0, nm, split)
+        E_new = (0.5 * float(v0 @ (split.M @ v0)) + float(prob.energy(u0))
+                 - float(split.f_ext @ u0))
+        hist.initial_energy_change = E_new - E_given
+    f0 = prob.internal(u0)[0]
+    a0 = split.a_int(f0)
+    s = State(0.0, u0, v0, a0, np.zeros(prob.n), mu0.copy(), 0, mu0)
+    _record(hist, prob, split, s, keep_states)
+    linear, tangent = None, _Tangent()
+    if prob.K is not None:
+        linear = _Linear(prob, split, nm, 2.0 / dt**2 if nm.explicit else 1 / (nm.beta * dt**2))
     for _ in range(n_steps):
-        s = step(prob, nm, s, dt, split)
-        _record(hist, prob, s, keep_states)
+        s = step(prob, nm, s, dt, split, linear, tangent)
+        _record(hist, prob, split, s, keep_states)
         if progress is not None:
             progress(1)
     return hist

@@ -5,6 +5,8 @@
 0.039
 >>> s.with_level(1).n_xi_elements, s.with_level(1).n_eta_elements
 (32, 4)
+>>> round(s.E)   # derived: 2 (1 + nu) rho (v0 / (v0/c_T))^2
+427350
 >>> s.scaled(0.125).r_outer, s.scaled(0.125).t_end
 (20.0, 45.0)
 """
@@ -14,9 +16,13 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from ..defaults import GAMMA_S, NU_FLOAT
 from ..errors import InputError, check_nu, check_positive, check_positive_int
 
-__all__ = ["Scenario"]
+__all__ = ["MAX_STEPS", "Scenario"]
+
+#: Most time steps one run may take (every state is kept for the penetration record).
+MAX_STEPS = 200_000
 
 
 @dataclass(frozen=True)
@@ -45,11 +51,12 @@ class Scenario:
         Density (kg/m^3): 1000.
     nu : float
         Poisson's ratio: 0.3.
-    E : float
-        Young's modulus (Pa), ``2 (1 + nu) rho c_T^2`` with ``c_T = v0 / 0.039`` = 12.8 m/s, so
-        that v0 is 3.9 % of the shear wave speed as stated (E = 4.27e5 Pa: a soft rubber).
     v0 : float
         Initial velocity (m/s) towards the plane: 0.5 (paper).
+    v0_over_cT : float
+        Impact speed over the shear wave speed: 0.039 (paper: "about 3.9 %"). Young's modulus
+        is derived, ``E = 2 (1 + nu) rho (v0 / v0_over_cT)^2`` (property :attr:`E`; 4.27e5 Pa
+        at the defaults: a soft rubber), so changing rho, nu or v0 keeps the stated ratio.
     theta0_deg : float
         Start angle of the arc (degrees): the arc spans [180, 270] degrees, so it lands on its
         lower end and then rocks along the arc through many contact events, turning by a large
@@ -74,21 +81,36 @@ class Scenario:
     r_inner: float = 144.0
     r_outer: float = 160.0
     rho: float = 1000.0
-    nu: float = 0.3
-    E: float = float(2 * 1.3 * 1000.0 * (0.5 / 0.039) ** 2)
+    nu: float = NU_FLOAT
     v0: float = 0.5
+    v0_over_cT: float = 0.039
     theta0_deg: float = 180.0
     gap: float = 0.08
     dt: float = 0.05
     t_end: float = 360.0
     n_xi_elements: int = 16
     n_eta_elements: int = 2
-    gamma_s: float = 0.5
+    gamma_s: float = float(GAMMA_S)
 
     def __post_init__(self):
-        for name in ("r_inner", "r_outer", "rho", "E", "v0", "dt", "t_end"):
+        for name in ("r_inner", "r_outer", "rho", "v0", "v0_over_cT", "dt", "t_end"):
             check_positive(name, getattr(self, name))
         check_nu(self.nu)
+        if not np.isfinite(self.theta0_deg):
+            raise InputError(f"theta0_deg must be finite, got {self.theta0_deg}")
+        if not np.isfinite(self.gap):
+            raise InputError(f"gap must be a finite number >= 0, got {self.gap}")
+        if not (self.dt**2 > 0 and 1 / self.dt**2 < np.inf):
+            raise InputError(f"dt must be >= 1e-150 s (1/dt^2 overflows), got {self.dt}")
+        if self.t_end < self.dt:
+            raise InputError(f"t_end must be >= dt = {self.dt:g} s (one step), got {self.t_end:g}")
+        steps = self.t_end / self.dt
+        if abs(steps - round(steps)) > 1e-9 * steps:
+            raise InputError(f"t_end must be a whole multiple of dt = {self.dt:g} s, got "
+                             f"{self.t_end:g} ({steps:.4g} steps)")
+        if round(steps) > MAX_STEPS:
+            raise InputError(f"t_end / dt must be <= {MAX_STEPS} steps, got {round(steps)} "
+                             f"(dt = {self.dt:g} s, t_end = {self.t_end:g} s)")
         if not self.r_outer > self.r_inner:
             raise InputError(f"r_outer must be > r_inner = {self.r_inner}, got {self.r_outer}")
         if not self.gap >= 0:
@@ -97,6 +119,11 @@ class Scenario:
         check_positive_int("n_eta_elements", self.n_eta_elements)
         if not 0 <= self.gamma_s <= 1:
             raise InputError(f"gamma_s must lie in [0, 1], got {self.gamma_s}")
+
+    @property
+    def E(self) -> float:
+        """Young's modulus (Pa) that makes ``v0 / c_T = v0_over_cT``."""
+        return float(2 * (1 + self.nu) * self.rho * (self.v0 / self.v0_over_cT) ** 2)
 
     @property
     def shear_wave_speed(self) -> float:
@@ -117,6 +144,7 @@ class Scenario:
                        gap=self.gap * factor, t_end=self.t_end * factor)
 
     def with_level(self, level: int) -> Scenario:
-        """Scenario with the mesh refined ``level`` times (each halves the element size)."""
+        """This scenario with its mesh refined ``level`` times (each halves the element size)."""
         check_positive_int("level", level, minimum=0)
-        return replace(self, n_xi_elements=16 * 2**level, n_eta_elements=2 * 2**level)
+        return replace(self, n_xi_elements=self.n_xi_elements * 2**level,
+                       n_eta_elements=self.n_eta_elements * 2**level)

@@ -19,19 +19,30 @@ from collections.abc import Callable
 from dataclasses import asdict, dataclass
 
 import numpy as np
-import scipy.sparse as sp
 
 from ..errors import InputError
-from .assembly import discretize, internal_force, ring_mass, strain_energy
 from .material import StVenantKirchhoff
 from .newmark import ContactProblem, Newmark, integrate
 from .nurbs import RingPatch, quarter_ring
+from .problem import Plane, patch_problem
 from .scenario import Scenario
 
-__all__ = ["RING_MASSES", "RingResult", "Scenario", "ring_patch", "ring_problem", "simulate_ring"]
+__all__ = ["RING_SCHEMES", "RingResult", "Scenario", "newmark_for", "ring_patch", "ring_problem",
+           "simulate_ring"]
 
-RING_MASSES = ("consistent", "lumped", "singular", "singular-lumped")
+#: Time integrators by name: Kane's contact-modified Newmark, standard Newmark, explicit
+#: central differences (beta = 0, Kane's contact impulse).
+RING_SCHEMES = ("kane", "standard", "explicit")
 _SAMPLES_PER_ELEMENT = 8
+
+
+def newmark_for(scheme: str, **kwargs) -> Newmark:
+    """:class:`~.newmark.Newmark` of the scheme named ``scheme`` (see :data:`RING_SCHEMES`)."""
+    if scheme not in RING_SCHEMES:
+        raise InputError(f"scheme must be one of {', '.join(RING_SCHEMES)}; got {scheme!r}")
+    if scheme == "explicit":
+        return Newmark(beta=0.0, gamma=0.5, scheme="kane", **kwargs)
+    return Newmark(scheme=scheme, **kwargs)
 
 
 def ring_patch(sc: Scenario) -> RingPatch:
@@ -44,23 +55,13 @@ def ring_patch(sc: Scenario) -> RingPatch:
 
 
 def ring_problem(sc: Scenario, mass: str = "singular") -> tuple[ContactProblem, RingPatch]:
-    """Contact problem of the scenario with the mass ``variant`` and the patch it lives on."""
-    if mass not in RING_MASSES:
-        raise InputError(f"mass must be one of {', '.join(RING_MASSES)}; got {mass!r}")
+    """Contact problem of the scenario with the mass ``variant`` and the patch it lives on:
+    the ring as one scene of :func:`~.problem.patch_problem` (outer side ``eta1`` against the
+    plane ``y = 0``, no Dirichlet side)."""
     patch = ring_patch(sc)
-    disc = discretize(patch)
-    mat = StVenantKirchhoff(sc.E, sc.nu)
-    M = ring_mass(disc, sc.rho, mass, sc.gamma_s)
-    idx, R = patch.boundary_basis(patch.greville_xi())
-    n_c = len(R)
-    G = sp.csr_matrix((R.ravel(), (np.repeat(np.arange(n_c), R.shape[1]), 2 * idx.ravel() + 1)),
-                      shape=(n_c, disc.n_dofs))
-    g0 = np.einsum("ma,ma->m", R, patch.points[idx, 1])
-    directions = np.zeros((2, disc.n_dofs))
-    directions[0, 0::2] = directions[1, 1::2] = 1.0
-    prob = ContactProblem(M, lambda u: internal_force(disc, mat, u),
-                          G, g0, lambda u: strain_energy(disc, mat, u), None, directions)
-    return prob, patch
+    model = patch_problem(patch, StVenantKirchhoff(sc.E, sc.nu), sc.rho, mass, "eta1",
+                          Plane((0.0, 0.0), (0.0, 1.0)), (), sc.gamma_s)
+    return model.problem, patch
 
 
 @dataclass(frozen=True)
@@ -75,7 +76,8 @@ class RingResult:
 
     def to_dict(self) -> dict:
         """JSON-ready dict: scenario, summary and the time histories as lists."""
-        return {"scenario": asdict(self.scenario), "summary": self.summary,
+        return {"scenario": dict(asdict(self.scenario), E=self.scenario.E),
+                "summary": self.summary,
                 "series": {k: np.asarray(v).tolist() for k, v in self.series.items()}}
 
     def csv_text(self) -> str:
@@ -86,32 +88,50 @@ class RingResult:
         return "\n".join(lines) + "\n"
 
 
-def _chord_angle(patch: RingPatch, u: np.ndarray) -> float:
-    a, b = patch.boundary_points(np.array([0.0, 1.0]), u.reshape(-1, 2))
-    return float(np.arctan2(b[1] - a[1], b[0] - a[0]))
-
-
 def simulate_ring(sc: Scenario | None = None, mass: str = "singular", scheme: str = "kane",
                   *, progress: Callable | None = None, tol: float = 1e-8,
-                  solver: str = "sparse") -> RingResult:
+                  solver: str = "auto", contact_threshold: float = 1e-9,
+                  perturbation: float = 0.0, seed: int = 0,
+                  consistent: bool = True, reuse_tangent: bool = True) -> RingResult:
     """Run the ring benchmark; raises :class:`~dispersion.errors.ConvergenceError` on failure.
 
+    Parameters
+    ----------
+    contact_threshold : float
+        A step counts as "in contact" when its total contact force exceeds this fraction of
+        the run's largest force; it defines ``contact_events`` and the free flight.
+    perturbation, seed : float, int
+        Relative size of a random perturbation of the initial velocity (every DOF, normal
+        distribution from ``seed``): ``1e-12`` probes how runs differ by round-off.
+    consistent : bool
+        Put the massless DOFs in equilibrium at t = 0 (:func:`~.newmark.consistent_state`).
+    tol, solver, reuse_tangent
+        Newton controls of :class:`~.newmark.Newmark`.
+
     ``summary``: ``energy_change_percent`` (total energy at the end vs the initial kinetic
-    energy), ``max_penetration`` (m, sampled on the whole outer boundary, 8 points per
-    element), ``max_contact_force`` (N per m thickness), ``force_roughness``
-    (:math:`\\sum |\\Delta^2 F| / \\max F`, large for an oscillating force), ``contact_events``
-    (number of separate contact intervals), ``final_rotation_deg`` (rotation of the chord
-    between the arc ends), ``in_contact_at_end``, ``newton_iterations_max``,
+    energy), ``max_penetration_greville`` (m, at the Greville points, where the constraint
+    is imposed), ``max_penetration`` (m, sampled on the whole outer boundary, 8 points per
+    element: between the Greville points), ``max_contact_force`` (N per m thickness),
+    ``force_roughness`` (:math:`\\sum |\\Delta^2 F| / \\max F`, large for an oscillating
+    force), ``contact_events`` (separate contact intervals), ``final_rotation_deg`` (rotation
+    of the chord between the arc ends), ``in_contact_at_end``, ``newton_iterations_max``,
     ``free_flight_energy_spread_percent`` (max - min of the total energy after the last
-    contact: the trapezoidal rule conserves energy exactly only for linear problems).
+    contact; ``None`` when the run ends in contact).
     """
     sc = sc or Scenario()
+    if not (np.isfinite(contact_threshold) and 0 < contact_threshold < 1):
+        raise InputError(f"contact_threshold must lie in (0, 1), got {contact_threshold!r}")
+    if not (np.isfinite(perturbation) and perturbation >= 0):
+        raise InputError(f"perturbation must be a finite number >= 0, got {perturbation!r}")
     prob, patch = ring_problem(sc, mass)
     n = prob.n
     v0 = np.zeros(n)
     v0[1::2] = -sc.v0
+    if perturbation:
+        v0 = v0 + perturbation * sc.v0 * np.random.default_rng(seed).standard_normal(n)
     hist = integrate(prob, np.zeros(n), v0, sc.dt, sc.n_steps,
-                     Newmark(scheme=scheme, tol=tol, solver=solver), progress, keep_states=True)
+                     newmark_for(scheme, tol=tol, solver=solver, reuse_tangent=reuse_tangent), progress, keep_states=True,
+                     consistent=consistent)
     arr = hist.arrays()
     xi = np.linspace(0, 1, _SAMPLES_PER_ELEMENT * sc.n_xi_elements + 1)
     idx, R = patch.boundary_basis(xi)
@@ -120,10 +140,15 @@ def simulate_ring(sc: Scenario | None = None, mass: str = "singular", scheme: st
     y0 = np.einsum("ma,ma->m", R, patch.points[idx, 1])
     U = np.array([s.u for s in hist.states])
     penetration = np.maximum(0.0, -(y0 + U @ Ry.T).min(axis=1))
-    ang0 = _chord_angle(patch, U[0])
-    rotation = np.rad2deg(np.unwrap([_chord_angle(patch, u) for u in U]) - ang0)
+    ends, Re = patch.boundary_basis(np.array([0.0, 1.0]))
+    X = patch.points[ends]  # (2, a, 2)
+    Ue = U.reshape(len(U), -1, 2)[:, ends]  # (steps, 2, a, 2)
+    pts = np.einsum("ma,tmak->tmk", Re, X[None] + Ue)
+    chord = pts[:, 1] - pts[:, 0]
+    angle = np.unwrap(np.arctan2(chord[:, 1], chord[:, 0]))
+    rotation = np.rad2deg(angle - angle[0])
     F = arr["contact_force"]
-    on = F > 1e-9 * max(F.max(), 1e-300)
+    on = F > contact_threshold * max(F.max(), 1e-300)
     series = {"t": arr["t"], "contact_force": F, "kinetic": arr["kinetic"],
               "strain": arr["strain"], "total": arr["total"],
               "momentum_x": arr["momentum"][:, 0], "momentum_y": arr["momentum"][:, 1],
@@ -133,17 +158,21 @@ def simulate_ring(sc: Scenario | None = None, mass: str = "singular", scheme: st
     E0 = arr["total"][0]
     after = arr["total"][np.flatnonzero(on)[-1] + 1:] if on.any() else arr["total"]
     summary = {
-        "mass": mass, "scheme": scheme, "dt": sc.dt, "t_end": sc.t_end,
+        "mass": mass, "scheme": scheme, "dt": sc.dt, "t_end": sc.t_end, "E": sc.E,
         "elements": sc.n_xi_elements * sc.n_eta_elements, "dofs": n,
         "energy_change_percent": float(100 * (arr["total"][-1] - E0) / E0),
+        "initial_energy_change_percent": float(100 * hist.initial_energy_change / E0),
+        "max_penetration_greville": float(max(0.0, -np.min(arr["gap_min"]))),
         "max_penetration": float(penetration.max()),
         "max_contact_force": float(F.max()),
         "force_roughness": float(np.abs(np.diff(F, 2)).sum() / F.max()) if F.max() > 0 else 0.0,
         "contact_events": int(np.count_nonzero(np.diff(on.astype(int)) == 1)),
+        "contact_threshold": contact_threshold,
         "final_rotation_deg": float(rotation[-1]),
         "in_contact_at_end": bool(on[-1]),
         "newton_iterations_max": int(arr["iterations"].max()),
         "free_flight_energy_spread_percent":
-            float(100 * np.ptp(after) / E0) if len(after) else float("nan"),
+            float(100 * np.ptp(after) / E0) if len(after) else None,
+        "perturbation": perturbation, "seed": seed,
     }
     return RingResult(sc, mass, scheme, series, summary)

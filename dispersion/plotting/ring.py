@@ -1,12 +1,13 @@
-"""Figures of the ring benchmark and the bar validation (:mod:`dispersion.contact`).
+"""Figures of the ring study and the impact scenes (:mod:`dispersion.contact`), from data.
 
-``plot_*`` take results and ``ax=None`` and return the Axes; :func:`figure4` lays out the
-paper's Figure 4 (lumped above, singular below) on a pyplot-free Figure.
+Every function takes plain data as loaded from JSON (``{"summary": ..., "series": ...}``
+runs, grid rows) and ``ax=None``, and returns the Axes; :func:`figure4` lays out the paper's
+Figure 4 on a pyplot-free Figure.
 
->>> ax = plot_energy_runtime([{"mass": "lumped", "dt": 0.05, "runtime": 1.0,
-...                            "energy_change_percent": -5.0}])
->>> ax.get_xlabel()
-'runtime per run (s)'
+>>> run = {"summary": {"mass": "lumped", "scheme": "kane", "energy_change_percent": -5.0},
+...        "series": {"t": [0, 1, 2], "contact_force": [0, 1, 0], "total": [1, 1, 0.95]}}
+>>> plot_contact_energy(run).get_xlabel()
+'time t (s)'
 """
 from __future__ import annotations
 
@@ -16,90 +17,130 @@ import numpy as np
 
 from . import axes
 
-__all__ = [
-    "figure4",
-    "plot_bar_force",
-    "plot_bar_validation",
-    "plot_contact_energy",
-    "plot_energy_runtime",
-]
+__all__ = ["figure4", "plot_contact_energy", "plot_energy_change", "plot_grid",
+           "plot_signorini"]
 
 
-def _axes(ax):
-    return axes(ax, (6.0, 3.2))
+def _axes(ax, size=(6.0, 3.2)):
+    return axes(ax, size)
 
 
-def plot_contact_energy(result, ax=None, title: str | None = None):
+def _arr(run, key):
+    return np.asarray(run["series"][key], dtype=float)
+
+
+def plot_contact_energy(run: dict, ax=None, title: str | None = None, force_max=None):
     """Contact force (left axis) and total energy (right axis) of one ring run."""
     ax = _axes(ax)
-    s = result.series
-    ax.plot(s["t"], s["contact_force"], color="C0", lw=1.2, label="contact force")
+    t = _arr(run, "t")
+    ax.plot(t, _arr(run, "contact_force"), color="C0", lw=1.0, label="contact force")
     ax.set_xlabel("time t (s)")
     ax.set_ylabel("contact force (N/m)", color="C0")
+    if force_max is not None:
+        ax.set_ylim(0, force_max)
     right = ax.twinx()
-    right.plot(s["t"], s["total"], color="C3", lw=1.2, label="total energy")
+    total = _arr(run, "total")
+    right.plot(t, total, color="C3", lw=1.2, label="total energy")
     right.set_ylabel("total energy (J/m)", color="C3")
-    hi = float(np.max(s["total"]))
+    hi = float(np.max(total))
     right.set_ylim(0, 1.15 * hi if hi > 0 else 1)
-    ax.set_title(title or f"{result.mass} mass ({result.scheme}): energy change "
-                 f"{result.summary['energy_change_percent']:+.2f} %", fontsize=9)
+    s = run["summary"]
+    ax.set_title(title or f"{s['mass']} mass ({s['scheme']}): energy change "
+                 f"{s['energy_change_percent']:+.3f} %", fontsize=9)
     return ax
 
 
-def figure4(lumped, singular, t_max: float | None = None):
-    """Paper Figure 4: contact force and total energy, lumped (above) and singular (below)."""
+def plot_energy_change(runs: dict, paper: dict | None = None, ax=None):
+    """:math:`\\Delta E / E_0` (%) against time, one line per mass, the paper's values dashed."""
+    ax = _axes(ax)
+    for k, (mass, run) in enumerate(runs.items()):
+        total = _arr(run, "total")
+        ax.plot(_arr(run, "t"), 100 * (total - total[0]) / total[0], color=f"C{k}", lw=1.2,
+                label=mass)
+        if paper and mass in paper:
+            ax.axhline(paper[mass], color=f"C{k}", ls="--", lw=0.8,
+                       label=f"paper, {mass}: {paper[mass]:g} %")
+    ax.set_xlabel("time t (s)")
+    ax.set_ylabel(r"$\Delta E / E_0$ (%)")
+    ax.legend(fontsize=7)
+    return ax
+
+
+def _first_impact(run: dict, pad: float = 0.5):
+    t, F = _arr(run, "t"), _arr(run, "contact_force")
+    on = np.flatnonzero(F > 1e-9 * max(F.max(), 1e-300))
+    if not len(on):
+        return t[0], t[-1]
+    # the first contact interval: until the force has been zero for a while
+    gaps = np.flatnonzero(np.diff(on) > 5)
+    end = on[gaps[0]] if len(gaps) else on[-1]
+    span = t[end] - t[on[0]]
+    return t[on[0]] - pad * span, t[end] + pad * span
+
+
+def figure4(lumped: dict, singular: dict, paper: dict | None = None):
+    """Paper Figure 4 with one force axis for both masses, plus Delta E / E0 and a zoom on the
+    first impact."""
     from matplotlib.figure import Figure
 
-    fig = Figure(figsize=(6.5, 5.5), layout="constrained")
-    axes = fig.subplots(2, 1, sharex=True)
-    plot_contact_energy(lumped, axes[0])
-    plot_contact_energy(singular, axes[1])
-    if t_max is not None:
-        axes[1].set_xlim(0, t_max)
+    fig = Figure(figsize=(10, 7.5), layout="constrained")
+    grid = fig.subplot_mosaic([["l", "lz"], ["s", "sz"], ["e", "e"]],
+                              gridspec_kw={"width_ratios": (2.2, 1)})
+    fmax = 1.08 * max(np.max(_arr(r, "contact_force")) for r in (lumped, singular))
+    for key, run in (("l", lumped), ("s", singular)):
+        plot_contact_energy(run, grid[key], force_max=fmax)
+        lo, hi = _first_impact(run)
+        ax = grid[key + "z"]
+        t = _arr(run, "t")
+        sel = (t >= lo) & (t <= hi)
+        ax.plot(t[sel], _arr(run, "contact_force")[sel], "o-", ms=2, lw=0.8, color="C0")
+        ax.set_ylim(0, fmax)
+        ax.set_xlabel("time t (s)")
+        ax.set_ylabel("contact force (N/m)")
+        ax.set_title(f"{run['summary']['mass']}: first impact (dots: steps)", fontsize=9)
+    plot_energy_change({"lumped": lumped, "singular": singular}, paper, grid["e"])
+    grid["e"].set_title("energy change against time", fontsize=9)
     return fig
 
 
-def plot_bar_validation(rows: Sequence[dict], key: str = "energy_change_percent", ax=None):
-    """Bar impact errors against the number of elements, one line per mass variant."""
-    ax = _axes(ax)
-    for k, mass in enumerate(sorted({r["mass"] for r in rows})):
-        sel = sorted((r for r in rows if r["mass"] == mass), key=lambda r: r["n_elements"])
-        ax.loglog([r["n_elements"] for r in sel], [max(abs(r[key]), 1e-16) for r in sel],
-                  "o-", color=f"C{k}", label=mass)
-    ax.set_xlabel("elements (dt = 0.5 h / c)")
-    ax.set_ylabel(f"|{key}|")
-    ax.legend(fontsize=8)
-    return ax
+def plot_grid(rows: Sequence[dict], paper: dict | None = None, ax=None,
+              default_steps: float | None = None):
+    """|Energy change| (%) against steps per impact, one line per (mass, landing angle);
+    the paper's values dashed, the default scene's steps per impact dotted."""
+    from matplotlib.ticker import ScalarFormatter
 
-
-def plot_bar_force(results: dict, ax=None):
-    """Contact stress history of the bar, normalized by the exact value rho c v0."""
-    ax = _axes(ax)
-    for k, (mass, res) in enumerate(results.items()):
-        arr = res.history.arrays()
-        ax.plot(arr["t"], arr["contact_force"] / res.exact["stress"], color=f"C{k}", lw=1,
-                label=mass)
-    ex = next(iter(results.values())).exact
-    ax.plot([0, ex["duration"], ex["duration"]], [1, 1, 0], "k--", lw=1, label="exact")
-    ax.set_xlabel("time t c / L")
-    ax.set_ylabel(r"contact stress / $\rho c v_0$")
-    ax.legend(fontsize=8)
-    return ax
-
-
-def plot_energy_runtime(rows: Sequence[dict], ax=None):
-    """|energy change| (%) against runtime over a dt sweep, one line per mass variant."""
-    ax = _axes(ax)
-    for k, mass in enumerate(sorted({r["mass"] for r in rows})):
-        sel = sorted((r for r in rows if r["mass"] == mass and np.isfinite(r["runtime"])),
-                     key=lambda r: r["runtime"])
-        x = [r["runtime"] for r in sel]
-        y = [max(abs(r["energy_change_percent"]), 1e-6) for r in sel]
-        ax.loglog(x, y, "o-", color=f"C{k}", label=mass)
-        for r, xi, yi in zip(sel, x, y):
-            ax.annotate(f"{r['dt']:g}", (xi, yi), fontsize=6, xytext=(2, 2),
-                        textcoords="offset points")
-    ax.set_xlabel("runtime per run (s)")
+    ax = _axes(ax, (8.0, 3.8))
+    masses = sorted({r["mass"] for r in rows})
+    angles = sorted({r["theta0_deg"] for r in rows})
+    markers = "osd^v"
+    for k, mass in enumerate(masses):
+        for j, ang in enumerate(angles):
+            sel = sorted((r for r in rows if r["mass"] == mass and r["theta0_deg"] == ang
+                          and r.get("converged")), key=lambda r: r["steps_per_impact"])
+            ax.plot([r["steps_per_impact"] for r in sel],
+                    [abs(r["energy_change_percent"]) for r in sel], marker=markers[j % 5],
+                    color=f"C{k}", lw=1, label=f"{mass}, arc from {ang:g} deg")
+        if paper and mass in paper:
+            ax.axhline(abs(paper[mass]), color=f"C{k}", ls="--", lw=0.8,
+                       label=f"paper, {mass}: {paper[mass]:g} %")
+    if default_steps is not None:
+        ax.axvline(default_steps, color="0.4", ls=":", lw=1, label="default scene")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.xaxis.set_major_formatter(ScalarFormatter())
+    ax.xaxis.set_minor_formatter(ScalarFormatter())
+    ax.set_xlabel("steps per impact (2 t / (c_p dt))")
     ax.set_ylabel("|energy change| (%)")
-    ax.legend(fontsize=8, title="labels: dt (s)", title_fontsize=7)
+    ax.legend(fontsize=6, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
+    return ax
+
+
+def plot_signorini(history: dict, exact: dict, ax=None):
+    """Contact stress at x = 0 against time: computed (``history``) and exact."""
+    ax = _axes(ax)
+    ax.plot(exact["t"], exact["stress"], "k-", lw=1.5, label="exact")
+    ax.plot(history["t"], history["stress"], color="C0", lw=0.8, label="computed")
+    ax.set_xlabel("time t")
+    ax.set_ylabel(r"contact stress $-u_x(0, t)$")
+    ax.legend(fontsize=8)
     return ax

@@ -13,7 +13,7 @@ from ..errata import errata_document, format_table
 from ..errata import paper_errata as measure
 from ..io import write_text
 
-__all__ = ["measure", "render"]
+__all__ = ["measure", "render", "summary"]
 
 
 def _claims_table(claims: list[dict]) -> str:
@@ -52,3 +52,13 @@ def render(data: dict, out: Path) -> str:
     return text + ("\nFiles: [coefficients.md](coefficients.md), "
                    "[coefficients.tex](coefficients.tex) (standalone LaTeX), "
                    "[coefficients.json](coefficients.json).\n")
+
+
+def summary(data: dict) -> str:
+    """The README block: each claim of the paper's file with its status and the difference found."""
+    lines = ["| claim | compared on | status | difference (printed vs derived) |",
+             "|---|---|---|---|"]
+    for c in data["claims"]:
+        cells = [c["name"], c["model"], c["status"], c["difference"] or ""]
+        lines.append("| " + " | ".join(x.replace("|", "\\|") for x in cells) + " |")
+    return "\n".join(lines) + "\n"

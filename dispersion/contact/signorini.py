@@ -1,0 +1,235 @@
+"""GetFEM's 1D Signorini benchmark: exact solution and the scene solved with :mod:`.bar`.
+
+The problem of GetFEM's demo ``interface/tests/python/demo_dynamic_contact_1D.py``:
+
+.. math::
+
+    u_{tt} = u_{xx} \\text{ on } (0, 1), \\quad u(1, t) = 0, \\quad
+    u(0, t) \\ge 0, \\; \\sigma = -u_x(0, t) \\ge 0, \\; u(0, t) \\sigma = 0, \\quad
+    u(x, 0) = (1 - x)/2, \\; u_t(x, 0) = 0 .
+
+Exact solution by characteristics: :math:`\\alpha = u_t - u_x` travels right
+(:math:`\\alpha = A(t - x)`), :math:`\\beta = u_t + u_x` travels left
+(:math:`\\beta = B(t + x)`). The clamped end reflects :math:`B(s) = -A(s - 2)`; the contact
+end reflects :math:`A(t) = B(t)` when free (:math:`u_x = 0`) and :math:`A(t) = -B(t)` in
+contact (:math:`u_t = 0`), the choice made by the sign of the gap and of the stress.
+:func:`exact_solution` builds :math:`A, B` as piecewise constants by this event-driven
+recursion (no phase table typed in) and integrates :math:`u = -\\int_x^1 u_x`. The solution
+has period 3 and energy 1/8 (contact for :math:`t \\in [1, 2]` of each period).
+
+>>> ex = exact_solution(7.0)
+>>> [round(float(v), 6) + 0.0 for v in ex.u(np.array([0.0]), np.array([0.0, 0.5, 1.5, 2.5]))[:, 0]]
+[0.5, 0.25, 0.0, 0.25]
+>>> round(float(ex.stress(np.array([1.5]))[0]), 6), round(ex.energy(0.7), 6)
+(0.5, 0.125)
+
+References
+----------
+Y. Renard, F. Chouly, GetFEM demo ``demo_dynamic_contact_1D.py`` (2017-2020);
+H. B. Khenous, P. Laborde, Y. Renard, "Mass redistribution method for finite element
+contact problems in elastodynamics", Eur. J. Mech. A/Solids 27 (2008) 918-932.
+"""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import InputError, check_positive, check_positive_int
+from .bar import Bar, bar_model
+from .newmark import integrate
+from .simulate import newmark_for
+
+__all__ = ["ExactSignorini", "SignoriniResult", "exact_solution", "signorini_1d"]
+
+
+@dataclass(frozen=True)
+class ExactSignorini:
+    """Piecewise-constant Riemann invariants ``A`` on ``[-1, s_max]`` and ``B`` on
+    ``[0, s_max]`` (breakpoints and values), defining the exact solution."""
+
+    a_knots: np.ndarray
+    a_vals: np.ndarray
+    b_knots: np.ndarray
+    b_vals: np.ndarray
+
+    @staticmethod
+    def _value(knots, vals, s):
+        return vals[np.clip(np.searchsorted(knots, s, side="right") - 1, 0, len(vals) - 1)]
+
+    @staticmethod
+    def _integral(knots, vals, s):
+        """:math:`\\int_{knots_0}^{s}` of the piecewise constant."""
+        cum = np.concatenate([[0.0], np.cumsum(np.diff(knots) * vals)])
+        k = np.clip(np.searchsorted(knots, s, side="right") - 1, 0, len(vals) - 1)
+        return cum[k] + vals[k] * (s - knots[k])
+
+    def alpha(self, x, t):
+        return self._value(self.a_knots, self.a_vals, t - x)
+
+    def beta(self, x, t):
+        return self._value(self.b_knots, self.b_vals, t + x)
+
+    def velocity(self, x, t):
+        """:math:`u_t` on the grid ``x`` (columns) by ``t`` (rows)."""
+        X, T = np.meshgrid(np.atleast_1d(x), np.atleast_1d(t))
+        return 0.5 * (self.alpha(X, T) + self.beta(X, T))
+
+    def strain(self, x, t):
+        """:math:`u_x` on the grid ``x`` (columns) by ``t`` (rows)."""
+        X, T = np.meshgrid(np.atleast_1d(x), np.atleast_1d(t))
+        return 0.5 * (self.beta(X, T) - self.alpha(X, T))
+
+    def u(self, x, t):
+        """:math:`u(x, t) = -\\tfrac12 [\\int_{t+x}^{t+1} B - \\int_{t-1}^{t-x} A]` on the grid."""
+        X, T = np.meshgrid(np.atleast_1d(x), np.atleast_1d(t))
+        ib = self._integral(self.b_knots, self.b_vals, T + 1) - self._integral(
+            self.b_knots, self.b_vals, T + X)
+        ia = self._integral(self.a_knots, self.a_vals, T - X) - self._integral(
+            self.a_knots, self.a_vals, T - 1)
+        return -0.5 * (ib - ia)
+
+    def stress(self, t):
+        """Contact stress :math:`\\sigma(t) = -u_x(0, t) \\ge 0` (zero when free)."""
+        return -self.strain(np.array([0.0]), t)[:, 0]
+
+    def energy(self, t: float, n: int = 4001) -> float:
+        """:math:`\\tfrac12 \\int_0^1 (u_t^2 + u_x^2) dx` by the midpoint rule on ``n`` cells
+        (exact up to the cells cut by a jump of the invariants)."""
+        x = (np.arange(n) + 0.5) / n
+        v, e = self.velocity(x, t)[0], self.strain(x, t)[0]
+        return float(0.5 * np.mean(v**2 + e**2))
+
+
+def exact_solution(t_max: float, amplitude: float = 0.5) -> ExactSignorini:
+    """Exact solution for ``u(x, 0) = amplitude (1 - x)``, ``u_t = 0``, up to ``t_max``."""
+    check_positive("t_max", t_max)
+    check_positive("amplitude", amplitude)
+    s_max = t_max + 2.0
+    # initial invariants (u_t = 0, u_x = -amplitude): A = amplitude on [-1, 0),
+    # B = -amplitude on [0, 1)
+    a_k, a_v = [-1.0], [amplitude]
+
+    def b_at(s, tau):
+        """B at s and the end of its constant piece (B(s) = -A(s - 2) beyond s = 1)."""
+        if s < 1.0:
+            return -amplitude, 1.0
+        k = int(np.searchsorted(a_k, s - 2.0, side="right")) - 1
+        end = a_k[k + 1] + 2.0 if k + 1 < len(a_k) else tau + 2.0
+        return -a_v[k], end
+
+    tau, u0, contact = 0.0, amplitude, False
+    tiny = 1e-14 * amplitude
+    while tau < s_max:
+        b, end = b_at(tau, tau)
+        end = min(end, s_max)
+        if contact and b > 0:  # the contact stress -B would turn tensile: release
+            contact = False
+        hits = False
+        if not contact and b < 0 and u0 + b * (end - tau) <= tiny:
+            end, hits = tau - u0 / b, True  # the gap closes
+        if end > tau:
+            a_k.append(tau)
+            a_v.append(-b if contact else b)  # contact: u_t(0) = 0; free: u_x(0) = 0
+        if not contact:
+            u0 += b * (end - tau)  # u_t(0) = (A + B) / 2 = B when free
+        if hits:
+            contact, u0 = True, 0.0
+        tau = end
+        if len(a_k) > 100_000:
+            raise InputError("t_max: too many contact events in the exact solution")
+    a_k.append(s_max)
+    b_knots = np.concatenate([[0.0], np.asarray(a_k) + 2.0])
+    b_vals = np.concatenate([[-amplitude], -np.asarray(a_v)])
+    return ExactSignorini(np.array(a_k), np.array(a_v), b_knots, b_vals)
+
+
+@dataclass(frozen=True)
+class SignoriniResult:
+    """One run of the 1D Signorini scene: inputs, histories at ``x = 0`` and errors.
+
+    ``errors``: relative L2-in-time errors of ``u(0, t)``, ``u_t(0, t)`` and the contact
+    stress against :func:`exact_solution`; ``energy_drift_percent`` (max over the run of
+    the total energy minus its value at t = 0, in % of 1/8), ``first_step_change_percent``,
+    ``initial_energy_change_percent`` (what the consistent initial state changed, % of 1/8),
+    ``energy_error_percent`` (final energy vs the exact 1/8), ``min_gap``; ``seconds`` wall time.
+    """
+
+    p: int
+    n_elements: int
+    mass: str
+    scheme: str
+    dt: float
+    t_end: float
+    consistent: bool
+    t: np.ndarray
+    u0: np.ndarray
+    v0: np.ndarray
+    stress: np.ndarray
+    kinetic: np.ndarray
+    strain: np.ndarray
+    total: np.ndarray
+    errors: dict
+    seconds: float
+
+    def csv_text(self) -> str:
+        """History as CSV: t, u(0), v(0), contact stress, kinetic, strain, total energy."""
+        cols = np.column_stack([self.t, self.u0, self.v0, self.stress, self.kinetic,
+                                self.strain, self.total])
+        head = "t,u0,v0,contact_stress,kinetic,strain,total"
+        return head + "\n" + "\n".join(",".join(f"{x:.12g}" for x in row) for row in cols) + "\n"
+
+
+def _rel_l2(num, ref, dt):
+    den = np.sqrt(np.sum(ref**2) * dt)
+    return float(np.sqrt(np.sum((num - ref) ** 2) * dt) / den) if den > 0 else float("nan")
+
+
+def signorini_1d(p: int = 1, n_elements: int = 20, mass: str = "singular",
+                 scheme: str = "kane", dt: float = 0.002, t_end: float = 12.0,
+                 consistent: bool = True) -> SignoriniResult:
+    """Solve GetFEM's 1D Signorini problem with the bar API and compare with the exact solution.
+
+    ``scheme``: ``"kane"`` (contact-modified Newmark, beta = 1/4), ``"standard"`` or
+    ``"explicit"`` (central differences, refused above the stability limit).
+    """
+    check_positive_int("n_elements", n_elements)
+    check_positive("dt", dt)
+    check_positive("t_end", t_end)
+    steps = t_end / dt
+    if abs(steps - round(steps)) > 1e-9 * steps:
+        raise InputError(f"t_end must be a whole multiple of dt = {dt:g}, got {t_end:g}")
+    model = bar_model(Bar(n_elements, p, 1.0, 1.0, 1.0, mass, clamped=("right",),
+                          contact="left"))
+    prob = model.problem
+    u_init = model.coefficients(lambda x: 0.5 * (1 - x))
+    t0 = time.perf_counter()
+    hist = integrate(prob, u_init, np.zeros(prob.n), dt, round(steps), newmark_for(scheme),
+                     keep_states=True, consistent=consistent)
+    seconds = time.perf_counter() - t0
+    arr = hist.arrays()
+    t = arr["t"]
+    k = int(np.flatnonzero(model.free == model.contact_dof)[0])
+    U = np.array([s.u for s in hist.states])
+    u0 = U[:, k]
+    v0 = np.concatenate([[0.0], np.diff(u0) / dt])
+    stress = arr["contact_force"]
+    ex = exact_solution(t_end)
+    u_ex = ex.u(np.array([0.0]), t)[:, 0]
+    v_ex = ex.velocity(np.array([0.0]), t)[:, 0]
+    s_ex = ex.stress(t)
+    total = arr["total"]
+    E_exact = 0.125
+    errors = {
+        "u0_rel_l2": _rel_l2(u0, u_ex, dt),
+        "v0_rel_l2": _rel_l2(v0, v_ex, dt),
+        "stress_rel_l2": _rel_l2(stress, s_ex, dt),
+        "energy_drift_percent": float(100 * np.max(np.abs(total - total[0])) / E_exact),
+        "first_step_change_percent": float(100 * (total[1] - total[0]) / E_exact),
+        "initial_energy_change_percent": float(100 * hist.initial_energy_change / E_exact),
+        "energy_error_percent": float(100 * (total[-1] - E_exact) / E_exact),
+        "min_gap": float(np.min(arr["gap_min"])),
+    }
+    return SignoriniResult(p, n_elements, mass, scheme, dt, t_end, consistent, t, u0, v0,
+                           stress, arr["kinetic"], arr["strain"], total, errors, seconds)

@@ -1,0 +1,43 @@
+"""``dispersion impact``: the history CSV and the summary agree with the API."""
+from __future__ import annotations
+
+import argparse
+import csv
+import json
+
+import pytest
+
+from dispersion.cli import impact
+from dispersion.contact.signorini import signorini_1d
+from dispersion.errors import InputError
+
+
+def _args(argv):
+    parser = argparse.ArgumentParser()
+    impact.register(parser.add_subparsers())
+    return parser.parse_args(["impact", *argv])
+
+
+def test_writes_history_and_summary(tmp_path, capsys):
+    out = tmp_path / "sig"
+    args = _args(["signorini-1d", "--mass", "singular", "--dt", "0.004", "--t-end", "3",
+                  "--out", str(out), "--format", "json"])
+    assert args.func(args) == 0
+    printed = json.loads(capsys.readouterr().out)
+    stored = json.loads((out / "summary.json").read_text())
+    api = signorini_1d(mass="singular", dt=0.004, t_end=3.0).errors
+    assert stored["stress_rel_l2"] == pytest.approx(api["stress_rel_l2"], rel=1e-12)
+    assert printed["steps"] == 750
+    rows = list(csv.DictReader((out / "history.csv").open()))
+    assert len(rows) == 751 and set(rows[0]) >= {"t", "u0", "contact_stress", "total"}
+
+
+def test_bad_input_names_the_parameter(tmp_path):
+    args = _args(["signorini-1d", "--p", "0"])
+    with pytest.raises(InputError, match="p must"):
+        args.func(args)
+    f = tmp_path / "f"
+    f.write_text("")
+    args = _args(["signorini-1d", "--out", str(f)])
+    with pytest.raises(InputError, match="out must be a directory"):
+        args.func(args)

@@ -1,0 +1,88 @@
+"""GetFEM's 1D Signorini bar: the exact solution (checked against the PDE, not a table) and
+the scene solved with the bar API."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from dispersion.contact.signorini import exact_solution, signorini_1d
+from dispersion.errors import InputError
+
+
+@pytest.fixture(scope="module")
+def ex():
+    return exact_solution(9.0)
+
+
+def test_exact_solution_meets_initial_and_boundary_data(ex):
+    x = np.linspace(0, 1, 41)
+    assert np.allclose(ex.u(x, 0.0)[0], 0.5 * (1 - x))          # u(x, 0) = (1 - x)/2
+    assert np.allclose(ex.velocity(x[1:-1], 0.0)[0], 0.0)       # u_t(x, 0) = 0
+    t = np.linspace(0, 9, 181)
+    assert np.allclose(ex.u(np.array([1.0]), t)[:, 0], 0.0, atol=1e-14)  # clamped end
+
+
+def test_exact_solution_satisfies_signorini_conditions(ex):
+    t = np.linspace(0, 9, 901)
+    gap = ex.u(np.array([0.0]), t)[:, 0]
+    stress = ex.stress(t)
+    assert gap.min() > -1e-14 and stress.min() > -1e-14
+    assert np.abs(gap * stress).max() < 1e-14                    # complementarity
+    assert stress.max() > 0.4                                    # there is contact
+
+
+def test_exact_solution_derivatives_match_finite_differences(ex):
+    # u built by integrating the invariants; its difference quotients must give u_t, u_x
+    rng = np.random.default_rng(1)
+    x, t, d = rng.uniform(0.05, 0.95, 30), rng.uniform(0.05, 8.9, 30), 1e-7
+    for xi, ti in zip(x, t):
+        ut = (ex.u(xi, ti + d) - ex.u(xi, ti - d))[0, 0] / (2 * d)
+        ux = (ex.u(xi + d, ti) - ex.u(xi - d, ti))[0, 0] / (2 * d)
+        assert np.isclose(ut, ex.velocity(xi, ti)[0, 0], atol=1e-6)
+        assert np.isclose(ux, ex.strain(xi, ti)[0, 0], atol=1e-6)
+
+
+def test_exact_solution_conserves_energy_and_has_period_three(ex):
+    # energy 1/8 = (1/2) int (u_x^2) at t = 0 with u_x = -1/2
+    for t in (0.3, 1.4, 2.2, 4.7):
+        assert np.isclose(ex.energy(t), 0.125, rtol=1e-3)
+    x = np.linspace(0, 1, 21)
+    t = np.linspace(0, 5.9, 60)
+    assert np.allclose(ex.u(x, t), ex.u(x, t + 3.0), atol=1e-12)
+
+
+def test_singular_mass_conserves_energy_after_the_consistent_start():
+    res = signorini_1d(p=1, mass="singular", dt=0.004, t_end=3.0)
+    e = res.errors
+    assert abs(e["energy_drift_percent"]) < 0.01
+    assert e["first_step_change_percent"] == pytest.approx(0.0, abs=1e-9)
+    assert e["initial_energy_change_percent"] == pytest.approx(-100 * 0.05, rel=1e-9)  # h
+    assert e["min_gap"] > -1e-12
+
+
+def test_singular_contact_stress_beats_lumped_and_consistent():
+    errs = {m: signorini_1d(p=1, mass=m, dt=0.004, t_end=3.0).errors["stress_rel_l2"]
+            for m in ("lumped", "consistent", "singular")}
+    assert errs["singular"] < min(errs["lumped"], errs["consistent"])
+
+
+def test_explicit_and_kane_agree_for_the_singular_mass():
+    a = signorini_1d(p=1, mass="singular", scheme="kane", dt=0.004, t_end=3.0)
+    b = signorini_1d(p=1, mass="singular", scheme="explicit", dt=0.004, t_end=3.0)
+    assert abs(a.errors["stress_rel_l2"] - b.errors["stress_rel_l2"]) < 0.02
+
+
+def test_history_csv_has_one_row_per_step():
+    res = signorini_1d(p=1, mass="singular", dt=0.01, t_end=0.5)
+    lines = res.csv_text().splitlines()
+    assert lines[0] == "t,u0,v0,contact_stress,kinetic,strain,total"
+    assert len(lines) == 1 + 51
+
+
+def test_bad_inputs_name_the_parameter():
+    with pytest.raises(InputError, match="t_end"):
+        signorini_1d(dt=0.003, t_end=1.0)
+    with pytest.raises(InputError, match="dt"):
+        signorini_1d(scheme="explicit", mass="lumped", dt=0.2, t_end=0.4)
+    with pytest.raises(InputError, match="mass"):
+        signorini_1d(mass="heavy")

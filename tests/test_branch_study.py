@@ -92,3 +92,28 @@ def test_quick_measure_then_render(tmp_path):
     md = render(load(tmp_path / "branches.json")["result"], tmp_path)
     for link in re.findall(r"\]\(([^)]+)\)", md):
         assert (tmp_path / link).is_file()
+
+
+def test_consistent_mass_errors_are_upper_bounds_per_wavelength():
+    # Rayleigh-Ritz (min-max within each mirror block): a conforming discretization with the
+    # consistent mass over-estimates every frequency of its block, so S0 and A0 errors >= 0
+    from dispersion.branch_study import _per_wavelength
+
+    pw = _per_wavelength(NU, quick=True)
+    for c in pw["curves"]:
+        err = np.array(c["error"])
+        if c["mass"] == "consistent":
+            assert np.all(err > -1e-12), (c["p"], c["branch"])
+            # and it falls with refinement: more elements per wavelength, smaller error
+            assert err[-1] < err[len(err) // 2] < err[0]
+
+
+def test_tracer_accuracy_reference_is_checked_against_mpmath():
+    # issue 14: the reference setting of the speed-accuracy chart is compared with mpmath
+    from dispersion.tracer import tracer_accuracy
+
+    acc = tracer_accuracy(NU, np.linspace(0, 4, 30), omega_max=4.0,
+                          settings=[(0.2, 1e-6), (0.2, 1e-12)], repeat=1, mpmath_points=5)
+    assert acc.reference_mpmath_error < 1e-14
+    loose, tight = acc.rows
+    assert tight["error"] < 1e-11 < loose["error"] < 1e-5

@@ -195,29 +195,34 @@ class _Key:
         return isinstance(other, _Key) and self.key == other.key
 
 
-def _arb_eval(expr, k):
-    """A sympy expression in kappa (sums, products, integer powers, rationals, cos, sin) as an
-    arb ball at ``k``: the exact formulas of :func:`x_functions`, evaluated without rounding
-    the rational coefficients to floats."""
+def _arb_compile(expr):
+    """A sympy expression in kappa (sums, products, integer powers, rationals, cos, sin) as a
+    function ``k -> arb ball``: the exact formulas of :func:`x_functions`, evaluated without
+    rounding the rational coefficients to floats."""
     import flint
 
     if expr.is_Symbol:
-        return k
+        return lambda k: k
     if expr.is_Rational:
-        return flint.arb(int(expr.p)) / int(expr.q)
+        p, q = int(expr.p), int(expr.q)
+        return lambda k: flint.arb(p) / q
+    parts = [_arb_compile(a) for a in expr.args]
     if expr.is_Add:
-        return sum((_arb_eval(a, k) for a in expr.args), flint.arb(0))
+        return lambda k: sum((f(k) for f in parts), flint.arb(0))
     if expr.is_Mul:
-        out = flint.arb(1)
-        for a in expr.args:
-            out = out * _arb_eval(a, k)
-        return out
+        def mul(k):
+            out = flint.arb(1)
+            for f in parts:
+                out = out * f(k)
+            return out
+        return mul
     if expr.is_Pow and expr.exp.is_Integer:
-        return _arb_eval(expr.base, k) ** int(expr.exp)
+        e = int(expr.exp)
+        return lambda k: parts[0](k) ** e
     if isinstance(expr, sympy.cos):
-        return _arb_eval(expr.args[0], k).cos()
+        return lambda k: parts[0](k).cos()
     if isinstance(expr, sympy.sin):
-        return _arb_eval(expr.args[0], k).sin()
+        return lambda k: parts[0](k).sin()
     raise InputError(f"cannot evaluate {expr} in interval arithmetic")
 
 
@@ -249,7 +254,7 @@ def _projected_terms(key: _Key, nu: float, which: str, basis: bytes | None, shap
     Ef = np.eye(n2) if basis is None else np.frombuffer(basis).reshape(shape)
     E = flint.arb_mat(Ef.tolist())
     Et = E.transpose()
-    return [(c, Et * _arb_rational_matrix(B) * E)
+    return [(_arb_compile(c), Et * _arb_rational_matrix(B) * E)
             for c, B in _exact_terms(key, nu)[which] if c != 0]
 
 
@@ -261,8 +266,8 @@ def _arb_matrix(key, nu, which, basis, k):
                              None if raw is None else raw.shape, flint.ctx.prec)
     n = (2 * key.patch.n) if basis is None else np.shape(basis)[1]
     out = flint.arb_mat(n, n)
-    for c, PB in terms:
-        out += _arb_eval(c, k) * PB
+    for f, PB in terms:
+        out += f(k) * PB
     return out
 
 
@@ -288,7 +293,7 @@ def extended_frequencies(patch: PlatePatch, nu: float, kappa, basis=None,
 
     key, nu = _Key(patch), float(nu)
     old = flint.ctx.prec
-    flint.ctx.prec = int(dps * 3.33) + 20
+    flint.ctx.prec = 64 * math.ceil((dps * 3.33 + 20) / 64)  # few precisions: cached terms
     try:
         k = flint.arb(float(kappa)) if not isinstance(kappa, flint.arb) else kappa
         K, M = _arb_matrix(key, nu, "K", basis, k), _arb_matrix(key, nu, "M", basis, k)

@@ -1,4 +1,5 @@
-"""Benchmark of the dispersion branches (issue 3): batched vs per-point, tracer vs naive scan.
+"""Benchmark of the dispersion branches: batched vs per-point, tracer vs naive scan, and the
+cost of velocities and physical units against the plain branch computation (issue 10).
 
 Run:  python benchmarks/bench_branches.py [--quick] [--out DIR]
 
@@ -17,10 +18,13 @@ import numpy as np
 import scipy.linalg
 from scipy.optimize import brentq
 
+from dispersion.branch_study import discrete_speed
 from dispersion.branches import discrete_branches
 from dispersion.plate import numeric_pencil, plate_patch
-from dispersion.rayleigh_lamb import numeric_frequency_function, trace_branches
-from dispersion.report.branches import measure_discrete, measure_tracer, mpmath_check
+from dispersion.rayleigh_lamb import numeric_frequency_function
+from dispersion.tracer import mpmath_error, trace_branches, tracer_accuracy
+from dispersion.units import ALUMINIUM, physical_branches
+from dispersion.velocities import exact_velocities
 
 NU = 0.3
 
@@ -97,7 +101,7 @@ def main() -> None:
     print("\n## Rayleigh-Lamb: all branches with Omega <= 6, kappa in [0, 10]")
     k = np.linspace(0, 10, 1000)
     tt, br = timed(trace_branches, NU, k, 6.0)
-    err = mpmath_check(br, count=20 if args.quick else 60)
+    err = mpmath_error(br, count=20 if args.quick else 60)
     mem = peak_mib(trace_branches, NU, k, 6.0)
     n_naive = 100 if args.quick else 1000
     kn = np.linspace(0, 10, n_naive)[1:]
@@ -118,27 +122,52 @@ def main() -> None:
           f"{tn / kn.size * k.size / tt:.1f}x; roots it missed: {missed}; max rel. deviation "
           f"from the tracer where it found all: {naive_err:.1e}")
 
+    print("\n## Velocities and units vs plain branches (baseline: the same call without them)")
+    print(f"{'case':44s} {'plain s':>8s} {'with s':>8s} {'ratio':>6s} {'peak MiB':>9s}")
+    ke = np.linspace(0, 10, 1000)
+
+    def exact_with_units():
+        ex = trace_branches(NU, ke, 6.0)
+        v = exact_velocities(ex)
+        return physical_branches(ke, ex.omega, v.group, ALUMINIUM, 1.0)
+
+    t0, _ = timed(trace_branches, NU, ke, 6.0)
+    t1, _ = timed(exact_with_units)
+    print(f"{'exact, 1000 kappa, Omega <= 6':44s} {t0:8.3f} {t1:8.3f} {t1 / t0:6.2f} "
+          f"{peak_mib(exact_with_units):9.1f}")
+    for mass in ("consistent", "singular"):
+        patch = plate_patch(model="bloch", r=0.5, mass=mass)
+        kd = np.linspace(0, 10, n_batch // 4)
+        t0, _ = timed(discrete_branches, patch, NU, kd)
+        t1, _ = timed(discrete_branches, patch, NU, kd, group=True)
+        mem = peak_mib(discrete_branches, patch, NU, kd, group=True)
+        print(f"{'discrete ' + mass + f', {kd.size} kappa, group velocity':44s} {t0:8.3f} "
+              f"{t1:8.3f} {t1 / t0:6.2f} {mem:9.1f}")
+
     print("\n## Speed vs accuracy")
-    tr_rows = measure_tracer(k, repeat=1 if args.quick else 3)
+    acc = tracer_accuracy(NU, k, repeat=1 if args.quick else 3)
+    print(f"reference setting (step, rtol) = {acc.reference}: max rel. error vs 40-digit mpmath "
+          f"{acc.reference_mpmath_error:.1e} ({acc.mpmath_points} roots)")
+    tr_rows = list(acc.rows)
     for r in tr_rows:
         print(f"tracer step={r['step']:<5} rtol={r['rtol']:<7g} time {r['time_s']:.3f} s  "
               f"max rel err {r['error']:.1e}  failures {r['failures']}")
-    d_rows = measure_discrete(np.linspace(0, 5, 5000 if args.quick else 20000),
-                              repeat=1 if args.quick else 3)
+    configs = [(p, n, m) for p in (2, 3) for n in (p + 1, p + 3)
+               for m in ("consistent", "lumped", "singular")]
+    d_rows = discrete_speed(NU, np.linspace(0, 5, 5000 if args.quick else 20000), configs,
+                            repeat=1 if args.quick else 3)
     for r in d_rows:
         print(f"discrete p={r['p']} n={r['n']:<2d} {r['mass']:11s} {r['points_per_s']:9.0f} pts/s"
               f"  max rel err S0/A0 (kappa<=1) {r['error']:.1e}")
     if args.out:
-        from matplotlib.figure import Figure
-
         from dispersion.io import save_figure, write_text
-        from dispersion.plotting.branches import plot_speed_accuracy
+        from dispersion.plotting.branches import figure_speed_accuracy
 
-        fig = Figure(figsize=(10, 4), layout="constrained")
-        a1, a2 = fig.subplots(1, 2)
-        plot_speed_accuracy(tr_rows, a1)
-        plot_speed_accuracy(d_rows, a2)
-        save_figure(fig, args.out / "bench_branches.png", dpi=130)
+        tracer = {"kappa_count": acc.kappa_count, "omega_max": acc.omega_max,
+                  "reference": list(acc.reference),
+                  "reference_mpmath_error": acc.reference_mpmath_error, "rows": tr_rows}
+        save_figure(figure_speed_accuracy(tracer, d_rows), args.out / "bench_branches.png",
+                    dpi=130)
         write_text(args.out / "bench_branches.json",
                    json.dumps({"tracer": tr_rows, "discrete": d_rows}, indent=2) + "\n")
 

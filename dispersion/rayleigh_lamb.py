@@ -32,22 +32,21 @@ J. L. Rose, *Ultrasonic waves in solid media*, Cambridge University Press 2004, 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
-
 import numpy as np
 
-from .errors import InputError, check_nu, check_positive, check_positive_int, check_wavenumbers
+from .errors import InputError, check_nu, check_positive
 
 __all__ = [
-    "ExactBranches",
     "cos_sqrt",
     "cutoff_frequencies",
     "deflated_frequency_function",
+    "deflated_with_noise",
+    "evanescent_frequency_function",
+    "frequency_slope",
     "frequency_function",
     "numeric_frequency_function",
     "sinc_sqrt",
     "speed_ratio_squared",
-    "trace_branches",
 ]
 
 
@@ -91,7 +90,7 @@ def frequency_function(kind: str, kappa2, Omega2, nu, C, S, form: str = "standar
 
 
 # ---------------------------------------------------------------------------------------
-# Numeric twin and root tracing of the exact branches
+# Numeric twin (the root tracer is dispersion.tracer)
 # ---------------------------------------------------------------------------------------
 
 
@@ -192,6 +191,20 @@ def deflated_frequency_function(kind: str, kappa, Omega, nu: float):
     >>> abs(float(deflated_frequency_function("A", 0.1, 0.0, 0.3))) > 0
     True
     """
+    return deflated_with_noise(kind, kappa, Omega, nu)[0]
+
+
+def deflated_with_noise(kind: str, kappa, Omega, nu: float):
+    """:func:`deflated_frequency_function` and a bound on its rounding error.
+
+    The bound is :math:`64\\,\\epsilon` times the sum of the magnitudes of the two terms:
+    where :math:`|G|` lies below it the sign of G carries no information, so a root tracer
+    must not count sign changes there (they are round-off, not roots).
+
+    >>> g, noise = deflated_with_noise("S", 1e-8, math.pi, 0.3)
+    >>> bool(abs(g) <= noise)
+    True
+    """
     kappa, Omega = np.asarray(kappa, dtype=float), np.asarray(Omega, dtype=float)
     k2, W2 = kappa**2, Omega**2
     s = speed_ratio_squared(nu)
@@ -200,11 +213,105 @@ def deflated_frequency_function(kind: str, kappa, Omega, nu: float):
     dC, dS = _divided_differences(P, Q)
     CP, SP, CQ, SQ = cos_sqrt(P), sinc_sqrt(P), cos_sqrt(Q), sinc_sqrt(Q)
     D = SP * dC - CP * dS
+    Dscale = np.abs(SP * dC) + np.abs(CP * dS)
     if kind == "S":
-        return -(1 - s) * a2 * D + (W2 - 4 * (1 - s) * k2) * SP * CQ
+        t1, t2 = -(1 - s) * a2 * D, (W2 - 4 * (1 - s) * k2) * SP * CQ
+    elif kind == "A":
+        t1, t2 = (1 - s) * a2 * D, W2 * CP * SQ
+    else:
+        raise InputError(f"kind must be 'S' or 'A', got {kind!r}")
+    scale = (1 - s) * a2 * Dscale + np.abs(t2)
+    return t1 + t2, 64 * np.finfo(float).eps * scale
+
+
+def evanescent_frequency_function(kind: str, kappa, Omega, nu: float):
+    """The frequency function scaled for the evanescent region :math:`P < 0` (no overflow).
+
+    With :math:`T(z) = S(z)/C(z)` (:math:`\\tanh\\sqrt{-z}/\\sqrt{-z}` for z < 0) and
+    :math:`c_Q = C(Q)` where :math:`Q < 0`, else 1,
+
+    .. math::
+
+        F_S / (C(P) c_Q) &= a^2 S(Q)/c_Q + 4\\kappa^2 P\\,T(P)\\,C(Q)/c_Q, \\\\
+        F_A / (C(P) c_Q) &= a^2 T(P)\\,C(Q)/c_Q + 4\\kappa^2 Q\\,S(Q)/c_Q,
+
+    which has the roots of F with :math:`P < 0` and stays of order one where F grows like
+    :math:`e^{2\\kappa}`: the form a root is polished on at large :math:`\\kappa` (the
+    Rayleigh-wave limit of S0 and A0).
+
+    >>> f = [float(evanescent_frequency_function("A", 10.0, w, 0.3)) for w in (9.27, 9.28)]
+    >>> f[0] * f[1] < 0      # A0 at kappa = 10 lies at Omega = 9.2711348522995...
+    True
+    """
+    kappa, Omega = np.asarray(kappa, dtype=float), np.asarray(Omega, dtype=float)
+    k2, W2 = kappa**2, Omega**2
+    s = speed_ratio_squared(nu)
+    P, Q = s * W2 - k2, W2 - k2
+    a2 = (Q - k2) ** 2
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        TP = sinc_sqrt(P) / cos_sqrt(P)
+        cq = np.where(Q < 0, cos_sqrt(Q), 1.0)
+        SQ, CQ = sinc_sqrt(Q) / cq, cos_sqrt(Q) / cq
+    if kind == "S":
+        return a2 * SQ + 4 * k2 * P * TP * CQ
     if kind == "A":
-        return (1 - s) * a2 * D + W2 * CP * SQ
+        return a2 * TP * CQ + 4 * k2 * Q * SQ
     raise InputError(f"kind must be 'S' or 'A', got {kind!r}")
+
+
+def _sinc_sqrt_prime(z):
+    """:math:`S'(z) = (C(z) - S(z)) / (2z)`, by its power series near 0."""
+    z = np.asarray(z, dtype=float)
+    small = np.abs(z) < 0.5
+    with np.errstate(divide="ignore", invalid="ignore"):
+        out = (cos_sqrt(z) - sinc_sqrt(z)) / (2 * np.where(small, 1.0, z))
+    ser = np.zeros_like(z)
+    zk = np.ones_like(z)
+    for k in range(1, 14):
+        ser += k * _S_COEF[k] * zk
+        zk = zk * z
+    return np.where(small, ser, out)
+
+
+def frequency_slope(kind: str, kappa, Omega, nu: float):
+    """Slope :math:`d\\Omega/d\\kappa = -F_\\kappa / F_\\Omega` of a root of F (implicit function).
+
+    With :math:`C'(z) = -S(z)/2` and :math:`S'(z) = (C(z) - S(z))/(2z)` the partial derivatives
+    of :func:`frequency_function` in :math:`(\\kappa^2, P, Q)` are closed forms, and
+
+    .. math::
+
+        \\frac{d\\Omega}{d\\kappa} = -\\frac{\\kappa\\,(F_{\\kappa^2} - F_P - F_Q)}
+                                         {\\Omega\\,(s F_P + F_Q)},
+
+    the dimensionless group velocity :math:`c_g / c_T` when :math:`(\\kappa, \\Omega)` lies
+    on a branch. Meaningful only at roots (elsewhere it is the slope of a level set).
+
+    >>> cp = math.sqrt(2 / (1 - 0.3))   # plate speed / c_T: the S0 slope at kappa -> 0
+    >>> W = float(cp * 0.01)
+    >>> abs(float(frequency_slope("S", 0.01, W, 0.3)) - cp) < 1e-4
+    True
+    """
+    kappa, Omega = np.asarray(kappa, dtype=float), np.asarray(Omega, dtype=float)
+    k2, W2 = kappa**2, Omega**2
+    s = speed_ratio_squared(nu)
+    P, Q = s * W2 - k2, W2 - k2
+    a = Q - k2
+    CP, SP, CQ, SQ = cos_sqrt(P), sinc_sqrt(P), cos_sqrt(Q), sinc_sqrt(Q)
+    dCP, dCQ = -SP / 2, -SQ / 2
+    dSP, dSQ = _sinc_sqrt_prime(P), _sinc_sqrt_prime(Q)
+    if kind == "S":
+        Fk = -2 * a * CP * SQ + 4 * P * SP * CQ
+        FP = a * a * dCP * SQ + 4 * k2 * (SP + P * dSP) * CQ
+        FQ = 2 * a * CP * SQ + a * a * CP * dSQ + 4 * k2 * P * SP * dCQ
+    elif kind == "A":
+        Fk = -2 * a * SP * CQ + 4 * Q * CP * SQ
+        FP = a * a * dSP * CQ + 4 * k2 * Q * dCP * SQ
+        FQ = 2 * a * SP * CQ + a * a * SP * dCQ + 4 * k2 * (CP * SQ + Q * CP * dSQ)
+    else:
+        raise InputError(f"kind must be 'S' or 'A', got {kind!r}")
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return -kappa * (Fk - FP - FQ) / (Omega * (s * FP + FQ))
 
 
 def cutoff_frequencies(kind: str, nu: float, omega_max: float) -> list[tuple[float, str]]:
@@ -243,276 +350,10 @@ def cutoff_frequencies(kind: str, nu: float, omega_max: float) -> list[tuple[flo
     return sorted(out)
 
 
-@dataclass
-class ExactBranches:
-    """Exact Rayleigh-Lamb branches on a kappa grid.
+def __getattr__(name: str):
+    # the root tracer moved to dispersion.tracer; old imports keep working
+    if name in ("ExactBranches", "trace_branches"):
+        from . import tracer
 
-    Attributes
-    ----------
-    kappa : ndarray, shape (m,)
-    omega : dict
-        ``label -> ndarray (m,)`` of :math:`\\Omega`, NaN where the branch lies above
-        ``omega_max``. Labels ``S0, S1, ...`` and ``A0, A1, ...`` in the order of
-        :math:`\\Omega` at each :math:`\\kappa` within each symmetry.
-    failures : list of (kind, kappa, reason)
-        Places where the tracer could not certify it found every root; never empty silently.
-    """
-
-    kappa: np.ndarray
-    omega: dict[str, np.ndarray]
-    nu: float
-    omega_max: float
-    failures: list[tuple[str, float, str]] = field(default_factory=list)
-
-    def symmetry(self, label: str) -> str:
-        """``"S"`` or ``"A"``."""
-        return label[0]
-
-
-def _check_grid(kappa) -> np.ndarray:
-    kappa = check_wavenumbers(kappa)
-    if kappa.max() > 300:
-        raise InputError(f"kappa must be <= 300 (cosh overflow), got {kappa.max()}")
-    return kappa
-
-
-def _illinois(f, a, b, fa, fb, rtol: float, max_iter: int = 100):
-    """Vectorised Illinois (modified regula falsi) on brackets with ``fa * fb < 0``."""
-    a, b, fa, fb = a.copy(), b.copy(), fa.copy(), fb.copy()
-    side = np.zeros(a.shape, dtype=int)
-    active = np.ones(a.shape, dtype=bool)
-    for _ in range(max_iter):
-        idx = np.flatnonzero(active)
-        if idx.size == 0:
-            break
-        A, B, FA, FB = a[idx], b[idx], fa[idx], fb[idx]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            c = (A * FB - B * FA) / (FB - FA)
-        bad = ~((c > np.minimum(A, B)) & (c < np.maximum(A, B)))
-        c = np.where(bad, 0.5 * (A + B), c)
-        fc = f(idx, c)
-        left = np.sign(fc) == np.sign(FA)
-        # c replaces a where f(c) has the sign of f(a), else b; halve the stale end (Illinois)
-        new_a, new_fa = np.where(left, c, A), np.where(left, fc, FA)
-        new_b, new_fb = np.where(left, B, c), np.where(left, FB, fc)
-        sd = side[idx]
-        new_fb = np.where(left & (sd == 1), 0.5 * new_fb, new_fb)
-        new_fa = np.where(~left & (sd == -1), 0.5 * new_fa, new_fa)
-        side[idx] = np.where(left, 1, -1)
-        a[idx], b[idx], fa[idx], fb[idx] = new_a, new_b, new_fa, new_fb
-        done = (np.abs(new_b - new_a) <= rtol * np.abs(c)) | (fc == 0)
-        a[idx[done]] = b[idx[done]] = c[done]
-        active[idx[done]] = False
-    return 0.5 * (a + b), active
-
-
-def _scan_roots(kind, kappa, nu, omega_top, step, rtol, max_depth, max_passes=6):
-    """All roots of G in (0, omega_top] for every kappa: list of arrays, and failures.
-
-    Continuation safeguard: the roots found at each kappa's neighbours (and the midpoints
-    between them) are added as samples, until no pass finds a new root.
-    """
-    grid = np.arange(0.0, omega_top + step, step)
-    ki = np.repeat(np.arange(kappa.size), grid.size)
-    w = np.tile(grid, kappa.size)
-    g = deflated_frequency_function(kind, kappa[ki], w, nu)
-    count = None
-    for _ in range(max_passes):
-        per_k, failures, ki, w, g = _refine_and_solve(kind, kappa, nu, ki, w, g, rtol, max_depth)
-        new_count = np.array([r.size for r in per_k])
-        if count is not None and np.array_equal(new_count, count):
-            break
-        count = new_count
-        seeds_k, seeds_w = [], []
-        for i in range(kappa.size):
-            for nb in (i - 1, i + 1):
-                if 0 <= nb < kappa.size and per_k[nb].size:
-                    r = per_k[nb]
-                    extra = np.concatenate([r, 0.5 * (r[1:] + r[:-1])])
-                    seeds_w.append(extra[extra <= omega_top])
-                    seeds_k.append(np.full(seeds_w[-1].size, i))
-        if not seeds_k:
-            break
-        new_k, new_w = np.concatenate(seeds_k), np.concatenate(seeds_w)
-        new_g = deflated_frequency_function(kind, kappa[new_k], new_w, nu)
-        ki, w, g = _merge((ki, w, g), (new_k, new_w, new_g))
-    else:
-        failures.append((kind, float(kappa[0]), "continuation passes did not settle"))
-    return per_k, failures
-
-
-def _merge(old, new):
-    """Union of two sample sets (kappa index, Omega, G), sorted, duplicates dropped."""
-    ki, w, g = (np.concatenate(v) for v in zip(old, new))
-    order = np.lexsort((w, ki))
-    ki, w, g = ki[order], w[order], g[order]
-    keep = np.concatenate([[True], (np.diff(w) != 0) | (np.diff(ki) != 0)])
-    return ki[keep], w[keep], g[keep]
-
-
-def _refine_and_solve(kind, kappa, nu, ki, w, g, rtol, max_depth):
-    failures = []
-    for depth in range(max_depth + 1):
-        same_k = ki[1:-1] == ki[:-2]
-        same_k &= ki[1:-1] == ki[2:]
-        g0, g1, g2 = g[:-2], g[1:-1], g[2:]
-        dip = same_k & (np.sign(g0) == np.sign(g1)) & (np.sign(g2) == np.sign(g1))
-        dip &= (np.abs(g1) <= np.abs(g0)) & (np.abs(g1) <= np.abs(g2))
-        j = np.flatnonzero(dip) + 1
-        if j.size:
-            # vertex of the parabola through the three samples: a hidden pair of roots
-            # (a near crossing, a veering) shows as a vertex across or close to zero
-            w0, w1, w2 = w[j - 1], w[j], w[j + 1]
-            d01 = (g[j] - g[j - 1]) / (w1 - w0)
-            d12 = (g[j + 1] - g[j]) / (w2 - w1)
-            c2 = (d12 - d01) / (w2 - w0)
-            with np.errstate(divide="ignore", invalid="ignore"):
-                wv = 0.5 * (w0 + w1) - d01 / (2 * c2)
-                vertex = g[j - 1] + (wv - w0) * d01 + c2 * (wv - w0) * (wv - w1)
-            suspect = ~np.isfinite(vertex) | (np.sign(vertex) != np.sign(g[j]))
-            suspect |= np.abs(vertex) < 0.5 * np.abs(g[j])
-            j = j[suspect]
-        if j.size == 0:
-            break
-        if depth == max_depth:
-            for jj in j:
-                failures.append((kind, float(kappa[ki[jj]]),
-                                 f"unresolved near-double root near Omega={w[jj]:.6g}"))
-            break
-        frac = np.linspace(0, 1, 9)[1:-1]
-        new_w = np.concatenate([
-            (w[j - 1][:, None] + frac * (w[j] - w[j - 1])[:, None]).ravel(),
-            (w[j][:, None] + frac * (w[j + 1] - w[j])[:, None]).ravel(),
-        ])
-        new_k = np.concatenate([np.repeat(ki[j], frac.size), np.repeat(ki[j], frac.size)])
-        new_g = deflated_frequency_function(kind, kappa[new_k], new_w, nu)
-        ki, w, g = _merge((ki, w, g), (new_k, new_w, new_g))
-    # brackets: sign changes between neighbours at the same kappa, plus exact zeros
-    same = ki[1:] == ki[:-1]
-    change = same & (np.sign(g[1:]) != np.sign(g[:-1])) & (g[:-1] != 0)
-    j = np.flatnonzero(change)
-    a, b, fa, fb, kk = w[j], w[j + 1], g[j], g[j + 1], ki[j]
-    exact = np.flatnonzero(same & (g[1:] == 0))
-
-    def f(idx, x):
-        return deflated_frequency_function(kind, kappa[kk[idx]], x, nu)
-
-    roots, unconverged = _illinois(f, a, b, fa, fb, rtol)
-    for i in np.flatnonzero(unconverged):
-        failures.append((kind, float(kappa[kk[i]]), "root refinement did not converge"))
-    roots = np.concatenate([roots, w[exact + 1]])
-    kk = np.concatenate([kk, ki[exact + 1]])
-    order = np.lexsort((roots, kk))
-    roots, kk = roots[order], kk[order]
-    per_k = np.split(roots, np.searchsorted(kk, np.arange(1, kappa.size)))
-    return per_k, failures, ki, w, g
-
-
-def trace_branches(
-    nu: float,
-    kappa,
-    omega_max: float,
-    *,
-    kinds: tuple[str, ...] = ("S", "A"),
-    step: float = 0.05,
-    rtol: float = 1e-15,
-    max_depth: int = 12,
-    chunk: int = 2000,
-    progress=None,
-) -> ExactBranches:
-    """Every exact Rayleigh-Lamb branch with :math:`\\Omega \\le \\Omega_{max}` on a kappa grid.
-
-    For real :math:`\\kappa` each symmetry class is a self-adjoint eigenproblem in
-    :math:`\\Omega^2`: its branches never cross (they veer), so the j-th root in increasing
-    :math:`\\Omega` *is* branch :math:`S_j` (or :math:`A_j`) at every :math:`\\kappa`, and the
-    labels cannot swap at a near-crossing once no root is skipped. Roots are bracketed on a
-    grid of spacing ``step`` of the deflated, pole-free function
-    (:func:`deflated_frequency_function`); wherever three samples of the same sign dip
-    towards zero (the signature of two close roots, e.g. a veering pair or the split of a
-    double cut-off) the cells are refined eight-fold, up to ``max_depth`` times, and
-    whatever stays unresolved is listed in ``failures`` with its kappa. Continuation along
-    kappa: the roots found at each grid neighbour, and the midpoints between them, are added
-    as samples and the scan is repeated until the root counts settle, so a pair seen at one
-    kappa is found at the next; a branch that still vanishes between two neighbours that have
-    it is reported. Brackets are closed
-    by the Illinois method to relative width ``rtol``. At :math:`\\kappa = 0` the closed-form
-    cut-offs (:func:`cutoff_frequencies`) are used.
-
-    Parameters
-    ----------
-    nu : float
-        Poisson's ratio, in (-1, 0.5).
-    kappa : array_like
-        Dimensionless wavenumbers :math:`\\kappa = kh \\ge 0`.
-    omega_max : float
-        Largest :math:`\\Omega = \\omega h / c_T` of interest.
-    step, rtol, max_depth :
-        Scan spacing, root tolerance and refinement depth (the accuracy/speed settings).
-    chunk : int
-        Kappa points per vectorised block (bounds the memory).
-    progress : callable, optional
-        Called with the number of kappa points finished after each block.
-
-    Returns
-    -------
-    ExactBranches
-
-    Examples
-    --------
-    >>> br = trace_branches(0.3, [0.0, 1.0], 3.5)
-    >>> sorted(br.omega)
-    ['A0', 'A1', 'S0', 'S1', 'S2']
-    >>> bool(br.omega["S2"][0] == math.pi), round(float(br.omega["A0"][1]), 12)
-    (True, 0.650345159155)
-
-    References
-    ----------
-    J. L. Rose, *Ultrasonic waves in solid media*, Cambridge University Press 2004, ch. 8;
-    F. A. Amirkulova, PhD thesis, Rutgers 2011 (ref [1] of the paper).
-    """
-    nu = float(check_nu(nu))
-    kappa = _check_grid(kappa)
-    try:
-        omega_max = float(omega_max)
-    except (TypeError, ValueError):
-        raise InputError(f"omega_max must be a finite number > 0, got {omega_max!r}") from None
-    check_positive("omega_max", omega_max)
-    check_positive("step", step)
-    check_positive("rtol", rtol)
-    chunk = check_positive_int("chunk", chunk)
-    omega = {}
-    failures = []
-    top = omega_max * (1 + 1e-9) + 2 * step
-    for kind in kinds:
-        per_k = [None] * kappa.size
-        zero = np.flatnonzero(kappa == 0)
-        positive = np.flatnonzero(kappa > 0)
-        cut = np.array([w for w, _ in cutoff_frequencies(kind, nu, omega_max)])
-        for i in zero:
-            per_k[i] = cut
-        if positive.size:
-            kp, roots = kappa[positive], []
-            for lo in range(0, kp.size, chunk):
-                hi = min(lo + chunk, kp.size)
-                # one neighbour either side keeps the continuation check across chunk seams
-                a, b = max(lo - 1, 0), min(hi + 1, kp.size)
-                r, fails = _scan_roots(kind, kp[a:b], nu, top, step, rtol, max_depth)
-                roots += r[lo - a:hi - a]
-                failures += [f for f in fails if kp[lo] <= f[1] <= kp[hi - 1]]
-                if progress is not None:
-                    progress(hi - lo)
-            for i, r in zip(positive, roots):
-                per_k[i] = r[r <= omega_max]
-        n_br = max(len(r) for r in per_k)
-        for j in range(n_br):
-            omega[f"{kind}{j}"] = np.array(
-                [r[j] if j < len(r) else np.nan for r in per_k], dtype=float)
-        # a branch that vanishes and reappears in the window away from omega_max is a skip
-        for j in range(n_br):
-            y = omega[f"{kind}{j}"]
-            gone = np.isnan(y)
-            inner = np.flatnonzero(gone[1:-1] & ~gone[:-2] & ~gone[2:]) + 1
-            for i in inner:
-                if max(y[i - 1], y[i + 1]) < omega_max - 4 * step:
-                    failures.append((kind, float(kappa[i]), f"{kind}{j} lost between neighbours"))
-    return ExactBranches(kappa, omega, nu, omega_max, list(dict.fromkeys(failures)))
+        return getattr(tracer, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -20,12 +20,15 @@
 # against the exact partner, and the order of accuracy fitted from it.
 
 # %%
+# %matplotlib inline
 import numpy as np
 
-from dispersion.branches import discrete_branches, fitted_order, predicted_error, relative_error
+from dispersion.branch_study import figure2_data
 from dispersion.plate import plate_patch
-from dispersion.plotting.branches import figure2
-from dispersion.rayleigh_lamb import cutoff_frequencies, trace_branches
+from dispersion.plotting.branches import figure2, figure_velocities
+from dispersion.rayleigh_lamb import cutoff_frequencies
+from dispersion.units import ALUMINIUM, physical_branches
+from dispersion.velocities import zgv_points
 
 nu, r = 0.3, 0.5  # Figure 2 caption: h/b = 2
 
@@ -37,26 +40,34 @@ nu, r = 0.3, 0.5  # Figure 2 caption: h/b = 2
 for kind in "SA":
     print(kind, [(round(w, 4), fam) for w, fam in cutoff_frequencies(kind, nu, 8.0)])
 
+# %% [markdown]
+# Exact and discrete branches; the error panel pairs each exact branch with the discrete
+# mode of the same through-thickness shape (MAC), and shows the error with its sign.
+
 # %%
-kappa = np.linspace(0, 8, 400)
-exact = trace_branches(nu, kappa, 8.0)
+kappa = np.linspace(0, 8, 200)
+patches = {m: plate_patch(model="bloch", r=r, mass=m) for m in ("consistent", "singular")}
+data, exact = figure2_data(nu, kappa, 8.0, patches)
 print("exact branches:", sorted(exact.omega), "| failures reported:", exact.failures)
-results = []
-for mass in ("consistent", "singular"):
-    d = discrete_branches(plate_patch(model="bloch", r=r, mass=mass), nu, kappa)
-    results.append((mass, d, relative_error(d, exact)))
-fig = figure2(exact, results, title=f"nu = {nu}, Bloch model r = {r}")
-fig  # noqa: B018
+figure2(data, title=f"nu = {nu}, Bloch model r = {r}")
 
 # %% [markdown]
-# Order of accuracy: the fitted slope of the relative error of Omega at small kappa against
-# the leading error term of the series (`discrete_series - exact_series`).
+# Phase and group velocity, with the zero-group-velocity points of the exact branches.
 
 # %%
-small = np.geomspace(0.04, 0.16, 5)
-ex = trace_branches(nu, small, 4.0)
-for mass in ("consistent", "singular"):
-    err = relative_error(discrete_branches(plate_patch(mass=mass), nu, small), ex)
-    for b in ("S0", "A0"):
-        q, c = predicted_error(b, nu, mass=mass)
-        print(f"{mass:10s} {b}: fitted {fitted_order(small, err[b]):.2f}, series {q}")
+zgv = zgv_points(nu, 8.0, 8.0, count=200)
+print([(z.label, round(z.kappa, 4), round(z.omega, 4)) for z in zgv])
+figure_velocities(data, zgv=[vars(z) for z in zgv])
+
+# %% [markdown]
+# The same exact branches for an aluminium plate 1 mm thick, in the units of the
+# Dispersion Calculator (kHz, MHz mm, m/s): the A1 cut-off sits at f d = c_T / 2.
+
+# %%
+from dispersion.tracer import trace_branches  # noqa: E402
+from dispersion.velocities import exact_velocities  # noqa: E402
+
+al = trace_branches(ALUMINIUM.nu, [0.0, 1.0], 4.0)
+pb = physical_branches(al.kappa, al.omega, exact_velocities(al).group, ALUMINIUM, 1.0)
+print("A1 cut-off f d =", round(float(pb.fd["A1"][0]), 4), "MHz mm; c_T / 2 =",
+      ALUMINIUM.c_T / 2e3)

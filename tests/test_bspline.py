@@ -66,3 +66,22 @@ def test_bad_input():
         bspline.open_knot_vector(0, 2)
     with pytest.raises(InputError, match="outside"):
         bspline.insert_knot(bspline.open_knot_vector(2, 1), 2)
+
+
+def test_spline_basis_1d_matches_the_exact_extraction():
+    # the float twin (SplineBasis1D) against the exact sympy polynomials of the same knots
+    import numpy as np
+    import sympy
+
+    from dispersion.bspline import SplineBasis1D, basis_polynomials, open_knot_vector
+
+    kv = open_knot_vector(3, 4, -1, 1)
+    basis = SplineBasis1D.from_knots(kv)
+    x = sympy.Symbol("x")
+    for (a, b), polys, active in basis_polynomials(kv, x, local=False):
+        pts = np.linspace(float(a), float(b), 5)[1:-1]
+        act, N = basis.evaluate(pts)
+        assert act[0].tolist() == list(active)
+        ref = np.array([[float(f.subs(x, p)) for f in polys] for p in pts])
+        assert np.allclose(N, ref, atol=1e-14)
+        assert np.allclose(N.sum(axis=1), 1.0)  # partition of unity

@@ -2,20 +2,25 @@
 from __future__ import annotations
 
 import csv
+import json
 
 import numpy as np
 import pytest
 
 from dispersion.cli import main
-from dispersion.rayleigh_lamb import trace_branches
+from dispersion.tracer import trace_branches
+
+
+def _rows(text: str) -> list[dict]:
+    return list(csv.DictReader(line for line in text.splitlines() if not line.startswith("#")))
 
 
 def test_exact_only_csv_matches_api(tmp_path):
     out = tmp_path / "rl.csv"
-    rc = main(["branches", "--exact-only", "--kappa-max", "3", "--count", "7",
+    rc = main(["branches", "--exact", "--kappa-max", "3", "--count", "7",
                "--omega-max", "5", "--csv", str(out)])
     assert rc == 0
-    rows = list(csv.DictReader(out.open()))
+    rows = _rows(out.read_text())
     assert {r["source"] for r in rows} == {"exact"}
     ref = trace_branches(0.3, np.linspace(0, 3, 7), 5.0)
     for r in rows:
@@ -30,7 +35,7 @@ def test_discrete_csv_and_figure(tmp_path):
     rc = main(["branches", "--mass", "consistent", "--mass", "singular", "--count", "20",
                "--csv", str(out), "--figure", str(fig)])
     assert rc == 0
-    rows = list(csv.DictReader(out.open()))
+    rows = _rows(out.read_text())
     sources = {r["source"] for r in rows}
     assert sources == {"exact", "consistent", "singular"}
     sym = {r["symmetry"] for r in rows if r["source"] == "singular"}
@@ -48,8 +53,19 @@ def test_discrete_csv_and_figure(tmp_path):
     ["--count", "1"],
     ["--nu", "0.6"],
     ["--r", "-1"],
+    ["--count", "100000000"],       # issue 11: 3.3 GiB before; refused up front
+    ["--omega-max", "1e6"],         # issue 11: MemoryError asking 59.5 GiB before
+    ["--exact", "--mass", "singular"],
+    ["--exact", "--r", "2"],
+    ["--mass", "consistent", "--gamma-s", "0.5"],
+    ["--model", "x-exact", "--r", "2"],
+    ["--material", "aluminium"],    # no thickness
+    ["--thickness", "1"],           # no material
+    ["--material", "aluminium", "--thickness", "1", "--nu", "0.3"],
+    ["--figure", "fig.txt"],        # a rejected figure name writes no csv either
 ])
-def test_bad_input_exits_2(argv, tmp_path, capsys):
+def test_bad_input_exits_2(argv, tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
     rc = main(["branches", "--csv", str(tmp_path / "x.csv"), *argv])
     assert rc == 2
     err = capsys.readouterr().err
@@ -58,8 +74,42 @@ def test_bad_input_exits_2(argv, tmp_path, capsys):
 
 
 def test_progress_bar_goes_to_stderr(tmp_path, capsys):
-    rc = main(["branches", "--exact-only", "--count", "5", "--progress",
+    rc = main(["branches", "--exact", "--count", "5", "--progress",
                "--csv", str(tmp_path / "p.csv")])
     assert rc == 0
     captured = capsys.readouterr()
     assert "branches" in captured.err and captured.out == ""
+
+
+def test_stdout_formats_carry_inputs(capsys):
+    argv = ["branches", "--exact", "--kappa-max", "1", "--count", "3", "--omega-max", "2"]
+    assert main([*argv, "--format", "csv"]) == 0
+    text = capsys.readouterr().out
+    assert "# nu: 0.3" in text and "# dispersion-iga:" in text
+    rows = _rows(text)
+    assert {"c_p/c_T", "c_g/c_T"} <= set(rows[0])
+    assert main([*argv, "--format", "json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["inputs"]["nu"] == 0.3 and len(data["result"]["rows"]) == len(rows)
+    assert main([*argv, "--format", "text"]) == 0
+    assert "Omega" in capsys.readouterr().out
+
+
+def test_aluminium_columns_in_units(capsys):
+    # A1 cut-off at kappa = 0: f d = c_T / 2 = 1.565 MHz mm (Dispersion Calculator, aluminium)
+    assert main(["branches", "--exact", "--material", "aluminium", "--thickness", "1",
+                 "--kappa-max", "1", "--count", "2", "--omega-max", "2", "--csv", "-"]) == 0
+    text = capsys.readouterr().out
+    assert "# material: {'name': 'aluminium'" in text
+    a1 = [r for r in _rows(text) if r["branch"] == "A1" and float(r["kappa"]) == 0][0]
+    assert float(a1["fd [MHz mm]"]) == pytest.approx(1.565, rel=1e-12)
+    assert float(a1["f [kHz]"]) == pytest.approx(1565.0, rel=1e-12)  # d = 1 mm
+    assert {"c_p [m/s]", "c_g [m/s]", "wavelength [mm]"} <= set(a1)
+
+
+def test_discrete_rows_have_group_velocity(tmp_path):
+    out = tmp_path / "d.csv"
+    assert main(["branches", "--mass", "consistent", "--kappa-min", "0.5", "--kappa-max", "1",
+                 "--count", "2", "--omega-max", "3", "--csv", str(out)]) == 0
+    rows = [r for r in _rows(out.read_text()) if r["source"] == "consistent"]
+    assert rows and all(np.isfinite(float(r["c_g/c_T"])) for r in rows)

@@ -14,10 +14,16 @@ from dispersion.rayleigh_lamb import (
     frequency_function,
     numeric_frequency_function,
     speed_ratio_squared,
-    trace_branches,
 )
+from dispersion.tracer import trace_branches
 
-mpmath.mp.dps = 40
+DPS = 40  # digits of the mpmath references, set locally with mpmath.workdps
+
+
+@pytest.fixture(autouse=True)
+def _forty_digits():
+    with mpmath.workdps(DPS):
+        yield
 
 
 def mp_C(z):
@@ -111,7 +117,8 @@ def test_s0_series_small_kappa():
 
 
 def test_series_against_power_balance():
-    pb = pytest.importorskip("dispersion.power_balance")
+    from dispersion import power_balance as pb
+
     nu = 0.3
     kappa = np.array([0.005, 0.01])  # truncation after k^8: relative remainder ~ k^6
     br = trace_branches(nu, kappa, 1.0)
@@ -203,3 +210,60 @@ def test_chunking_does_not_change_results():
     assert sorted(whole.omega) == sorted(parts.omega) and parts.failures == []
     for lab, w in whole.omega.items():
         assert np.allclose(w, parts.omega[lab], rtol=1e-14, equal_nan=True)
+
+
+def test_tiny_kappa_right_count_no_duplicates():
+    # issue 10: at kappa in [1e-8, 1e-7], nu = 0.3 and Omega <= 8 there are 4 symmetric roots
+    # (S0 and the cut-offs pi/(2 sqrt s), pi, 2 pi of cutoff_frequencies) and 5 antisymmetric
+    kappa = np.linspace(1e-8, 1e-7, 10)
+    br = trace_branches(0.3, kappa, 8.0)
+    assert br.failures == []
+    cuts = {kind: [w for w, _ in cutoff_frequencies(kind, 0.3, 8.0)] for kind in "SA"}
+    for kind in "SA":
+        labels = sorted((lab for lab in br.omega if lab[0] == kind), key=lambda s: int(s[1:]))
+        assert len(labels) == len(cuts[kind]) == (4 if kind == "S" else 5)
+        rows = np.array([br.omega[lab] for lab in labels])
+        assert np.all(np.diff(rows, axis=0) > 0.1)  # distinct roots, no duplicates
+        # each branch sits at its cut-off to O(kappa^2) (the fundamental one at 0)
+        assert np.allclose(rows[1:, :], np.array(cuts[kind][1:])[:, None], rtol=1e-12)
+
+
+@pytest.mark.parametrize("kappa", [1e-12, 1e-100, 1e-150])
+def test_fundamental_branches_at_vanishing_kappa(kappa):
+    # eq (14) and (16) leading terms: Omega_S0 = kappa sqrt(2/(1-nu)),
+    # Omega_A0 = kappa^2 sqrt(2/(3 (1-nu))) (plate speed and Kirchhoff bending, Graff 1975)
+    nu = 0.3
+    br = trace_branches(nu, [kappa], 2.0)
+    assert br.failures == []
+    assert br.omega["S0"][0] == pytest.approx(kappa * math.sqrt(2 / (1 - nu)), rel=1e-15)
+    a0 = br.omega["A0"][0]
+    assert a0 / kappa / kappa == pytest.approx(math.sqrt(2 / (3 * (1 - nu))), rel=1e-15)
+    assert sorted(br.omega) == ["A0", "A1", "S0"]
+
+
+def test_underflow_of_a0_is_a_listed_failure():
+    # Omega_A0 ~ 0.98 kappa^2 is below the smallest normal float at kappa = 1e-300
+    br = trace_branches(0.3, [1e-300], 2.0)
+    assert br.failures == [("A", 1e-300, br.failures[0][2])] and "underflow" in br.failures[0][2]
+
+
+def test_coincident_cutoffs_below_round_off_are_listed():
+    # nu = 1/3: the S1/S2 pair splits from pi like kappa^2; below round-off the tracer gives a
+    # double root (the right count) and names every such kappa in failures
+    kappa = np.array([1e-12, 1e-10, 1e-8])
+    br = trace_branches(1 / 3, kappa, 3.5, kinds=("S",))
+    assert sorted(br.omega) == ["S0", "S1", "S2"]
+    assert sorted({f[1] for f in br.failures}) == kappa.tolist()
+    assert np.allclose(br.omega["S1"], math.pi, rtol=1e-7)
+    assert np.allclose(br.omega["S2"], math.pi, rtol=1e-7)
+
+
+def test_large_kappa_roots_to_1e15():
+    # issue 10: A0 at kappa = 10 to 1e-15 (evanescent polish) against 40-digit roots
+    nu = 0.3
+    br = trace_branches(nu, [10.0], 11.0)
+    assert br.failures == []
+    for label in ("A0", "S0", "A1", "S1"):
+        w = br.omega[label][0]
+        ref = mp_root(label[0], 10.0, w, nu)
+        assert abs(w - float(ref)) <= 1e-15 * float(ref), label

@@ -1,4 +1,4 @@
-"""Tests of dispersion/report/studies.py (studies beyond the paper) and its plots."""
+"""Tests of dispersion/studies.py (studies beyond the paper), its renderer and its plots."""
 from __future__ import annotations
 
 import numpy as np
@@ -7,7 +7,9 @@ import scipy.linalg
 
 from dispersion.errors import InputError
 from dispersion.plate import numeric_pencil, plate_patch
-from dispersion.report import studies
+from dispersion import studies
+from dispersion.branches import critical_time_step, fundamental_branches, pencil_frequencies
+from dispersion.tracer import exact_fundamental
 
 NU = 0.3
 
@@ -24,7 +26,8 @@ def _finite_generalized(K, M):
 def test_condensation_keeps_exactly_the_finite_roots(mass):
     patch = plate_patch(2, 3, "bloch", 2, mass=mass, contact="top", gamma_s=0.5)
     kappa = np.array([0.3, 1.1])
-    W = studies.condensed_frequencies(patch, NU, kappa)
+    K, M = numeric_pencil(patch, NU, kappa)
+    W = pencil_frequencies(K, M, patch.massless)
     # singular masses: 2 massless DOFs (u_x, u_y of the top point) -> 6 - 2 finite branches
     assert W.shape == (2, 6 - len(patch.massless))
     K, M = numeric_pencil(patch, NU, kappa)
@@ -40,8 +43,8 @@ def test_exact_branch_matches_eqs_14_15_at_small_kappa():
     s0 = 2 / (1 - nu) * k**2 - 2 * nu**2 / (3 * (1 - nu) ** 3) * k**4 \
         + 2 * nu**2 * (7 * nu**2 + 10 * nu - 6) / (45 * (1 - nu) ** 5) * k**6
     a0 = 2 / (3 * (1 - nu)) * k**4 + 2 * (7 * nu - 17) / (45 * (1 - nu) ** 2) * k**6
-    np.testing.assert_allclose(studies.exact_branch("S", k, nu) ** 2, s0, rtol=1e-9)
-    rel = np.abs(studies.exact_branch("A", k, nu) ** 2 / a0 - 1)
+    np.testing.assert_allclose(exact_fundamental("S", k, nu) ** 2, s0, rtol=1e-9)
+    rel = np.abs(exact_fundamental("A", k, nu) ** 2 / a0 - 1)
     # A0 starts at kappa^4, so the O(kappa^8) remainder is a kappa^4 relative error
     assert rel[1] < 1e-4
     assert 3.5 < np.log(rel[1] / rel[0]) / np.log(k[1] / k[0]) < 4.5
@@ -53,28 +56,29 @@ def test_branch_frequencies_converge_to_exact_with_a_rate():
     # kappa^6 per eq 17, so the relative Omega error is O(kappa^4)).
     patch = plate_patch(2, 3, "bloch", 2, mass="consistent")
     k = np.array([0.1, 0.05])
-    num = studies.branch_frequencies(patch, NU, k)
+    num = fundamental_branches(patch, NU, k)
     for branch in ("S0", "A0"):
-        err = np.abs(num[branch] / studies.exact_branch(branch[0], k, NU) - 1)
+        err = np.abs(num[branch] / exact_fundamental(branch[0], k, NU) - 1)
         assert err[1] < err[0] < 1e-2
         rate = np.log(err[0] / err[1]) / np.log(2)
         assert rate > 1.9, (branch, rate)
 
 
-def test_branch_frequencies_without_mirror_symmetry_agree_with_blocks():
-    # With gamma_s chosen so the mass stays symmetric ("both" surfaces), the block solve and
-    # the ordering rule used for non-symmetric masses must pick the same S0 and A0.
+def test_fundamental_branches_are_the_two_lowest_roots_at_small_kappa():
+    # the block solve of a symmetric mass (CMM) labels S0 and A0; below the first cut-off they
+    # are the two lowest roots of the whole pencil, A0 (Omega ~ kappa^2) below S0 (~ kappa)
     patch = plate_patch(2, 3, "bloch", 2, mass="consistent")
     k = np.array([0.2, 0.4])
-    blocks = studies.branch_frequencies(patch, NU, k)
-    W = studies.condensed_frequencies(patch, NU, k)
+    blocks = fundamental_branches(patch, NU, k)
+    K, M = numeric_pencil(patch, NU, k)
+    W = pencil_frequencies(K, M, patch.massless)
     np.testing.assert_allclose(blocks["A0"], W[:, 0], rtol=1e-9)
     np.testing.assert_allclose(blocks["S0"], W[:, 1], rtol=1e-9)
 
 
 def test_critical_time_step_properties():
-    dt = {m: studies.critical_time_step(2, 3, m, 2, NU, n_theta=33)
-          for m in ("consistent", "lumped", "singular")}
+    dt = {m: critical_time_step(plate_patch(2, 3, "bloch", 2, mass=m, contact="top"), NU,
+                                n_theta=33) for m in ("consistent", "lumped", "singular")}
     # Row-sum lumping lowers the highest frequency: larger stable step than CMM
     # (Cottrell et al. 2006, sec. 5; Hughes, The Finite Element Method, sec. 9.3).
     assert dt["lumped"] > dt["consistent"]
@@ -86,10 +90,10 @@ def test_critical_time_step_properties():
         wmax = max(_finite_generalized(K[i], M[i]).max() for i in range(2))
         assert value <= 2 / wmax + 1e-12
     # a finer zone grid can only find a higher maximum frequency
-    fine = studies.critical_time_step(2, 3, "consistent", 2, NU, n_theta=129)
+    fine = critical_time_step(plate_patch(2, 3, "bloch", 2), NU, n_theta=129)
     assert fine <= dt["consistent"] + 1e-12
     with pytest.raises(InputError, match="n_theta"):
-        studies.critical_time_step(n_theta=1)
+        critical_time_step(plate_patch(2, 3, "bloch", 2), NU, n_theta=1)
 
 
 def test_series_helpers():
@@ -114,7 +118,8 @@ def test_gamma_figure_draws_every_weight():
     fig = figure_gamma(rows, kappas=[0.5])
     coeff_ax, err_ax = fig.axes
     assert [len(line.get_xdata()) for line in coeff_ax.get_lines()[:2]] == [3, 3]
-    assert len(err_ax.get_lines()) == 2
+    assert len(err_ax.get_lines()) == 3  # S0, A0 and the zero line
+    assert err_ax.get_yscale() == "symlog"  # signed errors, not |error|
 
 
 def test_orders_of_accuracy_match_the_paper_claims():
@@ -136,7 +141,7 @@ def test_gamma_case_series_agrees_with_its_numeric_branch():
     # one quantity two ways: the series' Omega at small kappa vs the patch's eigenvalue
     res = studies._gamma_case(0.5, order=6, kappas=(0.05, 0.1))
     patch = plate_patch(2, 3, "bloch", 2, mass="singular", contact="top", gamma_s=0.5)
-    num = studies.branch_frequencies(patch, NU, [0.05])
+    num = fundamental_branches(patch, NU, [0.05])
     for branch in ("S0", "A0"):
         coeffs = {int(j): v for j, v in res[branch].items()}
         series = studies.series_frequency(coeffs, [0.05])
@@ -145,16 +150,30 @@ def test_gamma_case_series_agrees_with_its_numeric_branch():
         assert len(res[f"{branch}_error"]) == 2
 
 
-def test_quick_report_writes_what_it_links(tmp_path):
+def test_render_from_json_alone(tmp_path):
+    # measure once (a small fake result built from real rows), store, render from the JSON
+    import json
     import re
 
-    md = studies.report(tmp_path, quick=True)
+    from dispersion.report.studies import render
+    from dispersion.results import dumps
+
+    rows = [studies._gamma_case(g, order=4, kappas=(0.25,)) for g in (0, 1)]
+    data = {"quick": True, "nu": NU, "r": 2, "kappas": [0.25], "gamma": rows,
+            "orders": [studies._order_case((2, 3, "consistent"), order=6)],
+            "dt_crit": [studies._dt_case((2, 3, "lumped"), n_theta=9)], "tol": 1e-3,
+            "kappa_grid": [0.1, 0.2],
+            "radius": [studies._radius_case(("exact", "S0", 4), np.array([0.1, 0.2]), 1e-3)],
+            "bar": [studies._bar_case(("kane", "singular"), n_elements=6)]}
+    md = render(json.loads(dumps(data)), tmp_path)
     links = re.findall(r"\]\(([^)]+)\)", md)
-    assert {"studies.json", "studies_gamma.png", "studies_radius.png"} <= set(links)
+    assert {"studies_gamma.png", "studies_radius.png"} <= set(links)
     for link in links:
-        assert (tmp_path / link).stat().st_size > 0
+        if link.endswith(".png"):
+            assert (tmp_path / link).stat().st_size > 0
     for heading in ("(a)", "(b)", "(c)"):
         assert f"### {heading}" in md
+    assert "signed error" in md
 
 
 def test_bar_case_singular_mass_is_insensitive_to_the_contact_modification():
@@ -190,6 +209,6 @@ def test_exact_branch_against_an_independent_bracket_and_bisect():
             vals = f(grid)
             i = np.nonzero(np.sign(vals[:-1]) != np.sign(vals[1:]))[0][0]
             ref = brentq(f, grid[i], grid[i + 1], xtol=1e-15, rtol=1e-14)
-            assert studies.exact_branch(kind, [k], NU)[0] == pytest.approx(ref, rel=1e-11)
+            assert exact_fundamental(kind, [k], NU)[0] == pytest.approx(ref, rel=1e-11)
     with pytest.raises(InputError, match="kind"):
-        studies.exact_branch("X", [0.1], NU)
+        exact_fundamental("X", [0.1], NU)

@@ -1,9 +1,10 @@
-"""``dispersion branches``: discrete and exact dispersion branches, CSV and figure.
+"""``dispersion branches``: discrete and exact Rayleigh-Lamb branches with velocities and units.
 
-Examples::
-
-    dispersion branches --mass singular --model bloch --r 0.5 --csv out.csv --figure out.png
-    dispersion branches --exact-only --omega-max 6 --kappa-max 5 --csv rl.csv
+Rows ``kappa, Omega, branch, symmetry, source, c_p/c_T, c_g/c_T`` (dimensionless: kappa = kh,
+Omega = omega h / c_T) and, with a material and a thickness, ``f [kHz], fd [MHz mm],
+c_p [m/s], c_g [m/s], wavelength [mm]``. ``--csv FILE`` / ``--figure FILE`` write files
+(``-``: stdout); without them the rows go to stdout as ``--format`` says. Every CSV starts
+with ``#`` lines naming its inputs and the package version; JSON carries them as ``inputs``.
 """
 from __future__ import annotations
 
@@ -11,67 +12,241 @@ import argparse
 import csv
 import io
 import math
+import os
 import sys
+from pathlib import Path
 
 import numpy as np
 
+from .. import defaults
 from ..errors import InputError
 from ..io import save_figure, write_text
 from ..mass import CONTACT_SETS, MASS_VARIANTS
 from ..plate import MODELS
 from . import number
 
+#: Up-front bounds (issue 11): count * samples per kappa bounds the tracer's memory.
+MAX_COUNT = 200_000
+MAX_OMEGA = 200.0
+MAX_WORK = 4e7  # kappa points times Omega samples (step 0.05) for the exact tracer
+FIGURE_SUFFIXES = (".png", ".pdf", ".svg")
+
 
 def register(sub) -> None:
-    p = sub.add_parser("branches", help="dispersion branches: discrete patch and Rayleigh-Lamb",
-                       description="All discrete branches of the plate patch and the exact "
-                                   "Rayleigh-Lamb branches below Omega_max on a kappa grid "
-                                   "(paper Figure 2).")
+    p = sub.add_parser(
+        "branches", help="dispersion branches: discrete patch and Rayleigh-Lamb",
+        description="All discrete branches of the plate patch and the exact Rayleigh-Lamb "
+                    "branches below Omega_max on a kappa grid (paper Figure 2), with phase "
+                    "and group velocity, optionally in physical units.")
     p.add_argument("--mass", choices=MASS_VARIANTS, action="append",
-                   help="mass variant (repeat for several; default consistent and singular)")
-    p.add_argument("--contact", choices=CONTACT_SETS, default="top")
-    p.add_argument("--gamma-s", type=number("gamma_s"), default=0.0)
-    p.add_argument("--model", choices=MODELS, default="bloch")
-    p.add_argument("--r", type=number("r"), default=0.5,
-                   help="aspect ratio b/h of the Bloch model (paper Figure 2: h/b = 2, r = 0.5)")
-    p.add_argument("--p", type=int, default=2, help="degree through the thickness")
-    p.add_argument("--n", type=int, default=3, help="control points through the thickness")
-    p.add_argument("--nu", type=number("nu"), default=0.3)
-    p.add_argument("--kappa-min", type=number("kappa-min"), default=0.0)
-    p.add_argument("--kappa-max", type=number("kappa-max"), default=8.0)
-    p.add_argument("--count", type=int, default=400, help="number of kappa points")
-    p.add_argument("--omega-max", type=number("omega-max"), default=8.0)
-    p.add_argument("--csv", help="write rows kappa, Omega, branch, symmetry, source to PATH")
-    p.add_argument("--figure", help="write the figure (PNG or PDF by suffix) to PATH")
-    p.add_argument("--exact-only", action="store_true", help="Rayleigh-Lamb branches only")
+                   help="mass variant (repeat for several; default: consistent and singular)")
+    p.add_argument("--contact", choices=CONTACT_SETS, default=None,
+                   help=f"contact set of a singular mass (default: {defaults.CONTACT})")
+    p.add_argument("--gamma-s", type=number("gamma_s"), default=None,
+                   help="share of a contact shape function sent to the second neighbour, "
+                        "singular masses only (default: 0, Figure 2)")
+    p.add_argument("--model", choices=MODELS, default="bloch",
+                   help="patch model along x (default: bloch)")
+    p.add_argument("--r", type=number("r"), default=None,
+                   help=f"aspect ratio b/h of the Bloch model, dimensionless "
+                        f"(default: {float(defaults.FIGURE2_R):g}, Figure 2's h/b = 2)")
+    p.add_argument("--p", type=int, default=defaults.P,
+                   help=f"degree through the thickness (default: {defaults.P})")
+    p.add_argument("--n", type=int, default=defaults.N,
+                   help=f"control points through the thickness (default: {defaults.N})")
+    p.add_argument("--nu", type=number("nu"), default=None,
+                   help=f"Poisson's ratio (default: {defaults.NU_FLOAT}, or the material's)")
+    p.add_argument("--kappa-min", type=number("kappa-min"), default=0.0,
+                   help="smallest kappa = kh, dimensionless (default: 0)")
+    p.add_argument("--kappa-max", type=number("kappa-max"), default=8.0,
+                   help="largest kappa = kh, dimensionless (default: 8)")
+    p.add_argument("--count", type=int, default=400,
+                   help=f"number of kappa points, 2..{MAX_COUNT} (default: 400)")
+    p.add_argument("--omega-max", type=number("omega-max"), default=8.0,
+                   help=f"largest Omega = omega h / c_T, in (0, {MAX_OMEGA:g}] (default: 8)")
+    p.add_argument("--material", choices=sorted(_materials()),
+                   help="material for physical units (aluminium: c_L = 6320, c_T = 3130 m/s)")
+    p.add_argument("--cl", type=number("cl"), help="longitudinal speed c_L in m/s")
+    p.add_argument("--ct", type=number("ct"), help="shear speed c_T in m/s")
+    p.add_argument("--thickness", type=number("thickness"),
+                   help="plate thickness d = 2h in mm (with a material: physical columns)")
+    p.add_argument("--exact", action="store_true", help="Rayleigh-Lamb branches only")
+    p.add_argument("--exact-only", dest="exact", action="store_true", help=argparse.SUPPRESS)
+    p.add_argument("--format", choices=("text", "csv", "json"), default="csv",
+                   help="what goes to stdout when no --csv/--figure is given (default: csv)")
+    p.add_argument("--csv", help="write the rows as CSV to FILE ('-': stdout)")
+    p.add_argument("--figure", help="write the figure to FILE (.png, .pdf or .svg)")
     p.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
-                   help="tqdm progress bar (default: on a terminal)")
+                   help="tqdm progress bar on stderr (default: on a terminal)")
     p.set_defaults(func=run)
 
 
+def _materials():
+    from ..units import MATERIALS
+
+    return MATERIALS
+
+
 def kappa_grid(kmin: float, kmax: float, count: int) -> np.ndarray:
-    """Checked uniform grid: finite, 0 <= kmin < kmax, count >= 2."""
+    """Checked uniform grid: finite, 0 <= kmin < kmax, 2 <= count <= MAX_COUNT."""
     if not (math.isfinite(kmin) and math.isfinite(kmax)):
         raise InputError(f"kappa range must be finite, got [{kmin}, {kmax}]")
     if kmin < 0 or kmax <= kmin:
         raise InputError(f"kappa range must satisfy 0 <= kappa-min < kappa-max, got "
                          f"[{kmin}, {kmax}]")
-    if isinstance(count, bool) or count < 2:
-        raise InputError(f"count must be an integer >= 2, got {count}")
+    if isinstance(count, bool) or not 2 <= count <= MAX_COUNT:
+        raise InputError(f"count must be an integer in [2, {MAX_COUNT}], got {count}")
     return np.linspace(kmin, kmax, count)
 
 
-def run(args) -> int:
-    from ..branches import discrete_branches, relative_error
-    from ..plate import plate_patch
-    from ..rayleigh_lamb import trace_branches
+def _check_output(path: str | None, what: str, suffixes=None) -> None:
+    """Refuse an output path before any work: bad suffix, missing or unwritable directory."""
+    if path is None or path == "-":
+        return
+    p = Path(path)
+    if suffixes and p.suffix.lower() not in suffixes:
+        raise InputError(f"{what} must end in {', '.join(suffixes)}, got {path!r}")
+    if p.is_dir():
+        raise InputError(f"{what} must be a file, got the directory {path!r}")
+    parent = p.parent if str(p.parent) else Path(".")
+    if not parent.is_dir() or not os.access(parent, os.W_OK):
+        raise InputError(f"{what}: directory {str(parent)!r} does not exist or is not writable")
 
+
+def _material(args):
+    from ..units import MATERIALS, Material
+
+    if args.material and (args.cl is not None or args.ct is not None):
+        raise InputError("give --material or --cl/--ct, not both")
+    if (args.cl is None) != (args.ct is None):
+        raise InputError("--cl and --ct go together (bulk speeds in m/s)")
+    mat = MATERIALS[args.material] if args.material else (
+        Material(args.cl, args.ct) if args.cl is not None else None)
+    if mat is not None and args.thickness is None:
+        raise InputError("a material needs --thickness (plate thickness d = 2h in mm)")
+    if mat is None and args.thickness is not None:
+        raise InputError("--thickness needs a material (--material or --cl/--ct)")
+    return mat
+
+
+def _settings(args) -> dict:
+    """Validate every option before any work; return the resolved inputs."""
+    if args.exact:
+        for opt, val in (("--mass", args.mass), ("--contact", args.contact),
+                         ("--gamma-s", args.gamma_s), ("--r", args.r)):
+            if val is not None:
+                raise InputError(f"{opt} does not apply with --exact (no discrete patch)")
+    masses = [] if args.exact else (args.mass or ["consistent", "singular"])
+    if masses and not any(m.startswith("singular") for m in masses):
+        for opt, val in (("--contact", args.contact), ("--gamma-s", args.gamma_s)):
+            if val is not None:
+                raise InputError(f"{opt} applies to singular masses only")
+    if args.model != "bloch" and args.r is not None:
+        raise InputError("--r applies to the bloch model only")
+    material = _material(args)
+    if args.nu is not None and material is not None:
+        raise InputError("--nu does not apply with a material (nu follows from c_L and c_T)")
+    nu = material.nu if material is not None else (
+        defaults.NU_FLOAT if args.nu is None else args.nu)
     kappa = kappa_grid(args.kappa_min, args.kappa_max, args.count)
-    if not (math.isfinite(args.omega_max) and args.omega_max > 0):
-        raise InputError(f"omega-max must be a finite number > 0, got {args.omega_max}")
-    if not args.csv and not args.figure:
-        raise InputError("nothing to write: give --csv PATH and/or --figure PATH")
-    masses = [] if args.exact_only else (args.mass or ["consistent", "singular"])
+    if not (math.isfinite(args.omega_max) and 0 < args.omega_max <= MAX_OMEGA):
+        raise InputError(f"omega-max must be in (0, {MAX_OMEGA:g}], got {args.omega_max}")
+    if args.count * (args.omega_max / 0.05 + 1) > MAX_WORK:
+        raise InputError(f"count * (omega-max / 0.05 + 1) must be <= {MAX_WORK:.0e} (memory of "
+                         f"the exact tracer), got {args.count * (args.omega_max / 0.05 + 1):.3g}")
+    _check_output(args.csv, "csv")
+    _check_output(args.figure, "figure", FIGURE_SUFFIXES)
+    if args.figure == "-":
+        raise InputError("figure must be a file name, not '-'")
+    r = float(defaults.FIGURE2_R) if args.r is None else args.r
+    return {
+        "nu": nu, "kappa": kappa, "masses": masses, "material": material, "r": r,
+        "contact": args.contact or defaults.CONTACT,
+        "gamma_s": 0.0 if args.gamma_s is None else args.gamma_s,
+    }
+
+
+def _inputs(args, s) -> dict:
+    from ..results import package_versions
+
+    out = {"nu": s["nu"], "model": args.model, "p": args.p, "n": args.n,
+           "masses": s["masses"], "kappa": [args.kappa_min, args.kappa_max, args.count],
+           "omega_max": args.omega_max,
+           "dispersion-iga": package_versions(("dispersion-iga",))["dispersion-iga"]}
+    if args.model == "bloch" and s["masses"]:
+        out["r"] = s["r"]
+    if any(m.startswith("singular") for m in s["masses"]):
+        out["contact"], out["gamma_s"] = s["contact"], s["gamma_s"]
+    if s["material"] is not None:
+        out["material"] = s["material"].as_dict()
+        out["thickness [mm]"] = args.thickness
+    return out
+
+
+def _rows(kappa, omega, group, symmetry, source, material, thickness, omega_max):
+    """Row dicts of one branch set (finite Omega <= omega_max)."""
+    from ..units import physical_branches
+    from ..velocities import phase_velocity
+
+    phys = (physical_branches(kappa, omega, group, material, thickness)
+            if material is not None else None)
+    rows = []
+    for label, om in omega.items():
+        cp = phase_velocity(kappa, om)
+        g = group.get(label, np.full(kappa.shape, np.nan))
+        for i in np.flatnonzero(np.isfinite(om) & (om <= omega_max)):
+            row = {"kappa": float(kappa[i]), "Omega": float(om[i]), "branch": label,
+                   "symmetry": symmetry(label), "source": source,
+                   "c_p/c_T": float(cp[i]), "c_g/c_T": float(g[i])}
+            if phys is not None:
+                row.update({"f [kHz]": float(phys.frequency[label][i]),
+                            "fd [MHz mm]": float(phys.fd[label][i]),
+                            "c_p [m/s]": float(phys.phase[label][i]),
+                            "c_g [m/s]": float(phys.group[label][i]),
+                            "wavelength [mm]": float(phys.wavelength[i])})
+            rows.append(row)
+    return rows
+
+
+def _csv(rows, inputs) -> str:
+    buf = io.StringIO()
+    for key, val in inputs.items():
+        buf.write(f"# {key}: {val}\n")
+    if not rows:
+        return buf.getvalue()
+    w = csv.DictWriter(buf, fieldnames=list(rows[0]), lineterminator="\n")
+    w.writeheader()
+    for row in rows:
+        w.writerow({k: (repr(v) if isinstance(v, float) else v) for k, v in row.items()})
+    return buf.getvalue()
+
+
+def _text(rows, inputs) -> str:
+    lines = [f"# {k}: {v}" for k, v in inputs.items()]
+    if rows:
+        cols = list(rows[0])
+        lines.append("  ".join(f"{c:>14}" for c in cols))
+        for row in rows:
+            lines.append("  ".join(f"{v:>14.8g}" if isinstance(v, float) else f"{v:>14}"
+                                   for v in row.values()))
+    return "\n".join(lines) + "\n"
+
+
+def _emit(path: str, text: str) -> None:
+    if path == "-":
+        sys.stdout.write(text)
+    else:
+        write_text(path, text)
+
+
+def run(args) -> int:
+    from ..branches import discrete_branches
+    from ..plate import plate_patch
+    from ..tracer import trace_branches
+    from ..velocities import exact_velocities
+
+    s = _settings(args)
+    kappa, masses, nu = s["kappa"], s["masses"], s["nu"]
     show = sys.stderr.isatty() if args.progress is None else args.progress
     bar = None
     if show:
@@ -80,44 +255,52 @@ def run(args) -> int:
         total = 2 * int(np.count_nonzero(kappa > 0)) + kappa.size * len(masses)
         bar = tqdm(total=total, desc="branches", unit="kappa", file=sys.stderr)
     tick = bar.update if bar else None
-    exact = trace_branches(args.nu, kappa, args.omega_max, progress=tick)
+    exact = trace_branches(nu, kappa, args.omega_max, progress=tick)
+    vel = exact_velocities(exact)
     results = []
     for mass in masses:
-        patch = plate_patch(p=args.p, n=args.n, model=args.model, r=args.r, mass=mass,
-                            contact=args.contact, gamma_s=args.gamma_s)
-        d = discrete_branches(patch, args.nu, kappa, progress=tick)
-        results.append((mass, d, relative_error(d, exact)))
+        patch = plate_patch(p=args.p, n=args.n, model=args.model, r=s["r"], mass=mass,
+                            contact=s["contact"], gamma_s=s["gamma_s"])
+        results.append((mass, discrete_branches(patch, nu, kappa, progress=tick, group=True)))
     if bar:
         bar.close()
     for kind, k, why in exact.failures:
         print(f"warning: exact {kind} branches at kappa={k:.6g}: {why}", file=sys.stderr)
+    inputs = _inputs(args, s)
+    rows = _rows(kappa, exact.omega, vel.group, lambda lab: lab[0], "exact", s["material"],
+                 args.thickness, args.omega_max)
+    for mass, d in results:
+        rows += _rows(kappa, d.omega, d.group, d.symmetry.get, mass, s["material"],
+                      args.thickness, args.omega_max)
     if args.csv:
-        buf = io.StringIO()
-        w = csv.writer(buf, lineterminator="\n")
-        w.writerow(["kappa", "Omega", "branch", "symmetry", "source"])
-        for label, om in exact.omega.items():
-            for k, o in zip(kappa, om):
-                if np.isfinite(o):
-                    w.writerow([repr(float(k)), repr(float(o)), label, label[0], "exact"])
-        for mass, d, _ in results:
-            for label, om in d.omega.items():
-                for k, o in zip(kappa, om):
-                    if np.isfinite(o) and o <= args.omega_max:
-                        w.writerow([repr(float(k)), repr(float(o)), label, d.symmetry[label],
-                                    mass])
-        write_text(args.csv, buf.getvalue())
+        _emit(args.csv, _csv(rows, inputs))
+    if not args.csv and not args.figure:
+        if args.format == "csv":
+            _emit("-", _csv(rows, inputs))
+        elif args.format == "text":
+            _emit("-", _text(rows, inputs))
+        else:
+            from ..results import dumps, envelope
+
+            env = envelope("branches", {"rows": rows,
+                                        "failures": [list(f) for f in exact.failures]},
+                           inputs=inputs)
+            _emit("-", dumps(env))
     if args.figure:
-        if not args.figure.lower().endswith((".png", ".pdf", ".svg")):
-            raise InputError(f"figure must end in .png, .pdf or .svg, got {args.figure!r}")
         from ..plotting.branches import figure2, plot_exact
 
-        model = args.model + (f", r = {args.r:g}" if args.model == "bloch" else "")
+        model = args.model + (f", r = {s['r']:g}" if args.model == "bloch" else "")
         if results:
-            fig = figure2(exact, results, title=f"nu = {args.nu:g}, {model}, p = {args.p}, "
-                                                  f"n = {args.n}")
+            from ..branch_study import figure2_data
+
+            data, _ = figure2_data(nu, kappa, args.omega_max, {
+                mass: plate_patch(p=args.p, n=args.n, model=args.model, r=s["r"], mass=mass,
+                                  contact=s["contact"], gamma_s=s["gamma_s"])
+                for mass in masses})
+            fig = figure2(data, title=f"nu = {nu:g}, {model}, p = {args.p}, n = {args.n}")
         else:
-            ax = plot_exact(exact)
-            ax.set_title(f"Rayleigh-Lamb, nu = {args.nu:g}", fontsize="small")
+            ax = plot_exact(kappa, exact.omega, args.omega_max)
+            ax.set_title(f"Rayleigh-Lamb, nu = {nu:g}", fontsize="small")
             ax.legend(fontsize="small")
             fig = ax.figure
         save_figure(fig, args.figure, dpi=150)

@@ -33,43 +33,10 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..bspline import KnotVector, bernstein_numeric, extraction_operators, open_knot_vector, refine
+from ..bspline import KnotVector, SplineBasis1D, open_knot_vector, refine
 from ..errors import InputError, check_positive, check_positive_int
 
 __all__ = ["RingPatch", "SplineBasis1D", "quarter_ring"]
-
-
-@dataclass(frozen=True)
-class SplineBasis1D:
-    """Float Bezier extraction of a knot vector: spans, active indices and operators ``C``."""
-
-    kv: KnotVector
-    spans: np.ndarray  # (n_el, 2) float [left, right]
-    active: np.ndarray  # (n_el, p+1) int
-    C: np.ndarray  # (n_el, p+1, p+1) float
-
-    @classmethod
-    def from_knots(cls, kv: KnotVector) -> SplineBasis1D:
-        ops = extraction_operators(kv)
-        spans = np.array([[float(a), float(b)] for (a, b), _, _ in ops])
-        active = np.array([act for _, act, _ in ops], dtype=int)
-        C = np.array([np.array(c.tolist(), dtype=float) for _, _, c in ops])
-        return cls(kv, spans, active, C)
-
-    def element_of(self, x: np.ndarray) -> np.ndarray:
-        """Index of the span holding each parameter value (the last span includes its end)."""
-        x = np.asarray(x, dtype=float)
-        e = np.searchsorted(self.spans[:, 1], x, side="right")
-        return np.minimum(e, len(self.spans) - 1)
-
-    def evaluate(self, x: np.ndarray, deriv: int = 0) -> tuple[np.ndarray, np.ndarray]:
-        """B-spline values (or first derivatives) at ``x``: ``(active (m, p+1), N (m, p+1))``."""
-        x = np.atleast_1d(np.asarray(x, dtype=float))
-        e = self.element_of(x)
-        a, b = self.spans[e, 0], self.spans[e, 1]
-        u = (x - a) / (b - a)
-        B = bernstein_numeric(self.kv.p, u, deriv) / ((b - a) ** deriv)[:, None]
-        return self.active[e], np.einsum("mab,mb->ma", self.C[e], B)
 
 
 @dataclass(frozen=True)

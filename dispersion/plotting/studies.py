@@ -38,15 +38,23 @@ def plot_gamma_coefficients(rows: Sequence[dict], ax=None):
 
 
 def plot_gamma_errors(rows: Sequence[dict], kappas: Sequence[float], ax=None):
-    """|relative error| of the S0 and A0 frequencies against gamma_s, one line per kappa."""
+    """Signed relative error of the S0 and A0 frequencies against gamma_s, one line per kappa.
+
+    Signed, on a symmetric-log axis: an |error| axis would show a sign change as a fake
+    optimum. One colour per kappa, one line style per branch.
+    """
     ax = _axes(ax)
     g = [row["gamma_s"] for row in rows]
+    floor = 1e-6
     for i, k in enumerate(kappas):
         for branch, style in (("S0", "o-"), ("A0", "s--")):
-            err = [abs(row[f"{branch}_error"][i]) for row in rows]
-            ax.semilogy(g, err, style, label=f"{branch}, $\\kappa$ = {k}")
+            err = [np.nan if row[f"{branch}_error"][i] is None else row[f"{branch}_error"][i]
+                   for row in rows]
+            ax.plot(g, err, style, color=f"C{i}", label=f"{branch}, $\\kappa$ = {k}")
+    ax.axhline(0.0, color="0.4", lw=0.8)
+    ax.set_yscale("symlog", linthresh=floor)
     ax.set_xlabel(r"redistribution weight $\gamma_s$")
-    ax.set_ylabel(r"$|\Omega^h - \Omega| / \Omega$")
+    ax.set_ylabel(r"$(\Omega^h - \Omega) / \Omega$ (symlog, linear below $10^{-6}$)")
     ax.legend(fontsize="small")
     return ax
 
@@ -71,14 +79,19 @@ def plot_series_departure(data: dict, branch: str, ax=None):
     for row in data["radius"]:
         if row["branch"] != branch:
             continue
-        dev = np.maximum(np.asarray(row["deviation"], dtype=float), 1e-17)
+        # below 1e-13 the deviation is round-off of the comparison: not drawn as data
+        dev = np.asarray([np.nan if v is None else v for v in row["deviation"]], dtype=float)
+        dev[~(dev > 1e-13)] = np.nan
+        # colour: truncation order; line style: whose series (same meaning in both panels)
         ax.loglog(kappa, dev, styles.get(row["mass"], "-."),
+                  color={4: "C0", 6: "C1", 8: "C2"}.get(row["order"], "C3"),
                   label=f"{row['mass']}, to $\\kappa^{{{row['order']}}}$")
-    ax.axhline(data["tol"], color="k", lw=0.8)
+    ax.axhline(data["tol"], color="k", lw=0.8, label=f"tolerance {data['tol']:g}")
     ax.set_xlabel(r"$\kappa = kh$")
     ax.set_ylabel(r"$|\Omega_{series} - \Omega| / \Omega$")
     ax.set_title(f"{branch}: truncated series vs numeric branch")
-    ax.legend(fontsize="x-small", ncol=2)
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(fontsize="x-small", ncol=2)
     return ax
 
 

@@ -1,0 +1,95 @@
+"""Phase and group velocities: finite differences, known limits, zero-group-velocity points."""
+from __future__ import annotations
+
+import math
+
+import mpmath
+import numpy as np
+import pytest
+
+from dispersion.branches import discrete_branches
+from dispersion.plate import plate_patch
+from dispersion.rayleigh_lamb import frequency_function, speed_ratio_squared
+from dispersion.tracer import trace_branches
+from dispersion.velocities import exact_velocities, phase_velocity, zgv_points
+
+NU = 0.3
+PLATE = math.sqrt(2 / (1 - NU))  # plate speed / c_T: sqrt(E / (rho (1 - nu^2))) / c_T
+
+
+def _rayleigh_xi(nu):
+    """c_R / c_T from (2 - xi^2)^2 = 4 sqrt(1 - xi^2) sqrt(1 - s xi^2) (Rayleigh 1885)."""
+    s = speed_ratio_squared(nu)
+    with mpmath.workdps(30):
+        xi = mpmath.findroot(
+            lambda x: (2 - x**2) ** 2 - 4 * mpmath.sqrt(1 - x**2) * mpmath.sqrt(1 - s * x**2), 0.9)
+        return float(mpmath.re(xi))
+
+
+def test_exact_group_velocity_matches_finite_differences():
+    kappa = np.array([0.05, 0.5, 1.3, 2.0, 4.0])
+    h = 1e-6
+    v = exact_velocities(trace_branches(NU, kappa, 8.0))
+    up, dn = trace_branches(NU, kappa + h, 8.0), trace_branches(NU, kappa - h, 8.0)
+    checked = 0
+    for label, g in v.group.items():
+        fd = (up.omega[label] - dn.omega[label]) / (2 * h)
+        ok = np.isfinite(fd) & np.isfinite(g)
+        assert np.allclose(g[ok], fd[ok], rtol=1e-6, atol=1e-8), label
+        checked += ok.sum()
+    assert checked >= 25
+
+
+def test_exact_velocity_limits():
+    # kappa -> 0: S0 -> plate speed, A0 c_g -> 2 c_p (Kirchhoff bending, Omega ~ kappa^2);
+    # kappa -> infinity: both -> the Rayleigh speed
+    v = exact_velocities(trace_branches(NU, [1e-5, 0.02], 1.0))
+    assert v.group["S0"][0] == pytest.approx(PLATE, rel=1e-9)
+    assert v.phase["S0"][0] == pytest.approx(PLATE, rel=1e-9)
+    assert v.group["A0"] / v.phase["A0"] == pytest.approx([2.0, 2.0], rel=1e-3)
+    big = exact_velocities(trace_branches(NU, [30.0], 28.5))
+    xi = _rayleigh_xi(NU)
+    for label in ("S0", "A0"):
+        assert big.phase[label][0] == pytest.approx(xi, rel=1e-7)
+        assert big.group[label][0] == pytest.approx(xi, rel=1e-6)
+
+
+def test_zgv_point_of_s1_solves_f_and_its_kappa_derivative():
+    # a ZGV point is a double root in kappa: F = 0 and dF/dkappa = 0; solved here in mpmath
+    points = zgv_points(NU, 2.0, 4.0, count=100)
+    assert [p.label for p in points] == ["S1"]
+    p = points[0]
+
+    def F(k, W):
+        C = lambda z: mpmath.cos(mpmath.sqrt(z))  # noqa: E731
+        S = lambda z: mpmath.sinc(mpmath.sqrt(z))  # noqa: E731
+        return mpmath.re(frequency_function("S", k**2, W**2, mpmath.mpf(NU), C, S)) / W**2
+
+    with mpmath.workdps(30):
+        sol = mpmath.findroot([F, lambda k, W: mpmath.diff(lambda x: F(x, W), k)],
+                              (mpmath.mpf(p.kappa), mpmath.mpf(p.omega)))
+        assert abs(p.kappa - float(sol[0])) < 1e-9
+        assert abs(p.omega - float(sol[1])) < 1e-12
+
+
+@pytest.mark.parametrize("kwargs", [{}, {"model": "bloch", "r": 0.5}, {"mass": "singular"}])
+def test_discrete_group_velocity_matches_finite_differences(kwargs):
+    patch = plate_patch(**kwargs)
+    kappa = np.array([0.2, 1.0, 2.5])
+    h = 1e-5
+    br = discrete_branches(patch, NU, kappa, group=True)
+    up = discrete_branches(patch, NU, kappa * (1 + h))
+    dn = discrete_branches(patch, NU, kappa * (1 - h))
+    for label, g in br.group.items():
+        fd = (up.omega[label] - dn.omega[label]) / (2 * h * kappa)
+        ok = np.isfinite(fd)
+        # central difference truncation ~ h^2 Omega''' ~ 1e-10
+        assert np.allclose(g[ok], fd[ok], rtol=1e-7, atol=1e-8), label
+
+
+def test_discrete_velocity_limits_at_small_kappa():
+    # the extended-precision path (A0 Omega ~ 1e-12 at kappa = 1e-6) keeps the limits
+    br = discrete_branches(plate_patch(), NU, [1e-6, 1e-4], group=True)
+    cp = phase_velocity(br.kappa, br.omega["A0"])
+    assert br.group["A0"] / cp == pytest.approx([2.0, 2.0], rel=1e-6)
+    assert br.group["S0"] == pytest.approx([PLATE, PLATE], rel=1e-7)

@@ -40,6 +40,7 @@ from .errors import InputError, check_positive_int
 
 __all__ = [
     "KnotVector",
+    "MAX_ELEMENTS",
     "open_knot_vector",
     "cardinal_knot_vector",
     "insert_knot",
@@ -89,13 +90,23 @@ class KnotVector:
         return [sum(t[i + 1:i + p + 1]) / p for i in range(self.n)]
 
 
+#: Most spans of :func:`open_knot_vector`. The rule: about ten times the largest mesh a
+#: command accepts (``dispersion impact --elements`` <= 100 000), and cheap to build: the
+#: knots are exact rationals, 10**6 spans take 9 s and 0.3 GiB (measured, linear growth).
+MAX_ELEMENTS = 10**6
+
+
 def open_knot_vector(p: int, n_elements: int, a=0, b=1) -> KnotVector:
     """Open (clamped) uniform knot vector on ``[a, b]`` with ``n_elements`` spans.
 
     It carries ``p + n_elements`` basis functions; end knots have multiplicity p+1.
+    ``n_elements`` lies in [1, ``MAX_ELEMENTS``].
+
+    >>> open_knot_vector(1, 2).knots
+    (0, 0, 1/2, 1, 1)
     """
     p = check_positive_int("degree p", p)
-    n_elements = check_positive_int("number of elements", n_elements)
+    n_elements = check_positive_int("number of elements", n_elements, maximum=MAX_ELEMENTS)
     a, b = sympy.Rational(a), sympy.Rational(b)
     if not b > a:
         raise InputError(f"interval must have b > a, got [{a}, {b}]")

@@ -443,6 +443,7 @@ def discrete_series_raw(branches=("S0",), order: int = 8, *, p: int = 2, n: int 
 
     if isinstance(branches, str):
         branches = (branches,)
+    p, n = _plate.check_size(p, n)  # the degree first: p = 100, n = 101 names p
     checked = {b: check_request(b, order, exact=False, n=n) for b in branches}
     patch = _plate.plate_patch(p, n, model, r, mass, contact, gamma_s, weights)
     if split is None:

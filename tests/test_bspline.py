@@ -85,3 +85,8 @@ def test_spline_basis_1d_matches_the_exact_extraction():
         ref = np.array([[float(f.subs(x, p)) for f in polys] for p in pts])
         assert np.allclose(N, ref, atol=1e-14)
         assert np.allclose(N.sum(axis=1), 1.0)  # partition of unity
+
+
+def test_open_knot_vector_bounds_the_number_of_elements():
+    with pytest.raises(InputError, match=f"in \\[1, {bspline.MAX_ELEMENTS}\\]"):
+        bspline.open_knot_vector(2, bspline.MAX_ELEMENTS + 1)

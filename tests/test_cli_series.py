@@ -10,7 +10,10 @@ from dispersion.cli import main
 
 
 def run(args, capsys):
-    code = main(args)
+    try:
+        code = main(args)
+    except SystemExit as exc:  # argparse refuses a malformed value (exit status 2)
+        code = exc.code
     out, err = capsys.readouterr()
     return code, out, err
 
@@ -75,7 +78,12 @@ def test_json_file_written_atomically(tmp_path, capsys):
     (["--mass", "lumped", "--gamma-s", "1/2"], "--gamma-s applies to singular masses only"),
     (["--order", "400"], "order must be <= 32"),
     (["--exact", "--order", "100000"], "order must be <= 128"),
-    (["--p", "40", "--n", "41"], "control points n must satisfy (2n)^2 * order <= 12000"),
+    (["--p", "20", "--n", "21"], "control points n must satisfy (2n)^2 * order <= 12000"),
+    (["--p", "40", "--n", "41"], "degree p must be an integer in [1, 24]"),
+    (["--p", "1.5"], "degree p must be an integer in [1, 24], got '1.5'"),
+    (["--order", "abc"], "order must be an integer (highest power of kappa), even"),
+    (["--paper", "--order", "12"], "--order does not apply to --paper"),
+    (["--paper", "--exact"], "--exact does not apply to --paper"),
     (["--mass", "heavy"], "mass must be one of"),
 ])
 def test_options_that_do_not_apply_and_bounds_fail_in_one_line(args, msg, capsys):

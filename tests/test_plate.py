@@ -4,8 +4,8 @@ import pytest
 import sympy
 
 from dispersion.errors import InputError
-from dispersion.plate import (bloch_coefficients, dynamic_stiffness, mirror_bases,
-                              numeric_pencil, plate_patch)
+from dispersion.plate import (N_MAX, P_MAX, bloch_coefficients, check_size, dynamic_stiffness,
+                              mirror_bases, numeric_pencil, plate_patch)
 
 kappa, Omega = sympy.symbols("kappa Omega")
 
@@ -118,3 +118,12 @@ def test_cached_matrices_cannot_be_mutated_by_a_caller():
 def test_bad_aspect_ratio_and_weight_are_refused(kw, msg):
     with pytest.raises(InputError, match=msg):
         plate_patch(**kw)
+
+
+def test_size_bounds_are_checked_before_the_build():
+    # degree first: p = 100, n = 101 names the degree, not the points
+    with pytest.raises(InputError, match=rf"degree p must be an integer in \[1, {P_MAX}\]"):
+        plate_patch(p=100, n=101)
+    with pytest.raises(InputError, match=rf"control points n must be an integer in \[1, {N_MAX}\]"):
+        plate_patch(n=N_MAX + 1)
+    assert check_size(P_MAX, P_MAX + 1) == (P_MAX, P_MAX + 1)

@@ -4,7 +4,7 @@ import pytest
 import sympy
 
 from dispersion.errors import DispersionError, InputError
-from dispersion.plate import dynamic_stiffness, plate_patch
+from dispersion.plate import P_MAX, dynamic_stiffness, plate_patch
 from dispersion.power_balance import (MAX_ORDER, MAX_WORK, discrete_series, exact_series,
                                       exact_series_raw, format_coefficient)
 
@@ -179,7 +179,9 @@ def test_bounds_refuse_up_front_naming_parameter_and_bound():
     with pytest.raises(InputError, match=f"order must be <= {MAX_ORDER['discrete']}"):
         discrete_series("S0", 400)
     with pytest.raises(InputError, match=f"<= {MAX_WORK}"):
-        discrete_series("S0", 8, p=40, n=41)
+        discrete_series("S0", 8, p=20, n=21)
+    with pytest.raises(InputError, match=rf"degree p must be an integer in \[1, {P_MAX}\]"):
+        discrete_series("S0", 8, p=100, n=101)  # the degree is named first
 
 
 @pytest.mark.parametrize("kw", [

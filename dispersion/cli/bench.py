@@ -9,6 +9,17 @@ from pathlib import Path
 from ..errors import InputError
 
 
+def _budget(text: str) -> float:
+    """argparse ``type`` of ``--budget``: a float; on failure the message states the range."""
+    try:
+        return float(text)
+    except ValueError:
+        from ..series_speed import TIMEOUT_MAX
+
+        raise argparse.ArgumentTypeError(f"budget must be a number of seconds in "
+                                         f"(0, {TIMEOUT_MAX:g}], got {text!r}") from None
+
+
 def register(subparsers) -> None:
     parser = subparsers.add_parser(
         "bench", help="time the series engine against Maxima (whole process and compute)",
@@ -16,10 +27,12 @@ def register(subparsers) -> None:
         formatter_class=argparse.ArgumentDefaultsHelpFormatter)
     parser.add_argument("--quick", action="store_true",
                         help="kappa^8 and kappa^16 only, n = 3..6 (CI, a few seconds)")
-    parser.add_argument("--budget", type=float, default=120.0,
+    parser.add_argument("--budget", type=_budget, default=120.0,
                         help="seconds allowed to each child process, in (0, 600]")
     parser.add_argument("--maxima", default="maxima", help="maxima executable")
-    parser.add_argument("--out", type=Path, default=None,
+    parser.add_argument("--format", choices=("text", "json"), default="text",
+                        help="what goes to stdout: the Markdown tables or the JSON record")
+    parser.add_argument("--out", default=None,
                         help="directory: write series_speed.json, series_speed.md and the chart")
     parser.set_defaults(func=handler)
 
@@ -30,24 +43,31 @@ def handler(args: argparse.Namespace) -> int:
     if not (0 < args.budget <= TIMEOUT_MAX):
         raise InputError(f"budget (seconds per child process) must lie in (0, {TIMEOUT_MAX:g}], "
                          f"got {args.budget:g}")
+    out = None
+    if args.out is not None:  # a str, not a Path: Path("") would be "." and pass
+        from ..io import check_output_dir
+
+        out = Path(check_output_dir(args.out, option="--out"))
     start = time.perf_counter()
     result = measure(quick=args.quick, timeout=args.budget, maxima=args.maxima,
                      extended=not args.quick)
     seconds = time.perf_counter() - start
-    if args.out is None:
-        from ..results import jsonable
+    from ..results import dumps, envelope, jsonable
+
+    provenance = {"inputs": {"quick": args.quick, "budget": args.budget}, "seconds": seconds,
+                  "command": "dispersion bench" + (" --quick" if args.quick else "")}
+    if out is None:
         from ..report.series_speed import render_tables
 
-        sys.stdout.write(render_tables(jsonable(result)))
+        sys.stdout.write(dumps(envelope("series_speed", result, **provenance))
+                         if args.format == "json" else render_tables(jsonable(result)))
         return 0
     from ..io import write_text
     from ..report.series_speed import render
     from ..results import load, save
 
-    path = save(args.out / "series_speed.json", "series_speed", result,
-                inputs={"quick": args.quick, "budget": args.budget}, seconds=seconds,
-                command="dispersion bench" + (" --quick" if args.quick else ""))
-    md = render(load(path)["result"], args.out)
-    write_text(args.out / "series_speed.md", md)
-    sys.stdout.write(md)
+    path = save(out / "series_speed.json", "series_speed", result, **provenance)
+    md = render(load(path)["result"], out)
+    write_text(out / "series_speed.md", md)
+    sys.stdout.write(path.read_text() if args.format == "json" else md)
     return 0

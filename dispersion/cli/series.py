@@ -17,16 +17,24 @@ from ..errors import InputError
 _PATCH_OPTIONS = ("mass", "contact", "gamma_s", "model", "r", "p", "n")
 
 
-class _Default:
-    """A default read from :mod:`dispersion.defaults` only when shown or used.
+#: Default highest power of kappa (the printed eqs 17-20 stop at kappa^8).
+ORDER = 8
 
-    ``dispersion.defaults`` imports sympy (0.3 s); the exact series prints without it.
+
+class _Default:
+    """A default read from :mod:`dispersion.defaults` only when shown or used (or ``literal``).
+
+    ``dispersion.defaults`` imports sympy (0.3 s); the exact series prints without it. An
+    option left at its ``_Default`` was not given, so ``--paper`` can refuse the given ones.
     """
 
-    def __init__(self, name: str):
+    def __init__(self, name: str, literal=None):
         self.name = name
+        self.literal = literal
 
     def value(self):
+        if self.literal is not None:
+            return self.literal
         from .. import defaults
 
         return getattr(defaults, self.name)
@@ -45,6 +53,36 @@ def _fraction(name):
     return parse
 
 
+def _integer(name: str, valid):
+    """argparse ``type``: an integer; on failure the message states ``valid()`` (the range)."""
+    def parse(text):
+        try:
+            return int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{name} must be an integer {valid()}, "
+                                             f"got {text!r}") from None
+    return parse
+
+
+def _order_range() -> str:
+    from ..power_balance import MAX_ORDER
+
+    return (f"(highest power of kappa), even, >= 2 and <= {MAX_ORDER['discrete']} "
+            f"(discrete) or <= {MAX_ORDER['exact']} (--exact)")
+
+
+def _degree_range() -> str:
+    from ..plate import P_MAX
+
+    return f"in [1, {P_MAX}]"
+
+
+def _points_range() -> str:
+    from ..plate import N_MAX
+
+    return f"in [p + 1, {N_MAX}]"
+
+
 def _aspect(text):
     return "r" if text == "r" else _fraction("r")(text)
 
@@ -56,7 +94,7 @@ def register(sub) -> None:
                     "by power balance (paper eqs 14-20); Omega = omega h / c_T, kappa = k h "
                     "(dimensionless), nu symbolic unless --nu is given.",
         formatter_class=argparse.ArgumentDefaultsHelpFormatter)
-    p.add_argument("--branch", choices=("S0", "A0", "both"), default="both",
+    p.add_argument("--branch", choices=("S0", "A0", "both"), default=_Default("branch", "both"),
                    help="which branch through the origin")
     p.add_argument("--exact", action="store_true",
                    help="exact Rayleigh-Lamb series (eqs 14-15); takes none of the patch options")
@@ -74,11 +112,17 @@ def register(sub) -> None:
     p.add_argument("--r", type=_aspect, default=_Default("R"),
                    help="aspect ratio b/h of the Bloch model (dimensionless), or 'r' to keep it "
                         "symbolic (default %(default)s)")
-    p.add_argument("--p", type=int, default=_Default("P"),
-                   help="degree through the thickness, >= 1 (default %(default)s)")
-    p.add_argument("--n", type=int, default=_Default("N"),
-                   help="control points through the thickness, >= p + 1 (default %(default)s)")
-    p.add_argument("--order", type=int, default=8, help="highest power of kappa (even)")
+    p.add_argument("--p", type=_integer("degree p", _degree_range), default=_Default("P"),
+                   help="degree through the thickness, in [1, plate.P_MAX] "
+                        "(default %(default)s)")
+    p.add_argument("--n", type=_integer("control points n", _points_range),
+                   default=_Default("N"),
+                   help="control points through the thickness, in [p + 1, plate.N_MAX] "
+                        "(default %(default)s)")
+    p.add_argument("--order", type=_integer("order", _order_range),
+                   default=_Default("order", ORDER),
+                   help="highest power of kappa, even, at most power_balance.MAX_ORDER "
+                        "(default %(default)s)")
     p.add_argument("--nu", type=_fraction("nu"), default=None,
                    help="substitute a value for Poisson's ratio nu, in (-1, 0.5); "
                         "None: symbolic")
@@ -143,9 +187,6 @@ def series_record(args, branch: str, opts: dict, raw=None) -> dict:
         model = opts["model"] if opts["model"] == "x-exact" else \
             f"bloch r={'r' if opts['r'] is None else opts['r']}"
     if args.nu is not None:
-        from ..errors import check_nu
-
-        check_nu(args.nu)
         raw = substitute_raw(raw, "nu", args.nu)
     record = {"branch": branch, "mass": mass, "model": model,
               "coefficients": {str(k): format_coefficient(a, b) for k, a, b in raw}}
@@ -193,7 +234,32 @@ def _paper(fmt: str) -> str:
               "admissible leading coefficients):\n" + notes)
 
 
+def _check_up_front(args) -> None:
+    """Refuse, before any work, what does not apply to ``--paper``, a bad ``--nu`` and an
+    unwritable ``--json`` FILE; then fill in ``--order`` and ``--branch``."""
+    if args.paper:
+        given = {"--exact": args.exact, "--order": not isinstance(args.order, _Default),
+                 "--branch": not isinstance(args.branch, _Default),
+                 "--nu": args.nu is not None, "--json": args.json is not None}
+        for flag, on in given.items():
+            if on:
+                raise InputError(f"{flag} does not apply to --paper (the errata table compares "
+                                 "the printed eqs 14-20 with their derivation, as printed)")
+    if args.nu is not None:
+        from ..errors import check_nu
+
+        check_nu(args.nu)
+    if args.json is not None:
+        from ..io import check_output_file
+
+        check_output_file(args.json, option="--json")
+    for name in ("order", "branch"):
+        if isinstance(getattr(args, name), _Default):
+            setattr(args, name, getattr(args, name).value())
+
+
 def run(args) -> int:
+    _check_up_front(args)
     opts = _resolve(args)
     if args.paper:
         if args.format == "csv":
@@ -211,15 +277,13 @@ def run(args) -> int:
         else:
             text = "\n\n".join(_render(r, args.format) for r in records)
     if args.json is not None:
-        if records is None:
-            raise InputError("--json FILE applies to series records, not to --paper")
         payload = json.dumps(records[0] if len(records) == 1 else records, indent=2) + "\n"
         if args.json == "-":
             sys.stdout.write(payload)
         else:
             from ..io import write_text
 
-            write_text(args.json, payload)
+            write_text(args.json, payload, option="--json")
     sys.stdout.write(text + "\n")
     return 0
 

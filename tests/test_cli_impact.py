@@ -39,5 +39,5 @@ def test_bad_input_names_the_parameter(tmp_path):
     f = tmp_path / "f"
     f.write_text("")
     args = _args(["signorini-1d", "--out", str(f)])
-    with pytest.raises(InputError, match="out must be a directory"):
+    with pytest.raises(InputError, match="--out must be a folder"):
         args.func(args)

@@ -69,4 +69,4 @@ def test_out_that_is_a_file_is_refused_before_the_run(tmp_path, capsys):
     f = tmp_path / "file.txt"
     f.write_text("x")
     assert main(["ring", "--out", str(f), "--no-progress"]) == 2
-    assert "out must be a directory" in capsys.readouterr().err
+    assert "--out must be a folder" in capsys.readouterr().err

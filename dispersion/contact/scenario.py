@@ -24,9 +24,10 @@ __all__ = ["MAX_ELEMENTS", "MAX_STEPS", "Scenario"]
 #: Most time steps one run may take (every state is kept for the penetration record).
 MAX_STEPS = 200_000
 #: Most elements (n_xi_elements x n_eta_elements) of one ring: the default mesh at level 4
-#: (256 x 32, 17544 DOFs), the finest ``dispersion ring --level`` offers. Rule: a run must
-#: finish in reasonable time on this 2-core machine; there the assembly and the first 5 steps
-#: of that mesh already take 18 s and the cost per step grows faster than the DOF count.
+#: (256 x 32, 17544 DOFs), the finest ``dispersion ring --level`` offers. Rule: finish in
+#: about a minute on this 2-core machine; the assembly and the first 5 steps of that mesh
+#: already take 18 s here (measured), and the cost per step grows faster than the DOF count,
+#: so a finer mesh cannot run even a short scene in that time.
 MAX_ELEMENTS = 16 * 2 * 4**4
 #: Floats kept per DOF and time step: the state's u, v, a_int, a_c and the displacement
 #: array of the penetration record (used by :attr:`Scenario.memory_bytes`).

@@ -27,6 +27,7 @@ import sympy
 from . import defaults
 from .claims import (Claim, ClaimResult, _same, _series, load_claims, paper_claims_path,
                      verify_claims)
+from .errors import InputError
 from .power_balance import exact_leading_balance
 
 __all__ = ["MODELS_TRIED", "ErrataRow", "PaperErrata", "paper_claims", "errata_table",
@@ -72,12 +73,41 @@ def _label(claim: Claim) -> str:
     return re.sub(r"^eq\s*", "", claim.name)
 
 
+def _number(claim: Claim) -> str:
+    """The equation number of a claim's label: ``"20"`` for ``"eq 20, gamma_s = 1/2"``."""
+    return _label(claim).split(",")[0].strip()
+
+
 def paper_claims(equations=None) -> list[Claim]:
-    """Series claims of the paper's file, optionally only those of the given equations."""
+    """Series claims of the paper's file, optionally only those of the given equations.
+
+    ``equations`` is a collection of equation numbers (``"18"`` or ``18``; a single one may be
+    given bare); each must name a series claim of the file, else :class:`InputError`.
+
+    >>> [c.name for c in paper_claims(equations=18)]
+    ['eq 18']
+    >>> paper_claims(equations=("99",))
+    Traceback (most recent call last):
+    ...
+    dispersion.errors.InputError: equations must name equations of the paper's claims file (one of 14, 15, 17, 18, 19, 20); got '99'
+    """
     claims = [c for c in load_claims(paper_claims_path()) if c.kind == "series"]
     if equations is None:
         return claims
-    return [c for c in claims if _label(c).split(",")[0].strip() in equations]
+    known = tuple(dict.fromkeys(_number(c) for c in claims))
+    if isinstance(equations, (str, int)) and not isinstance(equations, bool):
+        equations = (equations,)
+    try:
+        asked = tuple(equations)
+    except TypeError:
+        raise InputError(f"equations must be a collection of equation numbers (one of "
+                         f"{', '.join(known)}); got {equations!r}") from None
+    for eq in asked:
+        if isinstance(eq, bool) or not isinstance(eq, (str, int)) or str(eq).strip() not in known:
+            raise InputError(f"equations must name equations of the paper's claims file "
+                             f"(one of {', '.join(known)}); got {eq!r}")
+    wanted = {str(eq).strip() for eq in asked}
+    return [c for c in claims if _number(c) in wanted]
 
 
 def _reproduced(claim: Claim, power: int, printed, models: dict) -> tuple[str, ...]:
@@ -94,7 +124,10 @@ def _reproduced(claim: Claim, power: int, printed, models: dict) -> tuple[str, .
 
 def errata_table(equations=("14", "15", "17", "18", "19", "20"),
                  models: dict | None = None) -> list[ErrataRow]:
-    """Derive every printed term of the paper's series claims and compare; see the module doc."""
+    """Derive every printed term of the paper's series claims and compare; see the module doc.
+
+    ``equations`` as in :func:`paper_claims` (checked before any derivation).
+    """
     models = MODELS_TRIED if models is None else models
     rows = []
     for claim in paper_claims(equations):

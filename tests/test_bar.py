@@ -9,7 +9,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from dispersion.contact.bar import Bar, bar_model, simulate_bar
+from dispersion.contact.bar import MAX_STEPS, Bar, bar_model, check_steps, simulate_bar
 from dispersion.contact.newmark import Newmark, critical_step, integrate
 from dispersion.errors import InputError
 
@@ -117,3 +117,13 @@ def test_linear_fast_path_equals_the_newton_path():
     a, b = integrate(prob, *args), integrate(slow, *args)
     assert np.allclose(a.contact_force, b.contact_force, rtol=1e-7, atol=1e-9)
     assert np.allclose(a.total, b.total, rtol=1e-9)
+
+
+def test_courant_and_step_count_are_refused_up_front():
+    with pytest.raises(InputError, match=r"courant must lie in \(0, inf\)"):
+        simulate_bar(courant=0.0)
+    with pytest.raises(InputError, match=r"/ dt must be <= 1000000 steps"):
+        simulate_bar(dt=1e-12)
+    assert check_steps(float(MAX_STEPS), 1.0) == MAX_STEPS
+    with pytest.raises(InputError, match="t_end / dt"):
+        check_steps(float(MAX_STEPS) * 1.01, 1.0)

@@ -6,7 +6,7 @@ import xml.etree.ElementTree as ET
 import pytest
 import sympy
 
-from dispersion.claims import (KAPPA, check_claim, describe_difference, junit_xml, parse_claims,
+from dispersion.claims import (KAPPA, MAX_JOBS, check_claim, describe_difference, junit_xml, parse_claims,
                                paper_claims_path, verify_claims, verify_file)
 from dispersion.errors import InputError
 
@@ -177,3 +177,17 @@ def test_a_derivation_that_fails_marks_its_claim_as_error(monkeypatch):
     assert "vanishes identically" in result.results[0].difference
     root = ET.fromstring(junit_xml(result))
     assert root.get("errors") == "1" and root.find(".//testcase/error") is not None
+
+
+@pytest.mark.parametrize("jobs", [0, MAX_JOBS + 1, 2.5, "2", True])
+def test_jobs_out_of_range_is_refused_before_any_derivation(monkeypatch, jobs):
+    import dispersion.claims as claims_mod
+
+    def must_not_run(*args):
+        raise AssertionError("derivation started")
+
+    monkeypatch.setattr(claims_mod, "_run_task", must_not_run)
+    claims = parse_claims('[[claim]]\nname = "a"\nmodel = "rayleigh-lamb"\nbranch = "A0"\n'
+                          'coefficients = {4 = "2/(3*(1-nu))"}\n')
+    with pytest.raises(InputError, match=rf"jobs must be an integer in \[1, {MAX_JOBS}\]"):
+        verify_claims(claims, jobs=jobs)

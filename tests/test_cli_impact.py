@@ -39,5 +39,18 @@ def test_bad_input_names_the_parameter(tmp_path):
     f = tmp_path / "f"
     f.write_text("")
     args = _args(["signorini-1d", "--out", str(f)])
-    with pytest.raises(InputError, match="out must be a directory"):
+    with pytest.raises(InputError, match="--out must be a folder"):
         args.func(args)
+
+
+def test_out_and_step_count_are_refused_before_the_run(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    for argv, name in ((["--out", "-"], "--out must be a folder path"),
+                       (["--out", str(tmp_path / "f" / "x")], "--out"),
+                       (["--t-end", "1e12"], "t_end / dt must be <=")):
+        if "f" in argv[-1]:
+            (tmp_path / "f").write_text("")
+        args = _args(["signorini-1d", *argv])
+        with pytest.raises(InputError, match=name):
+            args.func(args)
+    assert [p.name for p in tmp_path.iterdir()] == ["f"]

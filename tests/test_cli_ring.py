@@ -69,4 +69,22 @@ def test_out_that_is_a_file_is_refused_before_the_run(tmp_path, capsys):
     f = tmp_path / "file.txt"
     f.write_text("x")
     assert main(["ring", "--out", str(f), "--no-progress"]) == 2
-    assert "out must be a directory" in capsys.readouterr().err
+    assert "--out must be a folder" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("argv, stated", [
+    (["--level", "abc"], "level must be an integer in [0, 4]"),
+    (["--level", "5"], "level must be an integer in [0, 4]"),
+    (["--out", ""], "--out must be a folder path"),
+    (["--out", "-"], "--out must be a folder path"),
+])
+def test_level_and_out_state_their_range_and_touch_nothing(argv, stated, tmp_path, monkeypatch,
+                                                          capsys):
+    monkeypatch.chdir(tmp_path)
+    try:
+        status = main(["ring", *argv, "--no-progress"])
+    except SystemExit as exc:  # argparse
+        status = exc.code
+    assert status == 2
+    assert stated in capsys.readouterr().err
+    assert list(tmp_path.iterdir()) == []

@@ -93,3 +93,26 @@ def test_bad_file_is_one_line_and_exit_2(main, tmp_path, capsys, text, field):
 def test_missing_file_and_no_file_exit_2(main, tmp_path, capsys):
     assert main(["verify", str(tmp_path / "none.toml")]) == 2
     assert main(["verify"]) == 2
+
+
+def test_junit_onto_a_claims_file_is_refused_and_leaves_it(main, tmp_path, capsys):
+    path = tmp_path / "mine.toml"
+    path.write_text(CLAIMS.format(a0=17))
+    before = path.read_bytes()
+    assert main(["verify", str(path), "--junit", str(path)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "--junit" in err and "claims file" in err
+    assert path.read_bytes() == before
+
+
+@pytest.mark.parametrize("jobs, shown", [("abc", "'abc'"), ("0", "0"), ("100000", "100000")])
+def test_jobs_states_its_range(main, capsys, jobs, shown):
+    from dispersion.claims import MAX_JOBS
+
+    try:
+        status = main(["verify", str(EXAMPLE), "--jobs", jobs])
+    except SystemExit as exc:  # argparse refuses a value that is not an integer
+        status = exc.code
+    assert status == 2
+    err = capsys.readouterr().err.strip()
+    assert err.endswith(f"--jobs must be an integer in [1, {MAX_JOBS}], got {shown}"), err

@@ -10,7 +10,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from dispersion.contact.scenario import MAX_STEPS, Scenario
+from dispersion.contact.scenario import MAX_ELEMENTS, MAX_STEPS, Scenario
 from dispersion.contact.simulate import ring_problem, simulate_ring
 from dispersion.contact.study import fit_rate, steps_per_impact
 from dispersion.errors import InputError
@@ -165,3 +165,20 @@ def test_full_default_scene_singular_loses_far_less_than_lumped():
     assert abs(e["singular"]["energy_change_percent"]) < 0.1 * abs(
         e["lumped"]["energy_change_percent"])
     assert e["singular"]["force_roughness"] < e["lumped"]["force_roughness"]
+
+
+def test_element_bound_admits_the_finest_cli_level_and_refuses_beyond():
+    finest = Scenario().with_level(4)  # ``dispersion ring --level 4``
+    assert finest.n_xi_elements * finest.n_eta_elements == MAX_ELEMENTS
+    with pytest.raises(InputError, match=r"n_xi_elements x n_eta_elements must be <= "):
+        Scenario(n_xi_elements=MAX_ELEMENTS // 2 + 1)
+    with pytest.raises(InputError, match=r"n_xi_elements must be an integer in \[1, "):
+        Scenario(n_xi_elements=10**6)
+
+
+def test_memory_of_the_kept_states_is_bounded():
+    finest = Scenario().with_level(4)
+    # 5 floats per DOF (2 per control point of the 258 x 34 net) and kept state (7201)
+    assert finest.memory_bytes == 8 * 5 * 2 * (256 + 2) * (32 + 2) * (7200 + 1)
+    with pytest.raises(InputError, match=r"n_xi_elements x n_eta_elements .* bound of"):
+        replace(finest, t_end=MAX_STEPS * finest.dt)

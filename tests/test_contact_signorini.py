@@ -86,3 +86,13 @@ def test_bad_inputs_name_the_parameter():
         signorini_1d(scheme="explicit", mass="lumped", dt=0.2, t_end=0.4)
     with pytest.raises(InputError, match="mass"):
         signorini_1d(mass="heavy")
+
+
+def test_step_count_and_kept_states_are_bounded():
+    with pytest.raises(InputError, match=r"t_end / dt must be <= \d+ steps"):
+        signorini_1d(dt=1e-12)
+    with pytest.raises(InputError, match=r"t_end / dt must be <= \d+ steps"):
+        signorini_1d(t_end=1e12)
+    # 10^5 elements over 10^5 steps keep about 4e10 bytes of states: over half of 24 GiB
+    with pytest.raises(InputError, match=r"n_elements = 100000 .* bound of"):
+        signorini_1d(n_elements=100_000, dt=1e-4, t_end=10.0)

@@ -9,7 +9,8 @@ import sympy
 
 from dispersion import results
 from dispersion.errata import (eq13_note, errata_document, errata_table, format_table,
-                               paper_errata)
+                               paper_claims, paper_errata)
+from dispersion.errors import InputError
 
 nu, w = sympy.symbols("nu w")
 
@@ -94,3 +95,15 @@ def test_coefficients_section_renders_from_json_and_its_tex_compiles(tmp_path):
     errata_lines = [line for line in md.splitlines() if line.startswith("| (")]
     assert len(errata_lines) == len(measured.rows)  # one errata line per printed term
     _compile(tmp_path, (tmp_path / "coefficients.tex").read_text())
+
+
+@pytest.mark.parametrize("equations", [("99",), ("14", "16"), "99", [None], (18.0,), 3.5])
+def test_unknown_equations_are_refused_naming_the_known_ones(equations):
+    with pytest.raises(InputError, match=r"equations must .*one of 14, 15, 17, 18, 19, 20"):
+        errata_table(equations=equations)
+
+
+def test_equations_given_as_numbers_or_bare():
+    assert [c.name for c in paper_claims(equations=("20",))] == ["eq 20", "eq 20, gamma_s = 1/2"]
+    assert paper_claims(equations=20) == paper_claims(equations=["20"])
+    assert paper_claims(equations=(14, "15")) == paper_claims(equations=("14", "15"))

@@ -13,7 +13,6 @@ import sys
 from ..errors import InputError
 from ..mass import MASS_VARIANTS
 from . import number
-from .ring import check_out
 
 SCENES = ("signorini-1d",)
 
@@ -29,8 +28,8 @@ def register(sub) -> None:
         formatter_class=argparse.ArgumentDefaultsHelpFormatter)
     p.add_argument("scene", choices=SCENES, help="scene name")
     p.add_argument("--mass", choices=MASS_VARIANTS, default="singular", help="mass variant")
-    p.add_argument("--p", type=int, default=1, help="B-spline degree (1: P1 elements)")
-    p.add_argument("--elements", type=int, default=20, help="number of elements")
+    p.add_argument("--p", type=number("p", int), default=1, help="B-spline degree (1: P1 elements)")
+    p.add_argument("--elements", type=number("elements", int), default=20, help="number of elements")
     p.add_argument("--scheme", choices=("kane", "standard", "explicit"), default="kane",
                    help="time integrator (explicit: central differences, beta = 0)")
     p.add_argument("--dt", type=number("dt"), default=0.002, help="time step (s, unit wave speed)")
@@ -54,10 +53,10 @@ def summary(res) -> dict:
 
 def run(args) -> int:
     from ..contact.signorini import signorini_1d
-    from ..io import write_text
+    from ..io import check_output_dir, write_text
     from ..results import dumps
 
-    out = check_out(args.out)
+    out = None if args.out is None else check_output_dir(args.out, option="--out")
     if args.p < 1 or args.p > 6:
         raise InputError(f"p must be an integer in [1, 6], got {args.p}")
     if args.elements < 1 or args.elements > 100_000:
@@ -66,8 +65,8 @@ def run(args) -> int:
                        args.consistent)
     s = summary(res)
     if out is not None:
-        write_text(out / "history.csv", res.csv_text())
-        write_text(out / "summary.json", dumps(s))
+        write_text(out / "history.csv", res.csv_text(), option="--out")
+        write_text(out / "summary.json", dumps(s), option="--out")
     if args.format == "json":
         sys.stdout.write(dumps(s))
     elif args.format == "csv":

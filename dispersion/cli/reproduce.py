@@ -26,14 +26,19 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from .. import results
-from ..errors import InputError, check_positive_int
+from ..errors import InputError, check_int_in_range
 from ..io import write_text
 from ..report import SECTIONS, section_module
 from ..report.folder import check_target, open_report
 from ..report.index import SectionResult, render_index
 from ..sweep import default_jobs, process_pool
+from . import number
 
-__all__ = ["register", "measure_sections", "render_folder", "handler"]
+__all__ = ["register", "measure_sections", "render_folder", "handler", "MAX_JOBS_PER_CPU"]
+
+#: More workers than this per usable CPU only queue for the cores while each holds its own
+#: copy of the toolkit in memory; the bound keeps ``--jobs`` a count a user means.
+MAX_JOBS_PER_CPU = 4
 
 
 def register(subparsers) -> None:
@@ -53,8 +58,9 @@ def register(subparsers) -> None:
     parser.add_argument("--readme", default=None, metavar="FILE",
                         help="also rewrite the generated blocks of this Markdown file "
                              "(e.g. README.md) from the new results")
-    parser.add_argument("--jobs", type=int, default=None,
-                        help="worker processes for sweeps (default: usable CPU count)")
+    parser.add_argument("--jobs", type=number("--jobs", int), default=None,
+                        help=f"worker processes for sweeps, 1 to {MAX_JOBS_PER_CPU} x the usable "
+                             "CPUs (default: usable CPU count)")
     parser.add_argument("--sections", default=",".join(SECTIONS),
                         help="comma-separated subset of the sections, run in this order")
     parser.set_defaults(func=handler)
@@ -143,7 +149,8 @@ def handler(args: argparse.Namespace) -> int:
         raise InputError("--render measures nothing: --quick and --jobs do not apply")
     if args.render and args.sections != ",".join(SECTIONS):
         raise InputError("--render renders every section present: --sections does not apply")
-    jobs = check_positive_int("--jobs", args.jobs) if args.jobs is not None else default_jobs()
+    jobs = (check_int_in_range("--jobs", args.jobs, 1, MAX_JOBS_PER_CPU * default_jobs())
+            if args.jobs is not None else default_jobs())
     out = check_target(Path(args.out))
     readme = Path(args.readme) if args.readme is not None else None
     if readme is not None and not readme.is_file():

@@ -10,7 +10,6 @@ from __future__ import annotations
 import argparse
 import sys
 from dataclasses import replace
-from pathlib import Path
 
 from ..contact.scenario import MAX_STEPS, Scenario
 from ..errors import InputError
@@ -29,18 +28,24 @@ _FIELDS = {
 }
 
 
-def check_out(text: str | None) -> Path | None:
-    """``--out`` as a directory (created if missing); checked before any work."""
-    if text is None:
-        return None
-    out = Path(text)
-    if out.exists() and not out.is_dir():
-        raise InputError(f"out must be a directory, got the file {out}")
+#: Mesh refinement levels ``--level`` accepts: level 4 is the finest mesh a scenario allows
+#: (:data:`~dispersion.contact.scenario.MAX_ELEMENTS`).
+LEVELS = (0, 4)
+
+
+def level(text: str) -> int:
+    """argparse ``type`` of ``--level``: an integer in :data:`LEVELS`, stated on failure.
+
+    >>> level("abc")
+    Traceback (most recent call last):
+    ...
+    argparse.ArgumentTypeError: level must be an integer in [0, 4], got 'abc'
+    """
     try:
-        out.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise InputError(f"out: cannot create directory {out}: {exc.strerror}") from None
-    return out
+        return int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"level must be an integer in [{LEVELS[0]}, "
+                                         f"{LEVELS[1]}], got {text!r}") from None
 
 
 def progress_default(flag) -> bool:
@@ -58,7 +63,7 @@ def register(sub) -> None:
     p.add_argument("--scheme", choices=("kane", "standard", "explicit"), default="kane",
                    help="time integrator: contact-modified Newmark (Kane), standard Newmark, "
                         "explicit central differences (default: kane)")
-    p.add_argument("--level", type=int, default=0,
+    p.add_argument("--level", type=level, default=0,
                    help="mesh refinement level: elements x 2^level in both directions "
                         "(default: 0)")
     for opt, (name, unit) in _FIELDS.items():
@@ -77,8 +82,9 @@ def register(sub) -> None:
 
 def scenario_from(args) -> Scenario:
     """The scenario the options describe (refines the mesh after setting element counts)."""
-    if isinstance(args.level, bool) or args.level < 0 or args.level > 4:
-        raise InputError(f"level must be an integer in [0, 4], got {args.level}")
+    if not LEVELS[0] <= args.level <= LEVELS[1]:
+        raise InputError(f"level must be an integer in [{LEVELS[0]}, {LEVELS[1]}], "
+                         f"got {args.level}")
     if args.gamma_s is not None and not args.mass.startswith("singular"):
         raise InputError(f"gamma-s applies to the singular masses only, not mass {args.mass!r}")
     changes = {name: getattr(args, opt.replace("-", "_")) for opt, (name, _) in _FIELDS.items()
@@ -88,10 +94,10 @@ def scenario_from(args) -> Scenario:
 
 def run(args) -> int:
     from ..contact.simulate import simulate_ring
-    from ..io import write_text
+    from ..io import check_output_dir, write_text
     from ..results import dumps
 
-    out = check_out(args.out)
+    out = None if args.out is None else check_output_dir(args.out, option="--out")
     sc = scenario_from(args)
     bar = None
     if progress_default(args.progress):
@@ -108,11 +114,11 @@ def run(args) -> int:
         from ..io import save_figure
         from ..plotting.ring import plot_contact_energy
 
-        write_text(out / "summary.json", dumps(res.summary))
-        write_text(out / "result.json", dumps(res.to_dict(), indent=None))
-        write_text(out / "history.csv", res.csv_text())
+        write_text(out / "summary.json", dumps(res.summary), option="--out")
+        write_text(out / "result.json", dumps(res.to_dict(), indent=None), option="--out")
+        write_text(out / "history.csv", res.csv_text(), option="--out")
         ax = plot_contact_energy(res.to_dict())
-        save_figure(ax.figure, out / "figure.png", dpi=120)
+        save_figure(ax.figure, out / "figure.png", option="--out", dpi=120)
     if args.format == "json":
         sys.stdout.write(dumps(res.summary))
     elif args.format == "csv":

@@ -7,10 +7,23 @@ JUnit XML report, one test case per claim. The file format is described in
 """
 from __future__ import annotations
 
+import argparse
 import sys
+from pathlib import Path
 
-from ..errors import InputError
-from ..io import write_text
+from ..errors import InputError, check_int_in_range
+from ..io import check_output_file, write_text
+
+
+def _jobs(text: str) -> int:
+    """argparse ``type`` of ``--jobs``: an integer, its range stated on failure."""
+    from ..claims import MAX_JOBS
+
+    try:
+        return int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"--jobs must be an integer in [1, {MAX_JOBS}], got {text!r}") from None
 
 
 def register(sub) -> None:
@@ -23,20 +36,27 @@ def register(sub) -> None:
                    help="also verify the paper's eqs 14-20 (the claims file shipped with the package)")
     p.add_argument("--junit", metavar="FILE", help="write a JUnit XML report ('-' for stdout)")
     p.add_argument("--format", choices=("text", "markdown"), default="text")
-    p.add_argument("--jobs", type=int, default=None,
-                   help="worker processes for independent derivations (default: in-process "
-                        "for series to kappa^8 or less, else the CPU count)")
+    p.add_argument("--jobs", type=_jobs, default=None,
+                   help="worker processes for independent derivations, at most "
+                        "dispersion.claims.MAX_JOBS (default: in-process for series to "
+                        "kappa^8 or less, else the CPU count)")
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
-    from ..claims import format_results, junit_xml, load_claims, paper_claims_path, verify_claims
+    from ..claims import (MAX_JOBS, format_results, junit_xml, load_claims, paper_claims_path,
+                          verify_claims)
 
+    # every option is checked before a claims file is read or a derivation starts
     paths = list(args.files) + ([paper_claims_path()] if args.paper else [])
     if not paths:
         raise InputError("give at least one claims FILE (or --paper)")
-    if args.jobs is not None and args.jobs < 1:
-        raise InputError(f"jobs must be >= 1, got {args.jobs}")
+    if args.jobs is not None:
+        check_int_in_range("--jobs", args.jobs, 1, MAX_JOBS)
+    if args.junit is not None:
+        junit = check_output_file(args.junit, option="--junit")
+        if junit != "-" and any(_same_file(junit, path) for path in paths):
+            raise InputError(f"--junit must not name a claims file being verified: {junit}")
     claims = [c for path in paths for c in load_claims(path)]
     result = verify_claims(claims, jobs=args.jobs)
     if args.junit == "-":
@@ -51,3 +71,10 @@ def run(args) -> int:
         if args.junit:
             write_text(args.junit, junit_xml(result))
     return 0 if result.passed else 1
+
+
+def _same_file(a, b) -> bool:
+    try:
+        return Path(a).resolve() == Path(b).resolve()
+    except (OSError, RuntimeError):  # unresolvable: load_claims reports the input
+        return False

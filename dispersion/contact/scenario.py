@@ -17,12 +17,21 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..defaults import GAMMA_S, NU_FLOAT
-from ..errors import InputError, check_nu, check_positive, check_positive_int
+from ..errors import InputError, check_memory, check_nu, check_positive, check_positive_int
 
-__all__ = ["MAX_STEPS", "Scenario"]
+__all__ = ["MAX_ELEMENTS", "MAX_STEPS", "Scenario"]
 
 #: Most time steps one run may take (every state is kept for the penetration record).
 MAX_STEPS = 200_000
+#: Most elements (n_xi_elements x n_eta_elements) of one ring: the default mesh at level 4
+#: (256 x 32, 17544 DOFs), the finest ``dispersion ring --level`` offers. Rule: finish in
+#: about a minute on this 2-core machine; the assembly and the first 5 steps of that mesh
+#: already take 18 s here (measured), and the cost per step grows faster than the DOF count,
+#: so a finer mesh cannot run even a short scene in that time.
+MAX_ELEMENTS = 16 * 2 * 4**4
+#: Floats kept per DOF and time step: the state's u, v, a_int, a_c and the displacement
+#: array of the penetration record (used by :attr:`Scenario.memory_bytes`).
+_FLOATS_PER_DOF_STEP = 5
 
 
 @dataclass(frozen=True)
@@ -115,8 +124,15 @@ class Scenario:
             raise InputError(f"r_outer must be > r_inner = {self.r_inner}, got {self.r_outer}")
         if not self.gap >= 0:
             raise InputError(f"gap must be >= 0, got {self.gap}")
-        check_positive_int("n_xi_elements", self.n_xi_elements)
-        check_positive_int("n_eta_elements", self.n_eta_elements)
+        check_positive_int("n_xi_elements", self.n_xi_elements, maximum=MAX_ELEMENTS)
+        check_positive_int("n_eta_elements", self.n_eta_elements, maximum=MAX_ELEMENTS)
+        if self.n_xi_elements * self.n_eta_elements > MAX_ELEMENTS:
+            raise InputError(f"n_xi_elements x n_eta_elements must be <= {MAX_ELEMENTS} "
+                             f"elements, got {self.n_xi_elements} x {self.n_eta_elements}")
+        # every state is kept: refuse a run that would take more than half the memory
+        check_memory(f"n_xi_elements x n_eta_elements = {self.n_xi_elements} x "
+                     f"{self.n_eta_elements} over t_end / dt = {self.n_steps} steps",
+                     self.memory_bytes)
         if not 0 <= self.gamma_s <= 1:
             raise InputError(f"gamma_s must lie in [0, 1], got {self.gamma_s}")
 
@@ -132,6 +148,16 @@ class Scenario:
     @property
     def n_steps(self) -> int:
         return round(self.t_end / self.dt)
+
+    @property
+    def n_dofs(self) -> int:
+        """Degrees of freedom: two per control point of the quadratic patch."""
+        return 2 * (self.n_xi_elements + 2) * (self.n_eta_elements + 2)
+
+    @property
+    def memory_bytes(self) -> int:
+        """Estimated bytes of the states one run keeps (all ``n_steps + 1`` of them)."""
+        return 8 * _FLOATS_PER_DOF_STEP * self.n_dofs * (self.n_steps + 1)
 
     def scaled(self, factor: float) -> Scenario:
         """The same scene ``factor`` times larger (radii, gap and end time), same dt.

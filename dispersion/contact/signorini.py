@@ -36,12 +36,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import InputError, check_positive, check_positive_int
-from .bar import Bar, bar_model
+from ..errors import InputError, check_memory, check_positive, check_positive_int
+from .bar import Bar, bar_model, check_steps
 from .newmark import integrate
 from .simulate import newmark_for
 
 __all__ = ["ExactSignorini", "SignoriniResult", "exact_solution", "signorini_1d"]
+
+#: Bytes kept per time step besides the DOF arrays: the State object, its ``lam`` and ``mu``
+#: arrays and the history's scalars (Python objects of about 100 bytes each).
+_BYTES_PER_STEP = 1024
 
 
 @dataclass(frozen=True)
@@ -195,11 +199,16 @@ def signorini_1d(p: int = 1, n_elements: int = 20, mass: str = "singular",
     ``"explicit"`` (central differences, refused above the stability limit).
     """
     check_positive_int("n_elements", n_elements)
+    check_positive_int("p", p)
     check_positive("dt", dt)
     check_positive("t_end", t_end)
+    check_steps(t_end, dt)
     steps = t_end / dt
     if abs(steps - round(steps)) > 1e-9 * steps:
         raise InputError(f"t_end must be a whole multiple of dt = {dt:g}, got {t_end:g}")
+    # every state is kept (u, v, a_int, a_c) and the array of all u: 5 floats per DOF
+    check_memory(f"n_elements = {n_elements} over t_end / dt = {round(steps)} steps",
+                 (round(steps) + 1) * (40 * (n_elements + p) + _BYTES_PER_STEP))
     model = bar_model(Bar(n_elements, p, 1.0, 1.0, 1.0, mass, clamped=("right",),
                           contact="left"))
     prob = model.problem

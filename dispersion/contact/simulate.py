@@ -19,6 +19,7 @@ from collections.abc import Callable
 from dataclasses import asdict, dataclass
 
 import numpy as np
+import scipy.sparse as sp
 
 from ..errors import InputError
 from .material import StVenantKirchhoff
@@ -135,11 +136,12 @@ def simulate_ring(sc: Scenario | None = None, mass: str = "singular", scheme: st
     arr = hist.arrays()
     xi = np.linspace(0, 1, _SAMPLES_PER_ELEMENT * sc.n_xi_elements + 1)
     idx, R = patch.boundary_basis(xi)
-    Ry = np.zeros((len(xi), n))
-    np.put_along_axis(Ry, 2 * idx + 1, R, axis=1)
+    # sparse: a dense (samples, DOFs) map would outgrow the states on a long thin mesh
+    Ry = sp.csr_matrix((R.ravel(), (np.repeat(np.arange(len(xi)), idx.shape[1]),
+                                    (2 * idx + 1).ravel())), shape=(len(xi), n))
     y0 = np.einsum("ma,ma->m", R, patch.points[idx, 1])
     U = np.array([s.u for s in hist.states])
-    penetration = np.maximum(0.0, -(y0 + U @ Ry.T).min(axis=1))
+    penetration = np.maximum(0.0, -(y0 + (Ry @ U.T).T).min(axis=1))
     ends, Re = patch.boundary_basis(np.array([0.0, 1.0]))
     X = patch.points[ends]  # (2, a, 2)
     Ue = U.reshape(len(U), -1, 2)[:, ends]  # (steps, 2, a, 2)

@@ -44,38 +44,8 @@ def section_module(name: str) -> ModuleType:
         if exc.name != module_name:
             raise
         raise DispersionError(f"report section {name!r} is missing ({module_name})") from exc
-    if not callable(getattr(module, "measure", None)) and callable(getattr(module, "report", None)):
-        return _Legacy(module)  # transitional: a section not yet split into measure/render
     for attr in ("measure", "render"):
         if not callable(getattr(module, attr, None)):
             raise DispersionError(f"report section {name!r} defines no {attr}()")
     return module
 
-
-class _Legacy:
-    """Transitional wrapper of a section that still measures and writes in one ``report``."""
-
-    def __init__(self, module):
-        self.module = module
-
-    def measure(self, quick=False, executor=None):
-        import base64
-        import tempfile
-        from pathlib import Path
-
-        with tempfile.TemporaryDirectory() as tmp:
-            markdown = self.module.report(Path(tmp), quick=quick, executor=executor)
-            files = {p.name: base64.b64encode(p.read_bytes()).decode()
-                     for p in Path(tmp).iterdir() if p.is_file() and p.suffix != ".json"}
-        return {"markdown": markdown, "files": files}
-
-    def render(self, data, out):
-        import base64
-        from pathlib import Path
-
-        from ..io import atomic_write
-
-        for name, blob in data["files"].items():
-            with atomic_write(Path(out) / name, "wb") as fh:
-                fh.write(base64.b64decode(blob))
-        return data["markdown"]

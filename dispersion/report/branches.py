@@ -12,7 +12,7 @@ from pathlib import Path
 from ..branch_study import measure_branches as measure
 from ..io import save_figure
 
-__all__ = ["measure", "render", "report"]
+__all__ = ["measure", "render", "report", "summary"]
 
 
 def _fmt(x, spec=".3g") -> str:
@@ -104,3 +104,25 @@ def report(out: Path, quick: bool = False, executor=None) -> str:
     save(out / "branches.json", "branches", measure(quick=quick, executor=executor),
          inputs={"quick": quick})
     return render(load(out / "branches.json")["result"], out)
+
+
+def summary(data: dict) -> str:
+    """The README block: tracer accuracy, zero-group-velocity points and fitted error orders."""
+    fails = len(data.get("exact_failures") or [])
+    lines = [
+        f"- Exact branches at nu = {data['nu']:g}: {data['mpmath_points']} traced roots against "
+        f"40-digit mpmath roots, largest relative error {_fmt(data['mpmath_error'])}; "
+        f"{fails} kappa listed as failures.",
+        "- Zero-group-velocity points: " + ", ".join(
+            f"{z['label']} at kappa = {z['kappa']:.6f}, Omega = {z['omega']:.6f}"
+            for z in data["zgv"]) + ".",
+        "",
+        "| mass | branch | fitted order of the relative error | points | max log residual "
+        "| monotone | series predicts |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    for o in data["orders"]:
+        lines.append(f"| {o['mass']} | {o['branch']} | {_fmt(o['fitted'], '.2f')} | {o['points']} "
+                     f"| {_fmt(o['max_log_residual'], '.2g')} | {'yes' if o['monotone'] else 'no'} "
+                     f"| {o['series']} |")
+    return "\n".join(lines) + "\n"

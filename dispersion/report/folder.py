@@ -55,9 +55,10 @@ def check_target(out: Path, option: str = "--out") -> Path:
         ``out`` is a file, or an existing non-empty folder without :data:`MARKER`, or its
         parent is not a writable folder.
     """
+    if str(out) in ("", "-"):
+        raise InputError(f"{option} must name a folder (new, empty or a report folder), "
+                         f"got {str(out)!r}")
     out = Path(out)
-    if str(out) == "":
-        raise InputError(f"{option} must name a folder, got ''")
     out = out.absolute()
     if out.exists() or out.is_symlink():
         if out.is_symlink() or not out.is_dir():

@@ -85,6 +85,11 @@ def main(argv: list[str] | None = None) -> int:
         return 0
     if args.command is None:
         parser.error(f"a command is required: {', '.join(_SUBCOMMANDS)}")
+    return run_parsed(args)
+
+
+def run_parsed(args: argparse.Namespace) -> int:
+    """Run a parsed subcommand: its exit status, or one line on stderr for every failure."""
     try:
         return int(args.func(args) or 0)
     except InputError as exc:

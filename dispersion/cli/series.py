@@ -292,21 +292,11 @@ def run(args) -> int:
 def lean_main(argv: list[str] | None = None) -> int:
     """``python -m dispersion.cli.series ...``: this command alone, without the other
     subcommands' imports (same options, output and exit status as ``dispersion series``)."""
-    from . import _Parser
-    from ..errors import DispersionError
+    from . import _Parser, run_parsed
 
     parser = _Parser(prog="dispersion")
     register(parser.add_subparsers(dest="command", required=True, parser_class=_Parser))
-    args = parser.parse_args(["series", *(sys.argv[1:] if argv is None else argv)])
-    try:
-        return run(args)
-    except InputError as exc:
-        print(f"dispersion series: error: {exc}", file=sys.stderr)
-        return 2
-    except DispersionError as exc:
-        print(f"dispersion series: {type(exc).__name__}: {exc}", file=sys.stderr)
-        return 1
-
+    return run_parsed(parser.parse_args(["series", *(sys.argv[1:] if argv is None else argv)]))
 
 if __name__ == "__main__":
     sys.exit(lean_main())

@@ -33,8 +33,16 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .errors import InputError, check_nu, check_positive, check_positive_int, check_wavenumbers
+from .errors import (
+    InputError,
+    check_nu,
+    check_positive,
+    check_positive_int,
+    check_real_in_range,
+    check_wavenumbers,
+)
 from .rayleigh_lamb import (
+    OMEGA_MAX,
     cutoff_frequencies,
     deflated_with_noise,
     evanescent_frequency_function,
@@ -42,7 +50,8 @@ from .rayleigh_lamb import (
 )
 
 __all__ = [
-    "SERIES_KAPPA", "ExactBranches", "TracerAccuracy", "exact_fundamental",
+    "MAX_SAMPLES", "SERIES_KAPPA", "check_samples",
+    "ExactBranches", "TracerAccuracy", "exact_fundamental",
     "fundamental_series", "mpmath_error",
     "trace_branches", "tracer_accuracy",
 ]
@@ -50,6 +59,30 @@ __all__ = [
 #: Below this kappa S0 and A0 come from their series truncated after kappa^8.
 SERIES_KAPPA = 1e-3
 _SERIES_ORDER = 8
+
+#: Largest scan of one call: kappa points times Omega samples (omega_max / step + 1). Rule:
+#: about a minute of work. Measured on this 2-core machine: ~3 us and ~250 B of peak memory
+#: per (kappa, Omega) sample for both symmetry classes (2000 kappa x Omega <= 200, and one
+#: kappa x Omega <= 1e5), so 2e7 samples take ~60 s and at most ~5 GB of the 24 GiB.
+MAX_SAMPLES = 20_000_000
+
+
+def check_samples(kappa_count: int, omega_max: float, step: float = 0.05,
+                  what: str = "len(kappa) * (omega_max / step + 1)") -> float:
+    """Refuse, up front, a scan of more than :data:`MAX_SAMPLES` (kappa, Omega) samples.
+
+    ``what`` names the inputs in the message (the CLI passes its option names).
+
+    >>> check_samples(2, 1e6)
+    Traceback (most recent call last):
+    ...
+    dispersion.errors.InputError: len(kappa) * (omega_max / step + 1) must be <= 2e+07 (about a minute of the tracer), got 4e+07
+    """
+    samples = kappa_count * (omega_max / step + 1)
+    if samples > MAX_SAMPLES:
+        raise InputError(f"{what} must be <= {MAX_SAMPLES:.0e} (about a minute of the tracer), "
+                         f"got {samples:.3g}")
+    return samples
 
 
 @dataclass
@@ -357,7 +390,8 @@ def trace_branches(
     kappa : array_like
         Dimensionless wavenumbers :math:`\\kappa = kh \\ge 0`.
     omega_max : float
-        Largest :math:`\\Omega = \\omega h / c_T` of interest.
+        Largest :math:`\\Omega = \\omega h / c_T` of interest, in (0, :data:`OMEGA_MAX`], with
+        ``len(kappa) * (omega_max / step + 1) <= MAX_SAMPLES`` (:func:`check_samples`).
     step, rtol, max_depth :
         Scan spacing, root tolerance and refinement depth (the accuracy/speed settings).
     chunk : int
@@ -375,10 +409,11 @@ def trace_branches(
         omega_max = float(omega_max)
     except (TypeError, ValueError):
         raise InputError(f"omega_max must be a finite number > 0, got {omega_max!r}") from None
-    check_positive("omega_max", omega_max)
+    check_real_in_range("omega_max", omega_max, 0, OMEGA_MAX, lo_open=True)
     check_positive("step", step)
     check_positive("rtol", rtol)
     chunk = check_positive_int("chunk", chunk)
+    check_samples(kappa.size, omega_max, step)
     omega = {}
     failures = []
     top = omega_max * (1 + 1e-9) + 2 * step

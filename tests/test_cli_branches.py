@@ -113,3 +113,16 @@ def test_discrete_rows_have_group_velocity(tmp_path):
                  "--count", "2", "--omega-max", "3", "--csv", str(out)]) == 0
     rows = [r for r in _rows(out.read_text()) if r["source"] == "consistent"]
     assert rows and all(np.isfinite(float(r["c_g/c_T"])) for r in rows)
+
+
+@pytest.mark.slow
+def test_largest_discrete_patch_is_accepted(tmp_path, capsys):
+    # n at its bound passes validation; n one past MAX_N is refused naming the range
+    from dispersion.cli.branches import MAX_N
+
+    out = tmp_path / "o.csv"
+    argv = ["branches", "--mass", "consistent", "--kappa-min", "0.5", "--kappa-max", "1",
+            "--count", "2", "--omega-max", "2", "--csv", str(out)]
+    assert main([*argv, "--n", str(MAX_N)]) == 0
+    assert main([*argv, "--n", str(MAX_N + 1)]) == 2
+    assert f"[p + 1, {MAX_N}]" in capsys.readouterr().err

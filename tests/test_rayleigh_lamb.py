@@ -267,3 +267,18 @@ def test_large_kappa_roots_to_1e15():
         w = br.omega[label][0]
         ref = mp_root(label[0], 10.0, w, nu)
         assert abs(w - float(ref)) <= 1e-15 * float(ref), label
+
+
+def test_omega_max_bounds_are_the_edges():
+    # cutoff_frequencies accepts OMEGA_MAX itself (0.2 s) and refuses just past it
+    from dispersion import rayleigh_lamb, tracer
+
+    top = rayleigh_lamb.OMEGA_MAX
+    assert rayleigh_lamb.cutoff_frequencies("A", 0.3, top)[-1][0] <= top
+    with pytest.raises(InputError, match="omega_max"):
+        rayleigh_lamb.cutoff_frequencies("A", 0.3, top * (1 + 1e-12))
+    # the tracer's scan bound: exactly MAX_SAMPLES passes the check, one kappa more does not
+    omega = (tracer.MAX_SAMPLES / 4 - 1) * 0.05
+    assert tracer.check_samples(4, omega) == pytest.approx(tracer.MAX_SAMPLES)
+    with pytest.raises(InputError, match="omega_max"):
+        trace_branches(0.3, np.linspace(0.1, 1.0, 5), omega)

@@ -12,24 +12,40 @@ import argparse
 import csv
 import io
 import math
-import os
 import sys
-from pathlib import Path
 
 import numpy as np
 
 from .. import defaults
 from ..errors import InputError
-from ..io import save_figure, write_text
+from ..io import check_output_file, save_figure, write_text
 from ..mass import CONTACT_SETS, MASS_VARIANTS
 from ..plate import MODELS
+from ..tracer import check_samples
 from . import number
 
-#: Up-front bounds (issue 11): count * samples per kappa bounds the tracer's memory.
+#: Up-front bounds (issue 11); the exact tracer's scan is bounded by
+#: :data:`dispersion.tracer.MAX_SAMPLES` (count * (omega-max / 0.05 + 1)).
 MAX_COUNT = 200_000
 MAX_OMEGA = 200.0
-MAX_WORK = 4e7  # kappa points times Omega samples (step 0.05) for the exact tracer
+#: Discrete branches: the largest n, and count * (mass variants) * n^3 <= MAX_DISCRETE_WORK.
+#: Rule: the default run (two masses, 400 kappa points) at the largest n in about a minute and a
+#: half. Measured on this 2-core machine, 400 kappa points, consistent + singular: n = 10 in
+#: 3.4 s, n = 20 in 48 s, n = 30 in 180 s (grows like n^3); n = 3 with 200000 points: ~1e7.
+MAX_N = 24
+MAX_DISCRETE_WORK = 2 * 400 * MAX_N**3
 FIGURE_SUFFIXES = (".png", ".pdf", ".svg")
+
+
+def integer(name: str, lo: int, hi: int):
+    """argparse ``type``: an integer; on a parse failure the message states ``[lo, hi]``."""
+    def parse(text):
+        try:
+            return int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(
+                f"{name} must be an integer in [{lo}, {hi}], got {text!r}") from None
+    return parse
 
 
 def register(sub) -> None:
@@ -45,22 +61,24 @@ def register(sub) -> None:
     p.add_argument("--gamma-s", type=number("gamma_s"), default=None,
                    help="share of a contact shape function sent to the second neighbour, "
                         "singular masses only (default: 0, Figure 2)")
-    p.add_argument("--model", choices=MODELS, default="bloch",
-                   help="patch model along x (default: bloch)")
+    p.add_argument("--model", choices=MODELS, default=None,
+                   help=f"patch model along x (default: {defaults.MODEL})")
     p.add_argument("--r", type=number("r"), default=None,
                    help=f"aspect ratio b/h of the Bloch model, dimensionless "
                         f"(default: {float(defaults.FIGURE2_R):g}, Figure 2's h/b = 2)")
-    p.add_argument("--p", type=int, default=defaults.P,
-                   help=f"degree through the thickness (default: {defaults.P})")
-    p.add_argument("--n", type=int, default=defaults.N,
-                   help=f"control points through the thickness (default: {defaults.N})")
+    p.add_argument("--p", type=integer("degree p", 1, MAX_N - 1), default=defaults.P,
+                   help=f"degree through the thickness, 1..{MAX_N - 1} "
+                        f"(default: {defaults.P})")
+    p.add_argument("--n", type=integer("control points n", 2, MAX_N), default=defaults.N,
+                   help=f"control points through the thickness, p+1..{MAX_N} "
+                        f"(default: {defaults.N})")
     p.add_argument("--nu", type=number("nu"), default=None,
                    help=f"Poisson's ratio (default: {defaults.NU_FLOAT}, or the material's)")
     p.add_argument("--kappa-min", type=number("kappa-min"), default=0.0,
                    help="smallest kappa = kh, dimensionless (default: 0)")
     p.add_argument("--kappa-max", type=number("kappa-max"), default=8.0,
                    help="largest kappa = kh, dimensionless (default: 8)")
-    p.add_argument("--count", type=int, default=400,
+    p.add_argument("--count", type=integer("count", 2, MAX_COUNT), default=400,
                    help=f"number of kappa points, 2..{MAX_COUNT} (default: 400)")
     p.add_argument("--omega-max", type=number("omega-max"), default=8.0,
                    help=f"largest Omega = omega h / c_T, in (0, {MAX_OMEGA:g}] (default: 8)")
@@ -99,20 +117,6 @@ def kappa_grid(kmin: float, kmax: float, count: int) -> np.ndarray:
     return np.linspace(kmin, kmax, count)
 
 
-def _check_output(path: str | None, what: str, suffixes=None) -> None:
-    """Refuse an output path before any work: bad suffix, missing or unwritable directory."""
-    if path is None or path == "-":
-        return
-    p = Path(path)
-    if suffixes and p.suffix.lower() not in suffixes:
-        raise InputError(f"{what} must end in {', '.join(suffixes)}, got {path!r}")
-    if p.is_dir():
-        raise InputError(f"{what} must be a file, got the directory {path!r}")
-    parent = p.parent if str(p.parent) else Path(".")
-    if not parent.is_dir() or not os.access(parent, os.W_OK):
-        raise InputError(f"{what}: directory {str(parent)!r} does not exist or is not writable")
-
-
 def _material(args):
     from ..units import MATERIALS, Material
 
@@ -133,7 +137,7 @@ def _settings(args) -> dict:
     """Validate every option before any work; return the resolved inputs."""
     if args.exact:
         for opt, val in (("--mass", args.mass), ("--contact", args.contact),
-                         ("--gamma-s", args.gamma_s), ("--r", args.r)):
+                         ("--gamma-s", args.gamma_s), ("--r", args.r), ("--model", args.model)):
             if val is not None:
                 raise InputError(f"{opt} does not apply with --exact (no discrete patch)")
     masses = [] if args.exact else (args.mass or ["consistent", "singular"])
@@ -141,8 +145,19 @@ def _settings(args) -> dict:
         for opt, val in (("--contact", args.contact), ("--gamma-s", args.gamma_s)):
             if val is not None:
                 raise InputError(f"{opt} applies to singular masses only")
+    args.model = args.model or defaults.MODEL
     if args.model != "bloch" and args.r is not None:
         raise InputError("--r applies to the bloch model only")
+    if masses:
+        if not 1 <= args.p <= MAX_N - 1:
+            raise InputError(f"degree p must be an integer in [1, {MAX_N - 1}], got {args.p}")
+        if not args.p + 1 <= args.n <= MAX_N:
+            raise InputError(f"control points n must be an integer in [p + 1, {MAX_N}] = "
+                             f"[{args.p + 1}, {MAX_N}], got {args.n}")
+        work = args.count * len(masses) * args.n**3
+        if work > MAX_DISCRETE_WORK:
+            raise InputError(f"count * (mass variants) * n^3 must be <= {MAX_DISCRETE_WORK} "
+                             f"(about a minute and a half), got {work}")
     material = _material(args)
     if args.nu is not None and material is not None:
         raise InputError("--nu does not apply with a material (nu follows from c_L and c_T)")
@@ -151,13 +166,15 @@ def _settings(args) -> dict:
     kappa = kappa_grid(args.kappa_min, args.kappa_max, args.count)
     if not (math.isfinite(args.omega_max) and 0 < args.omega_max <= MAX_OMEGA):
         raise InputError(f"omega-max must be in (0, {MAX_OMEGA:g}], got {args.omega_max}")
-    if args.count * (args.omega_max / 0.05 + 1) > MAX_WORK:
-        raise InputError(f"count * (omega-max / 0.05 + 1) must be <= {MAX_WORK:.0e} (memory of "
-                         f"the exact tracer), got {args.count * (args.omega_max / 0.05 + 1):.3g}")
-    _check_output(args.csv, "csv")
-    _check_output(args.figure, "figure", FIGURE_SUFFIXES)
-    if args.figure == "-":
-        raise InputError("figure must be a file name, not '-'")
+    check_samples(args.count, args.omega_max, what="count * (omega-max / 0.05 + 1)")
+    if args.csv is not None:
+        check_output_file(args.csv, option="--csv")
+    if args.figure is not None:
+        if not args.figure.lower().endswith(FIGURE_SUFFIXES):
+            raise InputError(f"--figure must name a file ending in one of "
+                             f"{', '.join(FIGURE_SUFFIXES)}, got {args.figure!r}")
+        check_output_file(args.figure, option="--figure", allow_stdout=False,
+                          suffixes=FIGURE_SUFFIXES)
     r = float(defaults.FIGURE2_R) if args.r is None else args.r
     return {
         "nu": nu, "kappa": kappa, "masses": masses, "material": material, "r": r,

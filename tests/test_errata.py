@@ -82,6 +82,14 @@ def test_errata_document_compiles(tmp_path, rows):
     _compile(tmp_path, errata_document(rows, eq13_note()))
 
 
+def test_series_paper_latex_output_compiles(tmp_path, capsys):
+    # issue 11: `dispersion series --paper --format latex` printed plain text after the table
+    from dispersion.cli import main
+
+    assert main(["series", "--paper", "--format", "latex"]) == 0
+    _compile(tmp_path, capsys.readouterr().out)
+
+
 def test_coefficients_section_renders_from_json_and_its_tex_compiles(tmp_path):
     from dispersion.report import section_module
 

@@ -217,7 +217,7 @@ def _render(record: dict, fmt: str) -> str:
 
 
 def _paper(fmt: str) -> str:
-    from ..errata import eq13_note, errata_table, format_table
+    from ..errata import eq13_note, errata_document, errata_table, format_table
 
     rows = errata_table()
     if fmt == "json":
@@ -227,9 +227,11 @@ def _paper(fmt: str) -> str:
              "reproduced_by": list(r.reproduced_by), "setting": r.setting} for r in rows],
             "eq13_leading_balance": [dict(zip(("branch", "standard", "printed"), x))
                                      for x in eq13_note()]}, indent=2)
+    if fmt == "latex":  # a complete document: `dispersion series --paper --format latex > e.tex`
+        return errata_document(rows, eq13_note()).rstrip("\n")
     notes = "\n".join(f"  {b}: standard q0(w) = {s};  printed q0(w) = {pr}"
                       for b, s, pr in eq13_note())
-    return (format_table(rows, "latex" if fmt == "latex" else "text")
+    return (format_table(rows, "text")
             + "\n\nEq (13), leading balance for Omega^2 = w kappa^(2 sigma) (non-zero roots are "
               "admissible leading coefficients):\n" + notes)
 

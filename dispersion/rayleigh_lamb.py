@@ -32,7 +32,6 @@ J. L. Rose, *Ultrasonic waves in solid media*, Cambridge University Press 2004, 
 from __future__ import annotations
 
 import math
-import numpy as np
 
 from .errors import InputError, check_nu, check_real_in_range
 
@@ -107,6 +106,7 @@ def cos_sqrt(z):
     >>> float(cos_sqrt(-1.0)) == math.cosh(1.0)
     True
     """
+    import numpy as np  # deferred: the exact series path needs no numpy
     z = np.asarray(z, dtype=float)
     t = np.sqrt(np.abs(z))
     return np.where(z >= 0, np.cos(t), np.cosh(t))
@@ -118,6 +118,7 @@ def sinc_sqrt(z):
     >>> float(sinc_sqrt(0.0)), float(sinc_sqrt(math.pi**2)) < 1e-16
     (1.0, True)
     """
+    import numpy as np  # deferred: the exact series path needs no numpy
     z = np.asarray(z, dtype=float)
     t = np.sqrt(np.abs(z))
     safe = np.where(t == 0, 1.0, t)
@@ -130,11 +131,13 @@ def numeric_frequency_function(kind: str, kappa, Omega, nu: float, form: str = "
     >>> abs(float(numeric_frequency_function("S", 0.0, math.pi, 0.3))) < 1e-12
     True
     """
+    import numpy as np  # deferred: the exact series path needs no numpy
     kappa, Omega = np.asarray(kappa, dtype=float), np.asarray(Omega, dtype=float)
     return frequency_function(kind, kappa**2, Omega**2, nu, cos_sqrt, sinc_sqrt, form)
 
 
 def _sinc(x):
+    import numpy as np  # deferred: the exact series path needs no numpy
     return np.sinc(x / np.pi)
 
 
@@ -151,6 +154,7 @@ def _divided_differences(P, Q):
     and :math:`S[P,Q] = (T[P,Q] - S(P)) / Q` with :math:`T(z) = z S(z) = p \\sin p`,
     where :math:`p = \\sqrt P, q = \\sqrt Q` (complex for negative arguments).
     """
+    import numpy as np  # deferred: the exact series path needs no numpy
     P, Q = np.broadcast_arrays(np.asarray(P, dtype=float), np.asarray(Q, dtype=float))
     small = (np.abs(P) <= 2) & (np.abs(Q) <= 2)
     dC, dS = np.empty(P.shape), np.empty(P.shape)
@@ -212,6 +216,7 @@ def deflated_with_noise(kind: str, kappa, Omega, nu: float):
     >>> bool(abs(g) <= noise)
     True
     """
+    import numpy as np  # deferred: the exact series path needs no numpy
     kappa, Omega = np.asarray(kappa, dtype=float), np.asarray(Omega, dtype=float)
     k2, W2 = kappa**2, Omega**2
     s = speed_ratio_squared(nu)
@@ -250,6 +255,7 @@ def evanescent_frequency_function(kind: str, kappa, Omega, nu: float):
     >>> f[0] * f[1] < 0      # A0 at kappa = 10 lies at Omega = 9.2711348522995...
     True
     """
+    import numpy as np  # deferred: the exact series path needs no numpy
     kappa, Omega = np.asarray(kappa, dtype=float), np.asarray(Omega, dtype=float)
     k2, W2 = kappa**2, Omega**2
     s = speed_ratio_squared(nu)
@@ -268,6 +274,7 @@ def evanescent_frequency_function(kind: str, kappa, Omega, nu: float):
 
 def _sinc_sqrt_prime(z):
     """:math:`S'(z) = (C(z) - S(z)) / (2z)`, by its power series near 0."""
+    import numpy as np  # deferred: the exact series path needs no numpy
     z = np.asarray(z, dtype=float)
     small = np.abs(z) < 0.5
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -299,6 +306,7 @@ def frequency_slope(kind: str, kappa, Omega, nu: float):
     >>> abs(float(frequency_slope("S", 0.01, W, 0.3)) - cp) < 1e-4
     True
     """
+    import numpy as np  # deferred: the exact series path needs no numpy
     kappa, Omega = np.asarray(kappa, dtype=float), np.asarray(Omega, dtype=float)
     k2, W2 = kappa**2, Omega**2
     s = speed_ratio_squared(nu)

@@ -205,6 +205,17 @@ def deflated_frequency_function(kind: str, kappa, Omega, nu: float):
     return deflated_with_noise(kind, kappa, Omega, nu)[0]
 
 
+def _float_arguments(kappa, Omega, nu: float):
+    """Float arrays of the frequency function's arguments: kappa^2, Omega^2, (c_T/c_L)^2, P, Q
+    and :math:`a^2 = (Q - \\kappa^2)^2`."""
+    import numpy as np  # deferred: the exact series path needs no numpy
+    kappa, Omega = np.asarray(kappa, dtype=float), np.asarray(Omega, dtype=float)
+    k2, W2 = kappa**2, Omega**2
+    s = speed_ratio_squared(nu)
+    P, Q = s * W2 - k2, W2 - k2
+    return k2, W2, s, P, Q, (Q - k2) ** 2
+
+
 def deflated_with_noise(kind: str, kappa, Omega, nu: float):
     """:func:`deflated_frequency_function` and a bound on its rounding error.
 
@@ -217,11 +228,7 @@ def deflated_with_noise(kind: str, kappa, Omega, nu: float):
     True
     """
     import numpy as np  # deferred: the exact series path needs no numpy
-    kappa, Omega = np.asarray(kappa, dtype=float), np.asarray(Omega, dtype=float)
-    k2, W2 = kappa**2, Omega**2
-    s = speed_ratio_squared(nu)
-    P, Q = s * W2 - k2, W2 - k2
-    a2 = (Q - k2) ** 2
+    k2, W2, s, P, Q, a2 = _float_arguments(kappa, Omega, nu)
     dC, dS = _divided_differences(P, Q)
     CP, SP, CQ, SQ = cos_sqrt(P), sinc_sqrt(P), cos_sqrt(Q), sinc_sqrt(Q)
     D = SP * dC - CP * dS
@@ -256,11 +263,7 @@ def evanescent_frequency_function(kind: str, kappa, Omega, nu: float):
     True
     """
     import numpy as np  # deferred: the exact series path needs no numpy
-    kappa, Omega = np.asarray(kappa, dtype=float), np.asarray(Omega, dtype=float)
-    k2, W2 = kappa**2, Omega**2
-    s = speed_ratio_squared(nu)
-    P, Q = s * W2 - k2, W2 - k2
-    a2 = (Q - k2) ** 2
+    k2, W2, s, P, Q, a2 = _float_arguments(kappa, Omega, nu)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         TP = sinc_sqrt(P) / cos_sqrt(P)
         cq = np.where(Q < 0, cos_sqrt(Q), 1.0)

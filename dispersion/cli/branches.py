@@ -289,8 +289,6 @@ def run(args) -> int:
     for mass, d in results:
         rows += _rows(kappa, d.omega, d.group, d.symmetry.get, mass, s["material"],
                       args.thickness, args.omega_max)
-    if args.csv:
-        _emit(args.csv, _csv(rows, inputs))
     if not args.csv and not args.figure:
         if args.format == "csv":
             _emit("-", _csv(rows, inputs))
@@ -320,5 +318,9 @@ def run(args) -> int:
             ax.set_title(f"Rayleigh-Lamb, nu = {nu:g}", fontsize="small")
             ax.legend(fontsize="small")
             fig = ax.figure
+        # Both files are written after all the work, CSV last, so an interruption while the
+        # figure is drawn leaves neither new.
         save_figure(fig, args.figure, dpi=150)
+    if args.csv:
+        _emit(args.csv, _csv(rows, inputs))
     return 0

@@ -53,7 +53,7 @@ def summary(res) -> dict:
 
 def run(args) -> int:
     from ..contact.signorini import signorini_1d
-    from ..io import check_output_dir, write_text
+    from ..io import check_output_dir, write_files
     from ..results import dumps
 
     out = None if args.out is None else check_output_dir(args.out, option="--out")
@@ -65,8 +65,8 @@ def run(args) -> int:
                        args.consistent)
     s = summary(res)
     if out is not None:
-        write_text(out / "history.csv", res.csv_text(), option="--out")
-        write_text(out / "summary.json", dumps(s), option="--out")
+        write_files(out, {"history.csv": res.csv_text(), "summary.json": dumps(s)},
+                    option="--out")  # one unit: all new or all old
     if args.format == "json":
         sys.stdout.write(dumps(s))
     elif args.format == "csv":

@@ -94,7 +94,7 @@ def scenario_from(args) -> Scenario:
 
 def run(args) -> int:
     from ..contact.simulate import simulate_ring
-    from ..io import check_output_dir, write_text
+    from ..io import check_output_dir
     from ..results import dumps
 
     out = None if args.out is None else check_output_dir(args.out, option="--out")
@@ -111,14 +111,17 @@ def run(args) -> int:
         if bar is not None:
             bar.close()
     if out is not None:
-        from ..io import save_figure
+        import io
+
+        from ..io import write_files
         from ..plotting.ring import plot_contact_energy
 
-        write_text(out / "summary.json", dumps(res.summary), option="--out")
-        write_text(out / "result.json", dumps(res.to_dict(), indent=None), option="--out")
-        write_text(out / "history.csv", res.csv_text(), option="--out")
-        ax = plot_contact_energy(res.to_dict())
-        save_figure(ax.figure, out / "figure.png", option="--out", dpi=120)
+        png = io.BytesIO()
+        plot_contact_energy(res.to_dict()).figure.savefig(png, format="png", dpi=120)
+        write_files(out, {"summary.json": dumps(res.summary),  # one unit: all new or all old
+                          "result.json": dumps(res.to_dict(), indent=None),
+                          "history.csv": res.csv_text(), "figure.png": png.getvalue()},
+                    option="--out")
     if args.format == "json":
         sys.stdout.write(dumps(res.summary))
     elif args.format == "csv":

@@ -18,13 +18,13 @@ import numpy as np
 import scipy.linalg
 from scipy.optimize import brentq
 
-from dispersion.branch_study import discrete_speed
-from dispersion.branches import discrete_branches
-from dispersion.plate import numeric_pencil, plate_patch
-from dispersion.rayleigh_lamb import numeric_frequency_function
-from dispersion.tracer import mpmath_error, trace_branches, tracer_accuracy
-from dispersion.units import ALUMINIUM, physical_branches
-from dispersion.velocities import exact_velocities
+from dispersion.studies.branch_study import discrete_speed
+from dispersion.waves.discrete_branches import discrete_branches
+from dispersion.symbolic.plate import numeric_pencil, plate_patch
+from dispersion.waves.rayleigh_lamb import numeric_frequency_function
+from dispersion.waves.exact_branches import mpmath_error, trace_branches, tracer_accuracy
+from dispersion.waves.units import ALUMINIUM, physical_branches
+from dispersion.waves.velocities import exact_velocities
 
 NU = 0.3
 

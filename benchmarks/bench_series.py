@@ -1,6 +1,6 @@
 """Series benchmark: ``python benchmarks/bench_series.py [--quick] [--out DIR] [--textbook S]``.
 
-Runs :func:`dispersion.series_speed.measure` (ours against Maxima, whole process and compute
+Runs :func:`dispersion.studies.series_race.measure` (ours against Maxima, whole process and compute
 only, peak memory; time against the patch size with fitted growth exponents) and prints the
 tables; ``--out DIR`` stores ``series_speed.json`` and the chart. ``--textbook S`` adds the
 textbook sympy route (``series`` + ``solve``; ``benchmarks/series/textbook.py``) on the
@@ -14,9 +14,9 @@ import sys
 import time
 from pathlib import Path
 
-from dispersion.power_balance import exact_series
+from dispersion.waves.exact_series import exact_series
 from dispersion.results import save
-from dispersion.series_speed import measure
+from dispersion.studies.series_race import measure
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from series import textbook  # noqa: E402

@@ -22,15 +22,25 @@ from __future__ import annotations
 
 import importlib
 
-from .errors import ConvergenceError, DispersionError, IndefiniteMassWarning, InputError
+from dispersion.errors import ConvergenceError, DispersionError, IndefiniteMassWarning, InputError
 
 #: Distribution name on the package index (the import name is ``dispersion``).
 DISTRIBUTION = "dispersion-iga"
 
 _API = ("Patch", "patch", "series", "exact_branches", "simulate_ring", "simulate_bar")
-_SUBMODULES = ("api", "bspline", "mass", "plate", "power_balance", "rayleigh_lamb", "branches",
-               "errata", "claims", "contact", "defaults", "io", "results", "sweep", "errors",
-               "testing")
+#: Public modules by their short names (``dispersion.plate``), wherever they live in the wings.
+_MODULES = {
+    "api": "api", "defaults": "defaults", "errors": "errors", "io": "io", "results": "results",
+    "sweep": "sweep", "testing": "testing", "contact": "contact", "claims": "claims",
+    "symbolic": "symbolic", "waves": "waves", "studies": "studies",
+    "bspline": "symbolic.bspline", "mass": "symbolic.mass", "plate": "symbolic.plate",
+    "series_kernel": "symbolic.series_kernel", "power_balance": "symbolic.power_balance",
+    "rayleigh_lamb": "waves.rayleigh_lamb", "exact_branches": "waves.exact_branches",
+    "discrete_branches": "waves.discrete_branches", "velocities": "waves.velocities",
+    "units": "waves.units", "mode_shapes": "waves.mode_shapes",
+    "bar_dispersion": "waves.bar_dispersion", "errata": "claims.errata",
+}
+_SUBMODULES = tuple(_MODULES)
 
 __all__ = ["DispersionError", "InputError", "ConvergenceError", "IndefiniteMassWarning",
            "__version__", *_API]
@@ -51,7 +61,7 @@ def __getattr__(name: str):
     elif name in _API:
         value = getattr(importlib.import_module(".api", __name__), name)
     elif name in _SUBMODULES:
-        return importlib.import_module(f".{name}", __name__)
+        return importlib.import_module(f".{_MODULES[name]}", __name__)
     else:
         raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
     globals()[name] = value

@@ -1,6 +1,6 @@
 """``python -m dispersion`` runs the command line."""
 import sys
 
-from .cli import main
+from dispersion.cli import main
 
 sys.exit(main())

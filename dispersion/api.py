@@ -29,13 +29,13 @@ from dataclasses import dataclass, field
 from functools import cached_property
 from typing import TYPE_CHECKING, Any
 
-from . import defaults
-from .errors import InputError
+from dispersion import defaults
+from dispersion.errors import InputError
 
 if TYPE_CHECKING:  # pragma: no cover
     import sympy
 
-    from .plate import PlatePatch
+    from dispersion.symbolic.plate import PlatePatch
 
 __all__ = ["Patch", "patch", "series", "exact_branches", "simulate_ring", "simulate_bar"]
 
@@ -44,7 +44,7 @@ __all__ = ["Patch", "patch", "series", "exact_branches", "simulate_ring", "simul
 class Patch:
     """A plate patch of B-splines through the thickness with one mass variant.
 
-    Build it with :func:`patch`. Parameters are those of :func:`dispersion.plate.plate_patch`;
+    Build it with :func:`patch`. Parameters are those of :func:`dispersion.symbolic.plate.plate_patch`;
     ``plate`` is that exact object (built on first use).
 
     Attributes
@@ -72,15 +72,15 @@ class Patch:
 
     @cached_property
     def plate(self) -> PlatePatch:
-        """The exact :class:`dispersion.plate.PlatePatch` (validates every parameter)."""
-        from .plate import plate_patch
+        """The exact :class:`dispersion.symbolic.plate.PlatePatch` (validates every parameter)."""
+        from dispersion.symbolic.plate import plate_patch
 
         return plate_patch(self.p, self.n, self.model, self.r, self.mass, self.contact,
                            self.gamma_s, self.weights)
 
     def K_dyn(self, kappa=None, Omega=None, nu=None) -> sympy.Matrix:
         """:math:`K - \\Omega^2 M` (sympy); symbols ``kappa``, ``Omega``, ``nu`` by default."""
-        from .plate import dynamic_stiffness
+        from dispersion.symbolic.plate import dynamic_stiffness
 
         return dynamic_stiffness(self.plate, kappa, Omega, nu)
 
@@ -98,22 +98,22 @@ class Patch:
         """
         import sympy
 
-        from .plate import mass_block, x_functions
+        from dispersion.symbolic.plate import mass_block, x_functions
 
         kappa = sympy.Symbol("kappa") if kappa is None else sympy.sympify(kappa)
         return x_functions(self.plate, kappa)["mx"] * mass_block(self.plate)
 
     def series(self, branch: str = "S0", order: int = 8, nu=None) -> dict[int, sympy.Expr]:
         """Taylor coefficients of :math:`\\Omega^2` in :math:`\\kappa` (eqs 17-20)."""
-        from .power_balance import discrete_series
+        from dispersion.symbolic.power_balance import discrete_series
 
         return discrete_series(branch, order, p=self.p, n=self.n, model=self.model, r=self.r,
                                mass=self.mass, contact=self.contact, gamma_s=self.gamma_s,
                                weights=self.weights, nu=nu)
 
     def branches(self, kappa, nu=defaults.NU_FLOAT):
-        """All discrete branches on the grid ``kappa`` (:func:`dispersion.branches.discrete_branches`)."""
-        from .branches import discrete_branches
+        """All discrete branches on the grid ``kappa`` (:func:`dispersion.waves.discrete_branches.discrete_branches`)."""
+        from dispersion.waves.discrete_branches import discrete_branches
 
         r = self.plate.r
         if r is not None and not getattr(r, "is_number", True):
@@ -157,7 +157,7 @@ def series(branch: str = "S0", order: int = 8, *, exact: bool = False, nu=None,
         if patch_kwargs:
             raise InputError(f"patch parameters {sorted(patch_kwargs)} do not apply with "
                              "exact=True (the exact Rayleigh-Lamb series)")
-        from .power_balance import exact_series
+        from dispersion.waves.exact_series import exact_series
 
         return exact_series(branch, order, nu=nu)
     return patch(**patch_kwargs).series(branch, order, nu)
@@ -165,8 +165,8 @@ def series(branch: str = "S0", order: int = 8, *, exact: bool = False, nu=None,
 
 def exact_branches(kappa, nu=defaults.NU_FLOAT, omega_max: float = 8.0, **kwargs):
     """Exact Rayleigh-Lamb branches with :math:`\\Omega \\le` ``omega_max`` on ``kappa``
-    (:func:`dispersion.rayleigh_lamb.trace_branches`)."""
-    from .rayleigh_lamb import trace_branches
+    (:func:`dispersion.waves.exact_branches.trace_branches`)."""
+    from dispersion.waves.exact_branches import trace_branches
 
     return trace_branches(nu, kappa, omega_max, **kwargs)
 
@@ -177,8 +177,8 @@ def simulate_ring(mass: str = "singular", scheme: str = "kane", scenario=None, *
     with fields replaced by ``changes`` (e.g. ``t_end=2.0``)."""
     from dataclasses import fields, replace
 
-    from .contact.simulate import Scenario
-    from .contact.simulate import simulate_ring as _simulate
+    from dispersion.contact.simulate import Scenario
+    from dispersion.contact.simulate import simulate_ring as _simulate
 
     sc = scenario if scenario is not None else Scenario()
     unknown = sorted(set(changes) - {f.name for f in fields(sc)})
@@ -190,6 +190,6 @@ def simulate_ring(mass: str = "singular", scheme: str = "kane", scenario=None, *
 
 def simulate_bar(n_elements: int = 40, p: int = defaults.P, mass: str = "lumped", **kwargs):
     """The 1-D bar impact (:func:`dispersion.contact.bar.simulate_bar`)."""
-    from .contact.bar import simulate_bar as _simulate
+    from dispersion.contact.bar import simulate_bar as _simulate
 
     return _simulate(n_elements, p, mass, **kwargs)

@@ -41,7 +41,7 @@ import sys
 from collections.abc import Mapping
 from pathlib import Path
 
-from .errors import DispersionError, InputError
+from dispersion.errors import DispersionError, InputError
 
 __all__ = [
     "OutputError",

@@ -29,7 +29,7 @@ from collections.abc import Mapping, Sequence
 from importlib import metadata
 from pathlib import Path
 
-from .errors import DispersionError
+from dispersion.errors import DispersionError
 
 __all__ = [
     "PACKAGES", "jsonable", "dumps", "envelope", "save", "load",
@@ -146,7 +146,7 @@ def envelope(section: str, result, *, inputs: Mapping | None = None, seconds: fl
 
 def save(path, section: str, result, **kwargs) -> Path:
     """Write :func:`envelope` ``(section, result, **kwargs)`` to ``path`` atomically."""
-    from .io import write_text
+    from dispersion.io import write_text
 
     return write_text(Path(path), dumps(envelope(section, result, **kwargs)))
 

@@ -28,7 +28,7 @@ import threading
 from collections.abc import Callable, Iterable
 from typing import Any, TypeVar
 
-from .errors import check_positive_int
+from dispersion.errors import check_positive_int
 
 __all__ = ["parallel_map", "default_jobs", "process_pool", "die_with_parent"]
 

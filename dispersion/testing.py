@@ -13,7 +13,7 @@ claim 'typo' (<string>:1) differs
 """
 from __future__ import annotations
 
-from .claims import Claim, ClaimResult, check_claim, load_claims, parse_claims
+from dispersion.claims import Claim, ClaimResult, check_claim, load_claims, parse_claims
 
 __all__ = ["assert_claim", "assert_series", "assert_claims_file", "claims_in", "failure_message"]
 

@@ -25,8 +25,9 @@ import numpy as np
 import sympy
 from scipy.linalg import eigh
 
-from dispersion.plate import numeric_pencil, plate_patch
-from dispersion.power_balance import NU, discrete_series, exact_series
+from dispersion.symbolic.plate import numeric_pencil, plate_patch
+from dispersion.symbolic.power_balance import NU, discrete_series
+from dispersion.waves.exact_series import exact_series
 
 exact = exact_series("S0", 6)
 exact

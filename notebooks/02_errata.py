@@ -26,7 +26,7 @@
 from IPython.display import Markdown
 
 from dispersion.claims import format_results, verify_file
-from dispersion.errata import eq13_note, errata_table, format_table
+from dispersion.claims.errata import eq13_note, errata_table, format_table
 
 rows = errata_table()
 Markdown(format_table(rows, "markdown"))

@@ -23,12 +23,12 @@
 # %matplotlib inline
 import numpy as np
 
-from dispersion.branch_study import figure2_data
-from dispersion.plate import plate_patch
+from dispersion.studies.branch_study import figure2_data
+from dispersion.symbolic.plate import plate_patch
 from dispersion.plotting.branches import figure2, figure_velocities
-from dispersion.rayleigh_lamb import cutoff_frequencies
-from dispersion.units import ALUMINIUM, physical_branches
-from dispersion.velocities import zgv_points
+from dispersion.waves.rayleigh_lamb import cutoff_frequencies
+from dispersion.waves.units import ALUMINIUM, physical_branches
+from dispersion.waves.velocities import zgv_points
 
 nu, r = 0.3, 0.5  # Figure 2 caption: h/b = 2
 
@@ -64,8 +64,8 @@ figure_velocities(data, zgv=[vars(z) for z in zgv])
 # Dispersion Calculator (kHz, MHz mm, m/s): the A1 cut-off sits at f d = c_T / 2.
 
 # %%
-from dispersion.tracer import trace_branches  # noqa: E402
-from dispersion.velocities import exact_velocities  # noqa: E402
+from dispersion.waves.exact_branches import trace_branches  # noqa: E402
+from dispersion.waves.velocities import exact_velocities  # noqa: E402
 
 al = trace_branches(ALUMINIUM.nu, [0.0, 1.0], 4.0)
 pb = physical_branches(al.kappa, al.omega, exact_velocities(al).group, ALUMINIUM, 1.0)

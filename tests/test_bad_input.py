@@ -35,8 +35,13 @@ import dispersion.cli
 from dispersion.errors import InputError
 
 # Import everything the commands load lazily, so a refusal is timed without import cost.
-from dispersion import branches as _branches  # noqa: E402
-from dispersion import bspline, errata, mass, plate, power_balance, rayleigh_lamb, sweep
+from dispersion.waves import discrete_branches as _branches  # noqa: E402
+from dispersion import sweep
+from dispersion.claims import errata
+from dispersion.symbolic import bspline, mass, plate, power_balance
+from dispersion.waves import rayleigh_lamb
+from dispersion.waves import exact_series as exact_series_mod
+from dispersion.waves import exact_branches as exact_branches_mod
 from dispersion import io as dio
 from dispersion.contact import bar, scenario, simulate
 
@@ -335,13 +340,13 @@ API_CASES = [
     Api("dynamic_stiffness(nu=0.5)", lambda: plate.dynamic_stiffness(_patch(), nu=0.5), NU),
     Api("dynamic_stiffness(nu=sympy.nan)",
         lambda: plate.dynamic_stiffness(_patch(), nu=sympy.nan), NU),
-    Api("exact_series(order=100000)", lambda: power_balance.exact_series("S0", 100000), ORDER),
-    Api("exact_series(order=5)", lambda: power_balance.exact_series("S0", 5), ORDER),
-    Api("exact_series(order=-2)", lambda: power_balance.exact_series("S0", -2), ORDER),
-    Api("exact_series(order=4.5)", lambda: power_balance.exact_series("S0", 4.5), ORDER),
-    Api("exact_series(branch='S1')", lambda: power_balance.exact_series("S1", 4), r"branch"),
-    Api("exact_series(nu=0.7)", lambda: power_balance.exact_series("S0", 4, nu=0.7), NU),
-    Api("exact_series(nu=nan)", lambda: power_balance.exact_series("S0", 4, nu=math.nan), NU),
+    Api("exact_series(order=100000)", lambda: exact_series_mod.exact_series("S0", 100000), ORDER),
+    Api("exact_series(order=5)", lambda: exact_series_mod.exact_series("S0", 5), ORDER),
+    Api("exact_series(order=-2)", lambda: exact_series_mod.exact_series("S0", -2), ORDER),
+    Api("exact_series(order=4.5)", lambda: exact_series_mod.exact_series("S0", 4.5), ORDER),
+    Api("exact_series(branch='S1')", lambda: exact_series_mod.exact_series("S1", 4), r"branch"),
+    Api("exact_series(nu=0.7)", lambda: exact_series_mod.exact_series("S0", 4, nu=0.7), NU),
+    Api("exact_series(nu=nan)", lambda: exact_series_mod.exact_series("S0", 4, nu=math.nan), NU),
     Api("discrete_series(order=100000)",
         lambda: power_balance.discrete_series("S0", 100000), ORDER),
     Api("discrete_series(branch='X')", lambda: power_balance.discrete_series("X", 4), r"branch"),
@@ -358,12 +363,12 @@ API_CASES = [
     Api("discrete_branches(kappa=[-1])",
         lambda: _branches.discrete_branches(_patch(), 0.3, _kappa(-1)), KAPPA),
     Api("trace_branches(omega_max=1e6)",
-        lambda: rayleigh_lamb.trace_branches(0.3, _kappa(0.1, 1.0), 1e6), OMEGA),
+        lambda: exact_branches_mod.trace_branches(0.3, _kappa(0.1, 1.0), 1e6), OMEGA),
     Api("trace_branches(omega_max=nan)",
-        lambda: rayleigh_lamb.trace_branches(0.3, _kappa(0.1), math.nan), OMEGA),
-    Api("trace_branches(nu=0.5)", lambda: rayleigh_lamb.trace_branches(0.5, _kappa(0.1), 8), NU),
+        lambda: exact_branches_mod.trace_branches(0.3, _kappa(0.1), math.nan), OMEGA),
+    Api("trace_branches(nu=0.5)", lambda: exact_branches_mod.trace_branches(0.5, _kappa(0.1), 8), NU),
     Api("trace_branches(kappa=[inf])",
-        lambda: rayleigh_lamb.trace_branches(0.3, _kappa(math.inf), 8), KAPPA),
+        lambda: exact_branches_mod.trace_branches(0.3, _kappa(math.inf), 8), KAPPA),
     Api("cutoff_frequencies(omega_max=1e12)",
         lambda: rayleigh_lamb.cutoff_frequencies("S", 0.3, 1e12), OMEGA),
     Api("redistribution_matrix(NaN weights)",

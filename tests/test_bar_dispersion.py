@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from dispersion.bar_dispersion import bar_dispersion, bar_frequency
+from dispersion.waves.bar_dispersion import bar_dispersion, bar_frequency
 from dispersion.errors import InputError
 
 

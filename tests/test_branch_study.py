@@ -7,9 +7,9 @@ import re
 import numpy as np
 import pytest
 
-from dispersion.bar_dispersion import bar_dispersion
-from dispersion.branch_study import figure2_data, measure_branches
-from dispersion.plate import plate_patch
+from dispersion.waves.bar_dispersion import bar_dispersion
+from dispersion.studies.branch_study import figure2_data, measure_branches
+from dispersion.symbolic.plate import plate_patch
 from dispersion.report.branches import render
 from dispersion.results import dumps
 
@@ -97,7 +97,7 @@ def test_quick_measure_then_render(tmp_path):
 def test_consistent_mass_errors_are_upper_bounds_per_wavelength():
     # Rayleigh-Ritz (min-max within each mirror block): a conforming discretization with the
     # consistent mass over-estimates every frequency of its block, so S0 and A0 errors >= 0
-    from dispersion.branch_study import _per_wavelength
+    from dispersion.studies.branch_study import _per_wavelength
 
     pw = _per_wavelength(NU, quick=True)
     for c in pw["curves"]:
@@ -110,7 +110,7 @@ def test_consistent_mass_errors_are_upper_bounds_per_wavelength():
 
 def test_tracer_accuracy_reference_is_checked_against_mpmath():
     # issue 14: the reference setting of the speed-accuracy chart is compared with mpmath
-    from dispersion.tracer import tracer_accuracy
+    from dispersion.waves.exact_branches import tracer_accuracy
 
     acc = tracer_accuracy(NU, np.linspace(0, 4, 30), omega_max=4.0,
                           settings=[(0.2, 1e-6), (0.2, 1e-12)], repeat=1, mpmath_points=5)

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 import scipy.linalg
 
-from dispersion.branches import (
+from dispersion.waves.discrete_branches import (
     discrete_branches,
     fitted_order,
     pencil_frequencies,
@@ -13,8 +13,8 @@ from dispersion.branches import (
     relative_error,
 )
 from dispersion.errors import InputError
-from dispersion.plate import numeric_pencil, plate_patch
-from dispersion.tracer import trace_branches
+from dispersion.symbolic.plate import numeric_pencil, plate_patch
+from dispersion.waves.exact_branches import trace_branches
 
 NU = 0.3
 
@@ -149,7 +149,7 @@ def _det_sign_change(patch, kappa: float, omega: float, rel: float) -> bool:
     import mpmath
     import sympy
 
-    from dispersion.plate import dynamic_stiffness
+    from dispersion.symbolic.plate import dynamic_stiffness
 
     W = sympy.Symbol("W")
     Kd = dynamic_stiffness(patch, kappa=sympy.Rational(kappa), Omega=W,
@@ -175,7 +175,7 @@ def test_fundamental_branches_accurate_at_every_kappa(kwargs):
 def test_fundamental_branches_follow_their_series_at_small_kappa():
     # eq (16)/(18): Omega^2 of the discrete S0/A0 as series in kappa (power_balance); the
     # truncation after kappa^8 leaves a relative remainder ~kappa^6 < 1e-12 at kappa <= 1e-2
-    from dispersion.power_balance import discrete_series
+    from dispersion.symbolic.power_balance import discrete_series
 
     kappa = np.array([1e-6, 1e-5, 1e-4, 1e-3, 1e-2])
     br = discrete_branches(plate_patch(), NU, kappa)

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from dispersion.cli import main
-from dispersion.tracer import trace_branches
+from dispersion.waves.exact_branches import trace_branches
 
 
 def _rows(text: str) -> list[dict]:

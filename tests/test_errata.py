@@ -8,7 +8,7 @@ import pytest
 import sympy
 
 from dispersion import results
-from dispersion.errata import (eq13_note, errata_document, errata_table, format_table,
+from dispersion.claims.errata import (eq13_note, errata_document, errata_table, format_table,
                                paper_claims, paper_errata)
 from dispersion.errors import InputError
 

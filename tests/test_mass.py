@@ -5,8 +5,8 @@ import pytest
 import sympy
 
 from dispersion.errors import IndefiniteMassWarning, InputError
-from dispersion.mass import contact_weights, mass_variant, redistribution_matrix
-from dispersion.plate import thickness_matrices
+from dispersion.symbolic.mass import contact_weights, mass_variant, redistribution_matrix
+from dispersion.symbolic.plate import thickness_matrices
 
 
 @pytest.mark.parametrize("p,n", [(2, 3), (2, 4), (3, 4), (3, 5)])

@@ -4,7 +4,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from dispersion.mode_shapes import (
+from dispersion.waves.mode_shapes import (
     _profiles,
     discrete_mode_shape,
     discrete_modes,
@@ -12,9 +12,9 @@ from dispersion.mode_shapes import (
     mac,
     pair_by_shape,
 )
-from dispersion.plate import plate_patch
-from dispersion.rayleigh_lamb import numeric_frequency_function, speed_ratio_squared
-from dispersion.tracer import trace_branches
+from dispersion.symbolic.plate import plate_patch
+from dispersion.waves.rayleigh_lamb import numeric_frequency_function, speed_ratio_squared
+from dispersion.waves.exact_branches import trace_branches
 
 NU = 0.3
 

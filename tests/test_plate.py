@@ -4,7 +4,7 @@ import pytest
 import sympy
 
 from dispersion.errors import InputError
-from dispersion.plate import (N_MAX, P_MAX, bloch_coefficients, check_size, dynamic_stiffness,
+from dispersion.symbolic.plate import (N_MAX, P_MAX, bloch_coefficients, check_size, dynamic_stiffness,
                               mirror_bases, numeric_pencil, plate_patch)
 
 kappa, Omega = sympy.symbols("kappa Omega")
@@ -71,7 +71,7 @@ def test_bad_input():
                                 dict(model="bloch"), dict()])
 def test_x_taylor_is_the_taylor_series_of_x_functions(kw):
     # the series path's coefficients against sympy.series of the closed forms (one definition)
-    from dispersion.plate import x_functions, x_taylor
+    from dispersion.symbolic.plate import x_functions, x_taylor
 
     patch = plate_patch(**kw)
     D = 4
@@ -102,7 +102,7 @@ def test_cached_matrices_cannot_be_mutated_by_a_caller():
     E = mirror_bases(3, exact=True)["S"]
     with pytest.raises(TypeError):
         E[0, 0] = 5
-    from dispersion.plate import bloch_coefficients as bc
+    from dispersion.symbolic.plate import bloch_coefficients as bc
     bc(2)["00"][0] = 99  # a copy: the next caller still sees the true Gram integral
     assert bc(2)["00"][0] == sympy.Rational(66, 120)
 

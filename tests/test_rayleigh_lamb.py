@@ -8,14 +8,14 @@ import numpy as np
 import pytest
 
 from dispersion.errors import InputError
-from dispersion.rayleigh_lamb import (
+from dispersion.waves.rayleigh_lamb import (
     cutoff_frequencies,
     deflated_frequency_function,
     frequency_function,
     numeric_frequency_function,
     speed_ratio_squared,
 )
-from dispersion.tracer import trace_branches
+from dispersion.waves.exact_branches import trace_branches
 
 DPS = 40  # digits of the mpmath references, set locally with mpmath.workdps
 
@@ -117,13 +117,13 @@ def test_s0_series_small_kappa():
 
 
 def test_series_against_power_balance():
-    from dispersion import power_balance as pb
+    from dispersion.waves import exact_series as exact_series_mod
 
     nu = 0.3
     kappa = np.array([0.005, 0.01])  # truncation after k^8: relative remainder ~ k^6
     br = trace_branches(nu, kappa, 1.0)
     for label in ("S0", "A0"):
-        coef = pb.exact_series(label, 8, nu=nu)
+        coef = exact_series_mod.exact_series(label, 8, nu=nu)
         series = sum(float(c) * kappa**k for k, c in coef.items())
         assert np.allclose(br.omega[label] ** 2, series, rtol=1e-9, atol=0)
 
@@ -271,7 +271,8 @@ def test_large_kappa_roots_to_1e15():
 
 def test_omega_max_bounds_are_the_edges():
     # cutoff_frequencies accepts OMEGA_MAX itself (0.2 s) and refuses just past it
-    from dispersion import rayleigh_lamb, tracer
+    from dispersion.waves import rayleigh_lamb
+    from dispersion.waves import exact_branches as tracer
 
     top = rayleigh_lamb.OMEGA_MAX
     assert rayleigh_lamb.cutoff_frequencies("A", 0.3, top)[-1][0] <= top

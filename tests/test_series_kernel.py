@@ -8,7 +8,7 @@ import pytest
 import sympy
 
 from dispersion.errors import DispersionError
-from dispersion.series_kernel import Series, branch_coefficients, context, determinant, entire
+from dispersion.symbolic.series_kernel import Series, branch_coefficients, context, determinant, entire
 
 CTX = context(("nu",))
 W, NU_G = CTX.gens()

@@ -1,4 +1,4 @@
-"""Series speed study (``dispersion/series_speed.py``): parsers, fit, agreement, bounds, render.
+"""Series speed study (``dispersion/studies/series_race.py``): parsers, fit, agreement, bounds, render.
 
 No wall-clock assertions: only the bookkeeping and the coefficients are checked.
 """
@@ -11,7 +11,7 @@ from fractions import Fraction
 
 import pytest
 
-from dispersion import series_speed as S
+from dispersion.studies import series_race as S
 from dispersion.cli import main
 from dispersion.errors import InputError
 

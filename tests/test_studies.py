@@ -1,4 +1,4 @@
-"""Tests of dispersion/studies.py (studies beyond the paper), its renderer and its plots."""
+"""Tests of dispersion/studies/paper_studies.py (studies beyond the paper), its renderer and its plots."""
 from __future__ import annotations
 
 import numpy as np
@@ -6,10 +6,10 @@ import pytest
 import scipy.linalg
 
 from dispersion.errors import InputError
-from dispersion.plate import numeric_pencil, plate_patch
-from dispersion import studies
-from dispersion.branches import critical_time_step, fundamental_branches, pencil_frequencies
-from dispersion.tracer import exact_fundamental
+from dispersion.symbolic.plate import numeric_pencil, plate_patch
+from dispersion.studies import paper_studies as studies
+from dispersion.waves.discrete_branches import critical_time_step, fundamental_branches, pencil_frequencies
+from dispersion.waves.exact_branches import exact_fundamental
 
 NU = 0.3
 
@@ -188,11 +188,11 @@ def test_bar_case_singular_mass_is_insensitive_to_the_contact_modification():
 
 def test_exact_branch_against_an_independent_bracket_and_bisect():
     # Independent computation: the first sign change of the entire-function frequency
-    # equation (dispersion.rayleigh_lamb.frequency_function, Rose 2004 ch. 8) on a fine
+    # equation (dispersion.waves.rayleigh_lamb.frequency_function, Rose 2004 ch. 8) on a fine
     # Omega grid, closed by Brent's method.
     from scipy.optimize import brentq
 
-    from dispersion.rayleigh_lamb import frequency_function
+    from dispersion.waves.rayleigh_lamb import frequency_function
 
     def C(z):
         return np.cos(np.emath.sqrt(z)).real

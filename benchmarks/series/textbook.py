@@ -73,7 +73,7 @@ def textbook_orders(F: sympy.Expr, sigma: int, order: int) -> Iterator[tuple[int
 
 def textbook_rayleigh_lamb(branch: str) -> sympy.Expr:
     """The Rayleigh-Lamb function in plain sympy: ``cos(sqrt z)``, ``sin(sqrt z)/sqrt z``."""
-    from dispersion.rayleigh_lamb import frequency_function
+    from dispersion.waves.rayleigh_lamb import frequency_function
 
     def C(z):
         return sympy.cos(sympy.sqrt(z))
@@ -88,7 +88,7 @@ def textbook_plate(mass: str = "consistent", model: str = "bloch", r=2, nu=None,
                    **kwargs) -> sympy.Expr:
     """``Matrix.det()`` (sympy's default method) of the full :math:`K_{dyn}` of the paper's
     patch (p = 2, n = 3) with :math:`\\Omega^2` = ``W``; ``nu`` symbolic unless given."""
-    from dispersion.plate import dynamic_stiffness, plate_patch
+    from dispersion.symbolic.plate import dynamic_stiffness, plate_patch
 
     patch = plate_patch(2, 3, model, r if model == "bloch" else None, mass, **kwargs)
     return dynamic_stiffness(patch, KAPPA, sympy.sqrt(_W), NU if nu is None else nu).det()

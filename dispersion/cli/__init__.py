@@ -16,7 +16,7 @@ import argparse
 import importlib
 import sys
 
-from ..errors import DispersionError, InputError
+from dispersion.errors import DispersionError, InputError
 
 _SUBCOMMANDS = ("series", "branches", "ring", "impact", "verify", "reproduce", "bench")
 
@@ -70,7 +70,7 @@ def version() -> str:
     try:
         return metadata.version("dispersion-iga")
     except metadata.PackageNotFoundError:  # pragma: no cover - running from a bare checkout
-        from .. import __version__
+        from dispersion import __version__
 
         return __version__
 

@@ -6,7 +6,7 @@ import sys
 import time
 from pathlib import Path
 
-from ..errors import InputError
+from dispersion.errors import InputError
 
 
 def _budget(text: str) -> float:
@@ -14,7 +14,7 @@ def _budget(text: str) -> float:
     try:
         return float(text)
     except ValueError:
-        from ..series_speed import TIMEOUT_MAX
+        from dispersion.studies.series_race import TIMEOUT_MAX
 
         raise argparse.ArgumentTypeError(f"budget must be a number of seconds in "
                                          f"(0, {TIMEOUT_MAX:g}], got {text!r}") from None
@@ -38,33 +38,33 @@ def register(subparsers) -> None:
 
 
 def handler(args: argparse.Namespace) -> int:
-    from ..series_speed import TIMEOUT_MAX, measure
+    from dispersion.studies.series_race import TIMEOUT_MAX, measure
 
     if not (0 < args.budget <= TIMEOUT_MAX):
         raise InputError(f"budget (seconds per child process) must lie in (0, {TIMEOUT_MAX:g}], "
                          f"got {args.budget:g}")
     out = None
     if args.out is not None:  # a str, not a Path: Path("") would be "." and pass
-        from ..io import check_output_dir
+        from dispersion.io import check_output_dir
 
         out = Path(check_output_dir(args.out, option="--out"))
     start = time.perf_counter()
     result = measure(quick=args.quick, timeout=args.budget, maxima=args.maxima,
                      extended=not args.quick)
     seconds = time.perf_counter() - start
-    from ..results import dumps, envelope, jsonable
+    from dispersion.results import dumps, envelope, jsonable
 
     provenance = {"inputs": {"quick": args.quick, "budget": args.budget}, "seconds": seconds,
                   "command": "dispersion bench" + (" --quick" if args.quick else "")}
     if out is None:
-        from ..report.series_speed import render_tables
+        from dispersion.report.series_speed import render_tables
 
         sys.stdout.write(dumps(envelope("series_speed", result, **provenance))
                          if args.format == "json" else render_tables(jsonable(result)))
         return 0
-    from ..io import write_text
-    from ..report.series_speed import render
-    from ..results import load, save
+    from dispersion.io import write_text
+    from dispersion.report.series_speed import render
+    from dispersion.results import load, save
 
     path = save(out / "series_speed.json", "series_speed", result, **provenance)
     md = render(load(path)["result"], out)

@@ -16,16 +16,16 @@ import sys
 
 import numpy as np
 
-from .. import defaults
-from ..errors import InputError
-from ..io import check_output_file, save_figure, write_text
-from ..mass import CONTACT_SETS, MASS_VARIANTS
-from ..plate import MODELS
-from ..tracer import check_samples
-from . import number
+from dispersion import defaults
+from dispersion.errors import InputError
+from dispersion.io import check_output_file, save_figure, write_text
+from dispersion.symbolic.mass import CONTACT_SETS, MASS_VARIANTS
+from dispersion.symbolic.plate import MODELS
+from dispersion.waves.exact_branches import check_samples
+from dispersion.cli import number
 
 #: Up-front bounds (issue 11); the exact tracer's scan is bounded by
-#: :data:`dispersion.tracer.MAX_SAMPLES` (count * (omega-max / 0.05 + 1)).
+#: :data:`dispersion.waves.exact_branches.MAX_SAMPLES` (count * (omega-max / 0.05 + 1)).
 MAX_COUNT = 200_000
 MAX_OMEGA = 200.0
 #: Discrete branches: the largest n, and count * (mass variants) * n^3 <= MAX_DISCRETE_WORK.
@@ -100,7 +100,7 @@ def register(sub) -> None:
 
 
 def _materials():
-    from ..units import MATERIALS
+    from dispersion.waves.units import MATERIALS
 
     return MATERIALS
 
@@ -118,7 +118,7 @@ def kappa_grid(kmin: float, kmax: float, count: int) -> np.ndarray:
 
 
 def _material(args):
-    from ..units import MATERIALS, Material
+    from dispersion.waves.units import MATERIALS, Material
 
     if args.material and (args.cl is not None or args.ct is not None):
         raise InputError("give --material or --cl/--ct, not both")
@@ -184,7 +184,7 @@ def _settings(args) -> dict:
 
 
 def _inputs(args, s) -> dict:
-    from ..results import package_versions
+    from dispersion.results import package_versions
 
     out = {"nu": s["nu"], "model": args.model, "p": args.p, "n": args.n,
            "masses": s["masses"], "kappa": [args.kappa_min, args.kappa_max, args.count],
@@ -202,8 +202,8 @@ def _inputs(args, s) -> dict:
 
 def _rows(kappa, omega, group, symmetry, source, material, thickness, omega_max):
     """Row dicts of one branch set (finite Omega <= omega_max)."""
-    from ..units import physical_branches
-    from ..velocities import phase_velocity
+    from dispersion.waves.units import physical_branches
+    from dispersion.waves.velocities import phase_velocity
 
     phys = (physical_branches(kappa, omega, group, material, thickness)
             if material is not None else None)
@@ -257,10 +257,10 @@ def _emit(path: str, text: str) -> None:
 
 
 def run(args) -> int:
-    from ..branches import discrete_branches
-    from ..plate import plate_patch
-    from ..tracer import trace_branches
-    from ..velocities import exact_velocities
+    from dispersion.waves.discrete_branches import discrete_branches
+    from dispersion.symbolic.plate import plate_patch
+    from dispersion.waves.exact_branches import trace_branches
+    from dispersion.waves.velocities import exact_velocities
 
     s = _settings(args)
     kappa, masses, nu = s["kappa"], s["masses"], s["nu"]
@@ -295,18 +295,18 @@ def run(args) -> int:
         elif args.format == "text":
             _emit("-", _text(rows, inputs))
         else:
-            from ..results import dumps, envelope
+            from dispersion.results import dumps, envelope
 
             env = envelope("branches", {"rows": rows,
                                         "failures": [list(f) for f in exact.failures]},
                            inputs=inputs)
             _emit("-", dumps(env))
     if args.figure:
-        from ..plotting.branches import figure2, plot_exact
+        from dispersion.plotting.branches import figure2, plot_exact
 
         model = args.model + (f", r = {s['r']:g}" if args.model == "bloch" else "")
         if results:
-            from ..branch_study import figure2_data
+            from dispersion.studies.branch_study import figure2_data
 
             data, _ = figure2_data(nu, kappa, args.omega_max, {
                 mass: plate_patch(p=args.p, n=args.n, model=args.model, r=s["r"], mass=mass,

@@ -10,9 +10,9 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ..errors import InputError
-from ..mass import MASS_VARIANTS
-from . import number
+from dispersion.errors import InputError
+from dispersion.symbolic.mass import MASS_VARIANTS
+from dispersion.cli import number
 
 SCENES = ("signorini-1d",)
 
@@ -52,9 +52,9 @@ def summary(res) -> dict:
 
 
 def run(args) -> int:
-    from ..contact.signorini import signorini_1d
-    from ..io import check_output_dir, write_files
-    from ..results import dumps
+    from dispersion.contact.signorini import signorini_1d
+    from dispersion.io import check_output_dir, write_files
+    from dispersion.results import dumps
 
     out = None if args.out is None else check_output_dir(args.out, option="--out")
     if args.p < 1 or args.p > 6:

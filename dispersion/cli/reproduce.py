@@ -25,14 +25,14 @@ import time
 from collections.abc import Sequence
 from pathlib import Path
 
-from .. import results
-from ..errors import InputError, check_int_in_range
-from ..io import write_text
-from ..report import SECTIONS, section_module
-from ..report.folder import check_target, open_report
-from ..report.index import SectionResult, render_index
-from ..sweep import default_jobs, process_pool
-from . import number
+from dispersion import results
+from dispersion.errors import InputError, check_int_in_range
+from dispersion.io import write_text
+from dispersion.report import SECTIONS, section_module
+from dispersion.report.folder import check_target, open_report
+from dispersion.report.index import SectionResult, render_index
+from dispersion.sweep import default_jobs, process_pool
+from dispersion.cli import number
 
 __all__ = ["register", "measure_sections", "render_folder", "handler", "MAX_JOBS_PER_CPU"]
 
@@ -168,7 +168,7 @@ def handler(args: argparse.Namespace) -> int:
                 pool.shutdown(wait=True, cancel_futures=True)
         parts = render_folder(staged)
     if readme is not None:
-        from ..report.readme import update_readme
+        from dispersion.report.readme import update_readme
 
         changed = update_readme(readme, out)
         print(f"{'updated' if changed else 'unchanged'}: generated blocks of {readme}")

@@ -11,10 +11,10 @@ import argparse
 import sys
 from dataclasses import replace
 
-from ..contact.scenario import MAX_STEPS, Scenario
-from ..errors import InputError
-from ..mass import MASS_VARIANTS
-from . import number
+from dispersion.contact.scenario import MAX_STEPS, Scenario
+from dispersion.errors import InputError
+from dispersion.symbolic.mass import MASS_VARIANTS
+from dispersion.cli import number
 
 DEFAULT = Scenario()
 
@@ -93,9 +93,9 @@ def scenario_from(args) -> Scenario:
 
 
 def run(args) -> int:
-    from ..contact.simulate import simulate_ring
-    from ..io import check_output_dir
-    from ..results import dumps
+    from dispersion.contact.simulate import simulate_ring
+    from dispersion.io import check_output_dir
+    from dispersion.results import dumps
 
     out = None if args.out is None else check_output_dir(args.out, option="--out")
     sc = scenario_from(args)
@@ -113,8 +113,8 @@ def run(args) -> int:
     if out is not None:
         import io
 
-        from ..io import write_files
-        from ..plotting.ring import plot_contact_energy
+        from dispersion.io import write_files
+        from dispersion.plotting.ring import plot_contact_energy
 
         png = io.BytesIO()
         plot_contact_energy(res.to_dict()).figure.savefig(png, format="png", dpi=120)

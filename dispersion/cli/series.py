@@ -1,7 +1,7 @@
 """``dispersion series``: power-balance series of S0/A0 (discrete or exact), and ``--paper``.
 
 The text, JSON and CSV formats are printed from the flint kernel directly
-(:func:`dispersion.power_balance.format_coefficient`); sympy is used only for LaTeX and the
+(:func:`dispersion.symbolic.power_balance.format_coefficient`); sympy is used only for LaTeX and the
 errata table.
 """
 from __future__ import annotations
@@ -11,7 +11,7 @@ import json
 import sys
 from fractions import Fraction
 
-from ..errors import InputError
+from dispersion.errors import InputError
 
 #: Options of the discrete patch, with their defaults (None: not given on the command line).
 _PATCH_OPTIONS = ("mass", "contact", "gamma_s", "model", "r", "p", "n")
@@ -35,7 +35,7 @@ class _Default:
     def value(self):
         if self.literal is not None:
             return self.literal
-        from .. import defaults
+        from dispersion import defaults
 
         return getattr(defaults, self.name)
 
@@ -65,20 +65,20 @@ def _integer(name: str, valid):
 
 
 def _order_range() -> str:
-    from ..power_balance import MAX_ORDER
+    from dispersion.symbolic.power_balance import MAX_ORDER
 
     return (f"(highest power of kappa), even, >= 2 and <= {MAX_ORDER['discrete']} "
             f"(discrete) or <= {MAX_ORDER['exact']} (--exact)")
 
 
 def _degree_range() -> str:
-    from ..plate import P_MAX
+    from dispersion.symbolic.plate import P_MAX
 
     return f"in [1, {P_MAX}]"
 
 
 def _points_range() -> str:
-    from ..plate import N_MAX
+    from dispersion.symbolic.plate import N_MAX
 
     return f"in [p + 1, {N_MAX}]"
 
@@ -166,7 +166,7 @@ def _resolve(args) -> dict:
 
 def series_records(args, branches: tuple[str, ...], opts: dict) -> list[dict]:
     """Derive the branches (one determinant for both where the mass breaks the mirror)."""
-    from ..power_balance import discrete_series_raw
+    from dispersion.symbolic.power_balance import discrete_series_raw
 
     raws = None if args.exact else discrete_series_raw(branches, args.order, **opts)[0]
     return [series_record(args, b, opts, None if raws is None else raws[b]) for b in branches]
@@ -174,8 +174,9 @@ def series_records(args, branches: tuple[str, ...], opts: dict) -> list[dict]:
 
 def series_record(args, branch: str, opts: dict, raw=None) -> dict:
     """One branch as the JSON record {branch, mass, model, coefficients, ...}."""
-    from ..power_balance import (discrete_series_raw, exact_series_raw, format_coefficient,
-                                 substitute_raw)
+    from dispersion.symbolic.power_balance import (discrete_series_raw, format_coefficient,
+                                                   substitute_raw)
+    from dispersion.waves.exact_series import exact_series_raw
 
     if args.exact:
         raw = exact_series_raw(branch, args.order)
@@ -217,7 +218,7 @@ def _render(record: dict, fmt: str) -> str:
 
 
 def _paper(fmt: str) -> str:
-    from ..errata import eq13_note, errata_document, errata_table, format_table
+    from dispersion.claims.errata import eq13_note, errata_document, errata_table, format_table
 
     rows = errata_table()
     if fmt == "json":
@@ -248,11 +249,11 @@ def _check_up_front(args) -> None:
                 raise InputError(f"{flag} does not apply to --paper (the errata table compares "
                                  "the printed eqs 14-20 with their derivation, as printed)")
     if args.nu is not None:
-        from ..errors import check_nu
+        from dispersion.errors import check_nu
 
         check_nu(args.nu)
     if args.json is not None:
-        from ..io import check_output_file
+        from dispersion.io import check_output_file
 
         check_output_file(args.json, option="--json")
     for name in ("order", "branch"):
@@ -283,7 +284,7 @@ def run(args) -> int:
         if args.json == "-":
             sys.stdout.write(payload)
         else:
-            from ..io import write_text
+            from dispersion.io import write_text
 
             write_text(args.json, payload, option="--json")
     sys.stdout.write(text + "\n")
@@ -294,7 +295,7 @@ def run(args) -> int:
 def lean_main(argv: list[str] | None = None) -> int:
     """``python -m dispersion.cli.series ...``: this command alone, without the other
     subcommands' imports (same options, output and exit status as ``dispersion series``)."""
-    from . import _Parser, run_parsed
+    from dispersion.cli import _Parser, run_parsed
 
     parser = _Parser(prog="dispersion")
     register(parser.add_subparsers(dest="command", required=True, parser_class=_Parser))

@@ -11,13 +11,13 @@ import argparse
 import sys
 from pathlib import Path
 
-from ..errors import InputError, check_int_in_range
-from ..io import check_output_file, write_text
+from dispersion.errors import InputError, check_int_in_range
+from dispersion.io import check_output_file, write_text
 
 
 def _jobs(text: str) -> int:
     """argparse ``type`` of ``--jobs``: an integer, its range stated on failure."""
-    from ..claims import MAX_JOBS
+    from dispersion.claims import MAX_JOBS
 
     try:
         return int(text)
@@ -44,7 +44,7 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    from ..claims import (MAX_JOBS, format_results, junit_xml, load_claims, paper_claims_path,
+    from dispersion.claims import (MAX_JOBS, format_results, junit_xml, load_claims, paper_claims_path,
                           verify_claims)
 
     # every option is checked before a claims file is read or a derivation starts

@@ -37,10 +37,10 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from ..errors import InputError
-from ..mass import contact_weights, mass_variant, redistribution_matrix
-from .material import StVenantKirchhoff
-from .nurbs import RingPatch, SplineBasis1D
+from dispersion.errors import InputError
+from dispersion.symbolic.mass import contact_weights, mass_variant, redistribution_matrix
+from dispersion.contact.material import StVenantKirchhoff
+from dispersion.contact.nurbs import RingPatch, SplineBasis1D
 
 __all__ = [
     "Discretization",
@@ -259,7 +259,7 @@ def consistent_mass(disc: Discretization, rho: float) -> sp.csr_matrix:
 
 
 def float_redistribution(n: int, contact: str, gamma_s: float) -> np.ndarray:
-    """Float redistribution matrix of :func:`dispersion.mass.redistribution_matrix` across ``n``
+    """Float redistribution matrix of :func:`dispersion.symbolic.mass.redistribution_matrix` across ``n``
     functions, contact set ``contact`` (``"top"``: index n-1, ``"bottom"``: index 0).
 
     >>> float_redistribution(3, "bottom", 0.5).tolist()
@@ -274,7 +274,7 @@ def patch_redistribution(patch: RingPatch, side: str = "eta1",
     """Redistribution ``R`` (``N_m = N R``) moving every function of ``side`` inward.
 
     Each line of control points across the patch gets the paper's weights
-    (:func:`dispersion.mass.contact_weights`, eqs 2-4): ``1 - gamma_s`` to the neighbour,
+    (:func:`dispersion.symbolic.mass.contact_weights`, eqs 2-4): ``1 - gamma_s`` to the neighbour,
     ``gamma_s`` to the next one.
     """
     if side.startswith("eta"):
@@ -292,7 +292,7 @@ def ring_redistribution(patch: RingPatch, gamma_s: float = 0.5) -> sp.csr_matrix
 def patch_mass(disc: Discretization, rho: float, variant: str = "consistent",
                side: str = "eta1", gamma_s: float = 0.5) -> sp.csr_matrix:
     """Mass matrix on the interleaved DOFs for ``variant`` (see
-    :func:`dispersion.mass.mass_variant`); singular variants redistribute ``side``."""
+    :func:`dispersion.symbolic.mass.mass_variant`); singular variants redistribute ``side``."""
     M = consistent_mass(disc, rho)
     R = patch_redistribution(disc.patch, side, gamma_s) if variant.startswith("singular") else None
     Mv = sp.csr_matrix(mass_variant(M, variant, R))

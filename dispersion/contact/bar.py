@@ -2,7 +2,7 @@
 
 A bar on :math:`[0, L]` (unit area, modulus :math:`E`, density :math:`\\rho`, wave speed
 :math:`c = \\sqrt{E/\\rho}`) discretized by open uniform B-splines of degree :math:`p`
-(:mod:`dispersion.bspline`; :math:`p = 1` is the P1 finite element), with either end free or
+(:mod:`dispersion.symbolic.bspline`; :math:`p = 1` is the P1 finite element), with either end free or
 clamped, a rigid wall at distance ``gap`` beyond the left or the right end, initial
 displacement and velocity fields and a body force :math:`b(x)`:
 
@@ -11,7 +11,7 @@ displacement and velocity fields and a body force :math:`b(x)`:
     \\rho u_{tt} = E u_{xx} + b, \\qquad g = \\mathrm{gap} \\pm u(x_c) \\ge 0, \\quad
     \\lambda \\ge 0, \\quad \\lambda g = 0 .
 
-The mass variants are :data:`dispersion.mass.MASS_VARIANTS`; the singular ones redistribute
+The mass variants are :data:`dispersion.symbolic.mass.MASS_VARIANTS`; the singular ones redistribute
 the contact end's function onto its two neighbours (paper eqs 2-4).
 
 Validation case (:func:`simulate_bar`): a free bar moving with velocity :math:`-v_0` touches
@@ -36,13 +36,13 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
-from ..bspline import open_knot_vector
-from ..defaults import GAMMA_S
-from ..errors import InputError, check_positive, check_positive_int, check_real_in_range
-from ..mass import MASS_VARIANTS, mass_variant
-from .assembly import float_redistribution
-from .newmark import ContactProblem, History, Newmark, integrate
-from .nurbs import SplineBasis1D
+from dispersion.symbolic.bspline import open_knot_vector
+from dispersion.defaults import GAMMA_S
+from dispersion.errors import InputError, check_positive, check_positive_int, check_real_in_range
+from dispersion.symbolic.mass import MASS_VARIANTS, mass_variant
+from dispersion.contact.assembly import float_redistribution
+from dispersion.contact.newmark import ContactProblem, History, Newmark, integrate
+from dispersion.contact.nurbs import SplineBasis1D
 
 __all__ = ["ENDS", "MAX_STEPS", "Bar", "BarModel", "BarResult", "bar_model", "bar_problem",
            "check_steps", "simulate_bar"]

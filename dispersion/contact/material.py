@@ -26,7 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import InputError, check_nu, check_positive
+from dispersion.errors import InputError, check_nu, check_positive
 
 __all__ = ["PLANES", "StVenantKirchhoff"]
 

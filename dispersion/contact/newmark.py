@@ -52,7 +52,7 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from ..errors import ConvergenceError, InputError, check_positive, check_positive_int
+from dispersion.errors import ConvergenceError, InputError, check_positive, check_positive_int
 
 __all__ = ["SCHEMES", "DENSE_MAX", "ContactProblem", "History", "Newmark", "State",
            "critical_step", "consistent_state", "integrate", "step"]

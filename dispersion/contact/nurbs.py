@@ -33,8 +33,8 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..bspline import KnotVector, SplineBasis1D, open_knot_vector, refine
-from ..errors import InputError, check_positive, check_positive_int
+from dispersion.symbolic.bspline import KnotVector, SplineBasis1D, open_knot_vector, refine
+from dispersion.errors import InputError, check_positive, check_positive_int
 
 __all__ = ["RingPatch", "SplineBasis1D", "quarter_ring"]
 

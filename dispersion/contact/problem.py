@@ -2,7 +2,7 @@
 
 A 2D problem is a NURBS patch (knots, control points, weights: :class:`~.nurbs.RingPatch`
 holds any such patch), a St.Venant-Kirchhoff material (plane stress or plane strain), a
-density, a mass variant from :data:`dispersion.mass.MASS_VARIANTS`, the patch side that may
+density, a mass variant from :data:`dispersion.symbolic.mass.MASS_VARIANTS`, the patch side that may
 touch a rigid plane and the plane itself, and the sides held fixed. :func:`patch_problem`
 turns it into a :class:`~.newmark.ContactProblem` on the free DOFs. The gap of the plane
 :math:`\\mathbf n \\cdot (\\mathbf x - \\mathbf p) \\ge 0` is imposed at the Greville abscissae
@@ -25,13 +25,13 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from ..bspline import open_knot_vector
-from ..errors import InputError, check_positive, check_positive_int
-from ..mass import MASS_VARIANTS
-from .assembly import discretize, internal_force, patch_mass, strain_energy
-from .material import StVenantKirchhoff
-from .newmark import DENSE_MAX, ContactProblem
-from .nurbs import RingPatch, SplineBasis1D
+from dispersion.symbolic.bspline import open_knot_vector
+from dispersion.errors import InputError, check_positive, check_positive_int
+from dispersion.symbolic.mass import MASS_VARIANTS
+from dispersion.contact.assembly import discretize, internal_force, patch_mass, strain_energy
+from dispersion.contact.material import StVenantKirchhoff
+from dispersion.contact.newmark import DENSE_MAX, ContactProblem
+from dispersion.contact.nurbs import RingPatch, SplineBasis1D
 
 __all__ = ["SIDES", "Plane", "PatchModel", "patch_problem", "rectangle_patch", "restrict",
            "side_basis", "side_points"]
@@ -162,7 +162,7 @@ def patch_problem(patch: RingPatch, material: StVenantKirchhoff, rho: float,
     rho : float
         Density (kg/m^3); unit thickness.
     mass : str
-        One of :data:`dispersion.mass.MASS_VARIANTS`; the singular variants redistribute the
+        One of :data:`dispersion.symbolic.mass.MASS_VARIANTS`; the singular variants redistribute the
         functions of ``contact_side`` inward with weight ``gamma_s`` (paper eqs 1-4).
     contact_side : str
         One of :data:`SIDES`: the side that may touch the obstacle.

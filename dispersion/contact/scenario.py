@@ -16,8 +16,8 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..defaults import GAMMA_S, NU_FLOAT
-from ..errors import InputError, check_memory, check_nu, check_positive, check_positive_int
+from dispersion.defaults import GAMMA_S, NU_FLOAT
+from dispersion.errors import InputError, check_memory, check_nu, check_positive, check_positive_int
 
 __all__ = ["MAX_ELEMENTS", "MAX_STEPS", "Scenario"]
 

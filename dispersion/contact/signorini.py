@@ -36,10 +36,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import InputError, check_memory, check_positive, check_positive_int
-from .bar import Bar, bar_model, check_steps
-from .newmark import integrate
-from .simulate import newmark_for
+from dispersion.errors import InputError, check_memory, check_positive, check_positive_int
+from dispersion.contact.bar import Bar, bar_model, check_steps
+from dispersion.contact.newmark import integrate
+from dispersion.contact.simulate import newmark_for
 
 __all__ = ["ExactSignorini", "SignoriniResult", "exact_solution", "signorini_1d"]
 

@@ -21,12 +21,12 @@ from dataclasses import asdict, dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from ..errors import InputError
-from .material import StVenantKirchhoff
-from .newmark import ContactProblem, Newmark, integrate
-from .nurbs import RingPatch, quarter_ring
-from .problem import Plane, patch_problem
-from .scenario import Scenario
+from dispersion.errors import InputError
+from dispersion.contact.material import StVenantKirchhoff
+from dispersion.contact.newmark import ContactProblem, Newmark, integrate
+from dispersion.contact.nurbs import RingPatch, quarter_ring
+from dispersion.contact.problem import Plane, patch_problem
+from dispersion.contact.scenario import Scenario
 
 __all__ = ["RING_SCHEMES", "RingResult", "Scenario", "newmark_for", "ring_patch", "ring_problem",
            "simulate_ring"]

@@ -24,10 +24,10 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..errors import ConvergenceError
-from .scenario import Scenario
-from .signorini import signorini_1d
-from .simulate import simulate_ring
+from dispersion.errors import ConvergenceError
+from dispersion.contact.scenario import Scenario
+from dispersion.contact.signorini import signorini_1d
+from dispersion.contact.simulate import simulate_ring
 
 __all__ = ["DEFAULT_RULE", "PAPER", "SCENE_HISTORY", "RingStudy", "fit_rate", "measure",
            "step_seconds", "steps_per_impact"]

@@ -1,6 +1,6 @@
 """Figures of the dispersion branches, drawn from plain data (lists and dicts as in JSON).
 
-The data come from :mod:`dispersion.branch_study` (``figure2_data``, ``measure_branches``).
+The data come from :mod:`dispersion.studies.branch_study` (``figure2_data``, ``measure_branches``).
 Conventions shared by every figure: exact branches black, S solid and A dashed, labelled at
 their ends; one colour per mass variant (consistent C0, singular C1, lumped C2) in every
 panel; errors signed on a symmetric-log axis; values at round-off level (below
@@ -17,7 +17,7 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 
-from . import axes
+from dispersion.plotting import axes
 
 __all__ = [
     "MASS_COLOURS",
@@ -138,7 +138,7 @@ def plot_paired_errors(kappa, errors: Mapping, ax=None, name: str = "", color: s
 def figure2(data: Mapping, title: str = ""):
     """Figure 2 (right) of the paper plus the signed, shape-paired error panel.
 
-    ``data``: :func:`dispersion.branch_study.figure2_data` (or the stored JSON of it).
+    ``data``: :func:`dispersion.studies.branch_study.figure2_data` (or the stored JSON of it).
     """
     from matplotlib.figure import Figure
 

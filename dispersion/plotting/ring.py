@@ -15,7 +15,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from . import axes
+from dispersion.plotting import axes
 
 __all__ = ["figure4", "plot_contact_energy", "plot_energy_change", "plot_grid",
            "plot_signorini"]

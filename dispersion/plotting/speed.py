@@ -1,4 +1,4 @@
-"""Speed charts of the series engine (data of :func:`dispersion.series_speed.measure`).
+"""Speed charts of the series engine (data of :func:`dispersion.studies.series_race.measure`).
 
 >>> ax = plot_race([{"order": 8, "ours_process_s": 0.3, "ours_compute_s": 0.01,
 ...                  "maxima_process_s": 0.2, "maxima_compute_s": 0.03}])
@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 
-from . import axes
+from dispersion.plotting import axes
 
 __all__ = ["plot_race", "plot_scaling"]
 

@@ -16,7 +16,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from . import axes
+from dispersion.plotting import axes
 
 
 def _axes(ax):

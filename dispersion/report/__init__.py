@@ -25,7 +25,7 @@ from __future__ import annotations
 import importlib
 from types import ModuleType
 
-from ..errors import DispersionError, InputError
+from dispersion.errors import DispersionError, InputError
 
 __all__ = ["SECTIONS", "section_module"]
 

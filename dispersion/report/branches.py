@@ -1,6 +1,6 @@
-"""Report section "branches": renders :func:`dispersion.branch_study.measure_branches` from JSON.
+"""Report section "branches": renders :func:`dispersion.studies.branch_study.measure_branches` from JSON.
 
-``measure`` (imported from :mod:`dispersion.branch_study`) runs the study; :func:`render`
+``measure`` (imported from :mod:`dispersion.studies.branch_study`) runs the study; :func:`render`
 takes the stored result (plain JSON types) and writes ``figure2.png``,
 ``branches_velocities.png``, ``branches_per_wavelength.png``, ``branches_shapes.png``,
 ``branches_speed_accuracy.png`` and the Markdown, computing nothing.
@@ -9,8 +9,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..branch_study import measure_branches as measure
-from ..io import save_figure
+from dispersion.studies.branch_study import measure_branches as measure
+from dispersion.io import save_figure
 
 __all__ = ["measure", "render", "report", "summary"]
 
@@ -21,7 +21,7 @@ def _fmt(x, spec=".3g") -> str:
 
 def render(data: dict, out: Path) -> str:
     """Figures and Markdown of the branches study from its stored JSON ``data``."""
-    from ..plotting import branches as plots
+    from dispersion.plotting import branches as plots
 
     out = Path(out)
     r = data["r_figure2"]
@@ -98,7 +98,7 @@ def render(data: dict, out: Path) -> str:
 
 def report(out: Path, quick: bool = False, executor=None) -> str:
     """Measure, store ``branches.json`` and render (the one-call form ``reproduce`` runs)."""
-    from ..results import load, save
+    from dispersion.results import load, save
 
     out = Path(out)
     save(out / "branches.json", "branches", measure(quick=quick, executor=executor),

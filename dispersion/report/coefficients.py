@@ -1,6 +1,6 @@
 """Report section: the paper's eqs 14-20, printed beside derived, and the errata table.
 
-``measure`` is :func:`dispersion.errata.paper_errata`: it verifies the claims file shipped
+``measure`` is :func:`dispersion.claims.errata.paper_errata`: it verifies the claims file shipped
 with the package (``dispersion/data/paper_claims.toml``) and builds the errata rows.
 ``render`` writes ``coefficients.md`` and ``coefficients.tex`` (a complete LaTeX document)
 from the stored JSON alone.
@@ -9,9 +9,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..errata import errata_document, format_table
-from ..errata import paper_errata as measure
-from ..io import write_text
+from dispersion.claims.errata import errata_document, format_table
+from dispersion.claims.errata import paper_errata as measure
+from dispersion.io import write_text
 
 __all__ = ["measure", "render", "summary"]
 

@@ -37,7 +37,7 @@ import tempfile
 from collections.abc import Iterator
 from pathlib import Path
 
-from ..errors import InputError
+from dispersion.errors import InputError
 
 __all__ = ["MARKER", "check_target", "open_report", "stale_temporaries"]
 

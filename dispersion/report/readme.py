@@ -22,8 +22,8 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
-from .. import results
-from ..errors import DispersionError
+from dispersion import results
+from dispersion.errors import DispersionError
 
 __all__ = ["BLOCK", "render_readme", "update_readme"]
 
@@ -37,7 +37,7 @@ BLOCK = re.compile(
 
 def render_readme(text: str, reports: Path) -> str:
     """``text`` with every generated block rendered from ``reports/<section>.json``."""
-    from . import section_module
+    from dispersion.report import section_module
 
     def block(match: re.Match) -> str:
         name = match.group("section")
@@ -55,7 +55,7 @@ def render_readme(text: str, reports: Path) -> str:
 
 def update_readme(path: Path, reports: Path) -> bool:
     """Rewrite the generated blocks of the file ``path`` in place; True if it changed."""
-    from ..io import write_text
+    from dispersion.io import write_text
 
     path = Path(path)
     old = path.read_text(encoding="utf-8")

@@ -7,8 +7,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..contact.study import measure
-from ..io import save_figure
+from dispersion.contact.study import measure
+from dispersion.io import save_figure
 
 __all__ = ["measure", "render", "summary"]
 
@@ -47,7 +47,7 @@ def _rule_check(data: dict) -> str:
 
 def render(data: dict, out: Path) -> str:
     """Write ``figure4.png`` and ``ring_grid.png`` into ``out``; return the Markdown."""
-    from ..plotting.ring import figure4, plot_grid
+    from dispersion.plotting.ring import figure4, plot_grid
 
     out = Path(out)
     sc = data["scenario"]

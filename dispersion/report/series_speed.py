@@ -1,6 +1,6 @@
 """Report section: speed of the series engine against Maxima, and its growth with the patch.
 
-``measure`` is :func:`dispersion.series_speed.measure`; ``render`` writes
+``measure`` is :func:`dispersion.studies.series_race.measure`; ``render`` writes
 ``series_speed.png`` from the stored JSON and returns the Markdown. The headline is the
 whole-process comparison (both cold, as a user runs them); the compute-only comparison
 (ours in-process against the time Maxima reports itself) is given beside it.
@@ -9,8 +9,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..io import save_figure
-from ..series_speed import measure
+from dispersion.io import save_figure
+from dispersion.studies.series_race import measure
 
 __all__ = ["measure", "render", "render_tables", "summary"]
 
@@ -27,7 +27,7 @@ def render(data: dict, out: Path) -> str:
     """Chart and Markdown from the stored result of :func:`measure` (no recomputation)."""
     from matplotlib.figure import Figure
 
-    from ..plotting.speed import plot_race, plot_scaling
+    from dispersion.plotting.speed import plot_race, plot_scaling
 
     out = Path(out)
     fig = Figure(figsize=(11, 4.2), layout="constrained")

@@ -1,6 +1,6 @@
-"""Report section "studies": renders :func:`dispersion.studies.measure_studies` from JSON.
+"""Report section "studies": renders :func:`dispersion.studies.paper_studies.measure_studies` from JSON.
 
-``measure`` (imported from :mod:`dispersion.studies`) runs the studies; :func:`render` takes the
+``measure`` (imported from :mod:`dispersion.studies.paper_studies`) runs the studies; :func:`render` takes the
 stored result (plain JSON types) and writes ``studies_gamma.png``, ``studies_radius.png`` and
 the Markdown, computing nothing.
 """
@@ -8,15 +8,15 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..io import save_figure
-from ..studies import measure_studies as measure
+from dispersion.io import save_figure
+from dispersion.studies.paper_studies import measure_studies as measure
 
 __all__ = ["measure", "render", "report"]
 
 
 def render(data: dict, out: Path) -> str:
     """Figures and Markdown of the studies from their stored JSON ``data``."""
-    from ..plotting import studies as plots
+    from dispersion.plotting import studies as plots
 
     out = Path(out)
     save_figure(plots.figure_gamma(data["gamma"], data["kappas"]), out / "studies_gamma.png",
@@ -27,7 +27,7 @@ def render(data: dict, out: Path) -> str:
 
 def report(out: Path, quick: bool = False, executor=None) -> str:
     """Measure, store ``studies.json`` and render (the one-call form ``reproduce`` runs)."""
-    from ..results import load, save
+    from dispersion.results import load, save
 
     out = Path(out)
     save(out / "studies.json", "studies", measure(quick=quick, executor=executor),

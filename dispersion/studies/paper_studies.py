@@ -47,10 +47,10 @@ from dataclasses import dataclass
 import numpy as np
 import sympy
 
-from .branches import critical_time_step, fundamental_branches
-from .plate import plate_patch
-from .sweep import parallel_map
-from .tracer import exact_fundamental
+from dispersion.waves.discrete_branches import critical_time_step, fundamental_branches
+from dispersion.symbolic.plate import plate_patch
+from dispersion.sweep import parallel_map
+from dispersion.waves.exact_branches import exact_fundamental
 
 __all__ = [
     "NU",
@@ -119,13 +119,13 @@ def departure_kappa(kappa, reference, approx, tol: float) -> float | None:
 
 
 def _discrete(branch, order, nu, **kwargs) -> dict[int, object]:
-    from .power_balance import discrete_series
+    from dispersion.symbolic.power_balance import discrete_series
 
     return discrete_series(branch, order, nu=nu, **kwargs)
 
 
 def _exact(branch, order, nu) -> dict[int, object]:
-    from .power_balance import exact_series
+    from dispersion.waves.exact_series import exact_series
 
     return exact_series(branch, order, nu=nu)
 
@@ -183,7 +183,7 @@ def _radius_case(case: tuple[str, str, int], kappa: np.ndarray, tol: float) -> d
 
 def _bar_case(case: tuple[str, str], n_elements: int) -> dict:
     """Study (c): bar impact with/without the contact modification of Newmark."""
-    from .contact.bar import simulate_bar
+    from dispersion.contact.bar import simulate_bar
 
     scheme, mass = case
     m = simulate_bar(n_elements=n_elements, mass=mass, scheme=scheme).metrics

@@ -4,12 +4,12 @@ For real :math:`\\kappa` each symmetry class is a self-adjoint eigenproblem in
 :math:`\\Omega^2`: its branches never cross (they veer), so the j-th root in increasing
 :math:`\\Omega` *is* branch :math:`S_j` (or :math:`A_j`) at every :math:`\\kappa` once no root is
 skipped and none is counted twice. The tracer samples the deflated, pole-free function
-:func:`dispersion.rayleigh_lamb.deflated_with_noise` together with a bound on its rounding
+:func:`dispersion.waves.rayleigh_lamb.deflated_with_noise` together with a bound on its rounding
 error, and counts a root only where two samples whose signs are *certain* (above the bound)
 differ. Where the function stays within round-off of zero between two samples of the same
 sign, two roots may hide closer than floating point can separate: that kappa is listed in
 ``failures``, never guessed. At :math:`\\kappa \\le` ``SERIES_KAPPA`` the fundamental branches
-S0 and A0 come from their power series (:func:`dispersion.power_balance.exact_series`,
+S0 and A0 come from their power series (:func:`dispersion.waves.exact_series.exact_series`,
 truncated after :math:`\\kappa^8`, relative remainder :math:`\\le \\kappa^6`), where the root of
 the function would lose digits to round-off (and :math:`\\Omega^2` of A0 underflows below
 :math:`\\kappa \\approx 10^{-77}`).
@@ -33,7 +33,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .errors import (
+from dispersion.errors import (
     InputError,
     check_nu,
     check_positive,
@@ -41,7 +41,7 @@ from .errors import (
     check_real_in_range,
     check_wavenumbers,
 )
-from .rayleigh_lamb import (
+from dispersion.waves.rayleigh_lamb import (
     OMEGA_MAX,
     cutoff_frequencies,
     deflated_with_noise,
@@ -113,14 +113,14 @@ class ExactBranches:
 
 @functools.lru_cache(maxsize=32)
 def _series_coefficients(label: str, nu: float) -> tuple[tuple[int, float], ...]:
-    from .power_balance import exact_series
+    from dispersion.waves.exact_series import exact_series
 
     return tuple((k, float(c)) for k, c in sorted(exact_series(label, _SERIES_ORDER, nu=nu).items()))
 
 
 def fundamental_series(label: str, nu: float, kappa) -> tuple[np.ndarray, np.ndarray]:
     """:math:`\\Omega` and :math:`d\\Omega/d\\kappa` of S0 or A0 from the series of
-    :math:`\\Omega^2` (eqs 14 and 16, derived by :mod:`dispersion.power_balance`).
+    :math:`\\Omega^2` (eqs 14 and 16, derived by :mod:`dispersion.symbolic.power_balance`).
 
     Valid for small kappa only (relative remainder about :math:`\\kappa^6` after
     :math:`\\kappa^8`); :math:`\\Omega` is formed as :math:`\\kappa^l \\sqrt{\\sum c_k \\kappa^{k-2l}}`
@@ -466,7 +466,7 @@ def trace_branches(
 
 def mpmath_error(exact: ExactBranches, count: int = 20, dps: int = 40, seed: int = 0) -> float:
     """Largest relative error of ``count`` random traced roots (kappa > 0) against roots of the
-    defining equation (:func:`dispersion.rayleigh_lamb.frequency_function`) found by mpmath
+    defining equation (:func:`dispersion.waves.rayleigh_lamb.frequency_function`) found by mpmath
     in ``dps`` digits (:func:`mpmath.workdps`, the global precision is left alone).
 
     >>> mpmath_error(trace_branches(0.3, [0.5, 2.0], 4.0), count=3) < 1e-14
@@ -474,7 +474,7 @@ def mpmath_error(exact: ExactBranches, count: int = 20, dps: int = 40, seed: int
     """
     import mpmath
 
-    from .rayleigh_lamb import frequency_function
+    from dispersion.waves.rayleigh_lamb import frequency_function
 
     rng = np.random.default_rng(seed)
     pts = [(lab, i) for lab, w in exact.omega.items() for i in np.flatnonzero(np.isfinite(w))
@@ -559,7 +559,7 @@ def exact_fundamental(kind: str, kappa, nu: float) -> np.ndarray:
     >>> round(float(exact_fundamental("S", [0.05], 0.3)[0]) ** 2 / 0.05**2, 3)  # eq 14
     2.857
     """
-    from .errors import ConvergenceError
+    from dispersion.errors import ConvergenceError
 
     if kind not in ("S", "A"):
         raise InputError(f"kind must be 'S' or 'A', got {kind!r}")

@@ -7,13 +7,13 @@ and bar; mode shapes; the speed/accuracy of the tracer and the discrete solver).
 
 - Figure 2: Bloch patch r = 1/2 (the caption's h/b = 2), p = 2, n = 3, consistent and singular
   mass (contact on top), nu = 0.3; errors of each exact branch against the discrete mode of
-  the same shape (:func:`dispersion.mode_shapes.pair_by_shape`), signed.
+  the same shape (:func:`dispersion.waves.mode_shapes.pair_by_shape`), signed.
 - Fitted orders: least squares over 5 kappas in [0.04, 0.16] (monotone points required, the
-  residual stored), next to the series' prediction (:func:`dispersion.branches.predicted_error`).
+  residual stored), next to the series' prediction (:func:`dispersion.waves.discrete_branches.predicted_error`).
 - Error per wavelength: Bloch patch with square elements (r = 2, as in the studies), signed
   relative phase-velocity error :math:`c^h_p / c_p - 1 = \\Omega^h/\\Omega - 1` of S0 and A0
   against elements per wavelength :math:`2\\pi / (\\kappa r)`; and the bar of
-  :mod:`dispersion.bar_dispersion`.
+  :mod:`dispersion.waves.bar_dispersion`.
 
 >>> BRANCH_NU
 0.3
@@ -27,21 +27,21 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import defaults
-from .bar_dispersion import bar_dispersion
-from .branches import discrete_branches, fitted_order, fundamental_branches, predicted_error
-from .mode_shapes import discrete_mode_shape, discrete_modes, exact_mode_shape, mac
-from .mode_shapes import pair_by_shape
-from .plate import plate_patch
-from .tracer import (
+from dispersion import defaults
+from dispersion.waves.bar_dispersion import bar_dispersion
+from dispersion.waves.discrete_branches import discrete_branches, fitted_order, fundamental_branches, predicted_error
+from dispersion.waves.mode_shapes import discrete_mode_shape, discrete_modes, exact_mode_shape, mac
+from dispersion.waves.mode_shapes import pair_by_shape
+from dispersion.symbolic.plate import plate_patch
+from dispersion.waves.exact_branches import (
     ExactBranches,
     exact_fundamental,
     mpmath_error,
     trace_branches,
     tracer_accuracy,
 )
-from .units import ALUMINIUM
-from .velocities import exact_velocities, zgv_points
+from dispersion.waves.units import ALUMINIUM
+from dispersion.waves.velocities import exact_velocities, zgv_points
 
 __all__ = [
     "BRANCH_NU", "BranchesStudy", "discrete_speed", "figure2_data", "measure_branches",

@@ -30,7 +30,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import InputError, check_positive
+from dispersion.errors import InputError, check_positive
 
 __all__ = [
     "ALUMINIUM",

@@ -28,7 +28,7 @@ pencil is real symmetric,
         \\cdot & (\\lambda + 2\\mu) m Y_{11} + \\mu d Y_{00} \\end{bmatrix}, \\qquad
     M = m_x \\begin{bmatrix} M_y & 0 \\\\ 0 & M_y \\end{bmatrix},
 
-with :math:`M_y` the thickness mass of the chosen variant (:mod:`dispersion.mass`) and
+with :math:`M_y` the thickness mass of the chosen variant (:mod:`dispersion.symbolic.mass`) and
 :math:`m_x = m` (consistent in x) or 1 (lumped variants).
 
 >>> patch = plate_patch()
@@ -49,9 +49,9 @@ from functools import lru_cache
 import numpy as np
 import sympy
 
-from . import bspline
-from .errors import InputError, check_nu, check_positive_int
-from .mass import MASS_VARIANTS, contact_weights, mass_variant, redistribution_matrix
+from dispersion.symbolic import bspline
+from dispersion.errors import InputError, check_nu, check_positive_int
+from dispersion.symbolic.mass import MASS_VARIANTS, contact_weights, mass_variant, redistribution_matrix
 
 __all__ = [
     "MODELS",
@@ -231,7 +231,7 @@ def plate_patch(
         the symbol ``r``). Checked but unused for x-exact (the CLI refuses it there).
     mass : ``"consistent"``, ``"lumped"``, ``"singular"``, ``"singular-lumped"``
     contact, gamma_s :
-        Contact set and the paper's weight (see :func:`dispersion.mass.contact_weights`).
+        Contact set and the paper's weight (see :func:`dispersion.symbolic.mass.contact_weights`).
     weights : mapping, optional
         General redistribution weights ``{c: {j: w}}``; overrides ``contact``/``gamma_s``.
     """

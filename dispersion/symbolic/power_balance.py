@@ -13,7 +13,7 @@ power of t is linear in the next coefficient:
     w = w_0 + \\delta(t), \\quad \\delta = -\\frac{Q(t, w_0 + \\delta) - Q_w(0, w_0)\\,\\delta}
     {Q_w(0, w_0)}.
 
-All algebra is exact and runs on python-flint (:mod:`dispersion.series_kernel`): F is a
+All algebra is exact and runs on python-flint (:mod:`dispersion.symbolic.series_kernel`): F is a
 truncated power series in t whose coefficients are polynomials over QQ in (w, nu[, r]),
 truncated after every product; the determinant is fraction-free elimination over truncated
 series (cost polynomial in the matrix size, for every mass); the order-by-order solve is
@@ -21,9 +21,10 @@ division-free. sympy appears only at the edge, to hand out ``sympy.Expr`` coeffi
 
 For the discrete plate the characteristic function is :math:`\\det K_{dyn}` (paper eq 16),
 split into its symmetric/antisymmetric block when the mass keeps the mirror symmetry; for the
-exact plate it is the entire-function Rayleigh-Lamb equation of :mod:`dispersion.rayleigh_lamb`.
+exact plate it is the entire-function Rayleigh-Lamb equation, whose series
+(:mod:`dispersion.waves.exact_series`) uses :func:`solve_branch` of this module.
 
->>> exact_series("S0", 4)[2]
+>>> discrete_series("S0", 4)[2]
 -2/(nu - 1)
 
 References
@@ -38,14 +39,12 @@ from fractions import Fraction
 
 import flint
 
-from . import series_kernel as _k
-from .errors import DispersionError, InputError, check_nu, check_positive_int
-from .rayleigh_lamb import frequency_function
+from dispersion.symbolic import series_kernel as _k
+from dispersion.errors import DispersionError, InputError, check_nu, check_positive_int
 
 __all__ = [
     "BRANCHES", "MAX_ORDER", "MAX_WORK", "check_request", "discrete_series",
-    "discrete_series_raw", "exact_leading_balance", "exact_series", "exact_series_raw",
-    "format_coefficient", "substitute_raw",
+    "discrete_series_raw", "format_coefficient", "solve_branch", "substitute_raw",
 ]
 
 BRANCHES = {"S0": ("S", 1), "A0": ("A", 2)}
@@ -217,8 +216,12 @@ def _substitute_nu(series: dict, nu) -> dict:
     return {k: sympy.factor(v.subs(symbol, nu)) for k, v in series.items()}
 
 
-def _solve(build, sigma: int, order: int, D0: int):
-    """Coefficients (num, den) of the branch from ``build(D)`` = F mod t^(D+1)."""
+def solve_branch(build, sigma: int, order: int, D0: int):
+    """Coefficients (num, den) of the branch from ``build(D)`` = F mod t^(D+1).
+
+    The generic engine: any characteristic function given as truncated series (the discrete
+    patch here, the exact Rayleigh-Lamb equation in :mod:`dispersion.waves.exact_series`).
+    """
     N = order // 2 - sigma
     D = D0 + N
     while True:
@@ -235,112 +238,6 @@ def _solve(build, sigma: int, order: int, D0: int):
         D = m + N
 
 
-# --------------------------------------------------------------------------- exact plate
-
-
-def _exact_build(kind: str, sigma: int, form: str):
-    # Over QQ[w, g], g = (c_T/c_L)^2 = (1 - 2 nu)/(2 (1 - nu)): polynomial arithmetic only.
-    ctx = _k.context(("g",))
-    w, g = ctx.gens()
-
-    def build(D):
-        t = _k.Series.gen_t(ctx, D)
-        W = _k.Series(ctx, [0] * sigma + [w], D)
-        return frequency_function(kind, t, W, None, lambda z: _k.entire(z, "C"),
-                                  lambda z: _k.entire(z, "S"), form, ratio=g)
-
-    return ctx, build
-
-
-class _GToNu:
-    """p(g) (2 (1 - nu))^e with g = (1 - 2 nu) / (2 (1 - nu)): a polynomial in nu.
-
-    The powers of 1 - 2 nu and 2 (1 - nu) are computed once and shared by every coefficient.
-    """
-
-    def __init__(self, ctx_nu):
-        nu = ctx_nu.gens()[1]
-        self.ctx = ctx_nu
-        self.num, self.den = [ctx_nu.from_dict({}) + 1], [ctx_nu.from_dict({}) + 1]
-        self.factors = (1 - 2 * nu, 2 - 2 * nu)
-
-    def _pow(self, table: list, base, e: int):
-        while len(table) <= e:
-            table.append(table[-1] * base)
-        return table[e]
-
-    def __call__(self, p, e: int):
-        out = self.ctx.from_dict({})
-        for mon, c in p.to_dict().items():
-            out += c * self._pow(self.num, self.factors[0], mon[1]) \
-                * self._pow(self.den, self.factors[1], e - mon[1])
-        return out
-
-
-def exact_series_raw(branch: str, order: int, form: str = "standard") -> list[tuple]:
-    """``[(power of kappa, num, den)]`` as flint polynomials in nu (context ``(w, nu)``).
-
-    The sympy-free core of :func:`exact_series` (the CLI prints these directly).
-    """
-    kind, sigma, order = check_request(branch, order, exact=True)
-    ctx, build = _exact_build(kind, sigma, form)
-    nums, dens = _solve(build, sigma, order, 2 * sigma)  # the lowest power is t^(2 sigma)
-    to_nu = _GToNu(_k.context(("nu",)))
-    out = []
-    for k, (a, b) in enumerate(zip(nums, dens)):
-        e = max(a.degrees()[1], b.degrees()[1])
-        num, den = to_nu(a, e), to_nu(b, e)
-        g = num.gcd(den)
-        out.append((2 * (sigma + k), num / g, den / g))
-    return out
-
-
-def exact_series(branch: str, order: int, nu=None, form: str = "standard",
-                 factor: bool = True) -> dict:
-    """Series of the exact Rayleigh-Lamb branch S0 or A0 (paper eqs 14-15) to kappa^order.
-
-    The characteristic function is :func:`dispersion.rayleigh_lamb.frequency_function` itself,
-    evaluated on truncated power series over QQ[g]. ``form="printed"`` uses eq (13) as
-    printed; it has no such branch and raises :class:`DispersionError`.
-
-    >>> exact_series("A0", 6, nu=0)
-    {4: 2/3, 6: -34/45}
-    """
-    import sympy
-
-    if nu is not None:
-        check_nu(nu)
-    series = {k: _to_expr(a, b, (sympy.Symbol("nu"),), factor)
-              for k, a, b in exact_series_raw(branch, order, form)}
-    return _substitute_nu(series, nu)
-
-
-def exact_leading_balance(branch: str, form: str = "standard"):
-    """Leading balance q0(w) of the Rayleigh-Lamb equation for Omega^2 = w kappa^(2 sigma).
-
-    Its non-zero roots are the admissible leading coefficients; used by the errata to show
-    that the printed eq (13) has no A0 branch and a wrong S0 speed.
-
-    >>> exact_leading_balance("S0")
-    w*(nu*w - w + 2)/(nu - 1)
-    """
-    kind, sigma, _ = check_request(branch, 2 * BRANCHES[branch][1], exact=True)
-    _, build = _exact_build(kind, sigma, form)
-    D = 4
-    F = build(D)
-    while F.valuation() is None or F.valuation() > D:
-        D *= 2
-        F = build(D)
-    import sympy
-
-    q0 = F.coeffs[F.valuation()]
-    w, g, nu = sympy.symbols("w g nu")
-    expr = 0
-    for mon, c in q0.to_dict().items():
-        expr += sympy.Rational(int(c.p), int(c.q)) * w ** mon[0] * g ** mon[1]
-    return sympy.factor(expr.subs(g, (1 - 2 * nu) / (2 * (1 - nu))))
-
-
 # --------------------------------------------------------------------------- discrete plate
 
 
@@ -350,7 +247,7 @@ def _discrete_build(patch, block: str | None, sigma: int, ctx):
     The pencil is made even in kappa by the similarity diag(I, s I), which moves
     :math:`s^2 = t (s/\\kappa)^2` onto one off-diagonal block.
     """
-    from . import plate as _plate
+    from dispersion.symbolic import plate as _plate
 
     gens = ctx.gens()
     w, nu = gens[0], gens[1]
@@ -439,7 +336,7 @@ def discrete_series_raw(branches=("S0",), order: int = 8, *, p: int = 2, n: int 
     """
     import sympy
 
-    from . import plate as _plate
+    from dispersion.symbolic import plate as _plate
 
     if isinstance(branches, str):
         branches = (branches,)
@@ -460,7 +357,7 @@ def discrete_series_raw(branches=("S0",), order: int = 8, *, p: int = 2, n: int 
             build = _discrete_build(patch, kind, sigma, ctx)
         else:
             build = shared if sigma == 1 else (lambda D: _w_times_t(shared(D)))
-        nums, dens = _solve(build, sigma, order, 2 + 2 * sigma)
+        nums, dens = solve_branch(build, sigma, order, 2 + 2 * sigma)
         out[branch] = [(2 * (sigma + k), a, b) for k, (a, b) in enumerate(zip(nums, dens))]
     return out, params
 
@@ -506,7 +403,7 @@ def discrete_series(
 ) -> dict:
     """Series of the discrete S0 / A0 branch of the plate patch (paper eqs 17-20).
 
-    Parameters are those of :func:`dispersion.plate.plate_patch`; ``order`` is the highest
+    Parameters are those of :func:`dispersion.symbolic.plate.plate_patch`; ``order`` is the highest
     power of kappa; ``nu`` substitutes a number for the symbol nu at the end; ``split``
     (default: whenever the mass keeps the mirror symmetry) works on the symmetric (S0) or
     antisymmetric (A0) block instead of the full determinant (a speed-up only: both give

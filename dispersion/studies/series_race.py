@@ -38,7 +38,7 @@ from fractions import Fraction
 from importlib import resources
 from pathlib import Path
 
-from .errors import InputError
+from dispersion.errors import InputError
 
 __all__ = [
     "TIMEOUT", "TIMEOUT_MAX", "RacePoint", "ScalingPoint", "GrowthFit", "SeriesSpeed",
@@ -168,7 +168,8 @@ def _gnu_time() -> str | None:
 
 def _ours_compute(order: int) -> tuple[float, dict[str, dict[int, str]]]:
     """In-process: the same work as the CLI's JSON path (flint kernel + printed strings)."""
-    from .power_balance import exact_series_raw, format_coefficient
+    from dispersion.symbolic.power_balance import format_coefficient
+    from dispersion.waves.exact_series import exact_series_raw
 
     start = time.perf_counter()
     out = {b: {k: format_coefficient(a, d) for k, a, d in exact_series_raw(b, order)}
@@ -279,8 +280,8 @@ def fit_growth(ns, seconds) -> dict:
 def scaling(grid: dict[int, tuple[int, ...]], masses=("consistent", "lumped", "singular"),
             order: int = 8) -> tuple[tuple[ScalingPoint, ...], tuple[GrowthFit, ...]]:
     """Seconds of the discrete S0 + A0 series to kappa^order on ``grid`` = {p: (n, ...)}."""
-    from . import defaults
-    from .power_balance import discrete_series_raw
+    from dispersion import defaults
+    from dispersion.symbolic.power_balance import discrete_series_raw
 
     discrete_series_raw(("S0",), 2, n=3, model="x-exact")  # warm-up: imports and flint
     points, fits = [], []

@@ -5,8 +5,8 @@ Dimensionless, in units of the shear speed :math:`c_T`: the phase velocity is
 
 - Exact branches: implicit differentiation of the Rayleigh-Lamb function,
   :math:`d\\Omega/d\\kappa = -F_\\kappa / F_\\Omega`
-  (:func:`dispersion.rayleigh_lamb.frequency_slope`); S0 and A0 below
-  :data:`dispersion.tracer.SERIES_KAPPA` from the derivative of their series.
+  (:func:`dispersion.waves.rayleigh_lamb.frequency_slope`); S0 and A0 below
+  :data:`dispersion.waves.exact_branches.SERIES_KAPPA` from the derivative of their series.
 - Discrete branches: from the eigenvector :math:`\\phi` of
   :math:`(K - \\Omega^2 M)\\phi = 0` (Hellmann-Feynman),
 
@@ -15,12 +15,12 @@ Dimensionless, in units of the shear speed :math:`c_T`: the phase velocity is
       \\frac{d\\Omega}{d\\kappa} = \\frac{\\phi^T (K' - \\Omega^2 M') \\phi}{2 \\Omega\\, \\phi^T M \\phi},
 
   with :math:`K', M'` by complex-step differentiation of the same x-functions that build K
-  and M (:func:`dispersion.branches.pencil_derivative`). Where the float eigenvalue is not
-  accurate (small kappa, see :func:`dispersion.branches.discrete_branches`) the slope is a
+  and M (:func:`dispersion.waves.discrete_branches.pencil_derivative`). Where the float eigenvalue is not
+  accurate (small kappa, see :func:`dispersion.waves.discrete_branches.discrete_branches`) the slope is a
   central difference of extended-precision eigenvalues.
 
 >>> import numpy as np
->>> from dispersion.tracer import trace_branches
+>>> from dispersion.waves.exact_branches import trace_branches
 >>> v = exact_velocities(trace_branches(0.3, [1e-4, 1.0], 2.0))
 >>> round(float(v.group["S0"][0]), 6), round(float(np.sqrt(2 / 0.7)), 6)   # plate speed
 (1.690309, 1.690309)
@@ -36,9 +36,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import InputError
-from .rayleigh_lamb import deflated_frequency_function, frequency_slope
-from .tracer import SERIES_KAPPA, ExactBranches, fundamental_series, trace_branches
+from dispersion.errors import InputError
+from dispersion.waves.rayleigh_lamb import deflated_frequency_function, frequency_slope
+from dispersion.waves.exact_branches import SERIES_KAPPA, ExactBranches, fundamental_series, trace_branches
 
 __all__ = ["Velocities", "ZGVPoint", "exact_velocities", "phase_velocity", "zgv_points"]
 

@@ -17,7 +17,7 @@ The paper's eq (13) prints :math:`(p^2 - q^2)^2` in place of :math:`(q^2 - k^2)^
 ``form="printed"`` gives that equation, for the errata.
 
 :func:`frequency_function` takes the two entire functions as arguments, so the same formula
-serves truncated power series (:mod:`dispersion.power_balance`) and floating point.
+serves truncated power series (:mod:`dispersion.symbolic.power_balance`) and floating point.
 
 >>> import mpmath
 >>> C = lambda z: mpmath.cos(mpmath.sqrt(z))
@@ -33,7 +33,7 @@ from __future__ import annotations
 
 import math
 
-from .errors import InputError, check_nu, check_real_in_range
+from dispersion.errors import InputError, check_nu, check_real_in_range
 
 __all__ = [
     "OMEGA_MAX",
@@ -96,7 +96,7 @@ def frequency_function(kind: str, kappa2, Omega2, nu, C, S, form: str = "standar
 
 
 # ---------------------------------------------------------------------------------------
-# Numeric twin (the root tracer is dispersion.tracer)
+# Numeric twin (the root tracer is dispersion.waves.exact_branches)
 # ---------------------------------------------------------------------------------------
 
 
@@ -367,11 +367,3 @@ def cutoff_frequencies(kind: str, nu: float, omega_max: float) -> list[tuple[flo
         m += 1
     return sorted(out)
 
-
-def __getattr__(name: str):
-    # the root tracer moved to dispersion.tracer; old imports keep working
-    if name in ("ExactBranches", "trace_branches"):
-        from . import tracer
-
-        return getattr(tracer, name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -35,7 +35,7 @@ from collections.abc import Mapping
 import numpy as np
 import sympy
 
-from .errors import (IndefiniteMassWarning, InputError, as_real, check_choice,
+from dispersion.errors import (IndefiniteMassWarning, InputError, as_real, check_choice,
                      check_positive_int, check_real_in_range)
 
 __all__ = [

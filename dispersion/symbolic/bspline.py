@@ -36,7 +36,7 @@ from math import comb
 import numpy as np
 import sympy
 
-from .errors import InputError, check_positive_int
+from dispersion.errors import InputError, check_positive_int
 
 __all__ = [
     "KnotVector",

@@ -1,6 +1,6 @@
 """Exact truncated power series in :math:`t = \\kappa^2` over QQ[w, params] (python-flint).
 
-The kernel of :mod:`dispersion.power_balance`. A series is a list of ``D + 1`` coefficients,
+The kernel of :mod:`dispersion.symbolic.power_balance`. A series is a list of ``D + 1`` coefficients,
 each a ``flint.fmpq_mpoly`` in the generators ``(w, *params)`` (``w`` stands for
 :math:`\\Omega^2 / \\kappa^{2\\sigma}`); every product is truncated after :math:`t^D`.
 
@@ -38,7 +38,7 @@ from math import factorial
 
 import flint
 
-from .errors import DispersionError
+from dispersion.errors import DispersionError
 
 __all__ = ["Series", "branch_coefficients", "context", "determinant", "entire"]
 

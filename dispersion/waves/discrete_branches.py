@@ -1,7 +1,7 @@
 """Discrete dispersion branches of the plate patch: all finite roots of det(K - Omega^2 M) = 0.
 
 For each :math:`\\kappa` of a grid the pencil :math:`(K, M)` of
-:func:`dispersion.plate.numeric_pencil` is solved in one batched call: massless DOFs
+:func:`dispersion.symbolic.plate.numeric_pencil` is solved in one batched call: massless DOFs
 (singular masses, :attr:`PlatePatch.massless`) are condensed out by the Schur complement
 of K, *by construction* (their eigenvalues are infinite), then
 :math:`M_{rr} = L L^T` and :math:`\\Omega^2 = \\operatorname{eig}(L^{-1} \\hat K L^{-T})`,
@@ -16,7 +16,7 @@ the backward-error bound :math:`m\\epsilon\\lambda_{max}/\\lambda` says so; else
 at small kappa, where :math:`\\Omega^2 \\sim \\kappa^4` or :math:`\\kappa^2` sits beside eigenvalues
 of order one) that kappa is solved again in ball arithmetic (:func:`extended_frequencies`).
 
-Where the mass keeps the mirror symmetry y -> -y (:func:`dispersion.plate.mirror_bases`),
+Where the mass keeps the mirror symmetry y -> -y (:func:`dispersion.symbolic.plate.mirror_bases`),
 the pencil splits into a symmetric and an antisymmetric block and the branches are labelled
 ``S0, S1, ...`` and ``A0, A1, ...`` in increasing :math:`\\Omega` (within a block they cannot
 cross). Otherwise the symmetry is ``"mixed"``: a branch is labelled by the dominant mirror
@@ -24,7 +24,7 @@ parity of its mode shape, and the label says so. The Bloch model is periodic in
 :math:`\\kappa` with period :math:`2\\pi/r`; beyond the zone edge :math:`\\pi/r` its branches are
 the folded ones.
 
->>> from dispersion.plate import plate_patch
+>>> from dispersion.symbolic.plate import plate_patch
 >>> br = discrete_branches(plate_patch(), 0.3, [0.5, 1.0])
 >>> sorted(br.omega), br.symmetry["S0"]
 (['A0', 'A1', 'A2', 'S0', 'S1', 'S2'], 'S')
@@ -43,8 +43,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 import sympy
 
-from .errors import InputError, check_nu, check_positive_int, check_wavenumbers
-from .plate import (
+from dispersion.errors import InputError, check_nu, check_positive_int, check_wavenumbers
+from dispersion.symbolic.plate import (
     PlatePatch,
     lame,
     mass_block,
@@ -278,13 +278,13 @@ def extended_frequencies(patch: PlatePatch, nu: float, kappa, basis=None,
     The reference (and the fallback) where float eigenvalues lose their relative accuracy:
     :math:`\\Omega^2` of A0 is about :math:`\\kappa^4`, so at :math:`\\kappa = 10^{-6}` it is
     1e-24 beside eigenvalues of order one. K and M are formed from the exact matrices of
-    :func:`dispersion.plate.stiffness_terms` and the exact x-functions (nu rationalised) in
+    :func:`dispersion.symbolic.plate.stiffness_terms` and the exact x-functions (nu rationalised) in
     arb ball arithmetic (python-flint), projected on ``basis`` (columns spanning a mirror
     block, or None), massless DOFs condensed, and the eigenvalues of :math:`M^{-1}K` enclosed
     by :meth:`flint.acb_mat.eig`. With ``slopes=True`` also :math:`d\\Omega/d\\kappa` of every
     mode by the eigenvector formula in the same precision (returns ``(Omega, slopes)``).
 
-    >>> from dispersion.plate import plate_patch
+    >>> from dispersion.symbolic.plate import plate_patch
     >>> w = extended_frequencies(plate_patch(), 0.3, 1e-6)
     >>> float(w[0] / 1e-12)  # A0: Omega ~ sqrt(2 / (3 (1 - nu))) kappa^2 (eq 16)
     0.9759000729...
@@ -365,11 +365,11 @@ def _refine_small(patch, nu, kappa, W, basis, G=None):
 def pencil_derivative(patch: PlatePatch, nu: float, kappa) -> tuple[np.ndarray, np.ndarray]:
     """:math:`dK/d\\kappa` and :math:`dM/d\\kappa` as float stacks, by the complex step.
 
-    The x-functions of :func:`dispersion.plate.x_functions` (polynomials or trigonometric sums
+    The x-functions of :func:`dispersion.symbolic.plate.x_functions` (polynomials or trigonometric sums
     in kappa) are evaluated at :math:`\\kappa + i\\,10^{-30}`; the imaginary part over the
     step is the derivative to rounding, with no cancellation (Squire and Trapp 1998).
 
-    >>> from dispersion.plate import plate_patch
+    >>> from dispersion.symbolic.plate import plate_patch
     >>> dK, dM = pencil_derivative(plate_patch(), 0.3, [0.5])
     >>> bool(np.allclose(dK, dK.transpose(0, 2, 1))), float(np.abs(dM).max())  # x-exact: M const
     (True, 0.0)
@@ -403,7 +403,7 @@ def discrete_branches(patch: PlatePatch, nu: float, kappa, chunk: int = 20000,
     Parameters
     ----------
     patch : PlatePatch
-        From :func:`dispersion.plate.plate_patch` (numeric aspect ratio for the Bloch model).
+        From :func:`dispersion.symbolic.plate.plate_patch` (numeric aspect ratio for the Bloch model).
     nu : float
         Poisson's ratio in (-1, 0.5).
     kappa : array_like
@@ -414,7 +414,7 @@ def discrete_branches(patch: PlatePatch, nu: float, kappa, chunk: int = 20000,
         Called with the number of kappa points finished after each chunk.
     group : bool
         Also the group velocity :math:`d\\Omega/d\\kappa` of every branch (eigenvector
-        formula, :mod:`dispersion.velocities`), in ``DiscreteBranches.group``.
+        formula, :mod:`dispersion.waves.velocities`), in ``DiscreteBranches.group``.
     """
     if patch.model == "bloch" and isinstance(patch.r, sympy.Symbol):
         raise InputError("aspect ratio r must be a number for discrete branches, got the symbol r")
@@ -492,7 +492,7 @@ def _branches_block(patch: PlatePatch, nu: float, kappa: np.ndarray, group: bool
 def relative_error(discrete: DiscreteBranches, exact) -> dict[str, np.ndarray]:
     """:math:`|\\Omega^h - \\Omega| / \\Omega` per label present in both (S0 with S0, ...).
 
-    ``exact`` is a :class:`dispersion.rayleigh_lamb.ExactBranches` on the same grid.
+    ``exact`` is a :class:`dispersion.waves.exact_branches.ExactBranches` on the same grid.
     Points with :math:`\\Omega = 0` give NaN.
     """
     if not np.array_equal(discrete.kappa, exact.kappa):
@@ -526,7 +526,8 @@ def predicted_error(branch: str, nu: float, order: int = 10, **patch_kwargs) -> 
     ``exact_series``) and :math:`\\Omega^2 = c \\kappa^l + \\dots`, the relative error of
     :math:`\\Omega` is :math:`\\tfrac{\\delta}{2c} \\kappa^{m-l}`. Returns ``(m - l, delta / 2c)``.
     """
-    from .power_balance import discrete_series, exact_series
+    from dispersion.symbolic.power_balance import discrete_series
+    from dispersion.waves.exact_series import exact_series
 
     d = discrete_series(branch, order, nu=nu, **patch_kwargs)
     e = exact_series(branch, order, nu=nu)
@@ -542,7 +543,7 @@ def predicted_error(branch: str, nu: float, order: int = 10, **patch_kwargs) -> 
 def fundamental_branches(patch: PlatePatch, nu: float, kappa) -> dict[str, np.ndarray]:
     """Discrete S0 and A0 at ``kappa``: the labels of :func:`discrete_branches` (one rule).
 
-    >>> from dispersion.plate import plate_patch
+    >>> from dispersion.symbolic.plate import plate_patch
     >>> sorted(fundamental_branches(plate_patch(mass="singular"), 0.3, [0.1]))
     ['A0', 'S0']
     """
@@ -558,7 +559,7 @@ def critical_time_step(patch: PlatePatch, nu: float, n_theta: int = 257) -> floa
     over the Bloch phase :math:`\\theta = \\kappa r` on ``n_theta`` equally spaced points
     (both zone ends included), massless DOFs condensed (Belytschko, Liu, Moran 2000, 6.3).
 
-    >>> from dispersion.plate import plate_patch
+    >>> from dispersion.symbolic.plate import plate_patch
     >>> 0 < critical_time_step(plate_patch(model="bloch", r=2), 0.3, n_theta=9) < 1
     True
     """

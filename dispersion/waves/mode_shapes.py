@@ -17,7 +17,7 @@ spans the null space of the traction-free conditions at y = 1,
     (\\kappa^2 - Q)\\Phi(1) & 2\\kappa\\Psi'(1) \\end{pmatrix}
     \\begin{pmatrix} A \\\\ B \\end{pmatrix} = 0,
 
-whose determinant is :math:`-F` of :mod:`dispersion.rayleigh_lamb` (so it is singular exactly
+whose determinant is :math:`-F` of :mod:`dispersion.waves.rayleigh_lamb` (so it is singular exactly
 on the branches). The discrete shape is the B-spline field of the control values through the
 thickness, sampled at the same points. The modal assurance criterion
 :math:`\\mathrm{MAC}(a, b) = (a^T b)^2 / (a^T a\\, b^T b)` pairs each exact branch with the
@@ -42,10 +42,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .bspline import SplineBasis1D, open_knot_vector
-from .errors import InputError, check_nu
-from .plate import PlatePatch, numeric_pencil
-from .rayleigh_lamb import cos_sqrt, sinc_sqrt, speed_ratio_squared
+from dispersion.symbolic.bspline import SplineBasis1D, open_knot_vector
+from dispersion.errors import InputError, check_nu
+from dispersion.symbolic.plate import PlatePatch, numeric_pencil
+from dispersion.waves.rayleigh_lamb import cos_sqrt, sinc_sqrt, speed_ratio_squared
 
 __all__ = [
     "PairedBranches",
@@ -147,9 +147,9 @@ def discrete_modes(patch: PlatePatch, nu: float, kappa) -> tuple[np.ndarray, np.
     """All finite discrete modes, ascending: ``Omega (m, f)`` and control values ``(m, 2n, f)``.
 
     Frequencies where float round-off would blur them are recomputed in extended precision
-    (as in :func:`dispersion.branches.discrete_branches`).
+    (as in :func:`dispersion.waves.discrete_branches.discrete_branches`).
     """
-    from .branches import _refine_small, pencil_frequencies
+    from dispersion.waves.discrete_branches import _refine_small, pencil_frequencies
 
     kappa = np.atleast_1d(np.asarray(kappa, dtype=float))
     K, M = numeric_pencil(patch, nu, kappa)
@@ -182,7 +182,7 @@ def pair_by_shape(patch: PlatePatch, nu: float, exact, y=SAMPLES,
     At each kappa the MAC matrix between the exact modes (traced, finite) and the discrete
     modes is built and the assignment of largest total MAC chosen
     (:func:`scipy.optimize.linear_sum_assignment`); a pair with MAC below ``mac_min`` is
-    dropped (NaN). ``exact`` is a :class:`dispersion.tracer.ExactBranches`.
+    dropped (NaN). ``exact`` is a :class:`dispersion.waves.exact_branches.ExactBranches`.
     """
     from scipy.optimize import linear_sum_assignment
 

@@ -22,7 +22,7 @@ Keys of a claim (``[defaults]`` may set any of them except ``name``):
     ``"series"`` (default), ``"error_order"`` or ``"value"``.
 ``model``
     ``"rayleigh-lamb"`` (the exact plate, eq 13 in its standard form) or a plate patch,
-    ``"bloch"`` or ``"x-exact"`` (:func:`dispersion.plate.plate_patch`) with ``p``, ``n``,
+    ``"bloch"`` or ``"x-exact"`` (:func:`dispersion.symbolic.plate.plate_patch`) with ``p``, ``n``,
     ``r`` (number, ``"1/2"`` or ``"r"`` for the symbol), ``mass``, ``contact``, ``gamma_s``
     and ``weights`` (a table ``{contact index: {neighbour index: weight}}``). Unset patch
     keys take the toolkit's defaults (:mod:`dispersion.defaults`).
@@ -81,9 +81,9 @@ from xml.etree import ElementTree as ET
 
 import sympy
 
-from . import defaults
-from .errors import DispersionError, InputError, check_int_in_range
-from .power_balance import BRANCHES, NU, R_SYM
+from dispersion import defaults
+from dispersion.errors import DispersionError, InputError, check_int_in_range
+from dispersion.symbolic.power_balance import BRANCHES, NU, R_SYM
 
 try:  # Python >= 3.11
     import tomllib
@@ -97,7 +97,7 @@ __all__ = [
     "check_jobs",
 ]
 
-#: Name of the exact model (the Rayleigh-Lamb equation of :mod:`dispersion.rayleigh_lamb`).
+#: Name of the exact model (the Rayleigh-Lamb equation of :mod:`dispersion.waves.rayleigh_lamb`).
 EXACT = "rayleigh-lamb"
 KINDS = ("series", "error_order", "value")
 KAPPA = sympy.Symbol("kappa")
@@ -138,7 +138,7 @@ class Model:
         return self.name == EXACT
 
     def patch_kwargs(self) -> dict:
-        """Keywords of :func:`dispersion.plate.plate_patch` / ``discrete_series``."""
+        """Keywords of :func:`dispersion.symbolic.plate.plate_patch` / ``discrete_series``."""
         kw = dict(p=self.p, n=self.n, model=self.name, r=self.r, mass=self.mass)
         if self.mass.startswith("singular"):
             kw.update(contact=self.contact, gamma_s=self.gamma_s)
@@ -245,7 +245,7 @@ def paper_claims_path() -> Path:
     """The claims file of the paper's eqs (14)-(20) shipped with the package."""
     from importlib import resources
 
-    return Path(str(resources.files(__package__) / "data" / "paper_claims.toml"))
+    return Path(str(resources.files("dispersion") / "data" / "paper_claims.toml"))
 
 
 def load_claims(path) -> list[Claim]:
@@ -404,7 +404,7 @@ def _model(entry: dict, own: dict, fail) -> Model:
         if given:
             fail(given[0], "not a setting of the exact model (rayleigh-lamb)")
         return Model(EXACT)
-    from .plate import MODELS, plate_patch
+    from dispersion.symbolic.plate import MODELS, plate_patch
 
     if name not in MODELS:
         fail("model", f"must be {EXACT!r} or a patch model ({', '.join(MODELS)}), got {name!r}")
@@ -599,7 +599,8 @@ def _series_claim(entry: dict, common: dict, fail) -> Claim:
 @functools.lru_cache(maxsize=64)
 def _series(model: Model, branch: str, order: int) -> dict[int, sympy.Expr]:
     """Derived series of ``branch`` of ``model`` to kappa^order (cached per process)."""
-    from .power_balance import discrete_series, exact_series
+    from dispersion.symbolic.power_balance import discrete_series
+    from dispersion.waves.exact_series import exact_series
 
     if model.exact:
         return exact_series(branch, order)
@@ -609,12 +610,12 @@ def _series(model: Model, branch: str, order: int) -> dict[int, sympy.Expr]:
 def _omega(model: Model, branch: str, kappa: float, nu: float, guess: float) -> float:
     """Omega of ``branch`` at one kappa (NaN if it does not exist below 2 guess + 1)."""
     if model.exact:
-        from .rayleigh_lamb import trace_branches
+        from dispersion.waves.exact_branches import trace_branches
 
         br = trace_branches(nu, [kappa], 2 * guess + 1)
     else:
-        from .branches import discrete_branches
-        from .plate import plate_patch
+        from dispersion.waves.discrete_branches import discrete_branches
+        from dispersion.symbolic.plate import plate_patch
 
         br = discrete_branches(plate_patch(**model.patch_kwargs()), nu, [kappa])
     return float(br.omega[branch][0]) if branch in br.omega else float("nan")
@@ -794,7 +795,7 @@ def verify_claims(claims: list[Claim], *, executor=None, jobs: int | None = None
     kappa^8 or less, else a process pool; ``jobs`` at most :data:`MAX_JOBS`). A derivation
     that fails marks its claims ``"error"``.
     """
-    from .sweep import parallel_map
+    from dispersion.sweep import parallel_map
 
     if jobs is not None:
         jobs = check_jobs(jobs)

@@ -11,7 +11,7 @@ For maximally smooth B-splines on a uniform mesh of element length h, a Bloch wa
     m = \\sum_L c^{00}_L = 1 \\;\\; \\text{(row-sum lumped)},
 
 with the Gram coefficients :math:`c^{ab}_L` of the cardinal B-spline
-(:func:`dispersion.plate.bloch_coefficients`, the same numbers the plate's Bloch model uses
+(:func:`dispersion.symbolic.plate.bloch_coefficients`, the same numbers the plate's Bloch model uses
 along x). For p = 1 this is the textbook :math:`6(1-\\cos\\theta)/(2+\\cos\\theta)` (consistent)
 and :math:`2(1-\\cos\\theta)` (lumped). A singular mass acts only at a contact boundary, which a
 periodic bar does not have, so only the two interior variants exist here. The relative
@@ -35,8 +35,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import InputError, check_positive_int
-from .plate import bloch_coefficients
+from dispersion.errors import InputError, check_positive_int
+from dispersion.symbolic.plate import bloch_coefficients
 
 __all__ = ["BAR_MASSES", "BarDispersion", "bar_dispersion", "bar_frequency"]
 

@@ -135,10 +135,13 @@ def process_pool(max_workers: int | None = None, mp_context=None) -> cf.ProcessP
     return _Pool(workers, mp_context)
 
 
-def _progress(total: int, enabled: bool, desc: str | None):
-    from tqdm.auto import tqdm
+def _progress(total: int, enabled: bool | None, desc: str | None):
+    # Plain tqdm, not tqdm.auto: no notebook widget (no "IProgress not found" warning), and
+    # ``disable=None`` is tqdm's own "only when stderr is a terminal", so logs stay clean.
+    from tqdm import tqdm
 
-    return tqdm(total=total, disable=not enabled, desc=desc, leave=False, file=None)
+    return tqdm(total=total, disable=None if enabled is None else not enabled, desc=desc,
+                leave=False, file=None)
 
 
 def parallel_map(
@@ -146,7 +149,7 @@ def parallel_map(
     items: Iterable[T],
     executor: cf.Executor | None = None,
     jobs: int | None = None,
-    progress: bool = True,
+    progress: bool | None = None,
     desc: str | None = None,
 ) -> list[R]:
     """Apply ``func`` to every item, in parallel, and return the results in input order.
@@ -166,8 +169,9 @@ def parallel_map(
     jobs : int, optional
         Worker count of the default pool (default: the usable CPU count). ``jobs=1``
         without an executor runs the calls in this process, one after the other.
-    progress : bool
-        Show a tqdm progress bar on stderr as calls complete.
+    progress : bool, optional
+        Show a tqdm progress bar on stderr as calls complete; default (``None``): only when
+        stderr is a terminal.
     desc : str, optional
         Label of the progress bar.
 

@@ -54,6 +54,12 @@ def _stub_module(name: str, calls: list, fail: bool = False, value: float = 1.5)
     return module
 
 
+@pytest.fixture(autouse=True)
+def _away_from_the_checkout(tmp_path, monkeypatch):
+    """Run in a tmp folder, so the default reference ``reports/`` is not the committed one."""
+    monkeypatch.chdir(tmp_path)
+
+
 @pytest.fixture
 def stubs(monkeypatch):
     """Replace every report section by a stub; returns the call log and a setter for failures."""
@@ -247,3 +253,112 @@ def test_quick_reproduce_end_to_end(tmp_path):
     assert main(["reproduce", "--render", "--out", str(out)]) == 0
     assert index.read_text() == before  # rendering is a pure function of the JSON
     print(f"reproduce --quick took {time.perf_counter() - t0:.1f} s")
+
+
+# --------------------------------------------------------------- the run against the reference
+
+def _stub_tolerances(monkeypatch):
+    from dispersion.report.compare import close, timing
+
+    for name in SECTIONS:
+        module = sys.modules[f"dispersion.report.{name}"]
+        monkeypatch.setattr(module, "TOLERANCES", (close("value", rel=1e-9),
+                                                   timing("seconds")), raising=False)
+
+
+def _snapshot(folder: Path) -> dict:
+    return {p.relative_to(folder).as_posix(): p.read_bytes() for p in folder.rglob("*")
+            if p.is_file()}
+
+
+def test_default_run_leaves_the_reference_alone_and_says_it_reproduced(
+        stubs, tmp_path, capsys, monkeypatch):
+    stubs()
+    _stub_tolerances(monkeypatch)
+    assert main(["reproduce", "--update-reference", "--jobs", "1"]) == 0
+    reference = _snapshot(tmp_path / "reports")
+    capsys.readouterr()
+    assert main(["reproduce", "--jobs", "1"]) == 0
+    out = capsys.readouterr().out.strip().splitlines()
+    assert _snapshot(tmp_path / "reports") == reference  # the committed files are untouched
+    assert (tmp_path / "reproduced" / "index.md").is_file()
+    assert (tmp_path / "reproduced" / "comparison.md").is_file()
+    # one verdict line, last: every value of every section agrees; timings are not judged
+    assert out[-1].startswith(f"reproduced: {4 * len(SECTIONS)} figures agree with reports/")
+    assert "timings differ by" in out[-1] and "not judged" in out[-1]
+
+
+def test_a_physics_figure_that_disagrees_fails_the_run(stubs, tmp_path, capsys, monkeypatch):
+    stubs()
+    _stub_tolerances(monkeypatch)
+    assert main(["reproduce", "--update-reference", "--jobs", "1"]) == 0
+    stubs(value=1.5 * (1 + 1e-6))  # beyond the declared rel 1e-9
+    _stub_tolerances(monkeypatch)
+    capsys.readouterr()
+    assert main(["reproduce", "--jobs", "1", "--sections", "ring"]) == 1
+    line = capsys.readouterr().out.strip().splitlines()[-1]
+    assert line.startswith("NOT reproduced: 1 of 4 figures disagree with reports/ (ring)")
+    assert "ring value" in line
+    table = (tmp_path / "reproduced" / "comparison.md").read_text()
+    assert "| value | 1.5 |" in table
+    stubs(value=1.5 * (1 + 1e-12))  # within it
+    _stub_tolerances(monkeypatch)
+    assert main(["reproduce", "--jobs", "1", "--sections", "ring"]) == 0
+
+
+def test_a_quick_run_is_not_compared_with_a_full_reference(stubs, tmp_path, capsys, monkeypatch):
+    stubs()
+    assert main(["reproduce", "--update-reference", "--jobs", "1"]) == 0
+    stubs(value=99.0)
+    capsys.readouterr()
+    assert main(["reproduce", "--quick", "--jobs", "1", "--sections", "ring"]) == 0
+    line = capsys.readouterr().out.strip().splitlines()[-1]
+    assert line.startswith("not compared with reports/: ring: measured with inputs")
+
+
+def test_the_reference_is_written_only_on_request(stubs, tmp_path, capsys):
+    stubs()
+    (tmp_path / "README.md").write_text(
+        "x\n<!-- generated from reports/ring.json by `dispersion reproduce` -->\nold\n"
+        "<!-- end generated -->\n")
+    assert main(["reproduce", "--out", "reports", "--jobs", "1"]) == 2
+    assert "--update-reference" in capsys.readouterr().err
+    assert not (tmp_path / "reports").exists()
+    assert main(["reproduce", "--update-reference", "--out", "elsewhere", "--jobs", "1"]) == 2
+    assert main(["reproduce", "--reference", "nowhere", "--jobs", "1"]) == 2
+    assert not (tmp_path / "reproduced").exists()
+
+
+def test_the_orchestration_is_callable_without_the_cli(stubs, tmp_path):
+    from dispersion.report.run import reproduce
+
+    stubs()
+    run = reproduce(tmp_path / "nb", sections=["ring"], jobs=1, progress=False)
+    assert [s.name for s in run.sections] == ["ring"]
+    assert run.verdict.line().startswith("not compared with reports/")
+    assert "ReproduceRun(" in repr(run) and len(repr(run)) < 300
+
+
+def test_progress_bars_stay_out_of_logs(stubs, tmp_path):
+    """stderr that is not a terminal gets no tqdm control codes (default), --progress forces."""
+    script = textwrap.dedent("""
+        import sys, types
+        from dispersion.report import SECTIONS
+        from dispersion.sweep import parallel_map
+        for name in SECTIONS:
+            m = types.ModuleType("dispersion.report." + name)
+            def measure(quick=False, executor=None):
+                parallel_map(abs, [-1, -2], jobs=1, desc="inner")
+                return {"v": 1}
+            m.measure, m.render = measure, (lambda data, out: "## x")
+            sys.modules["dispersion.report." + name] = m
+        from dispersion.cli import main
+        sys.exit(main(["reproduce", "--out", sys.argv[1], "--jobs", "1"] + sys.argv[2:]))
+    """)
+    quiet = subprocess.run([sys.executable, "-c", script, str(tmp_path / "a")], cwd=tmp_path,
+                           capture_output=True, text=True, check=False)
+    assert quiet.returncode == 0, quiet.stderr
+    assert "\r" not in quiet.stderr and "%|" not in quiet.stderr
+    loud = subprocess.run([sys.executable, "-c", script, str(tmp_path / "b"), "--progress"],
+                          cwd=tmp_path, capture_output=True, text=True, check=False)
+    assert loud.returncode == 0 and "reproduce" in loud.stderr and "%|" in loud.stderr

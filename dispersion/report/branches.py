@@ -11,8 +11,43 @@ from pathlib import Path
 
 from dispersion.studies.branch_study import measure_branches as measure
 from dispersion.io import save_figure
+from dispersion.report.compare import close, timing
 
-__all__ = ["measure", "render", "report", "summary"]
+__all__ = ["measure", "render", "report", "summary", "TOLERANCES"]
+
+#: Comparison rules (:mod:`dispersion.report.compare`), first match wins; every field not
+#: named (grids, labels, counts, symmetries) must be identical. Exact roots to 1e-12 (the
+#: tracer's accuracy against 40-digit mpmath); discrete roots to 1e-10 (the accuracy the
+#: discrete solver states); derivatives, shapes and MAC, which lose digits to conditioning,
+#: to 1e-8; relative errors below 1e-13 are round-off, not data (``ROUND_OFF`` of the plots).
+TOLERANCES = (
+    timing("discrete_speed[].time_s", "wall time"),
+    timing("discrete_speed[].points_per_s", "wall time"),
+    timing("tracer.rows[].time_s", "wall time"),
+    close("exact.*.omega[]", rel=1e-12, abs=1e-12),
+    close("exact.*[]", rel=1e-8, abs=1e-9, why="velocities: implicit differentiation"),
+    close("discrete.*.omega.*[]", rel=1e-10, abs=1e-12),
+    close("discrete.*.paired_error.*[]", abs=1e-10),
+    close("discrete.*.group.*[]", rel=1e-8, abs=1e-9),
+    close("discrete.*.mac.*[]", abs=1e-8),
+    close("discrete.*.zone_edge", rel=1e-14),
+    close("mpmath_error", abs=1e-12, why="round-off-level maximum: below 1e-12 either way"),
+    close("tracer.reference_mpmath_error", abs=1e-12),
+    close("tracer.rows[].error", rel=1e-6, abs=1e-13),
+    close("discrete_speed[].error", rel=1e-6, abs=1e-13),
+    close("orders[].error[]", rel=1e-6, abs=1e-13),
+    close("orders[].fitted", abs=1e-6),
+    close("orders[].max_log_residual", abs=1e-6),
+    close("per_wavelength.curves[].error[]", rel=1e-6, abs=1e-13),
+    close("bar.error.*[]", rel=1e-9, abs=1e-13),
+    close("shapes.modes[].exact[][]", abs=1e-8),
+    close("shapes.modes[].discrete[][]", abs=1e-8),
+    close("shapes.modes[].mac", abs=1e-8),
+    close("shapes.modes[].omega", rel=1e-12),
+    close("shapes.modes[].omega_h", rel=1e-10),
+    close("zgv[].*", rel=1e-9),
+    close("fd_per_omega_aluminium", rel=1e-14),
+)
 
 
 def _fmt(x, spec=".3g") -> str:

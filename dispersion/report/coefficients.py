@@ -3,17 +3,36 @@
 ``measure`` is :func:`dispersion.claims.errata.paper_errata`: it verifies the claims file shipped
 with the package (``dispersion/data/paper_claims.toml``) and builds the errata rows.
 ``render`` writes ``coefficients.md`` and ``coefficients.tex`` (a complete LaTeX document)
-from the stored JSON alone.
+from the stored JSON alone. The stored result names the claims file by its place in the
+package (``dispersion/data/paper_claims.toml``), never by a path of the measuring machine.
+
+Everything here is exact algebra: a reproduction must give identical strings
+(:data:`TOLERANCES`; only the seconds are timings).
 """
 from __future__ import annotations
 
+import dataclasses
 from pathlib import Path
 
-from dispersion.claims.errata import errata_document, format_table
-from dispersion.claims.errata import paper_errata as measure
+from dispersion.claims.errata import errata_document, format_table, paper_errata
 from dispersion.io import write_text
+from dispersion.report.compare import timing
 
-__all__ = ["measure", "render", "summary"]
+__all__ = ["measure", "render", "summary", "TOLERANCES", "CLAIMS_FILE"]
+
+#: The paper's claims file, named relative to the installed package's parent.
+CLAIMS_FILE = "dispersion/data/paper_claims.toml"
+
+#: Comparison rules (:mod:`dispersion.report.compare`): every other field identical.
+TOLERANCES = (timing("seconds", "wall time of the verification"),)
+
+
+def measure(quick: bool = False, executor=None):
+    """:func:`~dispersion.claims.errata.paper_errata` with the claims file named as
+    :data:`CLAIMS_FILE`, so the stored result holds no path of the machine that measured."""
+    result = paper_errata(quick=quick, executor=executor)
+    claims = tuple(dataclasses.replace(c, file=CLAIMS_FILE) for c in result.claims)
+    return dataclasses.replace(result, claims_file=CLAIMS_FILE, claims=claims)
 
 
 def _claims_table(claims: list[dict]) -> str:

@@ -9,8 +9,47 @@ from pathlib import Path
 
 from dispersion.contact.study import measure
 from dispersion.io import save_figure
+from dispersion.report.compare import close, timing, unjudged, within
 
-__all__ = ["measure", "render", "summary"]
+__all__ = ["measure", "render", "summary", "TOLERANCES"]
+
+_CHAOTIC = ("contact histories are chaotic: a round-off perturbation changes them (the spread "
+            "runs measure by how much for the default scene, and those are judged)")
+
+
+def _spread_rules(mass: str) -> tuple:
+    band = {"lo": f"spread.{mass}.energy_min", "hi": f"spread.{mass}.energy_max"}
+    events = {"lo": f"spread.{mass}.events_min", "hi": f"spread.{mass}.events_max"}
+    return (
+        within(f"pair.{mass}.summary.energy_change_percent", **band, widen=1.0, abs=1e-6),
+        within(f"spread.{mass}.energy_m*", **band, widen=1.0, abs=1e-6),
+        within(f"pair.{mass}.summary.contact_events", **events, widen=1.0, abs=1),
+        within(f"spread.{mass}.events_m*", **events, widen=1.0, abs=1),
+    )
+
+
+#: Comparison rules (:mod:`dispersion.report.compare`), first match wins; inputs, scene,
+#: counts and labels not named here must be identical. The ring's energy change and contact
+#: events must lie in the reference's spread of round-off-perturbed runs, widened by that
+#: spread's width on each side (a few runs sample the spread; one more may fall just outside):
+#: at least 1e-6 percentage points and one contact event.
+TOLERANCES = (
+    timing("seconds.*", "wall time"),
+    timing("timing[].ms_per_step", "wall time"),
+    timing("*.seconds", "wall time"),
+    timing("*[].seconds", "wall time"),
+    *(rule for mass in ("lumped", "singular", "consistent") for rule in _spread_rules(mass)),
+    unjudged("pair.*.series.*", _CHAOTIC),
+    close("pair.*.summary.initial_energy_change_percent", abs=1e-9),
+    unjudged("pair.*.summary.*", _CHAOTIC),
+    close("grid[].initial_energy_change_percent", abs=1e-9),
+    close("dt_sweep[].initial_energy_change_percent", abs=1e-9),
+    unjudged("grid[].*", _CHAOTIC),
+    unjudged("dt_sweep[].*", _CHAOTIC),
+    unjudged("dt_fit.*", "fitted to the chaotic dt sweep"),
+    close("signorini[].*", rel=1e-6, abs=1e-9,
+          why="1D bar with a closed-form solution: not chaotic"),
+)
 
 COMMAND = "dispersion reproduce --sections ring"
 

@@ -10,9 +10,23 @@ from __future__ import annotations
 from pathlib import Path
 
 from dispersion.io import save_figure
+from dispersion.report.compare import timing, unjudged
 from dispersion.studies.series_race import measure
 
-__all__ = ["measure", "render", "render_tables", "summary"]
+__all__ = ["measure", "render", "render_tables", "summary", "TOLERANCES"]
+
+#: Comparison rules (:mod:`dispersion.report.compare`): a speed study, so every measurement
+#: is a timing (listed as a ratio, not judged); its settings must be identical. Whether
+#: Maxima is installed is the machine's business; the series themselves are judged in the
+#: coefficients section and by the test suite.
+TOLERANCES = (
+    timing("race[].*_s", "wall time"),
+    timing("race[].*_mib", "peak memory of the process"),
+    timing("scaling[].seconds", "wall time"),
+    timing("fits[].*", "fitted to wall times"),
+    unjudged("race[].agree", "needs Maxima on the machine"),
+    unjudged("maxima", "version of Maxima on the machine"),
+)
 
 
 def _fmt(x, digits: int = 3) -> str:

@@ -9,9 +9,25 @@ from __future__ import annotations
 from pathlib import Path
 
 from dispersion.io import save_figure
+from dispersion.report.compare import close
 from dispersion.studies.paper_studies import measure_studies as measure
 
-__all__ = ["measure", "render", "report"]
+__all__ = ["measure", "render", "report", "TOLERANCES"]
+
+#: Comparison rules (:mod:`dispersion.report.compare`), first match wins; grids, orders,
+#: labels and counts not named here must be identical. Series coefficients are exact
+#: rationals evaluated in floating point (1e-12); errors against the exact series lose digits
+#: to cancellation (1e-8 relative, round-off below 1e-13); time steps from eigenvalues (1e-10);
+#: the bar impact runs are contact histories, judged to 1e-6.
+TOLERANCES = (
+    close("gamma[].*_error[]", rel=1e-8, abs=1e-13),
+    close("gamma[].*.*", rel=1e-12, abs=1e-15),
+    close("orders[].*.*", rel=1e-12, abs=1e-15),
+    close("dt_crit[].dt_crit", rel=1e-10),
+    close("radius[].deviation[]", rel=1e-8, abs=1e-12),
+    close("radius[].kappa_star", rel=1e-8),
+    close("bar[].*", rel=1e-6, abs=1e-9),
+)
 
 
 def render(data: dict, out: Path) -> str:

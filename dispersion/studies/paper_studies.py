@@ -211,7 +211,7 @@ def measure_studies(quick: bool = False, executor: Executor | None = None) -> St
     cases_bar = [(s, m) for s in ("kane", "standard") for m in ("consistent", "lumped", "singular")]
 
     def run(func, items, desc):
-        return tuple(parallel_map(func, items, executor=executor, progress=True, desc=desc))
+        return tuple(parallel_map(func, items, executor=executor, progress=None, desc=desc))
 
     return Studies(
         quick=quick, nu=float(NU), r=R_ASPECT, kappas=kappas,

@@ -302,9 +302,8 @@ def run(args) -> int:
                            inputs=inputs)
             _emit("-", dumps(env))
     if args.figure:
-        from dispersion.plotting.branches import figure2, plot_exact
+        from dispersion.plotting.branches import caption, figure2, plot_exact
 
-        model = args.model + (f", r = {s['r']:g}" if args.model == "bloch" else "")
         if results:
             from dispersion.studies.branch_study import figure2_data
 
@@ -312,12 +311,11 @@ def run(args) -> int:
                 mass: plate_patch(p=args.p, n=args.n, model=args.model, r=s["r"], mass=mass,
                                   contact=s["contact"], gamma_s=s["gamma_s"])
                 for mass in masses})
-            fig = figure2(data, title=f"nu = {nu:g}, {model}, p = {args.p}, n = {args.n}")
+            fig = figure2(data, title=caption(inputs))
         else:
-            ax = plot_exact(kappa, exact.omega, args.omega_max)
-            ax.set_title(f"Rayleigh-Lamb, nu = {nu:g}", fontsize="small")
-            ax.legend(fontsize="small")
-            fig = ax.figure
+            fig = plot_exact(kappa, exact.omega, args.omega_max)
+            fig.axes[0].set_title(caption(inputs), fontsize="small")
+            fig.axes[0].legend(fontsize="small")
         # Both files are written after all the work, CSV last, so an interruption while the
         # figure is drawn leaves neither new.
         save_figure(fig, args.figure, dpi=150)

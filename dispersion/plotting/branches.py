@@ -7,8 +7,8 @@ panel; errors signed on a symmetric-log axis; values at round-off level (below
 ``ROUND_OFF``) are not drawn as data.
 
 >>> import numpy as np
->>> ax = plot_exact([0.0, 1.0, 2.0], {"S0": [0.0, 1.6, 2.5], "A0": [0.0, 0.6, 1.6]}, 3.0)
->>> ax.get_xlabel()
+>>> fig = plot_exact([0.0, 1.0, 2.0], {"S0": [0.0, 1.6, 2.5], "A0": [0.0, 0.6, 1.6]}, 3.0)
+>>> fig.axes[0].get_xlabel()
 '$\\\\kappa = kh$'
 """
 from __future__ import annotations
@@ -17,7 +17,7 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 
-from dispersion.plotting import axes
+from dispersion.plotting import axes, new_figure
 
 __all__ = [
     "MASS_COLOURS",
@@ -50,17 +50,56 @@ def _colour(name: str, i: int = 0) -> str:
     return MASS_COLOURS.get(name, f"C{4 + i}")
 
 
-def _label_mode(ax, x, y, label, ymax, color="k"):
-    """Mode label: at the cut-off (left end) for higher modes, at the right end for S0/A0."""
-    ok = np.flatnonzero(np.isfinite(y) & (y <= ymax))
-    if ok.size == 0:
-        return
-    i = ok[-1] if label[1:] == "0" else ok[0]
-    up = 5 if label[0] == "S" else -5  # S0/A0 meet at the Rayleigh line: S above, A below
-    dx = (-3, up) if label[1:] == "0" else (3, 0.8 * up)
-    ax.annotate(label, (x[i], y[i]), xytext=dx, textcoords="offset points",
-                fontsize="x-small", color=color, va="center",
-                ha="right" if label[1:] == "0" else "left", clip_on=True)
+#: Labels whose anchors lie closer than this fraction of the Omega axis form a group whose
+#: lowest label goes below its curve and highest above (the rest are moved along the curve).
+LABEL_GAP = 0.04
+
+
+def _label_anchors(x, omega: Mapping, ymax: float) -> list[tuple[float, float, str, int]]:
+    """Where each mode is labelled: the cut-off (left end) for higher modes, the right end
+    for S0/A0, with a vertical side (-1 below, +1 above, 0 beside) chosen so that no two
+    labels at the same end overprint: ``(x, y, label, side)``.
+
+    >>> [a[2:] for a in _label_anchors([0, 1], {"S1": [2.9, 3], "S2": [3.1, 3.2]}, 8.0)]
+    [('S1', -1), ('S2', 1)]
+    """
+    anchors = []
+    for label, y in omega.items():
+        y = _a(y)
+        ok = np.flatnonzero(np.isfinite(y) & (y <= ymax))
+        if ok.size:
+            i = ok[-1] if label[1:] == "0" else ok[0]
+            anchors.append((float(x[i]), float(y[i]), label))
+    anchors.sort(key=lambda a: (a[0], a[1]))
+    groups: list[list] = []
+    for a in anchors:
+        last = groups[-1][-1] if groups else None
+        if last and last[0] == a[0] and a[1] - last[1] < LABEL_GAP * ymax:
+            groups[-1].append(a)
+        else:
+            groups.append([a])
+    out = []
+    for group in groups:
+        if len(group) == 1:
+            xi, yi, lab = group[0]
+            out.append((xi, yi, lab, 1 if lab[0] == "S" else -1))
+            continue
+        for j, (xi, yi, lab) in enumerate(group):
+            out.append((xi, yi, lab, -1 if j == 0 else 1 if j == len(group) - 1 else 0))
+    return out
+
+
+def _label_modes(ax, x, omega: Mapping, ymax, color="k"):
+    right = {}
+    for xi, yi, label, side in _label_anchors(x, omega, ymax):
+        fundamental = label[1:] == "0"
+        dx = -3 if fundamental else 3
+        if side == 0:  # the middle of a group: moved along its (flat) curve
+            right[xi] = right.get(xi, 0) + 1
+            dx += (-14 if fundamental else 14) * right[xi]
+        ax.annotate(label, (xi, yi), xytext=(dx, 5 * side), textcoords="offset points",
+                    fontsize="x-small", color=color, va="center",
+                    ha="right" if fundamental else "left", clip_on=True)
 
 
 def plot_exact(kappa, omega: Mapping, omega_max: float, ax=None,
@@ -73,12 +112,14 @@ def plot_exact(kappa, omega: Mapping, omega_max: float, ax=None,
         w = _a(w)
         ax.plot(kappa, w, color="k", lw=1.1, ls="-" if name[0] == "S" else "--",
                 label=label if first else None)
-        _label_mode(ax, kappa, w, name, omega_max)
         first = False
+    _label_modes(ax, kappa, omega, omega_max)
     ax.set_xlabel(r"$\kappa = kh$")
     ax.set_ylabel(r"$\Omega = \omega h / c_T$")
     ax.set_ylim(0, omega_max)
-    return ax
+    if kappa.size > 1:
+        ax.set_xlim(float(np.nanmin(kappa)), float(np.nanmax(kappa)))  # the grid asked for
+    return ax.figure
 
 
 def plot_discrete(kappa, omega: Mapping, symmetry: Mapping, ax=None, name: str = "discrete",
@@ -96,17 +137,18 @@ def plot_discrete(kappa, omega: Mapping, symmetry: Mapping, ax=None, name: str =
         ax.plot(kappa[::every], w[::every], ls="none", marker=marker, ms=3.2, color=color,
                 mfc=color if lab[0] == "S" else "none", label=name + note if first else None)
         first = False
-    return ax
+    return ax.figure
 
 
 def plot_zone_edge(edge: float, ax=None):
-    """Vertical line at the Brillouin-zone edge pi/r, with the folding stated."""
+    """Vertical line at the Brillouin-zone edge pi/r, explained in the legend (no text over
+    the data); not drawn when the kappa axis ends before it."""
     ax = _axes(ax)
-    ax.axvline(edge, color="0.5", lw=0.9, ls=":")
-    ax.annotate(r"zone edge $\pi/r$: beyond it, folded Bloch branches", (edge, 0.98),
-                xycoords=("data", "axes fraction"), rotation=90, ha="right", va="top",
-                fontsize="x-small", color="0.35")
-    return ax
+    lo, hi = ax.get_xlim()
+    if lo <= edge <= hi:
+        ax.axvline(edge, color="0.5", lw=0.9, ls=":",
+                   label=f"zone edge $\\pi/r$ = {edge:.3g}: folded Bloch branches beyond it")
+    return ax.figure
 
 
 def _symlog(ax, linthresh: float, what: str):
@@ -132,7 +174,27 @@ def plot_paired_errors(kappa, errors: Mapping, ax=None, name: str = "", color: s
     ax.set_xscale("log")
     ax.set_xlabel(r"$\kappa = kh$")
     _symlog(ax, linthresh, r"$(\Omega^h - \Omega)/\Omega$")
-    return ax
+    return ax.figure
+
+
+def caption(inputs: Mapping) -> str:
+    """A figure title from the recorded inputs of a branches run (the ``#`` lines of its CSV).
+
+    >>> caption({"nu": 0.3, "model": "bloch", "r": 0.5, "p": 2, "n": 3,
+    ...          "masses": ["consistent", "singular"], "contact": "top", "gamma_s": 0.0})
+    'Rayleigh-Lamb, nu = 0.3; patch: bloch r = b/h = 0.5, p = 2, n = 3; consistent and singular mass (contact top, gamma_s = 0)'
+    """
+    head = f"Rayleigh-Lamb, nu = {inputs['nu']:g}"
+    masses = list(inputs.get("masses") or ())
+    if "material" in inputs:
+        head += f" ({inputs.get('material', {}).get('name', 'material')})"
+    if not masses:
+        return head
+    model = inputs["model"] + (f" r = b/h = {inputs['r']:g}" if "r" in inputs else "")
+    singular = (f" (contact {inputs['contact']}, gamma_s = {inputs['gamma_s']:g})"
+                if "contact" in inputs else "")
+    return (f"{head}; patch: {model}, p = {inputs['p']}, n = {inputs['n']}; "
+            f"{' and '.join(masses)} mass{singular}")
 
 
 def figure2(data: Mapping, title: str = ""):
@@ -140,9 +202,7 @@ def figure2(data: Mapping, title: str = ""):
 
     ``data``: :func:`dispersion.studies.branch_study.figure2_data` (or the stored JSON of it).
     """
-    from matplotlib.figure import Figure
-
-    fig = Figure(figsize=(12, 5.2), layout="constrained")
+    fig = new_figure(figsize=(12, 5.2))
     ax, ax_err = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1.25, 1]})
     kappa = data["kappa"]
     plot_exact(kappa, {k: v["omega"] for k, v in data["exact"].items()}, data["omega_max"], ax)
@@ -159,16 +219,14 @@ def figure2(data: Mapping, title: str = ""):
     ax_err.set_title("error of each exact branch against the discrete mode of the same shape\n"
                      "(MAC >= 0.5; no curve: no discrete mode resembles it)", fontsize="small")
     if title:
-        ax.set_title(title, fontsize="small")
+        fig.suptitle(title, fontsize="medium")
     return fig
 
 
 def figure_velocities(data: Mapping, discrete: str = "consistent", fd_per_omega=None,
                       zgv: Sequence[Mapping] = ()):
     """Phase and group velocity (over c_T) against Omega: exact lines, discrete markers, ZGV."""
-    from matplotlib.figure import Figure
-
-    fig = Figure(figsize=(12, 4.6), layout="constrained")
+    fig = new_figure(figsize=(12, 4.6))
     ax_p, ax_g = fig.subplots(1, 2)
     wmax = data["omega_max"]
     for lab, v in data["exact"].items():
@@ -218,9 +276,7 @@ def figure_velocities(data: Mapping, discrete: str = "consistent", fd_per_omega=
 
 def figure_per_wavelength(per_wavelength: Mapping, bar: Mapping):
     """Signed relative phase-velocity error against elements per wavelength: plate S0, A0, bar."""
-    from matplotlib.figure import Figure
-
-    fig = Figure(figsize=(13, 4.4), layout="constrained")
+    fig = new_figure(figsize=(13, 4.4))
     axs = fig.subplots(1, 3, sharey=True)
     epw = _a(per_wavelength["elements_per_wavelength"])
     styles = {1: ":", 2: "-", 3: "--", 4: "-."}
@@ -254,10 +310,8 @@ def figure_per_wavelength(per_wavelength: Mapping, bar: Mapping):
 
 def figure_shapes(shapes: Mapping):
     """Exact (lines) and discrete (markers) through-thickness mode shapes with their MAC."""
-    from matplotlib.figure import Figure
-
     modes = shapes["modes"]
-    fig = Figure(figsize=(3.0 * len(modes), 3.6), layout="constrained")
+    fig = new_figure(figsize=(3.0 * len(modes), 3.6))
     y = _a(shapes["y"])
     for ax, m in zip(fig.subplots(1, len(modes), sharey=True, squeeze=False).ravel(), modes):
         for comp, (col, name) in enumerate((("C0", "$U_x$"), ("C3", "$U_y$"))):
@@ -307,14 +361,12 @@ def plot_speed_accuracy(rows: Sequence[Mapping], ax=None, label=None, floor: flo
     ax.xaxis.set_minor_formatter(NullFormatter())
     ax.set_xlabel("wall time [s]")
     ax.legend(fontsize="x-small")
-    return ax
+    return ax.figure
 
 
 def figure_speed_accuracy(tracer: Mapping, discrete_rows: Sequence[Mapping]):
     """Tracer (per scan step) and discrete solver (per p and mass) speed/accuracy panels."""
-    from matplotlib.figure import Figure
-
-    fig = Figure(figsize=(11, 4.2), layout="constrained")
+    fig = new_figure(figsize=(11, 4.2))
     a1, a2 = fig.subplots(1, 2)
     ref = tracer["reference"]
     plot_speed_accuracy(tracer["rows"], a1, label=lambda r: f"scan step {r['step']:g}",

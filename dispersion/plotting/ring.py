@@ -1,12 +1,12 @@
 """Figures of the ring study and the impact scenes (:mod:`dispersion.contact`), from data.
 
 Every function takes plain data as loaded from JSON (``{"summary": ..., "series": ...}``
-runs, grid rows) and ``ax=None``, and returns the Axes; :func:`figure4` lays out the paper's
+runs, grid rows) and ``ax=None``, and returns the Figure; :func:`figure4` lays out the paper's
 Figure 4 on a pyplot-free Figure.
 
 >>> run = {"summary": {"mass": "lumped", "scheme": "kane", "energy_change_percent": -5.0},
 ...        "series": {"t": [0, 1, 2], "contact_force": [0, 1, 0], "total": [1, 1, 0.95]}}
->>> plot_contact_energy(run).get_xlabel()
+>>> plot_contact_energy(run).axes[0].get_xlabel()
 'time t (s)'
 """
 from __future__ import annotations
@@ -15,7 +15,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from dispersion.plotting import axes
+from dispersion.plotting import axes, new_figure
 
 __all__ = ["figure4", "plot_contact_energy", "plot_energy_change", "plot_grid",
            "plot_signorini"]
@@ -47,7 +47,7 @@ def plot_contact_energy(run: dict, ax=None, title: str | None = None, force_max=
     s = run["summary"]
     ax.set_title(title or f"{s['mass']} mass ({s['scheme']}): energy change "
                  f"{s['energy_change_percent']:+.3f} %", fontsize=9)
-    return ax
+    return ax.figure
 
 
 def plot_energy_change(runs: dict, paper: dict | None = None, ax=None):
@@ -63,7 +63,7 @@ def plot_energy_change(runs: dict, paper: dict | None = None, ax=None):
     ax.set_xlabel("time t (s)")
     ax.set_ylabel(r"$\Delta E / E_0$ (%)")
     ax.legend(fontsize=7)
-    return ax
+    return ax.figure
 
 
 def _first_impact(run: dict, pad: float = 0.5):
@@ -81,9 +81,7 @@ def _first_impact(run: dict, pad: float = 0.5):
 def figure4(lumped: dict, singular: dict, paper: dict | None = None):
     """Paper Figure 4 with one force axis for both masses, plus Delta E / E0 and a zoom on the
     first impact."""
-    from matplotlib.figure import Figure
-
-    fig = Figure(figsize=(10, 7.5), layout="constrained")
+    fig = new_figure(figsize=(10, 7.5))
     grid = fig.subplot_mosaic([["l", "lz"], ["s", "sz"], ["e", "e"]],
                               gridspec_kw={"width_ratios": (2.2, 1)})
     fmax = 1.08 * max(np.max(_arr(r, "contact_force")) for r in (lumped, singular))
@@ -132,7 +130,7 @@ def plot_grid(rows: Sequence[dict], paper: dict | None = None, ax=None,
     ax.set_xlabel("steps per impact (2 t / (c_p dt))")
     ax.set_ylabel("|energy change| (%)")
     ax.legend(fontsize=6, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
-    return ax
+    return ax.figure
 
 
 def plot_signorini(history: dict, exact: dict, ax=None):
@@ -143,4 +141,4 @@ def plot_signorini(history: dict, exact: dict, ax=None):
     ax.set_xlabel("time t")
     ax.set_ylabel(r"contact stress $-u_x(0, t)$")
     ax.legend(fontsize=8)
-    return ax
+    return ax.figure

@@ -1,15 +1,15 @@
 """Speed charts of the series engine (data of :func:`dispersion.studies.series_race.measure`).
 
->>> ax = plot_race([{"order": 8, "ours_process_s": 0.3, "ours_compute_s": 0.01,
-...                  "maxima_process_s": 0.2, "maxima_compute_s": 0.03}])
->>> ax.get_ylabel()
+>>> fig = plot_race([{"order": 8, "ours_process_s": 0.3, "ours_compute_s": 0.01,
+...                   "maxima_process_s": 0.2, "maxima_compute_s": 0.03}])
+>>> fig.axes[0].get_ylabel()
 'seconds (S0 + A0, nu symbolic)'
 """
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 
-from dispersion.plotting import axes
+from dispersion.plotting import axes, new_figure
 
 __all__ = ["plot_race", "plot_scaling"]
 
@@ -35,7 +35,7 @@ def plot_race(race: Sequence[Mapping], ax=None):
     ax.set_ylabel("seconds (S0 + A0, nu symbolic)")
     ax.grid(True, which="major", alpha=0.3)
     ax.legend(fontsize="small")
-    return ax
+    return ax.figure
 
 
 def plot_scaling(points: Sequence[Mapping], fits: Sequence[Mapping] = (), ax=None):
@@ -59,4 +59,4 @@ def plot_scaling(points: Sequence[Mapping], fits: Sequence[Mapping] = (), ax=Non
     ax.set_ylabel(f"seconds (S0 + A0 to $\\kappa^{{{order}}}$)")
     ax.grid(True, which="major", alpha=0.3)
     ax.legend(fontsize="x-small", ncol=1)
-    return ax
+    return ax.figure

@@ -1,7 +1,7 @@
 """Figures of the studies beyond the paper (:mod:`dispersion.report.studies`).
 
 Each ``plot_*`` takes the study's plain data (lists/dicts as stored in ``studies.json``) and
-``ax=None``, and returns the Axes; ``figure_*`` lay several out on one pyplot-free
+``ax=None``, and returns its Figure; ``figure_*`` lay several out on one pyplot-free
 :class:`matplotlib.figure.Figure`.
 
 >>> rows = [{"gamma_s": g, "S0": {"4": -g}, "A0": {"6": g}, "S0_error": [g / 10],
@@ -16,7 +16,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from dispersion.plotting import axes
+from dispersion.plotting import axes, new_figure
 
 
 def _axes(ax):
@@ -34,7 +34,7 @@ def plot_gamma_coefficients(rows: Sequence[dict], ax=None):
     ax.set_xlabel(r"redistribution weight $\gamma_s$")
     ax.set_ylabel(r"coefficient of $\Omega^2$ series")
     ax.legend(fontsize="small")
-    return ax
+    return ax.figure
 
 
 def plot_gamma_errors(rows: Sequence[dict], kappas: Sequence[float], ax=None):
@@ -56,14 +56,12 @@ def plot_gamma_errors(rows: Sequence[dict], kappas: Sequence[float], ax=None):
     ax.set_xlabel(r"redistribution weight $\gamma_s$")
     ax.set_ylabel(r"$(\Omega^h - \Omega) / \Omega$ (symlog, linear below $10^{-6}$)")
     ax.legend(fontsize="small")
-    return ax
+    return ax.figure
 
 
 def figure_gamma(rows: Sequence[dict], kappas: Sequence[float]):
     """Two panels: series coefficients and branch errors against gamma_s."""
-    from matplotlib.figure import Figure
-
-    fig = Figure(figsize=(10, 3.8), layout="constrained")
+    fig = new_figure(figsize=(10, 3.8))
     left, right = fig.subplots(1, 2)
     plot_gamma_coefficients(rows, ax=left)
     plot_gamma_errors(rows, kappas, ax=right)
@@ -92,14 +90,12 @@ def plot_series_departure(data: dict, branch: str, ax=None):
     ax.set_title(f"{branch}: truncated series vs numeric branch")
     if ax.get_legend_handles_labels()[0]:
         ax.legend(fontsize="x-small", ncol=2)
-    return ax
+    return ax.figure
 
 
 def figure_radius(data: dict):
     """Two panels (S0, A0) of :func:`plot_series_departure`."""
-    from matplotlib.figure import Figure
-
-    fig = Figure(figsize=(10, 4), layout="constrained")
+    fig = new_figure(figsize=(10, 4))
     for ax, branch in zip(fig.subplots(1, 2), ("S0", "A0")):
         plot_series_departure(data, branch, ax=ax)
     return fig

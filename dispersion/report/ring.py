@@ -146,8 +146,8 @@ def render(data: dict, out: Path) -> str:
         "### The energy figures over the grid (size and landing angle)",
         "",
     ]
-    ax = plot_grid(data["grid"], data["paper"], default_steps=data["default_steps_per_impact"])
-    save_figure(ax.figure, out / "ring_grid.png", dpi=110)
+    fig = plot_grid(data["grid"], data["paper"], default_steps=data["default_steps_per_impact"])
+    save_figure(fig, out / "ring_grid.png", dpi=110)
     lines += [
         "![grid](ring_grid.png)",
         "",

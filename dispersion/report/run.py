@@ -39,8 +39,7 @@ from dispersion.report.index import SectionResult, render_index
 from dispersion.sweep import default_jobs, process_pool
 
 __all__ = ["DEFAULT_OUT", "DEFAULT_REFERENCE", "MAX_JOBS_PER_CPU", "ReproduceRun",
-           "reproduce", "measure_sections", "render_folder", "check_sections",
-           "needs_matplotlib"]
+           "reproduce", "measure_sections", "render_folder", "check_sections"]
 
 #: Where a user's run goes (untracked; listed in .gitignore).
 DEFAULT_OUT = "reproduced"
@@ -78,28 +77,6 @@ def check_sections(names: Sequence[str]) -> list[str]:
         if name not in SECTIONS:
             raise InputError(f"--sections must be among {', '.join(SECTIONS)}, got {name!r}")
     return names
-
-
-def needs_matplotlib(what: str) -> None:
-    """Raise :class:`InputError` naming the ``plots`` extra if matplotlib cannot be imported.
-
-    Called before any work, so a missing extra costs the user no computation.
-    """
-    import importlib.util
-
-    try:
-        found = importlib.util.find_spec("matplotlib") is not None
-    except (ImportError, ValueError):  # ``sys.modules['matplotlib'] = None`` and kin
-        found = False
-    if found:
-        try:
-            import matplotlib  # noqa: F401
-        except ImportError:
-            found = False
-    if not found:
-        raise InputError(f"{what} needs matplotlib, which is not installed: "
-                         'pip install "dispersion-iga[plots]" (from a checkout: '
-                         "pip install -e \".[plots]\")")
 
 
 @contextlib.contextmanager
@@ -264,7 +241,9 @@ def reproduce(
     for name in names:
         section_module(name)  # a broken installation fails before any work
     if any(n in _FIGURES for n in (SECTIONS if render else names)):
-        needs_matplotlib(f"dispersion reproduce (sections {', '.join(names)})")
+        from dispersion.plotting import require_matplotlib
+
+        require_matplotlib("dispersion reproduce (its figures)")
     ref_envs = _load_reference(reference) if reference.is_dir() else {}
     show = sys.stderr.isatty() if progress is None else bool(progress)
     with _tqdm_disabled(not show), open_report(target, notice=notice) as staged:

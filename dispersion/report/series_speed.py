@@ -39,12 +39,11 @@ def _ratio(theirs, ours) -> str:
 
 def render(data: dict, out: Path) -> str:
     """Chart and Markdown from the stored result of :func:`measure` (no recomputation)."""
-    from matplotlib.figure import Figure
-
+    from dispersion.plotting import new_figure
     from dispersion.plotting.speed import plot_race, plot_scaling
 
     out = Path(out)
-    fig = Figure(figsize=(11, 4.2), layout="constrained")
+    fig = new_figure(figsize=(11, 4.2))
     a1, a2 = fig.subplots(1, 2)
     plot_race(data["race"], a1)
     a1.set_title("exact Rayleigh-Lamb S0 + A0 series: ours vs Maxima", fontsize="small")

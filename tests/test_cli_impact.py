@@ -28,8 +28,11 @@ def test_writes_history_and_summary(tmp_path, capsys):
     api = signorini_1d(mass="singular", dt=0.004, t_end=3.0).errors
     assert stored["stress_rel_l2"] == pytest.approx(api["stress_rel_l2"], rel=1e-12)
     assert printed["steps"] == 750
-    rows = list(csv.DictReader((out / "history.csv").open()))
-    assert len(rows) == 751 and set(rows[0]) >= {"t", "u0", "contact_stress", "total"}
+    lines = (out / "history.csv").read_text().splitlines()
+    assert lines[0].startswith("# signorini-1d: p = 1, 20 elements, singular mass")
+    rows = list(csv.DictReader(line for line in lines if not line.startswith("#")))
+    assert len(rows) == 751
+    assert set(rows[0]) >= {"t [-]", "u0 [-]", "contact_stress [-]", "total [-]"}
 
 
 def test_bad_input_names_the_parameter(tmp_path):

@@ -36,9 +36,13 @@ def test_out_dir_files_and_csv_rows(tmp_path, capsys):
     assert main(["ring", "--t-end", "0.3", "--dt", "0.1", "--out", str(out)]) == 0
     assert {p.name for p in out.iterdir()} == {"summary.json", "result.json", "history.csv",
                                                "figure.png"}
-    rows = list(csv.DictReader((out / "history.csv").open()))
-    assert len(rows) == 4 and float(rows[0]["t"]) == 0.0  # 3 steps + initial state
-    assert float(rows[-1]["t"]) == pytest.approx(0.3)
+    lines = (out / "history.csv").read_text().splitlines()
+    assert lines[0].startswith("# ring: singular mass, scheme kane")
+    assert any(line.startswith("# scene: r_inner = ") and "dt = 0.1 s" in line for line in lines)
+    rows = list(csv.DictReader(line for line in lines if not line.startswith("#")))
+    assert len(rows) == 4 and float(rows[0]["t [s]"]) == 0.0  # 3 steps + initial state
+    assert float(rows[-1]["t [s]"]) == pytest.approx(0.3)
+    assert {"contact_force [N/m]", "total [J/m]", "penetration [m]"} <= set(rows[0])
     assert "energy change" in capsys.readouterr().out
 
 

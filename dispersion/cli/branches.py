@@ -175,6 +175,9 @@ def _settings(args) -> dict:
                              f"{', '.join(FIGURE_SUFFIXES)}, got {args.figure!r}")
         check_output_file(args.figure, option="--figure", allow_stdout=False,
                           suffixes=FIGURE_SUFFIXES)
+        from dispersion.plotting import require_matplotlib
+
+        require_matplotlib("branches --figure")
     r = float(defaults.FIGURE2_R) if args.r is None else args.r
     return {
         "nu": nu, "kappa": kappa, "masses": masses, "material": material, "r": r,

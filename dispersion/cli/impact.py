@@ -15,6 +15,7 @@ from dispersion.symbolic.mass import MASS_VARIANTS
 from dispersion.cli import number
 
 SCENES = ("signorini-1d",)
+FIGURE_SUFFIXES = (".png", ".pdf", ".svg")
 
 
 def register(sub) -> None:
@@ -37,7 +38,13 @@ def register(sub) -> None:
                    help="end time (s; a whole multiple of dt; 12 = 4 periods)")
     p.add_argument("--consistent", action=argparse.BooleanOptionalAction, default=True,
                    help="massless DOFs in equilibrium at t = 0")
-    p.add_argument("--out", help="directory: write history.csv and summary.json into it")
+    p.add_argument("--out", metavar="DIR",
+                   help="folder (new, or written by dispersion) to write: history.csv (the "
+                        "history at x = 0 with units, after # lines with the inputs) and "
+                        "summary.json (inputs, errors against the exact solution, seconds)")
+    p.add_argument("--figure", metavar="FILE",
+                   help="write the contact stress against the exact solution to FILE "
+                        "(.png, .pdf or .svg)")
     p.add_argument("--format", choices=("text", "json", "csv"), default="text",
                    help="what goes to stdout: one-line summary, JSON summary, or the CSV history")
     p.set_defaults(func=run)
@@ -57,6 +64,16 @@ def run(args) -> int:
     from dispersion.results import dumps
 
     out = None if args.out is None else check_output_dir(args.out, option="--out")
+    if args.figure is not None:
+        from dispersion.io import check_output_file
+        from dispersion.plotting import require_matplotlib
+
+        if not args.figure.lower().endswith(FIGURE_SUFFIXES):
+            raise InputError(f"--figure must name a file ending in one of "
+                             f"{', '.join(FIGURE_SUFFIXES)}, got {args.figure!r}")
+        check_output_file(args.figure, option="--figure", allow_stdout=False,
+                          suffixes=FIGURE_SUFFIXES)
+        require_matplotlib("impact --figure")
     if args.p < 1 or args.p > 6:
         raise InputError(f"p must be an integer in [1, 6], got {args.p}")
     if args.elements < 1 or args.elements > 100_000:
@@ -64,6 +81,11 @@ def run(args) -> int:
     res = signorini_1d(args.p, args.elements, args.mass, args.scheme, args.dt, args.t_end,
                        args.consistent)
     s = summary(res)
+    if args.figure is not None:
+        from dispersion.io import save_figure
+        from dispersion.plotting.ring import plot_impact
+
+        save_figure(plot_impact(res), args.figure, dpi=130)
     if out is not None:
         write_files(out, {"history.csv": res.csv_text(), "summary.json": dumps(s)},
                     option="--out")  # one unit: all new or all old

@@ -27,6 +27,27 @@ _FIELDS = {
     "gamma-s": ("gamma_s", "dimensionless"),
 }
 
+#: What each option means, in the user's words (its help text; unit and default are added).
+_MEANING = {
+    "r-inner": "inner radius of the quarter ring", "r-outer": "outer radius of the quarter ring",
+    "theta0": "where the quarter arc starts (angle from the x axis; 180: lands on its middle)",
+    "gap": "initial gap between the ring and the plane", "rho": "density",
+    "nu": "Poisson's ratio", "v0": "initial speed towards the plane",
+    "v0-over-ct": "initial speed over the shear wave speed c_T (sets Young's modulus E)",
+    "dt": "time step", "t-end": "end time",
+    "xi-elements": "elements along the arc", "eta-elements": "elements through the thickness",
+    "gamma-s": "share of a contact shape function sent to the second neighbour",
+}
+
+#: Files ``--out`` writes (its help text and the test of it use this one list).
+OUT_FILES = {
+    "summary.json": "inputs and results of the run (energy change, penetration, events)",
+    "result.json": "the whole run: scene, summary and every time step's histories "
+                   "(about 150 KB for the default scene)",
+    "history.csv": "time histories with units, after # lines with the inputs",
+    "figure.png": "contact force and total energy change (%) against time",
+}
+
 
 #: Mesh refinement levels ``--level`` accepts: level 4 is the finest mesh a scenario allows
 #: (:data:`~dispersion.contact.scenario.MAX_ELEMENTS`).
@@ -69,9 +90,13 @@ def register(sub) -> None:
     for opt, (name, unit) in _FIELDS.items():
         kind = int if name.startswith("n_") else float
         extra = " (singular masses only)" if name == "gamma_s" else ""
+        unit_text = "" if unit in ("dimensionless", "count") else f" [{unit}]"
         p.add_argument(f"--{opt}", type=number(opt, kind), default=None,
-                       help=f"{name} ({unit}), default {getattr(DEFAULT, name):g}{extra}")
-    p.add_argument("--out", help="directory: write summary.json, history.csv, figure.png")
+                       help=f"{_MEANING[opt]}{unit_text}, default {getattr(DEFAULT, name):g}"
+                            f"{extra}")
+    p.add_argument("--out", metavar="DIR",
+                   help="folder (new, or written by dispersion) to write: " + "; ".join(
+                       f"{name}: {what}" for name, what in OUT_FILES.items()))
     p.add_argument("--format", choices=("text", "json", "csv"), default="text",
                    help="stdout: one-line summary, JSON summary, or CSV history (default: text)")
     p.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
@@ -98,6 +123,10 @@ def run(args) -> int:
     from dispersion.results import dumps
 
     out = None if args.out is None else check_output_dir(args.out, option="--out")
+    if out is not None:
+        from dispersion.plotting import require_matplotlib
+
+        require_matplotlib("ring --out (its figure.png)")
     sc = scenario_from(args)
     bar = None
     if progress_default(args.progress):
@@ -117,11 +146,11 @@ def run(args) -> int:
         from dispersion.plotting.ring import plot_contact_energy
 
         png = io.BytesIO()
-        plot_contact_energy(res.to_dict()).figure.savefig(png, format="png", dpi=120)
-        write_files(out, {"summary.json": dumps(res.summary),  # one unit: all new or all old
-                          "result.json": dumps(res.to_dict(), indent=None),
-                          "history.csv": res.csv_text(), "figure.png": png.getvalue()},
-                    option="--out")
+        plot_contact_energy(res.to_dict()).savefig(png, format="png", dpi=120)
+        files = {"summary.json": dumps(res.summary),  # one unit: all new or all old
+                 "result.json": dumps(res.to_dict(), indent=None),
+                 "history.csv": res.csv_text(), "figure.png": png.getvalue()}
+        write_files(out, files, option="--out")
     if args.format == "json":
         sys.stdout.write(dumps(res.summary))
     elif args.format == "csv":

@@ -178,11 +178,25 @@ class SignoriniResult:
     seconds: float
 
     def csv_text(self) -> str:
-        """History as CSV: t, u(0), v(0), contact stress, kinetic, strain, total energy."""
+        """History as CSV: ``#`` lines with the inputs, then t, u(0), v(0), contact stress,
+        kinetic, strain, total energy; the problem is dimensionless (unit length, unit wave
+        speed, unit density and stiffness), so every unit is ``[-]``."""
+        from dispersion.results import package_versions
+
         cols = np.column_stack([self.t, self.u0, self.v0, self.stress, self.kinetic,
                                 self.strain, self.total])
-        head = "t,u0,v0,contact_stress,kinetic,strain,total"
+        head = "\n".join([
+            f"# signorini-1d: p = {self.p}, {self.n_elements} elements, {self.mass} mass, "
+            f"scheme {self.scheme}, dt = {self.dt:g}, t_end = {self.t_end:g}, "
+            f"consistent initial state: {self.consistent}",
+            "# dimensionless: unit bar length, wave speed, density and stiffness; dispersion-iga "
+            + package_versions(("dispersion-iga",))["dispersion-iga"],
+            ",".join(f"{c} [-]" for c in HISTORY_COLUMNS)])
         return head + "\n" + "\n".join(",".join(f"{x:.12g}" for x in row) for row in cols) + "\n"
+
+
+#: Columns of :meth:`SignoriniResult.csv_text`.
+HISTORY_COLUMNS = ("t", "u0", "v0", "contact_stress", "kinetic", "strain", "total")
 
 
 def _rel_l2(num, ref, dt):

@@ -82,11 +82,33 @@ class RingResult:
                 "series": {k: np.asarray(v).tolist() for k, v in self.series.items()}}
 
     def csv_text(self) -> str:
-        """Time histories as CSV text, one row per step."""
+        """Time histories as CSV text, one row per step: ``#`` lines with the inputs (scene,
+        mass, scheme, package version), then a header with units (:data:`SERIES_UNITS`)."""
+        from dispersion.results import package_versions
+
         names = list(self.series)
         rows = np.column_stack([np.asarray(self.series[k], dtype=float) for k in names])
-        lines = [",".join(names)] + [",".join(f"{x:.10g}" for x in row) for row in rows]
+        scene = dict(asdict(self.scenario), E=self.scenario.E)
+        lines = [f"# ring: {self.mass} mass, scheme {self.scheme}",
+                 "# scene: " + ", ".join(f"{k} = {v:g}{SCENE_UNITS.get(k, '')}"
+                                         if isinstance(v, float) else f"{k} = {v}"
+                                         for k, v in scene.items()),
+                 "# per unit thickness (plane strain); dispersion-iga "
+                 + package_versions(("dispersion-iga",))["dispersion-iga"],
+                 ",".join(f"{k} [{SERIES_UNITS.get(k, '-')}]" for k in names)]
+        lines += [",".join(f"{x:.10g}" for x in row) for row in rows]
         return "\n".join(lines) + "\n"
+
+
+#: Units of the ring's time histories (plane strain: per metre of thickness).
+SERIES_UNITS = {"t": "s", "contact_force": "N/m", "kinetic": "J/m", "strain": "J/m",
+                "total": "J/m", "momentum_x": "kg/s", "momentum_y": "kg/s", "penetration": "m",
+                "gap_min_greville": "m", "rotation_deg": "deg", "newton_iterations": "count"}
+
+
+#: Units of the scene's fields in the ``#`` lines of the CSV.
+SCENE_UNITS = {"r_inner": " m", "r_outer": " m", "rho": " kg/m^3", "v0": " m/s",
+               "theta0_deg": " deg", "gap": " m", "dt": " s", "t_end": " s", "E": " Pa"}
 
 
 def simulate_ring(sc: Scenario | None = None, mass: str = "singular", scheme: str = "kane",

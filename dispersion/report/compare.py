@@ -138,6 +138,7 @@ class SectionComparison:
     timings: list[Timing] = field(default_factory=list)
     unjudged: int = 0
     skipped: str | None = None
+    rules: tuple[Rule, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -183,6 +184,9 @@ class Verdict:
         where = f"{self.reference} ({', '.join(self.compared)})"
         skipped = [s.section for s in self.sections if s.skipped is not None]
         tail = f"; not compared: {', '.join(skipped)}" if skipped else ""
+        unjudged_count = sum(s.unjudged for s in self.sections)
+        if unjudged_count:
+            times += f", {unjudged_count} values not judged (comparison.md says why)"
         if self.reproduced:
             return f"reproduced: {self.agree} figures agree with {where}, {times}{tail}"
         d = self.disagree
@@ -200,6 +204,10 @@ class Verdict:
             lines.append(f"{s.agree} figures agree, {len(s.disagree)} disagree, "
                          f"{s.unjudged} not judged.")
             lines.append("")
+            if s.rules:
+                lines += ["| rule | fields | why |", "|---|---|---|"]
+                lines += [f"| {r.describe()} | `{r.pattern}` | {r.why} |" for r in s.rules]
+                lines.append("")
             if s.disagree:
                 lines += ["| field | reference | new | rule |", "|---|---|---|---|"]
                 lines += [f"| {d.path} | {d.reference!r} | {d.new!r} | {d.rule} |"
@@ -289,7 +297,8 @@ def compare_results(section: str, reference, new, rules: Sequence[Rule] = ()) ->
             agree += 1
         else:
             disagree.append(Difference(section, path, a, b, rule.describe()))
-    return SectionComparison(section, agree, disagree, timings, unjudged_count)
+    return SectionComparison(section, agree, disagree, timings, unjudged_count,
+                             rules=tuple(rules))
 
 
 _MISSING = object()
@@ -329,7 +338,8 @@ def compare_envelopes(name: str, reference: Mapping, new: Mapping,
     comparison = compare_results(name, reference["result"], new["result"], rules)
     seconds = Timing(name, "seconds (whole section)", reference.get("seconds"), new.get("seconds"))
     return SectionComparison(name, comparison.agree, comparison.disagree,
-                             [seconds, *comparison.timings], comparison.unjudged)
+                             [seconds, *comparison.timings], comparison.unjudged,
+                             rules=tuple(rules))
 
 
 def compare_folders(reference: Path, new: Path, names: Sequence[str]) -> Verdict:

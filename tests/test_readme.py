@@ -4,6 +4,9 @@
   through ``python -m dispersion`` (the console script's entry point) and must exit 0, print
   something and write the files it names. The quick start's main job (``dispersion
   reproduce``) is a slow check; the quick start's test command is this test suite itself.
+- The quick start's two commands run in that order in a fresh ``git clone`` (slow): both pass,
+  the first says the run reproduced the committed reports, and ``git status`` stays clean. The
+  install and verify steps of ``docs/ci/verify.yml`` run there too.
 - The Python examples (``>>>`` in python blocks) run as doctests.
 - Every generated block (:mod:`dispersion.report.readme`) equals its regeneration from the
   committed ``reports/*.json``.
@@ -11,6 +14,7 @@
 from __future__ import annotations
 
 import doctest
+import os
 import re
 import shlex
 import shutil
@@ -65,7 +69,7 @@ def test_readme_command_runs(command, status, tmp_path):
                           capture_output=True, text=True, check=False)
     assert proc.returncode == status, proc.stderr[-2000:]
     assert "Traceback" not in proc.stderr
-    written = _named_outputs(args) or (["reports/index.md"] if args[0] == "reproduce" else [])
+    written = _named_outputs(args) or (["reproduced/index.md"] if args[0] == "reproduce" else [])
     assert proc.stdout.strip() or written
     for name in written:
         assert (tmp_path / name).exists(), f"{command!r} did not write {name}"
@@ -90,3 +94,51 @@ def test_readme_python_examples_run():
     runner = doctest.DocTestRunner(optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
     runner.run(test)
     assert runner.failures == 0 and runner.tries > 0
+
+
+def quick_start() -> list[str]:
+    """The quick start's commands (whole lines, install included), in README order."""
+    section = README.read_text().split("## Quick start", 1)[1].split("\n## ", 1)[0]
+    return [block.strip() for block in re.findall(r"```bash\n(.*?)```", section, re.S)]
+
+
+def test_quick_start_is_the_main_job_then_the_tests():
+    first, second = quick_start()
+    assert first.endswith("&& dispersion reproduce") and "python -m pytest -q" in second
+
+
+def _sh(command: str, cwd: Path, timeout: int = 3600) -> subprocess.CompletedProcess:
+    env = {k: v for k, v in os.environ.items() if k not in ("VIRTUAL_ENV", "PYTHONPATH")}
+    return subprocess.run(["bash", "-c", command], cwd=cwd, capture_output=True, text=True,
+                          env=env, timeout=timeout, check=False)
+
+
+@pytest.mark.slow
+def test_quick_start_in_a_fresh_clone_passes_and_leaves_the_checkout_clean(tmp_path):
+    clone = tmp_path / "clone"
+    subprocess.run(["git", "clone", "-q", str(ROOT), str(clone)], check=True)
+    first, second = quick_start()
+    main_job = _sh(first, clone)
+    assert main_job.returncode == 0, main_job.stdout[-3000:] + main_job.stderr[-3000:]
+    verdict = main_job.stdout.strip().splitlines()[-1]
+    assert verdict.startswith("reproduced: "), verdict
+    assert "Traceback" not in main_job.stderr and "\r" not in main_job.stderr  # no tqdm codes
+    tests = _sh(second, clone)
+    assert tests.returncode == 0, tests.stdout[-3000:]
+    status = subprocess.run(["git", "status", "--porcelain", "--ignored=no"], cwd=clone,
+                            capture_output=True, text=True, check=True).stdout
+    assert status == "", status
+
+    # docs/ci/verify.yml, its run: steps as written, in a manuscript folder beside the clone
+    yml = (ROOT / "docs" / "ci" / "verify.yml").read_text()
+    steps = re.findall(r"^\s*- run: (.+)$", yml, re.M)
+    assert steps and all("dispersion-iga" not in s or "./dispersion-iga" in s for s in steps)
+    paper = tmp_path / "manuscript"
+    (paper / "claims").mkdir(parents=True)
+    shutil.copy(ROOT / "examples" / "claims.toml", paper / "claims" / "claims.toml")
+    (paper / "dispersion-iga").symlink_to(clone)  # the workflow's second checkout
+    venv = tmp_path / "ci-venv"
+    for step in [f"python3 -m venv {venv}"] + [f". {venv}/bin/activate && {s}" for s in steps]:
+        done = _sh(step, paper)
+        assert done.returncode == 0, (step, done.stdout[-2000:], done.stderr[-2000:])
+    assert (paper / "verify-junit.xml").is_file()

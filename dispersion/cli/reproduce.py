@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import argparse
 import shlex
+from pathlib import Path
 
 from dispersion.cli import number
 from dispersion.report import SECTIONS
@@ -72,7 +73,8 @@ def _command(args: argparse.Namespace) -> str:
     if args.update_reference:
         words.append("--update-reference")
     if args.out is not None:
-        words += ["--out", args.out]
+        # recorded in every result file: a folder of this machine is named by its last part
+        words += ["--out", Path(args.out).name if Path(args.out).is_absolute() else args.out]
     if args.quick:
         words.append("--quick")
     if args.jobs is not None:

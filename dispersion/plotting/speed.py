@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 
-from dispersion.plotting import axes, new_figure
+from dispersion.plotting import axes
 
 __all__ = ["plot_race", "plot_scaling"]
 

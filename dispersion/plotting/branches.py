@@ -274,37 +274,71 @@ def figure_velocities(data: Mapping, discrete: str = "consistent", fd_per_omega=
     return fig
 
 
-def figure_per_wavelength(per_wavelength: Mapping, bar: Mapping):
-    """Signed relative phase-velocity error against elements per wavelength: plate S0, A0, bar."""
-    fig = new_figure(figsize=(13, 4.4))
+_DEGREE_MARKERS = {1: "x", 2: "o", 3: "s", 4: "^"}
+
+
+def _plot_signed_log(ax, x, e, color, marker, label, offset=0, zorder=2):
+    """|e| on a log axis, solid where e > 0 and dashed where e < 0; a sign change leaves a
+    gap (no vertical line), values below ``ROUND_OFF`` are round-off and not drawn."""
+    x, e = _a(x), _a(e)
+    a = np.abs(e)
+    a[~(a >= ROUND_OFF)] = np.nan
+    every = (offset % 9, 9)
+    ax.plot(x, np.where(e > 0, a, np.nan), "-", color=color, marker=marker, ms=3.5,
+            markevery=every, mfc="none", lw=1.2, label=label, zorder=zorder)
+    ax.plot(x, np.where(e < 0, a, np.nan), "--", color=color, marker=marker, ms=3.5,
+            markevery=every, mfc="none", lw=1.2, zorder=zorder)
+
+
+def _sign_legend(ax):
+    from matplotlib.lines import Line2D
+
+    handles, labels = ax.get_legend_handles_labels()
+    handles += [Line2D([], [], color="0.3", ls="-"), Line2D([], [], color="0.3", ls="--")]
+    labels += [r"solid: $\Omega^h > \Omega$ (too fast)", r"dashed: $\Omega^h < \Omega$ (too slow)"]
+    ax.legend(handles, labels, fontsize="xx-small", ncol=1)
+
+
+#: Drawing order of the masses: the lumped curves first, so that a singular curve close to
+#: them stays visible on top.
+_MASS_ORDER = {"lumped": 0, "consistent": 1, "singular-lumped": 2, "singular": 3}
+
+
+def figure_per_wavelength(per_wavelength: Mapping, bar: Mapping, nu: float | None = None):
+    """|Relative phase-velocity error| against elements per wavelength on log-log axes, its
+    sign by line style: plate S0, A0 and the 1D bar. Colour: mass; marker: degree p."""
+    fig = new_figure(figsize=(13, 4.6))
     axs = fig.subplots(1, 3, sharey=True)
-    epw = _a(per_wavelength["elements_per_wavelength"])
-    styles = {1: ":", 2: "-", 3: "--", 4: "-."}
+    epw = per_wavelength["elements_per_wavelength"]
+    curves = sorted(per_wavelength["curves"], key=lambda c: _MASS_ORDER.get(c["mass"], 9))
     for ax, branch in zip(axs[:2], ("S0", "A0")):
-        for c in per_wavelength["curves"]:
-            if c["branch"] != branch:
-                continue
-            e = _a(c["error"])
-            e[np.abs(e) < ROUND_OFF] = np.nan
-            ax.plot(epw, e, styles[c["p"]], color=_colour(c["mass"]),
-                    label=f"p = {c['p']} (n = {c['n']}), {c['mass']}")
+        for c in curves:
+            if c["branch"] == branch:
+                _plot_signed_log(ax, epw, c["error"], _colour(c["mass"]),
+                                 _DEGREE_MARKERS.get(c["p"], "d"),
+                                 f"p = {c['p']} (n = {c['n']}), {c['mass']}",
+                                 offset=3 * _MASS_ORDER.get(c["mass"], 0) + c["p"],
+                                 zorder=2 + _MASS_ORDER.get(c["mass"], 0))
         ax.set_title(f"plate {branch}, Bloch patch r = b/h = {per_wavelength['r']:g}",
                      fontsize="small")
-    x = _a(bar["elements_per_wavelength"])
-    for key, e in bar["error"].items():
+    keys = sorted(bar["error"], key=lambda k: _MASS_ORDER.get(k.split()[1], 9))
+    for key in keys:
         p, mass = int(key.split()[0][2:]), key.split()[1]
-        e = _a(e)
-        e[np.abs(e) < ROUND_OFF] = np.nan
-        axs[2].plot(x, e, styles[p], color=_colour(mass), label=f"p = {p}, {mass}")
+        _plot_signed_log(axs[2], bar["elements_per_wavelength"], bar["error"][key],
+                         _colour(mass), _DEGREE_MARKERS.get(p, "d"), f"p = {p}, {mass}",
+                         offset=p)
     axs[2].set_title("1D bar, periodic B-splines (Cottrell et al. 2006)", fontsize="small")
     for ax in axs:
         ax.set_xscale("log")
+        ax.set_yscale("log")
         ax.set_xlabel("elements per wavelength")
-        ax.axhline(0.0, color="0.4", lw=0.7)
-        ax.set_yscale("symlog", linthresh=1e-12)
+        ax.grid(True, which="major", alpha=0.3)
         if ax.get_legend_handles_labels()[0]:
-            ax.legend(fontsize="xx-small", ncol=1)
-    axs[0].set_ylabel(r"$c_p^h / c_p - 1 = \Omega^h/\Omega - 1$ (symlog, linear below 1e-12)")
+            _sign_legend(ax)
+    axs[0].set_ylabel(r"$|c_p^h / c_p - 1| = |\Omega^h/\Omega - 1|$ (below 1e-13: round-off, "
+                      "not drawn)")
+    if nu is not None:
+        fig.suptitle(f"Discretization error per wavelength, nu = {nu:g}", fontsize="medium")
     return fig
 
 
@@ -331,18 +365,20 @@ def figure_shapes(shapes: Mapping):
 
 
 def plot_speed_accuracy(rows: Sequence[Mapping], ax=None, label=None, floor: float | None = None,
-                        order=None):
+                        order=None, point_label=None):
     """Error against wall time, one line per group of ``rows`` (``label(row)`` names it),
     points joined in the order of ``order(row)`` (default: time).
 
     Errors below ``floor`` (the reference's own accuracy) carry no information: they are
-    drawn at the floor as open markers.
+    drawn at the floor as open markers (and the legend says so only if there are any).
+    ``point_label(row)`` writes a label beside each point (e.g. its rtol).
     """
     ax = _axes(ax)
     label = label or (lambda r: str(r.get("name", "")))
     groups: dict[str, list] = {}
     for row in rows:
         groups.setdefault(label(row), []).append(row)
+    any_below = False
     for i, (name, rs) in enumerate(groups.items()):
         rs = sorted(rs, key=order or (lambda r: r["time_s"]))
         t = np.array([r["time_s"] for r in rs])
@@ -352,10 +388,16 @@ def plot_speed_accuracy(rows: Sequence[Mapping], ax=None, label=None, floor: flo
         ax.loglog(t, np.where(below, lo, e), "-", color=f"C{i}", label=name)
         ax.loglog(t[~below], e[~below], "o", color=f"C{i}")
         if below.any():
+            any_below = True
             ax.loglog(t[below], np.full(below.sum(), lo), "o", color=f"C{i}", mfc="none")
+        if point_label is not None:
+            for ti, ei, row in zip(t, np.where(below, lo, e), rs):
+                ax.annotate(point_label(row), (ti, ei), xytext=(3, 3 if i % 2 else -8),
+                            textcoords="offset points", fontsize="xx-small", color=f"C{i}")
     if floor:
         ax.axhline(floor, color="0.4", lw=0.8, ls=":",
-                   label="reference's own error (open markers: at or below it)")
+                   label="reference's own error" + (" (open markers: at or below it)"
+                                                    if any_below else ""))
     from matplotlib.ticker import NullFormatter
 
     ax.xaxis.set_minor_formatter(NullFormatter())
@@ -370,14 +412,15 @@ def figure_speed_accuracy(tracer: Mapping, discrete_rows: Sequence[Mapping]):
     a1, a2 = fig.subplots(1, 2)
     ref = tracer["reference"]
     plot_speed_accuracy(tracer["rows"], a1, label=lambda r: f"scan step {r['step']:g}",
-                        floor=tracer["reference_mpmath_error"], order=lambda r: -r["rtol"])
+                        floor=tracer["reference_mpmath_error"], order=lambda r: -r["rtol"],
+                        point_label=lambda r: f"{r['rtol']:.0e}")
     a1.set_title(f"Rayleigh-Lamb tracer, {tracer['kappa_count']} kappa, Omega <= "
                  f"{tracer['omega_max']:g}; points: rtol\nerror vs reference (step {ref[0]:g}, "
                  f"rtol {ref[1]:g}; rtol falls along each line), itself vs 40-digit mpmath: "
                  f"{tracer['reference_mpmath_error']:.1e}", fontsize="small")
     a1.set_ylabel("max relative error of the roots")
     plot_speed_accuracy(discrete_rows, a2, label=lambda r: f"p = {r['p']}, {r['mass']}",
-                        order=lambda r: r["n"])
+                        order=lambda r: r["n"], point_label=lambda r: f"n={r['n']}")
     a2.set_title("discrete branches (points: n = p+1, p+3 control points)",
                  fontsize="small")
     a2.set_ylabel("max |relative error| S0/A0, kappa <= 1")

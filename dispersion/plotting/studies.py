@@ -23,13 +23,18 @@ def _axes(ax):
     return axes(ax, (5, 3.5))
 
 
-def plot_gamma_coefficients(rows: Sequence[dict], ax=None):
-    """Leading error-carrying coefficients of Omega^2 against gamma_s (S0 k^4, A0 k^6)."""
+def plot_gamma_coefficients(rows: Sequence[dict], ax=None, exact: dict | None = None):
+    """Leading error-carrying coefficients of Omega^2 against gamma_s (S0 k^4, A0 k^6), with
+    the exact Rayleigh-Lamb coefficient of the same power as a horizontal reference line."""
     ax = _axes(ax)
     g = [row["gamma_s"] for row in rows]
-    for branch, power, style in (("S0", "4", "o-"), ("A0", "6", "s--")):
+    for i, (branch, power, style) in enumerate((("S0", "4", "o-"), ("A0", "6", "s--"))):
         vals = [row[branch].get(power, np.nan) for row in rows]
-        ax.plot(g, vals, style, label=f"{branch}: coefficient of $\\kappa^{power}$")
+        ax.plot(g, vals, style, color=f"C{i}",
+                label=f"{branch}: coefficient of $\\kappa^{power}$")
+        if exact and power in exact.get(branch, {}):
+            ax.axhline(exact[branch][power], color=f"C{i}", lw=1.0, ls=":",
+                       label=f"{branch}, exact Rayleigh-Lamb: {exact[branch][power]:.4g}")
     ax.axhline(0.0, color="0.6", lw=0.8)
     ax.set_xlabel(r"redistribution weight $\gamma_s$")
     ax.set_ylabel(r"coefficient of $\Omega^2$ series")
@@ -59,13 +64,18 @@ def plot_gamma_errors(rows: Sequence[dict], kappas: Sequence[float], ax=None):
     return ax.figure
 
 
-def figure_gamma(rows: Sequence[dict], kappas: Sequence[float]):
-    """Two panels: series coefficients and branch errors against gamma_s."""
-    fig = new_figure(figsize=(10, 3.8))
+def figure_gamma(rows: Sequence[dict], kappas: Sequence[float], exact: dict | None = None,
+                 nu: float | None = None, r=None):
+    """Two panels: series coefficients (exact ones as reference lines) and branch errors
+    against gamma_s."""
+    fig = new_figure(figsize=(10, 4.0))
     left, right = fig.subplots(1, 2)
-    plot_gamma_coefficients(rows, ax=left)
+    plot_gamma_coefficients(rows, ax=left, exact=exact)
     plot_gamma_errors(rows, kappas, ax=right)
-    fig.suptitle(r"Singular mass (top contact): effect of the redistribution weight $\gamma_s$")
+    where = ", ".join(x for x in (f"nu = {nu:g}" if nu is not None else "",
+                                  f"Bloch r = b/h = {r:g}" if r is not None else "") if x)
+    fig.suptitle(r"Singular mass (top contact): effect of the redistribution weight $\gamma_s$"
+                 + (f" ({where})" if where else ""))
     return fig
 
 

@@ -68,7 +68,7 @@ def render(data: dict, out: Path) -> str:
     save_figure(plots.figure_velocities(fig2, fd_per_omega=data["fd_per_omega_aluminium"],
                                         zgv=data["zgv"]),
                 out / "branches_velocities.png", dpi=130)
-    save_figure(plots.figure_per_wavelength(data["per_wavelength"], data["bar"]),
+    save_figure(plots.figure_per_wavelength(data["per_wavelength"], data["bar"], nu=data["nu"]),
                 out / "branches_per_wavelength.png", dpi=130)
     save_figure(plots.figure_shapes(data["shapes"]), out / "branches_shapes.png", dpi=130)
     save_figure(plots.figure_speed_accuracy(data["tracer"], data["discrete_speed"]),
@@ -110,9 +110,11 @@ def render(data: dict, out: Path) -> str:
         f"{zgv}.", "",
         "### Discretization error per wavelength", "",
         "![per wavelength](branches_per_wavelength.png)", "",
-        "Signed relative phase-velocity error (equal to the frequency error at the same "
-        "wavenumber) against elements per wavelength, for the plate's S0 and A0 and for the "
-        "1D bar. Values below 1e-13 are round-off and are not drawn.", "",
+        "Magnitude of the relative phase-velocity error (equal to the frequency error at the "
+        "same wavenumber) against elements per wavelength, on log-log axes, for the plate's S0 "
+        "and A0 and for the 1D bar; its sign by line style (solid: the discrete wave is too "
+        "fast, dashed: too slow), so a sign change is a gap in the curve. Colour: mass; "
+        "marker: degree p. Values below 1e-13 are round-off and are not drawn.", "",
         "### Mode shapes", "",
         "![mode shapes](branches_shapes.png)", "",
         "### Speed and accuracy", "",

@@ -35,8 +35,9 @@ def render(data: dict, out: Path) -> str:
     from dispersion.plotting import studies as plots
 
     out = Path(out)
-    save_figure(plots.figure_gamma(data["gamma"], data["kappas"]), out / "studies_gamma.png",
-                dpi=120)
+    save_figure(plots.figure_gamma(data["gamma"], data["kappas"], exact=data.get("exact"),
+                                   nu=data["nu"], r=data["r"]),
+                out / "studies_gamma.png", dpi=120)
     save_figure(plots.figure_radius(data), out / "studies_radius.png", dpi=120)
     return _markdown(data)
 

@@ -89,6 +89,9 @@ class Studies:
     kappa_grid: tuple
     radius: tuple
     bar: tuple
+    #: The exact Rayleigh-Lamb coefficients of Omega^2 at ``nu`` (eqs 14-15), the reference
+    #: of study (a): ``{"S0": {power: value}, "A0": {...}}``.
+    exact: dict = None
 
 
 def series_frequency(coefficients: dict, kappa, order: int | None = None) -> np.ndarray:
@@ -224,4 +227,6 @@ def measure_studies(quick: bool = False, executor: Executor | None = None) -> St
                    "studies: radius"),
         bar=run(functools.partial(_bar_case, n_elements=20 if quick else 40), cases_bar,
                 "studies: Newmark"),
+        exact={b: {str(k): float(v) for k, v in _exact(b, order_a, NU).items()}
+               for b in ("S0", "A0")},
     )

@@ -26,7 +26,7 @@ def register(subparsers) -> None:
         description=__doc__.splitlines()[0].replace("``", "") + " Maxima runs if installed.",
         formatter_class=argparse.ArgumentDefaultsHelpFormatter)
     parser.add_argument("--quick", action="store_true",
-                        help="kappa^8 and kappa^16 only, n = 3..6 (CI, a few seconds)")
+                        help="kappa^8 and kappa^16 only, n = 3 to 6 (CI, a few seconds)")
     parser.add_argument("--budget", type=_budget, default=120.0,
                         help="seconds allowed to each child process, in (0, 600]")
     parser.add_argument("--maxima", default="maxima", help="maxima executable")

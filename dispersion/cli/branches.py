@@ -67,11 +67,11 @@ def register(sub) -> None:
                    help=f"aspect ratio b/h of the Bloch model, dimensionless "
                         f"(default: {float(defaults.FIGURE2_R):g}, Figure 2's h/b = 2)")
     p.add_argument("--p", type=integer("degree p", 1, MAX_N - 1), default=defaults.P,
-                   help=f"degree through the thickness, 1..{MAX_N - 1} "
+                   help=f"degree through the thickness, in [1, {MAX_N - 1}] "
                         f"(default: {defaults.P})")
     p.add_argument("--n", type=integer("control points n", 2, MAX_N), default=defaults.N,
-                   help=f"control points through the thickness, p+1..{MAX_N} "
-                        f"(default: {defaults.N})")
+                   help=f"control points through the thickness, in [p + 1, {MAX_N}] "
+                        f"(numeric branches; default: {defaults.N})")
     p.add_argument("--nu", type=number("nu"), default=None,
                    help=f"Poisson's ratio (default: {defaults.NU_FLOAT}, or the material's)")
     p.add_argument("--kappa-min", type=number("kappa-min"), default=0.0,
@@ -79,7 +79,7 @@ def register(sub) -> None:
     p.add_argument("--kappa-max", type=number("kappa-max"), default=8.0,
                    help="largest kappa = kh, dimensionless (default: 8)")
     p.add_argument("--count", type=integer("count", 2, MAX_COUNT), default=400,
-                   help=f"number of kappa points, 2..{MAX_COUNT} (default: 400)")
+                   help=f"number of kappa points, in [2, {MAX_COUNT}] (default: 400)")
     p.add_argument("--omega-max", type=number("omega-max"), default=8.0,
                    help=f"largest Omega = omega h / c_T, in (0, {MAX_OMEGA:g}] (default: 8)")
     p.add_argument("--material", choices=sorted(_materials()),
@@ -90,8 +90,9 @@ def register(sub) -> None:
                    help="plate thickness d = 2h in mm (with a material: physical columns)")
     p.add_argument("--exact", action="store_true", help="Rayleigh-Lamb branches only")
     p.add_argument("--exact-only", dest="exact", action="store_true", help=argparse.SUPPRESS)
-    p.add_argument("--format", choices=("text", "csv", "json"), default="csv",
-                   help="what goes to stdout when no --csv/--figure is given (default: csv)")
+    p.add_argument("--format", choices=("text", "csv", "json"), default=None,
+                   help="what goes to stdout when no --csv/--figure is given (default: csv); "
+                        "an error with --csv or --figure")
     p.add_argument("--csv", help="write the rows as CSV to FILE ('-': stdout)")
     p.add_argument("--figure", help="write the figure to FILE (.png, .pdf or .svg)")
     p.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
@@ -135,6 +136,10 @@ def _material(args):
 
 def _settings(args) -> dict:
     """Validate every option before any work; return the resolved inputs."""
+    if args.format is not None and (args.csv or args.figure):
+        raise InputError("--format says what goes to stdout and does not apply with --csv "
+                         "or --figure (they write files; '--csv -' writes CSV to stdout)")
+    args.format = args.format or "csv"
     if args.exact:
         for opt, val in (("--mass", args.mass), ("--contact", args.contact),
                          ("--gamma-s", args.gamma_s), ("--r", args.r), ("--model", args.model)):
@@ -189,10 +194,12 @@ def _settings(args) -> dict:
 def _inputs(args, s) -> dict:
     from dispersion.results import package_versions
 
-    out = {"nu": s["nu"], "model": args.model, "p": args.p, "n": args.n,
-           "masses": s["masses"], "kappa": [args.kappa_min, args.kappa_max, args.count],
-           "omega_max": args.omega_max,
-           "dispersion-iga": package_versions(("dispersion-iga",))["dispersion-iga"]}
+    out = {"nu": s["nu"]}
+    if s["masses"]:  # the patch's parameters apply only where a patch is computed
+        out.update({"model": args.model, "p": args.p, "n": args.n, "masses": s["masses"]})
+    out.update({"kappa": [args.kappa_min, args.kappa_max, args.count],
+                "omega_max": args.omega_max,
+                "dispersion-iga": package_versions(("dispersion-iga",))["dispersion-iga"]})
     if args.model == "bloch" and s["masses"]:
         out["r"] = s["r"]
     if any(m.startswith("singular") for m in s["masses"]):

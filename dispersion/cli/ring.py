@@ -96,7 +96,7 @@ def register(sub) -> None:
                             f"{extra}")
     p.add_argument("--out", metavar="DIR",
                    help="folder (new, or written by dispersion) to write: " + "; ".join(
-                       f"{name}: {what}" for name, what in OUT_FILES.items()))
+                       f"{name}: {what}" for name, what in OUT_FILES.items()).replace("%", "%%"))
     p.add_argument("--format", choices=("text", "json", "csv"), default="text",
                    help="stdout: one-line summary, JSON summary, or CSV history (default: text)")
     p.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,

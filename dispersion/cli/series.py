@@ -83,6 +83,20 @@ def _points_range() -> str:
     return f"in [p + 1, {N_MAX}]"
 
 
+class _Help(str):
+    """A help text whose range is filled in only when help is printed: ``{range}`` in the
+    template is replaced by ``rng()`` (the bounds live in modules that import sympy, which
+    ``dispersion series`` avoids unless it needs it)."""
+
+    def __new__(cls, template: str, rng):
+        obj = super().__new__(cls, template.replace("{range}", "").replace(" ,", ","))
+        obj.template, obj.rng = template, rng
+        return obj
+
+    def __mod__(self, params):
+        return self.template.replace("{range}", self.rng()) % params
+
+
 def _aspect(text):
     return "r" if text == "r" else _fraction("r")(text)
 
@@ -113,16 +127,16 @@ def register(sub) -> None:
                    help="aspect ratio b/h of the Bloch model (dimensionless), or 'r' to keep it "
                         "symbolic (default %(default)s)")
     p.add_argument("--p", type=_integer("degree p", _degree_range), default=_Default("P"),
-                   help="degree through the thickness, in [1, plate.P_MAX] "
-                        "(default %(default)s)")
+                   help=_Help("degree through the thickness, {range} (default %(default)s)",
+                              _degree_range))
     p.add_argument("--n", type=_integer("control points n", _points_range),
                    default=_Default("N"),
-                   help="control points through the thickness, in [p + 1, plate.N_MAX] "
-                        "(default %(default)s)")
+                   help=_Help("control points through the thickness, {range} "
+                              "(default %(default)s)", _points_range))
     p.add_argument("--order", type=_integer("order", _order_range),
                    default=_Default("order", ORDER),
-                   help="highest power of kappa, even, at most power_balance.MAX_ORDER "
-                        "(default %(default)s)")
+                   help=_Help("highest power of kappa{range} (default %(default)s)",
+                              lambda: _order_range().replace("(highest power of kappa)", "")))
     p.add_argument("--nu", type=_fraction("nu"), default=None,
                    help="substitute a value for Poisson's ratio nu, in (-1, 0.5); "
                         "None: symbolic")

@@ -27,6 +27,8 @@ def _jobs(text: str) -> int:
 
 
 def register(sub) -> None:
+    from dispersion.claims import MAX_JOBS
+
     p = sub.add_parser("verify", help="check claimed series/values against the derivation",
                        description="Derive every claim of the claims files (TOML, see "
                                    "dispersion.claims) and compare exactly; exit 1 if any "
@@ -35,11 +37,13 @@ def register(sub) -> None:
     p.add_argument("--paper", action="store_true",
                    help="also verify the paper's eqs 14-20 (the claims file shipped with the package)")
     p.add_argument("--junit", metavar="FILE", help="write a JUnit XML report ('-' for stdout)")
-    p.add_argument("--format", choices=("text", "markdown"), default="text")
+    p.add_argument("--format", choices=("text", "markdown"), default="text",
+                   help="what goes to stdout: a text report per claim, or a Markdown table "
+                        "(default: text)")
     p.add_argument("--jobs", type=_jobs, default=None,
-                   help="worker processes for independent derivations, at most "
-                        "dispersion.claims.MAX_JOBS (default: in-process for series to "
-                        "kappa^8 or less, else the CPU count)")
+                   help=f"worker processes for independent derivations, 1 to {MAX_JOBS} "
+                        "(default: in-process for series to kappa^8 or less, else the CPU "
+                        "count)")
     p.set_defaults(func=run)
 
 

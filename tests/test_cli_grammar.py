@@ -64,3 +64,53 @@ def test_exact_only_csv_lists_only_what_applies(capsys):
     header = [line for line in capsys.readouterr().out.splitlines() if line.startswith("#")]
     keys = {line[2:].split(":")[0] for line in header}
     assert keys == {"nu", "kappa", "omega_max", "dispersion-iga"}, keys
+
+
+# --------------------------------------------------------------------------- formats
+
+def test_latex_shows_the_factored_forms_of_the_text(capsys):
+    assert main(["series", "--exact", "--order", "6", "--format", "latex"]) == 0
+    latex = capsys.readouterr().out  # text: -2/(3*(nu - 1)), 2*(7*nu - 17)/(45*(nu - 1)**2)
+    assert r"- \frac{2}{3 \left(\nu - 1\right)}" in latex and r"3 \nu - 3" not in latex
+    assert r"\frac{2 \left(7 \nu - 17\right)}{45 \left(\nu - 1\right)^{2}}" in latex
+
+
+@pytest.mark.slow  # lark's Earley parser takes tens of seconds on a shared machine
+def test_latex_keeps_the_factored_forms_of_the_text(capsys):
+    """Each LaTeX coefficient is the text one, same factors (lark's LaTeX parser reads it back)."""
+    import sympy
+    from sympy.parsing.latex import parse_latex
+
+    assert main(["series", "--exact", "--order", "6", "--format", "json"]) == 0
+    records = __import__("json").loads(capsys.readouterr().out)
+    assert main(["series", "--exact", "--order", "6", "--format", "latex"]) == 0
+    latex = capsys.readouterr().out
+    assert r"\frac{2}{3 \left(\nu - 1\right)}" in latex and r"3 \nu - 3" not in latex
+    terms = []
+    for line in latex.splitlines():
+        if line.startswith("\\Omega_"):
+            body = line.split(" = ", 1)[1].rsplit(" + O(", 1)[0]
+            for part in re.split(r"\\right\)\\kappa\^\{\d+\}(?: \+ )?", body)[:-1]:
+                terms.append(part.removeprefix("\\left("))
+    nu = sympy.Symbol("nu")
+    text = [sympy.sympify(c, locals={"nu": nu})
+            for r in records for c in r["coefficients"].values()]
+    assert len(terms) == len(text) == 5
+    assert r"\frac{2 \left(7 \nu - 17\right)}{45 \left(\nu - 1\right)^{2}}" in latex
+    parsed = 0
+    for tex, expected in zip(terms, text):
+        try:  # lark's grammar has no implicit product before \left( in some places
+            got = parse_latex(tex, backend="lark").subs(sympy.Symbol("nu"), nu)
+        except Exception:
+            continue
+        parsed += 1
+        assert sympy.simplify(got - expected) == 0, (tex, expected)
+    assert parsed >= 3
+
+
+def test_paper_table_wraps_to_the_terminal(capsys, monkeypatch):
+    monkeypatch.setenv("COLUMNS", "60")
+    assert main(["series", "--paper"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert max(map(len, lines)) <= 60
+    assert any(line.strip().startswith("printed: ") for line in lines)

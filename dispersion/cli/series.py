@@ -221,9 +221,14 @@ def _render(record: dict, fmt: str) -> str:
     if fmt == "latex":
         import sympy
 
+        from sympy.parsing.sympy_parser import parse_expr
+
         local = {"nu": sympy.Symbol("nu"), "r": sympy.Symbol("r", positive=True)}
-        body = " + ".join(f"\\left({sympy.latex(sympy.sympify(c, locals=local))}\\right)"
-                          f"\\kappa^{{{k}}}" for k, c in terms)
+        # parsed unevaluated: the factored form of the text output (2/(3*(nu - 1)), not
+        # 2/(3 nu - 3)) is kept, so both formats show one expression
+        body = " + ".join(
+            f"\\left({sympy.latex(parse_expr(c, local_dict=local, evaluate=False))}\\right)"
+            f"\\kappa^{{{k}}}" for k, c in terms)
         return f"% {label}\n\\Omega_{{{record['branch']}}}^2 = {body} + O(\\kappa^{{{last + 2}}})"
     if fmt == "csv":
         return "\n".join(f"{record['branch']},{k},\"{c}\"" for k, c in terms)
@@ -244,11 +249,41 @@ def _paper(fmt: str) -> str:
                                      for x in eq13_note()]}, indent=2)
     if fmt == "latex":  # a complete document: `dispersion series --paper --format latex > e.tex`
         return errata_document(rows, eq13_note()).rstrip("\n")
-    notes = "\n".join(f"  {b}: standard q0(w) = {s};  printed q0(w) = {pr}"
+    width = _width()
+    notes = "\n".join(_wrap(f"{b}: standard q0(w) = {s};  printed q0(w) = {pr}", width, "  ")
                       for b, s, pr in eq13_note())
-    return (format_table(rows, "text")
-            + "\n\nEq (13), leading balance for Omega^2 = w kappa^(2 sigma) (non-zero roots are "
-              "admissible leading coefficients):\n" + notes)
+    table = format_table(rows, "text")
+    if max(map(len, table.splitlines())) > width:
+        table = _records(rows, width)
+    return (table + "\n\n" + _wrap("Eq (13), leading balance for Omega^2 = w kappa^(2 sigma) "
+                                    "(non-zero roots are admissible leading coefficients):",
+                                    width, "") + "\n" + notes)
+
+
+def _width() -> int:
+    """Columns of the terminal (``COLUMNS``; 80 when stdout is not a terminal)."""
+    import shutil
+
+    return max(40, shutil.get_terminal_size((80, 24)).columns)
+
+
+def _wrap(text: str, width: int, indent: str) -> str:
+    import textwrap
+
+    return textwrap.fill(text, width, initial_indent=indent, subsequent_indent=indent + "    ",
+                         break_on_hyphens=False)
+
+
+def _records(rows, width: int) -> str:
+    """The errata table as one block per row, each line wrapped to ``width`` columns."""
+    out = []
+    for r in rows:
+        head = (f"({r.equation}) {r.branch} kappa^{r.power}: {r.status}; reproduced by "
+                f"{', '.join(r.reproduced_by) or 'none'}")
+        out.append("\n".join([_wrap(head, width, ""),
+                              _wrap(f"printed: {r.printed}", width, "  "),
+                              _wrap(f"derived: {r.derived}", width, "  ")]))
+    return "\n\n".join(out)
 
 
 def _check_up_front(args) -> None:

@@ -39,6 +39,9 @@ _MODULES = {
     "discrete_branches": "waves.discrete_branches", "velocities": "waves.velocities",
     "units": "waves.units", "mode_shapes": "waves.mode_shapes",
     "bar_dispersion": "waves.bar_dispersion", "errata": "claims.errata",
+    "exact_series": "waves.exact_series", "branch_study": "studies.branch_study",
+    "paper_studies": "studies.paper_studies", "series_race": "studies.series_race",
+    "plotting": "plotting", "report": "report",
 }
 _SUBMODULES = tuple(_MODULES)
 

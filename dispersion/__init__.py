@@ -41,7 +41,8 @@ _MODULES = {
     "bar_dispersion": "waves.bar_dispersion", "errata": "claims.errata",
     "exact_series": "waves.exact_series", "branch_study": "studies.branch_study",
     "paper_studies": "studies.paper_studies", "series_race": "studies.series_race",
-    "plotting": "plotting", "report": "report",
+    "plotting": "plotting", "report": "report", "branch_views": "waves.branch_views",
+    "table": "table",
 }
 _SUBMODULES = tuple(_MODULES)
 

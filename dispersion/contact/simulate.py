@@ -65,7 +65,7 @@ def ring_problem(sc: Scenario, mass: str = "singular") -> tuple[ContactProblem, 
     return model.problem, patch
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)  # a short repr: no whole arrays
 class RingResult:
     """Time histories (``series``: name -> array) and the ``summary`` of one ring run."""
 
@@ -80,6 +80,21 @@ class RingResult:
         return {"scenario": dict(asdict(self.scenario), E=self.scenario.E),
                 "summary": self.summary,
                 "series": {k: np.asarray(v).tolist() for k, v in self.series.items()}}
+
+    def __repr__(self) -> str:
+        s = self.summary
+        return (f"RingResult({self.mass} mass, {self.scheme}, {len(self.series['t'])} steps, "
+                f"energy change {s['energy_change_percent']:+.4g} %, "
+                f"{s['contact_events']} contact events)")
+
+    def to_dataframe(self):
+        """The time histories, one row per step, columns named with their units
+        (:data:`SERIES_UNITS`); needs pandas (the ``dataframe`` extra)."""
+        from dispersion.waves.branch_views import require_pandas
+
+        pd = require_pandas()
+        return pd.DataFrame({f"{k} [{SERIES_UNITS.get(k, '-')}]": np.asarray(v)
+                             for k, v in self.series.items()})
 
     def csv_text(self) -> str:
         """Time histories as CSV text, one row per step: ``#`` lines with the inputs (scene,

@@ -43,6 +43,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 import sympy
 
+from dispersion.waves.branch_views import BranchViews
 from dispersion.errors import InputError, check_nu, check_positive_int, check_wavenumbers
 from dispersion.symbolic.plate import (
     PlatePatch,
@@ -69,8 +70,8 @@ __all__ = [
 ]
 
 
-@dataclass
-class DiscreteBranches:
+@dataclass(repr=False)  # BranchViews: a short repr, no whole arrays
+class DiscreteBranches(BranchViews):
     """Discrete branches on a kappa grid.
 
     ``omega[label]`` has one entry per kappa (NaN where that branch does not exist there);

@@ -33,6 +33,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from dispersion.waves.branch_views import BranchViews
 from dispersion.errors import (
     InputError,
     check_nu,
@@ -85,8 +86,8 @@ def check_samples(kappa_count: int, omega_max: float, step: float = 0.05,
     return samples
 
 
-@dataclass
-class ExactBranches:
+@dataclass(repr=False)  # BranchViews: a short repr, no whole arrays
+class ExactBranches(BranchViews):
     """Exact Rayleigh-Lamb branches on a kappa grid.
 
     Attributes

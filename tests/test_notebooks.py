@@ -40,6 +40,12 @@ def test_notebook_executes(path, tmp_path):
         if out.get("output_type") == "error"
     ]
     assert not errors
+    # a notebook runs clean: no warning on stderr (e.g. tqdm's "IProgress not found")
+    warnings = [out.get("text", "") for cell in nb.cells if cell.cell_type == "code"
+                for out in cell.get("outputs", [])
+                if out.get("output_type") == "stream" and out.get("name") == "stderr"
+                and "Warning" in out.get("text", "")]
+    assert not warnings, warnings[:3]
     source = path.read_text()
     if "plotting" in source or "plot_" in source:  # a notebook that draws shows its figures
         images = [out for cell in nb.cells if cell.cell_type == "code"

@@ -32,8 +32,10 @@ def register(subparsers) -> None:
     parser.add_argument("--maxima", default="maxima", help="maxima executable")
     parser.add_argument("--format", choices=("text", "json"), default="text",
                         help="what goes to stdout: the Markdown tables or the JSON record")
-    parser.add_argument("--out", default=None,
-                        help="directory: write series_speed.json, series_speed.md and the chart")
+    parser.add_argument("--out", default=None, metavar="DIR",
+                        help="folder to write: series_speed.json (the measurement with inputs, "
+                             "versions, machine), series_speed.md (tables) and series_speed.png "
+                             "(the chart)")
     parser.set_defaults(func=handler)
 
 
@@ -48,6 +50,9 @@ def handler(args: argparse.Namespace) -> int:
         from dispersion.io import check_output_dir
 
         out = Path(check_output_dir(args.out, option="--out"))
+        from dispersion.plotting import require_matplotlib
+
+        require_matplotlib("bench --out (its chart)")
     start = time.perf_counter()
     result = measure(quick=args.quick, timeout=args.budget, maxima=args.maxima,
                      extended=not args.quick)

@@ -94,10 +94,25 @@ def _first_impact(run: dict, pad: float = 0.5):
     return t[on[0]] - pad * span, t[end] + pad * span
 
 
-def figure4(lumped: dict, singular: dict, paper: dict | None = None):
+def scene_caption(sc: dict) -> str:
+    """One line naming a ring scene from its stored fields."""
+    return (f"quarter ring r = {sc['r_inner']:g}-{sc['r_outer']:g} m, arc from "
+            f"{sc['theta0_deg']:g} deg, gap {sc['gap']:g} m, v0 = {sc['v0']:g} m/s, "
+            f"E = {sc['E']:.4g} Pa, nu = {sc['nu']:g}, rho = {sc['rho']:g} kg/m^3, "
+            f"{sc['n_xi_elements']} x {sc['n_eta_elements']} elements, dt = {sc['dt']:g} s")
+
+
+def figure4(lumped: dict, singular: dict, paper: dict | None = None,
+            scenario: dict | None = None):
     """Paper Figure 4 with one force axis for both masses, plus Delta E / E0 and a zoom on the
-    first impact."""
-    fig = new_figure(figsize=(10, 7.5))
+    first impact; titled with the scene (``scenario``, or the runs' own if they carry it)."""
+    fig = new_figure(figsize=(10, 7.8))
+    sc = scenario or lumped.get("scenario")
+    if sc:
+        import textwrap
+
+        fig.suptitle(textwrap.fill(f"Figure 4: {lumped['summary']['scheme']} Newmark, "
+                                   + scene_caption(sc), 110), fontsize="small")
     grid = fig.subplot_mosaic([["l", "lz"], ["s", "sz"], ["e", "e"]],
                               gridspec_kw={"width_ratios": (2.2, 1)})
     fmax = 1.08 * max(np.max(_arr(r, "contact_force")) for r in (lumped, singular))

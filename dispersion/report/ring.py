@@ -116,7 +116,7 @@ def render(data: dict, out: Path) -> str:
         "",
     ]
     if pair["lumped"]["series"] and pair["singular"]["series"]:
-        fig = figure4(pair["lumped"], pair["singular"], data["paper"])
+        fig = figure4(pair["lumped"], pair["singular"], data["paper"], data["scenario"])
         save_figure(fig, out / "figure4.png", dpi=110)
         lines += ["![Figure 4](figure4.png)", ""]
     lines += [

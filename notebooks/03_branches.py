@@ -52,6 +52,17 @@ print("exact branches:", sorted(exact.omega), "| failures reported:", exact.fail
 figure2(data, title=f"nu = {nu}, Bloch model r = {r}")
 
 # %% [markdown]
+# A result object shows itself briefly (no whole arrays); as a table it is one DataFrame
+# (with pandas, the `dataframe` extra): one row per kappa and branch, with group velocity.
+
+# %%
+import dispersion  # noqa: E402
+
+singular = dispersion.patch(r="1/2", mass="singular", gamma_s=0).branches(kappa, nu, group=True)
+print(repr(exact))
+singular.to_dataframe().head()
+
+# %% [markdown]
 # Phase and group velocity, with the zero-group-velocity points of the exact branches.
 
 # %%

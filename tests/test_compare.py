@@ -1,0 +1,100 @@
+"""Tests of dispersion/report/compare.py: the rules that decide whether a run reproduced.
+
+Properties over random JSON-like results (hypothesis): a result always agrees with itself;
+changing any one judged leaf beyond its tolerance is always reported (never a silent pass);
+timings are never judged; a changed shape is a disagreement.
+"""
+from __future__ import annotations
+
+import copy
+import math
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from dispersion.report.compare import (Verdict, close, compare_envelopes, compare_results,
+                                       timing, unjudged, within, _leaves)
+
+LEAF = st.one_of(st.none(), st.booleans(), st.integers(-10**6, 10**6), st.text(max_size=8),
+                 st.floats(-1e6, 1e6, allow_nan=False, allow_infinity=False))
+KEY = st.text("abcdefgh_", min_size=1, max_size=6)
+DATA = st.recursive(LEAF, lambda inner: st.one_of(st.lists(inner, max_size=4),
+                                                  st.dictionaries(KEY, inner, max_size=4)),
+                    max_leaves=30)
+RULES = (close("*", rel=1e-9, abs=1e-12),)
+
+
+@settings(max_examples=100, deadline=None)
+@given(DATA)
+def test_a_result_agrees_with_itself(data):
+    for rules in ((), RULES):
+        c = compare_results("s", data, copy.deepcopy(data), rules)
+        assert c.disagree == [] and c.agree == len(list(_leaves(data)))
+
+
+def _changed(value):
+    if isinstance(value, bool):
+        return not value
+    if isinstance(value, (int, float)):
+        return value + 1 + abs(value) * 1e-6  # far beyond rel 1e-9 and abs 1e-12
+    if isinstance(value, str):
+        return value + "x"
+    return 0.5  # None -> a number
+
+
+@settings(max_examples=100, deadline=None)
+@given(DATA, st.data())
+def test_any_changed_judged_leaf_is_reported(data, draw):
+    leaves = [p for p, _ in _leaves(data)]
+    if not leaves:
+        return
+    path = draw.draw(st.sampled_from(leaves))
+    new = copy.deepcopy(data)
+    node, parts = new, [p for p in path.replace("]", "").replace("[", ".").split(".") if p]
+    if not isinstance(data, (dict, list)):
+        new = _changed(data)
+    else:
+        for part in parts[:-1]:
+            node = node[int(part)] if isinstance(node, list) else node[part]
+        last = int(parts[-1]) if isinstance(node, list) else parts[-1]
+        node[last] = _changed(node[last])
+    for rules in ((), RULES):
+        c = compare_results("s", data, new, rules)
+        assert [d.path for d in c.disagree] == [path]
+        assert not Verdict("ref/", [c]).reproduced
+
+
+def test_rules_close_within_timing_unjudged():
+    ref = {"x": 1.0, "lo": -10.0, "hi": -9.0, "e": -9.5, "t": 2.0, "h": [1, 2, 3]}
+    rules = (close("x", rel=1e-6), within("e", "lo", "hi", widen=1.0), timing("t"),
+             unjudged("h[]", "chaotic"))
+    ok = dict(ref, x=1.0 + 1e-7, e=-10.9, t=40.0, h=[9, 9])
+    c = compare_results("s", ref, ok, rules)
+    assert c.disagree == [] and [t.ratio for t in c.timings] == [20.0] and c.unjudged == 3
+    bad = dict(ref, x=1.0 + 1e-5, e=-11.1)
+    assert [d.path for d in compare_results("s", ref, bad, rules).disagree] == ["x", "e"]
+
+
+def test_shape_changes_and_missing_keys_disagree():
+    assert compare_results("s", {"a": [1, 2]}, {"a": [1, 2, 3]}).disagree[0].path == "a[2]"
+    assert compare_results("s", {"a": 1, "b": 2}, {"a": 1}).disagree[0].rule.startswith("missing")
+    assert compare_results("s", {"a": 1.0}, {"a": None}, (close("a", rel=1),)).disagree
+
+
+def test_other_inputs_are_not_compared():
+    env = {"inputs": {"quick": False}, "result": {"a": 1}, "seconds": 1.0}
+    c = compare_envelopes("s", env, dict(env, inputs={"quick": True}), ())
+    assert c.skipped and c.agree == 0
+    v = Verdict("reports/", [c])
+    assert v.reproduced and v.line().startswith("not compared with reports/")
+
+
+@pytest.mark.parametrize("name", ["coefficients", "branches", "ring", "series_speed", "studies"])
+def test_each_section_declares_rules_that_compile(name):
+    from dispersion.report.compare import rules_of
+
+    for rule in rules_of(name):
+        assert rule.kind in {"exact", "close", "within", "timing", "unjudged"}
+        assert rule.kind != "unjudged" or rule.why  # an unjudged field says why
+        assert not (rule.kind == "close" and (math.isnan(rule.rel) or rule.rel >= 1e-3))

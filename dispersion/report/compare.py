@@ -206,12 +206,13 @@ class Verdict:
             lines.append("")
             if s.rules:
                 lines += ["| rule | fields | why |", "|---|---|---|"]
-                lines += [f"| {r.describe()} | `{r.pattern}` | {r.why} |" for r in s.rules]
+                lines += [f"| {_cell(r.describe())} | `{r.pattern}` | {_cell(r.why)} |"
+                          for r in s.rules]
                 lines.append("")
             if s.disagree:
                 lines += ["| field | reference | new | rule |", "|---|---|---|---|"]
-                lines += [f"| {d.path} | {d.reference!r} | {d.new!r} | {d.rule} |"
-                          for d in s.disagree[:200]]
+                lines += [f"| {d.path} | {_cell(repr(d.reference))} | {_cell(repr(d.new))} | "
+                          f"{_cell(d.rule)} |" for d in s.disagree[:200]]
                 if len(s.disagree) > 200:
                     lines.append(f"| ... {len(s.disagree) - 200} more | | | |")
                 lines.append("")
@@ -221,6 +222,11 @@ class Verdict:
                           f"{'-' if t.ratio is None else f'{t.ratio:.3g}'} |" for t in s.timings]
                 lines.append("")
         return "\n".join(lines) + "\n"
+
+
+def _cell(text: str) -> str:
+    """Text safe in a Markdown table cell."""
+    return text.replace("|", "\\|").replace("\n", " ")
 
 
 def _fmt(x) -> str:

@@ -94,8 +94,9 @@ def test_coefficients_section_renders_from_json_and_its_tex_compiles(tmp_path):
     from dispersion.report import section_module
 
     section = section_module("coefficients")
-    assert section.measure is paper_errata
-    measured = paper_errata(quick=True)
+    measured = section.measure(quick=True)  # paper_errata, the claims file named in the package
+    assert measured.rows == paper_errata(quick=True).rows
+    assert {c.file for c in measured.claims} == {"dispersion/data/paper_claims.toml"}
     results.save(tmp_path / "coefficients.json", "coefficients", measured)
     data = results.load(tmp_path / "coefficients.json")["result"]
     md = section.render(data, tmp_path)

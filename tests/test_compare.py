@@ -25,7 +25,7 @@ DATA = st.recursive(LEAF, lambda inner: st.one_of(st.lists(inner, max_size=4),
 RULES = (close("*", rel=1e-9, abs=1e-12),)
 
 
-@settings(max_examples=100, deadline=None)
+@settings(max_examples=60, deadline=None)
 @given(DATA)
 def test_a_result_agrees_with_itself(data):
     for rules in ((), RULES):
@@ -43,7 +43,7 @@ def _changed(value):
     return 0.5  # None -> a number
 
 
-@settings(max_examples=100, deadline=None)
+@settings(max_examples=60, deadline=None)
 @given(DATA, st.data())
 def test_any_changed_judged_leaf_is_reported(data, draw):
     leaves = [p for p, _ in _leaves(data)]

@@ -339,9 +339,7 @@ def test_the_orchestration_is_callable_without_the_cli(stubs, tmp_path):
     assert "ReproduceRun(" in repr(run) and len(repr(run)) < 300
 
 
-def test_progress_bars_stay_out_of_logs(stubs, tmp_path):
-    """stderr that is not a terminal gets no tqdm control codes (default), --progress forces."""
-    script = textwrap.dedent("""
+_PROGRESS_CHILD = textwrap.dedent("""
         import sys, types
         from dispersion.report import SECTIONS
         from dispersion.sweep import parallel_map
@@ -355,10 +353,20 @@ def test_progress_bars_stay_out_of_logs(stubs, tmp_path):
         from dispersion.cli import main
         sys.exit(main(["reproduce", "--out", sys.argv[1], "--jobs", "1"] + sys.argv[2:]))
     """)
+
+
+def test_progress_bars_stay_out_of_logs(tmp_path):
+    """stderr that is not a terminal gets no tqdm control codes (nested bars included)."""
+    script = _PROGRESS_CHILD
     quiet = subprocess.run([sys.executable, "-c", script, str(tmp_path / "a")], cwd=tmp_path,
                            capture_output=True, text=True, check=False)
     assert quiet.returncode == 0, quiet.stderr
     assert "\r" not in quiet.stderr and "%|" not in quiet.stderr
+
+
+@pytest.mark.slow  # a second child process
+def test_progress_flag_forces_the_bar(tmp_path):
+    script = _PROGRESS_CHILD
     loud = subprocess.run([sys.executable, "-c", script, str(tmp_path / "b"), "--progress"],
                           cwd=tmp_path, capture_output=True, text=True, check=False)
     assert loud.returncode == 0 and "reproduce" in loud.stderr and "%|" in loud.stderr

@@ -156,6 +156,8 @@ def series_switch(label: str, nu: float, rtol: float = SERIES_RTOL) -> float:
         raise InputError(f"label must be 'S0' or 'A0', got {label!r}")
     coef = _series_coefficients(label, float(check_nu(nu)))
     (lead, c_lead), (last, c_last) = coef[0], coef[-1]
+    if c_last == 0:   # S0 at nu = 0: Omega^2 = 2 kappa^2 exactly, the series terminates
+        return math.inf
     return (rtol * abs(c_lead) * lead / (2 * abs(c_last) * last)) ** (1 / (last - lead))
 
 
@@ -236,7 +238,7 @@ def _illinois(f, a, b, fa, fb, rtol: float, max_iter: int):
     return 0.5 * (a + b), a, b, active
 
 
-def _bounds(kind: str, kappa: np.ndarray, nu: float, top: float) -> np.ndarray:
+def _bounds(kind: str, kappa: np.ndarray, nu: float, top: float, first_p: int = 0) -> np.ndarray:
     """Mindlin bounds (poles of the scaled function) per kappa, sorted, shape (m, n): at least
     one above ``top`` in every row (:func:`dispersion.waves.rayleigh_lamb.mindlin_bounds`)."""
     s = speed_ratio_squared(nu)
@@ -244,7 +246,7 @@ def _bounds(kind: str, kappa: np.ndarray, nu: float, top: float) -> np.ndarray:
     k2 = kappa[:, None] ** 2
     nP = int(math.sqrt(s) * top / math.pi + off) + 2
     nQ = int(top / math.pi + off) + 2
-    jP = np.arange(nP) + off                              # P = (j pi)^2, j >= 0 (+ 1/2 for A)
+    jP = np.arange(first_p, nP + first_p) + off           # P = (j pi)^2, j >= 0 (+ 1/2 for A)
     jQ = np.arange(1 if kind == "S" else 0, nQ + 1) + off  # Q = (j pi)^2, j >= 1 for S
     wP = np.sqrt((k2 + (jP * math.pi) ** 2) / s)
     wQ = np.sqrt(k2 + (jQ * math.pi) ** 2)
@@ -274,7 +276,12 @@ def _certify(kind, kk, roots, lo, hi, nu):
 def _trace_class(kind, kappa, nu, omega_max, rtol, max_iter):
     """Roots of one symmetry class at kappa > TINY_KAPPA: (m, n) array (NaN padded), failures."""
     m = kappa.size
-    poles = _bounds(kind, kappa, nu, omega_max)
+    # nu = 0: the bound P = 0 (Omega^2 = 2 kappa^2) is itself the root S0 (u_x uniform,
+    # sigma_yy = lambda div u = 0): a removable pole, so S0 is that bound and the function is
+    # continuous across it, with one root (S1) between 0 and the next bound.
+    removable = kind == "S" and nu == 0.0
+    poles = _bounds(kind, kappa, nu, omega_max, first_p=1 if removable else 0)
+    s0 = kappa * math.sqrt(2.0)
     count = np.sum(poles < omega_max, axis=1)         # intervals 0..count hold roots <= top
     n_int = int(count.max()) + 1
     lo = np.concatenate([np.zeros((m, 1)), poles[:, :n_int - 1]], axis=1)
@@ -282,6 +289,7 @@ def _trace_class(kind, kappa, nu, omega_max, rtol, max_iter):
     use = np.arange(n_int)[None, :] <= count[:, None]
     label = f"{kind}0"
     series = (np.arange(n_int)[None, :] == 0) & (kappa <= series_switch(label, nu))[:, None]
+    series &= not removable
     roots = np.full((m, n_int), np.nan)
     failures = []
     if np.any(series[:, 0]):
@@ -290,7 +298,7 @@ def _trace_class(kind, kappa, nu, omega_max, rtol, max_iter):
     kk, a, b = kappa[ki], lo[ki, ji], hi[ki, ji]
     fa, fb = np.full(a.shape, np.pi / 2), np.full(a.shape, -np.pi / 2)
     # the fundamental branch: a tight first bracket from its series where that is close
-    first = np.flatnonzero((ji == 0) & (kk < 0.5))
+    first = np.flatnonzero((ji == 0) & (kk < 0.5)) if not removable else np.array([], int)
     if first.size:
         w0 = fundamental_series(label, nu, kk[first])[0]
         width = np.minimum(10 * _series_error(label, nu, kk[first]), 1e-3)
@@ -313,6 +321,8 @@ def _trace_class(kind, kappa, nu, omega_max, rtol, max_iter):
                f"not certified to {CERTIFY_RTOL:g}: the function is within its rounding bound "
                f"at Omega*(1 +- {CERTIFY_RTOL / 2:g}) (near-double root)")
         failures.append((kind, float(kk[r]), f"{kind}{ji[r]} near Omega={w[r]:.10g} {why}"))
+    if removable:
+        roots = np.sort(np.concatenate([s0[:, None], roots], axis=1), axis=1)
     roots[roots > omega_max] = np.nan
     return roots, failures
 

@@ -66,7 +66,7 @@ from dispersion.waves.rayleigh_lamb import (
 __all__ = [
     "CERTIFY_RTOL", "KAPPA_MAX", "MAX_SAMPLES", "SERIES_RTOL", "TINY_KAPPA", "check_samples",
     "ExactBranches", "TracerAccuracy", "exact_fundamental",
-    "fundamental_series", "mpmath_error", "series_switch",
+    "fundamental_series", "mpmath_error", "series_region", "series_switch",
     "trace_branches", "tracer_accuracy",
 ]
 
@@ -74,6 +74,9 @@ __all__ = [
 CERTIFY_RTOL = 1e-12
 #: Relative error the S0/A0 series must reach (its own estimate) where it replaces the solve.
 SERIES_RTOL = 1e-14
+#: Largest kappa where a series replaces the solve: far below the first place where S0 or A0
+#: meets another branch (kappa ~ 1), so within the series' radius of convergence.
+SERIES_KAPPA_MAX = 0.2
 #: The series of Omega^2 is computed through kappa^14; the kappa^14 term is its error estimate.
 _SERIES_ORDER = 14
 #: Below this kappa (> 0) the non-fundamental roots are their cut-offs: a branch leaves its
@@ -147,7 +150,9 @@ def series_switch(label: str, nu: float, rtol: float = SERIES_RTOL) -> float:
     The series of :math:`\\Omega^2` is summed through :math:`\\kappa^{12}`; its error estimate is
     twice the first omitted term :math:`c_{14}\\kappa^{14}` relative to the leading term
     :math:`c_l \\kappa^l`, and that of the slope is 14/l times more. The switch is where the
-    slope's estimate equals ``rtol`` (the value's is then smaller).
+    slope's estimate equals ``rtol`` (the value's is then smaller), at most
+    ``SERIES_KAPPA_MAX``: beyond the series' radius its terms say nothing (near nu = 0 they
+    stay tiny while S0 veers sharply away from the line the series follows).
 
     >>> round(series_switch("A0", 0.3), 4), round(series_switch("S0", 0.3), 3)
     (0.0245, 0.111)
@@ -157,8 +162,22 @@ def series_switch(label: str, nu: float, rtol: float = SERIES_RTOL) -> float:
     coef = _series_coefficients(label, float(check_nu(nu)))
     (lead, c_lead), (last, c_last) = coef[0], coef[-1]
     if c_last == 0:   # S0 at nu = 0: Omega^2 = 2 kappa^2 exactly, the series terminates
-        return math.inf
-    return (rtol * abs(c_lead) * lead / (2 * abs(c_last) * last)) ** (1 / (last - lead))
+        return SERIES_KAPPA_MAX
+    switch = (rtol * abs(c_lead) * lead / (2 * abs(c_last) * last)) ** (1 / (last - lead))
+    return min(switch, SERIES_KAPPA_MAX)
+
+
+def series_region(label: str, nu: float, kappa) -> np.ndarray:
+    """``kappa <= series_switch(label, nu)``, without building the series (and importing the
+    symbolic engine) when no kappa is below ``SERIES_KAPPA_MAX``.
+
+    >>> series_region("A0", 0.3, [1e-3, 0.5]).tolist()
+    [True, False]
+    """
+    kappa = np.asarray(kappa, dtype=float)
+    if not np.any(kappa <= SERIES_KAPPA_MAX):
+        return np.zeros(kappa.shape, bool)
+    return kappa <= series_switch(label, nu)
 
 
 def _series_error(label: str, nu: float, kappa) -> np.ndarray:
@@ -258,28 +277,32 @@ def _scaled(kind, kappa, omega, nu):
 
 
 def _certify(kind, kk, roots, lo, hi, nu):
-    """True where the root is bracketed to CERTIFY_RTOL by signs above round-off."""
-    d = 0.5 * CERTIFY_RTOL * roots
-    wl, wh = roots - d, roots + d
-    ok_l, ok_h = wl <= lo, wh >= hi          # the sign at a bound (or at 0+) is known
-    i = np.flatnonzero(~ok_l)
-    if i.size:
-        r, e = _scaled(kind, kk[i], wl[i], nu)
-        ok_l[i] = r > e
-    i = np.flatnonzero(~ok_h)
-    if i.size:
-        r, e = _scaled(kind, kk[i], wh[i], nu)
-        ok_h[i] = r < -e
+    """True where the root is bracketed to CERTIFY_RTOL by signs above round-off.
+
+    Each side needs one point within CERTIFY_RTOL / 2 of the root whose sign is the expected
+    one above the rounding bound: the bound (or 0) itself if that near, else the function at
+    5e-13 or, should that point sit next to a pole where round-off swamps the value, at 5e-14.
+    """
+    ok_l, ok_h = roots - lo <= 0.5 * CERTIFY_RTOL * roots, hi - roots <= 0.5 * CERTIFY_RTOL * roots
+    for frac in (0.5 * CERTIFY_RTOL, 0.05 * CERTIFY_RTOL):
+        i = np.flatnonzero(~ok_l)
+        if i.size:
+            r, e = _scaled(kind, kk[i], roots[i] * (1 - frac), nu)
+            ok_l[i] = r > e
+        i = np.flatnonzero(~ok_h)
+        if i.size:
+            r, e = _scaled(kind, kk[i], roots[i] * (1 + frac), nu)
+            ok_h[i] = r < -e
     return ok_l & ok_h
 
 
 def _trace_class(kind, kappa, nu, omega_max, rtol, max_iter):
     """Roots of one symmetry class at kappa > TINY_KAPPA: (m, n) array (NaN padded), failures."""
     m = kappa.size
-    # nu = 0: the bound P = 0 (Omega^2 = 2 kappa^2) is itself the root S0 (u_x uniform,
+    # nu = 0 (any nu whose (c_T/c_L)^2 rounds to 1/2): the bound P = 0 (Omega^2 = 2 kappa^2) is itself the root S0 (u_x uniform,
     # sigma_yy = lambda div u = 0): a removable pole, so S0 is that bound and the function is
     # continuous across it, with one root (S1) between 0 and the next bound.
-    removable = kind == "S" and nu == 0.0
+    removable = kind == "S" and speed_ratio_squared(nu) == 0.5   # nu = 0 in floating point
     poles = _bounds(kind, kappa, nu, omega_max, first_p=1 if removable else 0)
     s0 = kappa * math.sqrt(2.0)
     count = np.sum(poles < omega_max, axis=1)         # intervals 0..count hold roots <= top
@@ -288,18 +311,24 @@ def _trace_class(kind, kappa, nu, omega_max, rtol, max_iter):
     hi = poles[:, :n_int]
     use = np.arange(n_int)[None, :] <= count[:, None]
     label = f"{kind}0"
-    series = (np.arange(n_int)[None, :] == 0) & (kappa <= series_switch(label, nu))[:, None]
+    series = (np.arange(n_int)[None, :] == 0) & series_region(label, nu, kappa)[:, None]
     series &= not removable
     roots = np.full((m, n_int), np.nan)
     failures = []
     if np.any(series[:, 0]):
-        roots[series[:, 0], 0] = fundamental_series(label, nu, kappa[series[:, 0]])[0]
+        si = np.flatnonzero(series[:, 0])
+        w0 = fundamental_series(label, nu, kappa[si])[0]
+        # the series root is certified like any other; where it is not, it is solved for
+        good = (w0 > 0) & (w0 < hi[si, 0])
+        good[good] = _certify(kind, kappa[si[good]], w0[good], lo[si[good], 0], hi[si[good], 0], nu)
+        roots[si[good], 0] = w0[good]
+        series[si[~good], 0] = False
     ki, ji = np.nonzero(use & ~series)
     kk, a, b = kappa[ki], lo[ki, ji], hi[ki, ji]
     fa, fb = np.full(a.shape, np.pi / 2), np.full(a.shape, -np.pi / 2)
     # the fundamental branch: a tight first bracket from its series where that is close
-    first = np.flatnonzero((ji == 0) & (kk < 0.5)) if not removable else np.array([], int)
-    if first.size:
+    first = np.flatnonzero((ji == 0) & (kk <= SERIES_KAPPA_MAX)) if not removable else []
+    if len(first):
         w0 = fundamental_series(label, nu, kk[first])[0]
         width = np.minimum(10 * _series_error(label, nu, kk[first]), 1e-3)
         ga, gb = w0 * (1 - width), w0 * (1 + width)

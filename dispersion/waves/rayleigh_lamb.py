@@ -478,6 +478,28 @@ def _scaled_parts(kind: str, kappa, Omega, nu: float, noise: bool):
                 dtQ = np.where(np.abs(Q) < _TAYLOR_Z, 1 / 3, (1 + Q * tQ * tQ - tQ) / (2 * Q))
                 sens = a * a * np.abs(dtP) * dP + 4 * k2 * np.abs(tQ + Q * dtQ) * dQ
             err = (64 * eps * (np.abs(t1) + np.abs(t2)) + sens + 2 * np.abs(t1 * da / a)) / W2
+    # A, evanescent (P, Q < 0, not small): the deflated form with the divided difference of
+    # tau by the hyperbolic identity tau[P, Q] = ((tanh t_P + tanh t_Q)/(t_P + t_Q)
+    #   - sinhc(t_P - t_Q) sech t_P sech t_Q) / (2 t_P t_Q), t = sqrt(-z): no cancellation with
+    # P - Q (A0 at kappa ~ 1 has Omega^2 ~ kappa^2 / 5) and no overflow
+    ev = (P < 0) & (Q < 0) & ~small if kind == "A" else np.zeros(P.shape, bool)
+    if np.any(ev):
+        tP, tQ = np.sqrt(-P[ev]), np.sqrt(-Q[ev])
+        d = tP - tQ
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            shc = np.where(np.abs(d) < 1e-4, 1 + d * d / 6, np.sinh(d) / np.where(d == 0, 1, d))
+            sech = 4 * np.exp(-(tP + tQ)) / ((1 + np.exp(-2 * tP)) * (1 + np.exp(-2 * tQ)))
+            v1 = (np.tanh(tP) + np.tanh(tQ)) / (tP + tQ)
+            v2 = shc * sech
+            dd = (v1 - v2) / (2 * tP * tQ)
+            ai = Q[ev] - k2[ev]
+            u1 = (1 - s) * ai * ai * dd
+            u2 = -W2[ev] * np.tanh(tQ) / tQ
+        R = np.array(R, copy=True)
+        R[ev] = u1 + u2
+        if noise:
+            err = np.array(err, copy=True)
+            err[ev] = 128 * eps * (np.abs(u1) * (v1 + v2) / np.abs(v1 - v2) + np.abs(u2))
     if np.any(small):
         i = small
         Pi, Qi, W2i, k2i = P[i], Q[i], W2[i], k2[i]

@@ -46,10 +46,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from dispersion.errors import InputError
-from dispersion.waves.exact_branches import (ExactBranches, fundamental_series, series_switch,
+from dispersion.waves.exact_branches import (ExactBranches, fundamental_series, series_region,
                                              trace_branches)
 from dispersion.waves.rayleigh_lamb import (deflated_frequency_function,
-                                            scaled_slope)
+                                            scaled_slope, speed_ratio_squared)
 
 __all__ = ["EXTENDED_DPS", "VELOCITY_ATOL", "VELOCITY_RTOL", "Velocities", "ZGVPoint",
            "exact_velocities", "phase_velocity", "slope_extended", "zgv_points"]
@@ -97,6 +97,11 @@ def phase_velocity(kappa, omega) -> np.ndarray:
         return np.where(kappa > 0, omega / np.where(kappa > 0, kappa, 1.0), np.nan)
 
 
+def _removable(kind: str, nu: float) -> bool:
+    """S at nu = 0 (in floating point): S0 = sqrt(2) kappa is the removable Mindlin bound P = 0."""
+    return kind == "S" and speed_ratio_squared(nu) == 0.5
+
+
 def _mp_scaled(kind: str, kappa, W, nu, mp):
     """The scaled function of :func:`dispersion.waves.rayleigh_lamb.scaled_frequency_function`
     in its quotient form, in mpmath arithmetic (cot, tan of complex square roots)."""
@@ -133,7 +138,7 @@ def slope_extended(kind: str, kappa: float, omega: float, nu: float, label_index
         off = 0 if kind == "S" else mp.mpf(1) / 2
         top = mp.mpf(omega) * 2 + 10
         bounds = []
-        for scale, first in ((s, 1 if (kind == "S" and nu == 0) else 0),
+        for scale, first in ((s, 1 if _removable(kind, nu) else 0),
                              (mp.mpf(1), 1 if kind == "S" else 0)):
             j = first
             while True:
@@ -143,7 +148,7 @@ def slope_extended(kind: str, kappa: float, omega: float, nu: float, label_index
                     break
                 j += 1
         bounds.sort()
-        if kind == "S" and nu == 0:
+        if _removable(kind, nu):
             s0 = k * mp.sqrt(2)
             if abs(s0 - omega) <= 1e-15 * s0:
                 return float(s0), math.sqrt(2.0), None
@@ -210,14 +215,15 @@ def exact_velocities(exact: ExactBranches) -> Velocities:
         g = np.full(k.shape, np.nan)
         ok = np.isfinite(w) & (k > 0)
         series = np.zeros(k.shape, bool)
-        if j == 0 and not (kind == "S" and nu == 0):
-            series = ok & (k <= series_switch(label, nu))
+        if j == 0 and not _removable(kind, nu):
+            series = ok & series_region(label, nu, k)
             if np.any(series):
                 g[series] = fundamental_series(label, nu, k[series])[1]
-            g[k == 0] = fundamental_series(label, nu, [0.0])[1][0] if kind == "S" else 0.0
+            # kappa = 0: S0 moves at the plate speed sqrt(2/(1-nu)) (eq 14), A0 starts flat
+            g[k == 0] = math.sqrt(2 / (1 - nu)) if kind == "S" else 0.0
         else:
             g[(k == 0) & np.isfinite(w)] = 0.0  # cut-offs: Omega is even in kappa
-            if kind == "S" and nu == 0:
+            if _removable(kind, nu):
                 g[(k == 0) & (w == 0)] = math.sqrt(2.0)
         rest = np.flatnonzero(ok & ~series)
         if rest.size:

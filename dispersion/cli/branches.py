@@ -283,6 +283,8 @@ def run(args) -> int:
         bar.close()
     for kind, k, why in exact.failures:
         print(f"warning: exact {kind} branches at kappa={k:.6g}: {why}", file=sys.stderr)
+    for label, k, why in vel.uncertain:
+        print(f"warning: exact {label} group velocity at kappa={k:.6g}: {why}", file=sys.stderr)
     inputs = _inputs(args, s)
     rows = _rows(kappa, exact.omega, vel.group, lambda lab: lab[0], "exact", s["material"],
                  args.thickness, args.omega_max)
@@ -298,7 +300,8 @@ def run(args) -> int:
             from dispersion.results import dumps, envelope
 
             env = envelope("branches", {"rows": rows,
-                                        "failures": [list(f) for f in exact.failures]},
+                                        "failures": [list(f) for f in exact.failures],
+                                        "velocity_uncertain": [list(u) for u in vel.uncertain]},
                            inputs=inputs)
             _emit("-", dumps(env))
     if args.figure:

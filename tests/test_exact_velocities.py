@@ -17,6 +17,8 @@ import math
 import mpmath
 import numpy as np
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 from dispersion.cli import main
 from dispersion.waves.exact_branches import series_switch, trace_branches
@@ -121,3 +123,12 @@ def test_every_branch_on_a_grid_straddling_every_switch(nu):
                             np.linspace(1.0, 20.0, 6)])
     checked, _ = _check(nu, kappa, 8.0)
     assert checked > 100
+
+
+@pytest.mark.slow
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(log_kappa=st.floats(-8.0, math.log10(20.0)), nu=st.floats(-0.9, 0.49),
+       omega_max=st.floats(0.5, 12.0))
+def test_group_velocity_property(log_kappa, nu, omega_max):
+    # searched, not listed: any nu, kappa in [1e-8, 20], every branch below omega_max
+    _check(nu, [10.0**log_kappa], omega_max)

@@ -86,16 +86,17 @@ TINY_KAPPA = 1e-30
 #: 200, property tests up to 300). The scaled function has no overflow at any kappa.
 KAPPA_MAX = 300.0
 
-#: Largest scan of one call: kappa points times Omega samples (omega_max / step + 1). Rule:
-#: about a minute of work. Measured on this 2-core machine: ~3 us and ~250 B of peak memory
-#: per (kappa, Omega) sample for both symmetry classes (2000 kappa x Omega <= 200, and one
-#: kappa x Omega <= 1e5), so 2e7 samples take ~60 s and at most ~5 GB of the 24 GiB.
+#: Largest work of one call, in budget units: kappa points times omega_max / step + 1 (the
+#: number of roots per kappa grows like omega_max). Rule: about a minute of work. Measured on
+#: this 2-core machine while it was shared and loaded: 2.5 us and 12 B of peak memory per unit
+#: for both symmetry classes at 2000 kappa x Omega <= 200, 12 us and 15 B for one kappa x
+#: Omega <= 1e5 (5e4 roots per class), so 2e7 units take 1 to 4 minutes at most, and < 1 GB.
 MAX_SAMPLES = 20_000_000
 
 
 def check_samples(kappa_count: int, omega_max: float, step: float = 0.05,
                   what: str = "len(kappa) * (omega_max / step + 1)") -> float:
-    """Refuse, up front, a scan of more than :data:`MAX_SAMPLES` (kappa, Omega) samples.
+    """Refuse, up front, a trace of more than :data:`MAX_SAMPLES` budget units.
 
     ``what`` names the inputs in the message (the CLI passes its option names).
 

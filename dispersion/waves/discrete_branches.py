@@ -38,7 +38,7 @@ from __future__ import annotations
 
 import functools
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import sympy
@@ -50,6 +50,7 @@ from dispersion.symbolic.plate import (
     mass_block,
     mirror_bases,
     numeric_pencil,
+    numeric_terms,
     stiffness_terms,
     x_functions,
 )
@@ -84,6 +85,10 @@ class DiscreteBranches:
     zone_edge: float | None = None
     #: ``label -> dOmega/dkappa`` (group velocity over c_T) when asked for, else None.
     group: dict[str, np.ndarray] | None = None
+    #: ``(quantity, kappa, reason)`` for every kappa where a frequency (``"omega"``, then NaN
+    #: in ``omega``) or a group velocity (``"group"``, value kept) is not certified to
+    #: :data:`RTOL` (frequencies) or :data:`GROUP_RTOL` (slopes). Never silently dropped.
+    failures: list[tuple[str, float, str]] = field(default_factory=list)
 
 
 def _condense(K, M, massless):
@@ -186,7 +191,8 @@ class _Key:
 
     def __init__(self, patch: PlatePatch):
         self.patch = patch
-        self.key = (patch.p, patch.n, patch.model, str(patch.r), str(patch.My), patch.x_lumped)
+        # the entries themselves (hashable sympy numbers): never the printed matrix
+        self.key = (patch.p, patch.n, patch.model, patch.r, tuple(patch.My), patch.x_lumped)
 
     def __hash__(self):
         return hash(self.key)
@@ -341,12 +347,25 @@ def _arb_sub(A, rows, cols):
     return flint.arb_mat([[A[i, j] for j in cols] for i in rows])
 
 
-def _refine_small(patch, nu, kappa, W, basis, G=None):
+def _extended_safe(patch, nu, k, basis, dps, slopes):
+    """:func:`extended_frequencies`, retried at twice the digits; ``(None, reason)`` if both fail."""
+    why = ""
+    for digits in (dps, 2 * dps):
+        try:
+            return extended_frequencies(patch, nu, k, basis, dps=digits, slopes=slopes), ""
+        except (ValueError, ZeroDivisionError, ArithmeticError) as exc:  # flint: eig failed
+            why = f"extended-precision eigen-solver failed at {digits} digits ({exc})"
+    return None, why
+
+
+def _refine_small(patch, nu, kappa, W, basis, G=None, failures=None):
     """Recompute in extended precision the kappas where some float eigenvalue of W is inaccurate.
 
     Digits: 30 beyond the ratio of the largest eigenvalue to the smallest (guessed as
     kappa^4 where the float value is lost in round-off). With ``G`` (slopes) given, the
-    slopes there come from the eigenvector formula in the same precision.
+    slopes there come from the eigenvector formula in the same precision. Never raises
+    from the eigen-solver: a kappa where the ball solve fails twice gets NaN and an entry
+    ``("omega", kappa, reason)`` in ``failures`` (a list, if given).
     """
     lam = W**2
     bad = np.flatnonzero(np.any(_float_error(lam) > RTOL, axis=1) & (kappa > 0))
@@ -354,11 +373,16 @@ def _refine_small(patch, nu, kappa, W, basis, G=None):
         top = float(np.max(lam[i]))
         small = max(float(np.min(lam[i])), 0.1 * kappa[i] ** 4, 1e-300)
         dps = 30 + int(math.ceil(math.log10(max(top / small, 1.0))))
+        out, why = _extended_safe(patch, nu, float(kappa[i]), basis, dps, G is not None)
+        if out is None:
+            W[i] = np.nan
+            if failures is not None:
+                failures.append(("omega", float(kappa[i]), why))
+            continue
         if G is None:
-            W[i] = extended_frequencies(patch, nu, float(kappa[i]), basis, dps=dps)
+            W[i] = out
         else:
-            W[i], G[i] = extended_frequencies(patch, nu, float(kappa[i]), basis, dps=dps,
-                                              slopes=True)
+            W[i], G[i] = out
     return W
 
 
@@ -379,12 +403,12 @@ def pencil_derivative(patch: PlatePatch, nu: float, kappa) -> tuple[np.ndarray, 
     kappa = np.atleast_1d(np.asarray(kappa, dtype=float)) + 1j * h
     mat, xf = lame(nu), x_functions(patch, kappa)
     n2 = 2 * patch.n
+    terms, M0 = numeric_terms(patch)
     dK = np.zeros((kappa.size, n2, n2))
-    for m, f, B in stiffness_terms(patch):
-        dK += mat[m] * (np.imag(np.asarray(xf[f], dtype=complex)) / h)[:, None, None] \
-            * np.array(B, dtype=float)
+    for m, f, B in terms:
+        dK += (mat[m] * np.imag(np.asarray(xf[f], dtype=complex)) / h)[:, None, None] * B
     dmx = np.imag(np.broadcast_to(np.asarray(xf["mx"], dtype=complex), kappa.shape)) / h
-    dM = dmx[:, None, None] * np.array(mass_block(patch), dtype=float)
+    dM = dmx[:, None, None] * M0
     return dK, dM
 
 
@@ -415,6 +439,9 @@ def discrete_branches(patch: PlatePatch, nu: float, kappa, chunk: int = 20000,
     group : bool
         Also the group velocity :math:`d\\Omega/d\\kappa` of every branch (eigenvector
         formula, :mod:`dispersion.waves.velocities`), in ``DiscreteBranches.group``.
+
+    Never raises from an eigen-solver: what cannot be certified is listed in
+    ``DiscreteBranches.failures``.
     """
     if patch.model == "bloch" and isinstance(patch.r, sympy.Symbol):
         raise InputError("aspect ratio r must be a number for discrete branches, got the symbol r")
@@ -422,9 +449,10 @@ def discrete_branches(patch: PlatePatch, nu: float, kappa, chunk: int = 20000,
     kappa = check_wavenumbers(kappa)
     chunk = check_positive_int("chunk", chunk)
     zone = math.pi / float(patch.r) if patch.model == "bloch" else None
-    parts = []
+    plan = _plan(patch, nu)
+    parts, failures = [], []
     for lo in range(0, kappa.size, chunk):
-        parts.append(_branches_block(patch, nu, kappa[lo:lo + chunk], group))
+        parts.append(_branches_block(patch, nu, kappa[lo:lo + chunk], group, plan, failures))
         if progress is not None:
             progress(min(chunk, kappa.size - lo))
     symmetry = {}
@@ -436,56 +464,237 @@ def discrete_branches(patch: PlatePatch, nu: float, kappa, chunk: int = 20000,
         return {lab: np.concatenate([part[i].get(lab, np.full(m, np.nan))
                                      for part, m in zip(parts, sizes)]) for lab in symmetry}
 
-    return DiscreteBranches(kappa, join(0), symmetry, zone, join(2) if group else None)
+    return DiscreteBranches(kappa, join(0), symmetry, zone, join(2) if group else None,
+                            failures)
 
 
-def _branches_block(patch: PlatePatch, nu: float, kappa: np.ndarray, group: bool = False):
-    K, M = numeric_pencil(patch, nu, kappa)
-    dK, dM = pencil_derivative(patch, nu, kappa) if group else (None, None)
+#: Below this kappa every branch is its leading power law: :math:`\\Omega = a\\kappa^e (1 +
+#: O(\\kappa^2))`, e in {0, 1, 2}, so :math:`\\Omega(\\kappa) = \\Omega(\\kappa_0)
+#: (\\kappa/\\kappa_0)^e` with :math:`\\kappa_0` = KAPPA_TINY is exact to a relative
+#: O(1e-40) (the x-functions are analytic and even or odd in kappa). It keeps u = kappa^2
+#: and its powers clear of underflow.
+KAPPA_TINY = 1e-20
+#: Relative accuracy of Omega certified on the polynomial path (the inclusion radius is a
+#: worst-case bound, twice the standard rounding constants; the actual error is ~1e-15).
+CERTIFIED_RTOL = 1e-10
+#: Relative accuracy certified for the group velocities (:func:`pencil_polynomial.slopes`).
+GROUP_RTOL = 1e-12
+#: Anchors of the root guesses: every ANCHOR_STRIDE-th kappa (sorted) is solved by the float
+#: eigen-solver; guesses between anchors are interpolated, then polished and certified.
+ANCHOR_STRIDE = 16
+
+
+@dataclass(frozen=True)
+class _Block:
+    kind: str | None            # "S", "A" or None (the whole pencil, mixed labels)
+    E: np.ndarray | None        # orthonormal float basis (None: all DOFs)
+    massless: tuple[int, ...]   # massless DOFs within the block
+    poly: object                # PencilPolynomial or None (eigen-solver path)
+
+
+def _plan(patch: PlatePatch, nu: float) -> list[_Block]:
+    """The blocks of the pencil and, where small enough, their exact characteristic polynomial."""
+    from dispersion.waves import pencil_polynomial as pp
+
     massless = set(patch.massless)
-    omega, symmetry, slopes = {}, {}, {}
     bases = mirror_bases(patch)
-    if bases is not None:
+    blocks = []
+    if bases is None:
+        groups = [(None, None, tuple(sorted(massless)), None)]
+    else:
+        exact = mirror_bases(patch.n, exact=True)
+        groups = []
         for kind in ("S", "A"):
             E = bases[kind]
             support = [set(np.flatnonzero(np.abs(E[:, j]) > 0)) for j in range(E.shape[1])]
-            ml = tuple(j for j, s in enumerate(support) if s <= massless)
             if any(s & massless and not s <= massless for s in support):
                 raise InputError("mirror basis mixes massless and massive DOFs")
-            Kb, Mb = congruence(E.T, K), congruence(E.T, M)
-            G = None
-            if group:
-                W, X = pencil_frequencies(Kb, Mb, ml, vectors=True)
-                G = _slopes(W, X, congruence(E.T, dK), congruence(E.T, dM), Mb)
-            else:
-                W = pencil_frequencies(Kb, Mb, ml)
-            W = _refine_small(patch, nu, kappa, W, E, G)
-            for j in range(W.shape[1]):
-                omega[f"{kind}{j}"], symmetry[f"{kind}{j}"] = W[:, j], kind
-                if group:
-                    slopes[f"{kind}{j}"] = G[:, j]
-        return omega, symmetry, slopes
-    W, X = pencil_frequencies(K, M, tuple(massless), vectors=True)
-    G = _slopes(W, X, dK, dM, M) if group else None
-    W = _refine_small(patch, nu, kappa, W, None, G)
-    # parity of each mode shape: its share in the symmetric mirror subspace of the patch
+            ml = tuple(j for j, s in enumerate(support) if s <= massless)
+            groups.append((kind, E, ml, exact[kind]))
+    for kind, E, ml, Eq in groups:
+        poly = None
+        try:
+            poly = pp.pencil_polynomial(patch, nu, Eq, parity=kind is None)
+            if poly.degree != (2 * patch.n if E is None else E.shape[1]) - len(ml):
+                poly = None
+        except InputError:
+            poly = None  # too large, or a singular interpolation node: eigen-solver path
+        blocks.append(_Block(kind, E, ml, poly))
+    return blocks
+
+
+def _eigen_block(patch, nu, kappa, block: _Block, vectors: bool):
+    """Float eigen-solve of one block at ``kappa``: (W, X or None, dK/dM-ready pencil)."""
+    K, M = numeric_pencil(patch, nu, kappa)
+    if block.E is not None:
+        K, M = congruence(block.E.T, K), congruence(block.E.T, M)
+    if vectors:
+        W, X = pencil_frequencies(K, M, block.massless, vectors=True)
+        return W, X, M
+    return pencil_frequencies(K, M, block.massless), None, M
+
+
+def _parity_from_vectors(patch, X):
     S = mirror_bases(replace(patch, My=patch.Y["00"]))["S"]
-    frac = np.sum((S.T @ X) ** 2, axis=1) / np.sum(X**2, axis=1)
-    is_s = frac >= 0.5
-    rank_s = np.cumsum(is_s, axis=1) - 1
-    rank_a = np.cumsum(~is_s, axis=1) - 1
-    for kind, mask, rank in (("S", is_s, rank_s), ("A", ~is_s, rank_a)):
-        for j in range(int(mask.sum(axis=1).max(initial=0))):
-            sel = mask & (rank == j)
-            has = sel.any(axis=1)
-            label = f"{kind}{j}"
-            vals = np.full(kappa.size, np.nan)
-            vals[has] = W[has][sel[has]]
-            omega[label], symmetry[label] = vals, "mixed"
+    return np.sum((S.T @ X) ** 2, axis=1) / np.sum(X**2, axis=1)
+
+
+def _solve_block(patch, nu, kappa, block: _Block, group: bool, failures: list):
+    """``(W, G, share)`` of one block at kappa (no tiny kappa here): W ascending per row."""
+    from dispersion.waves import pencil_polynomial as pp
+
+    n = kappa.size
+    mixed = block.kind is None
+    W = G = share = None
+    todo = np.arange(n)
+    poly = block.poly
+    if poly is not None:
+        r = None if patch.model != "bloch" else float(patch.r)
+        u, v, dudk = pp.u_of_kappa(patch.model, r, kappa)
+        order = np.argsort(kappa, kind="stable")
+        anchors = order if n <= 4 * ANCHOR_STRIDE else \
+            np.unique(np.concatenate([order[::ANCHOR_STRIDE], order[-1:]]))
+        Wa = _eigen_block(patch, nu, kappa[anchors], block, False)[0]
+        mx = pp.mass_factor(poly, u, v)
+        mua = Wa**2 * mx[anchors]
+        ka = kappa[anchors]
+        ia = np.argsort(ka, kind="stable")
+        guess = np.column_stack([np.interp(kappa, ka[ia], mua[ia, j])
+                                 for j in range(mua.shape[1])])
+        mu, rad = pp.certified_roots(poly, u, v, guess)
+        with np.errstate(all="ignore"):
+            W = np.sqrt(mu / mx)
+            ok = np.all((mu > 0) & (rad <= 2 * CERTIFIED_RTOL * mu), axis=1)
+        if group:
+            G, Gerr = pp.slopes(poly, u, v, dudk, mu)
+            loose = ok & np.any(~(Gerr <= GROUP_RTOL * np.abs(G)), axis=1)
+            for i in np.flatnonzero(loose):
+                j = int(np.argmax(Gerr[i] / np.maximum(np.abs(G[i]), 1e-300)))
+                failures.append(("group", float(kappa[i]),
+                                 f"group velocity of root {j} ({block.kind or 'mixed'} block) "
+                                 f"certified to {Gerr[i, j]:.1e} absolute only "
+                                 f"(|c_g| = {abs(G[i, j]):.2e}: near a zero group velocity "
+                                 "or a double root)"))
+        if mixed:
+            share = pp.parity_share(poly, u, v, mu)
+        todo = np.flatnonzero(~ok)
+    if todo.size:
+        W, G, share = _eigen_fallback(patch, nu, kappa, block, group, todo, W, G, share,
+                                      failures)
+    return W, G, share
+
+
+def _eigen_fallback(patch, nu, kappa, block, group, idx, W, G, share, failures):
+    """The float eigen-solver (and extended precision where it is not accurate) at ``idx``."""
+    mixed = block.kind is None
+    k = kappa[idx]
+    try:
+        Wf, X, M = _eigen_block(patch, nu, k, block, group or mixed)
+    except (np.linalg.LinAlgError, InputError) as exc:
+        for kk in k:
+            failures.append(("omega", float(kk), f"float eigen-solver failed ({exc})"))
+        if W is None:
+            W = np.full((kappa.size, 2 * patch.n - len(block.massless)
+                         if block.E is None else block.E.shape[1] - len(block.massless)), np.nan)
+        W[idx] = np.nan
+        return W, G, share
+    Gf = None
+    if group:
+        dK, dM = pencil_derivative(patch, nu, k)
+        if block.E is not None:
+            dK, dM = congruence(block.E.T, dK), congruence(block.E.T, dM)
+        Gf = _slopes(Wf, X, dK, dM, M)
+    basis = block.E
+    Wf = _refine_small(patch, nu, k, Wf, basis, Gf, failures)
+    if W is None:
+        W = np.empty((kappa.size, Wf.shape[1]))
+        G = np.empty_like(W) if group else None
+        share = np.empty_like(W) if mixed else None
+    W[idx] = Wf
+    if group:
+        G[idx] = Gf
+    if mixed:
+        share[idx] = _parity_from_vectors(patch, X)
+    return W, G, share
+
+
+def _tiny(kappa, W0, W1, G0, G1, failures):
+    """Branches at kappa < KAPPA_TINY from their values at KAPPA_TINY and 2 KAPPA_TINY."""
+    with np.errstate(all="ignore"):
+        e = np.log2(W1 / W0)
+    e = np.where(np.isfinite(e), e, np.nan)
+    ei = np.rint(e)
+    bad = ~(np.abs(e - ei) < 1e-6)
+    t = (kappa / KAPPA_TINY)[:, None]
+    with np.errstate(all="ignore"):
+        W = W0 * t**ei
+        G = None
+        if G0 is not None:
+            G = G0 * t ** np.where(ei >= 1, ei - 1, 1)
+    for i, kk in enumerate(kappa):
+        under = (W[i] < np.finfo(float).tiny) & (ei > 0) & (kk > 0)
+        if np.any(bad) or np.any(under):
+            why = "leading power law not found" if np.any(bad) else \
+                f"Omega ~ kappa^{int(np.max(ei[under]))} underflows float64 at this kappa"
+            failures.append(("omega", float(kk), why))
+            W[i, bad | under] = np.nan
+    return W, G
+
+
+def _branches_block(patch: PlatePatch, nu: float, kappa: np.ndarray, group: bool = False,
+                    plan=None, failures=None):
+    plan = _plan(patch, nu) if plan is None else plan
+    failures = [] if failures is None else failures
+    tiny = kappa < KAPPA_TINY
+    main = np.flatnonzero(~tiny)
+    k_all = kappa[main]
+    if np.any(tiny):
+        k_all = np.concatenate([k_all, [KAPPA_TINY, 2 * KAPPA_TINY]])
+    omega, symmetry, slopes = {}, {}, {}
+    results = []
+    for block in plan:
+        W, G, share = _solve_block(patch, nu, k_all, block, group, failures)
+        Wf = np.empty((kappa.size, W.shape[1]))
+        Gf = np.empty_like(Wf) if group else None
+        Sf = np.empty_like(Wf) if share is not None else None
+        Wf[main] = W[:main.size]
+        if group:
+            Gf[main] = G[:main.size]
+        if share is not None:
+            Sf[main] = share[:main.size]
+        if np.any(tiny):
+            Wt, Gt = _tiny(kappa[tiny], W[-2], W[-1], None if G is None else G[-2],
+                           None if G is None else G[-1], failures)
+            Wf[tiny] = Wt
             if group:
-                g = np.full(kappa.size, np.nan)
-                g[has] = G[has][sel[has]]
-                slopes[label] = g
+                Gf[tiny] = Gt
+            if share is not None:
+                Sf[tiny] = share[-2]
+        results.append((block, Wf, Gf, Sf))
+    for block, W, G, share in results:
+        if block.kind is not None:
+            for j in range(W.shape[1]):
+                label = f"{block.kind}{j}"
+                omega[label], symmetry[label] = W[:, j], block.kind
+                if group:
+                    slopes[label] = G[:, j]
+            continue
+        # parity of each mode shape: its share in the symmetric mirror subspace of the patch
+        is_s = share >= 0.5
+        rank_s = np.cumsum(is_s, axis=1) - 1
+        rank_a = np.cumsum(~is_s, axis=1) - 1
+        for kind, mask, rank in (("S", is_s, rank_s), ("A", ~is_s, rank_a)):
+            for j in range(int(mask.sum(axis=1).max(initial=0))):
+                sel = mask & (rank == j)
+                has = sel.any(axis=1)
+                label = f"{kind}{j}"
+                vals = np.full(kappa.size, np.nan)
+                vals[has] = W[has][sel[has]]
+                omega[label], symmetry[label] = vals, "mixed"
+                if group:
+                    g = np.full(kappa.size, np.nan)
+                    g[has] = G[has][sel[has]]
+                    slopes[label] = g
     return omega, symmetry, slopes
 
 

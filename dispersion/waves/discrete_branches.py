@@ -371,7 +371,7 @@ def _refine_small(patch, nu, kappa, W, basis, G=None, failures=None):
     bad = np.flatnonzero(np.any(_float_error(lam) > RTOL, axis=1) & (kappa > 0))
     for i in bad:
         top = float(np.max(lam[i]))
-        small = max(float(np.min(lam[i])), 0.1 * kappa[i] ** 4, 1e-300)
+        small = max(min(float(np.min(lam[i])), 0.1 * kappa[i] ** 4), 1e-300)
         dps = 30 + int(math.ceil(math.log10(max(top / small, 1.0))))
         out, why = _extended_safe(patch, nu, float(kappa[i]), basis, dps, G is not None)
         if out is None:
@@ -551,17 +551,17 @@ def _solve_block(patch, nu, kappa, block: _Block, group: bool, failures: list):
     if poly is not None:
         r = None if patch.model != "bloch" else float(patch.r)
         u, v, dudk = pp.u_of_kappa(patch.model, r, kappa)
-        order = np.argsort(kappa, kind="stable")
+        # the roots are functions of u (S0 ~ u, A0 ~ u^2, cut-offs ~ const + u): guesses are
+        # interpolated in u between anchors solved by the float eigen-solver
+        order = np.argsort(u, kind="stable")
         anchors = order if n <= 4 * ANCHOR_STRIDE else \
-            np.unique(np.concatenate([order[::ANCHOR_STRIDE], order[-1:]]))
+            np.concatenate([order[::ANCHOR_STRIDE], order[-1:]])
         Wa = _eigen_block(patch, nu, kappa[anchors], block, False)[0]
         mx = pp.mass_factor(poly, u, v)
         mua = Wa**2 * mx[anchors]
-        ka = kappa[anchors]
-        ia = np.argsort(ka, kind="stable")
-        guess = np.column_stack([np.interp(kappa, ka[ia], mua[ia, j])
-                                 for j in range(mua.shape[1])])
-        mu, rad = pp.certified_roots(poly, u, v, guess)
+        ua = u[anchors]
+        guess = np.column_stack([np.interp(u, ua, mua[:, j]) for j in range(mua.shape[1])])
+        mu, rad = pp.certified_roots(poly, u, v, guess, 2 * CERTIFIED_RTOL)
         with np.errstate(all="ignore"):
             W = np.sqrt(mu / mx)
             ok = np.all((mu > 0) & (rad <= 2 * CERTIFIED_RTOL * mu), axis=1)

@@ -335,27 +335,32 @@ def _derivative_u(coef: np.ndarray) -> np.ndarray:
 
 
 def certified_roots(poly: PencilPolynomial, u: np.ndarray, v, guess: np.ndarray,
-                    iterations: int = 2):
+                    rtol: float = 2e-10, iterations: int = 3):
     """Newton-polished roots ``mu`` (ascending, shape of ``guess``) and their radii.
 
     The radius is the inclusion bound of the module docstring; ``inf`` where it does not
-    hold (disc overlapping a neighbour, a derivative lost in its error bound, NaN).
+    hold (disc overlapping a neighbour, a derivative lost in its error bound, NaN). One
+    Newton step everywhere, up to ``iterations`` more where the radius is above
+    ``rtol * mu``.
     """
     c, cbar = _values(poly, "P", u, v)
     du, dm = poly.coef.shape[1] - 1, poly.coef.shape[0] - 1
-    mu = np.array(guess, dtype=float)
+    # Higham (5.3)-type bounds, doubled: Horner in u (2 du), the error of u (<= 4 ulp,
+    # times du from u^k), the coefficients' rounding, Horner in mu (2 dm)
+    g = 2 * (6 * du + 2 * dm + 4) * _EPS
+    # Newton in the form mu' = (mu P_mu - P) / P_mu, numerator by its own Horner rule:
+    # near mu = 0 it is -c_0 / c_1 without the cancellation of mu - P / P_mu
+    cn = c * (np.arange(c.shape[1]) - 1)
     with np.errstate(all="ignore"):
-        for _ in range(iterations):
-            p, dp = _horner_mu(c, mu)
-            mu -= p / dp
-        p, dp = _horner_mu(c, mu)
-        pb, dpb = _horner_mu(cbar, np.abs(mu))
-        # Higham (5.3)-type bounds, doubled: Horner in u (2 du), the error of u (<= 4 ulp,
-        # times du from u^k), the coefficients' rounding, Horner in mu (2 dm)
-        g = 2 * (6 * du + 2 * dm + 4) * _EPS
-        den = np.abs(dp) - g * dpb
-        rad = np.where(den > 0, dm * (np.abs(p) + g * pb) / den, np.inf)
-        rad = np.where(np.isfinite(mu), rad, np.inf)
+        mu = _newton(c, cn, _small_guesses(c, np.array(guess, dtype=float)))
+        rad = _radius(c, cbar, mu, g, dm)
+        again = np.flatnonzero(np.any(~(rad <= rtol * mu), axis=1))
+        if again.size:
+            m = mu[again]
+            for _ in range(iterations):
+                m = _newton(c[again], cn[again], m)
+            mu[again] = m
+            rad[again] = _radius(c[again], cbar[again], m, g, dm)
         if mu.shape[1] > 1 and not np.all(mu[:, 1:] >= mu[:, :-1]):
             order = np.argsort(mu, axis=1)
             mu = np.take_along_axis(mu, order, 1)
@@ -365,8 +370,68 @@ def certified_roots(poly: PencilPolynomial, u: np.ndarray, v, guess: np.ndarray,
             bad = np.zeros_like(rad, dtype=bool)
             bad[:, 1:] |= clash
             bad[:, :-1] |= clash
-            rad = np.where(bad, np.inf, rad)
+            rad[bad] = np.inf
     return mu, rad
+
+
+def _newton(c: np.ndarray, cn: np.ndarray, mu: np.ndarray) -> np.ndarray:
+    """One Newton step ``(sum (j - 1) c_j mu^j) / P_mu`` for every root (one Horner loop)."""
+    p = np.empty_like(mu)
+    p[:] = c[:, -1:]
+    num = np.empty_like(mu)
+    num[:] = cn[:, -1:]
+    dp = np.zeros_like(mu)
+    for j in range(c.shape[1] - 2, -1, -1):
+        dp *= mu
+        dp += p
+        p *= mu
+        p += c[:, j:j + 1]
+        num *= mu
+        num += cn[:, j:j + 1]
+    return num / dp
+
+
+def _radius(c, cbar, mu, g, dm):
+    """Inclusion radius ``dm (|P| + e_P) / (|P_mu| - e_P')`` (inf where not positive)."""
+    a = np.abs(mu)
+    p = np.empty_like(mu)
+    p[:] = c[:, -1:]
+    pb = np.empty_like(mu)
+    pb[:] = cbar[:, -1:]
+    dp = np.zeros_like(mu)
+    dpb = np.zeros_like(mu)
+    for j in range(c.shape[1] - 2, -1, -1):
+        dp *= mu
+        dp += p
+        p *= mu
+        p += c[:, j:j + 1]
+        dpb *= a
+        dpb += pb
+        pb *= a
+        pb += cbar[:, j:j + 1]
+    den = np.abs(dp) - g * dpb
+    rad = dm * (np.abs(p) + g * pb) / den
+    rad[~(den > 0) | ~np.isfinite(mu)] = np.inf
+    return rad
+
+
+def _small_guesses(c: np.ndarray, mu: np.ndarray) -> np.ndarray:
+    """Replace guesses lost in round-off (below 1e-8 of the largest) by the roots of the
+    truncated polynomial: the rigid-body branches (at most two: u_x and u_y translations)
+    are the roots of :math:`c_0 + c_1\\mu` or :math:`c_0 + c_1\\mu + c_2\\mu^2` to a
+    relative O(u) (the remaining roots are O(1))."""
+    small = mu < 1e-8 * np.max(mu, axis=1, keepdims=True)
+    z = small.sum(axis=1)
+    one = np.flatnonzero(z == 1)
+    if one.size:
+        mu[one, 0] = -c[one, 0] / c[one, 1]
+    two = np.flatnonzero(z == 2)
+    if two.size and c.shape[1] > 2:
+        a0, a1, a2 = c[two, 0], c[two, 1], c[two, 2]
+        q = -0.5 * (a1 + np.copysign(np.sqrt(np.maximum(a1 * a1 - 4 * a0 * a2, 0)), a1))
+        r1, r2 = a0 / q, q / a2   # stable quadratic roots (Numerical Recipes 5.6)
+        mu[two, 0], mu[two, 1] = np.minimum(r1, r2), np.maximum(r1, r2)
+    return mu
 
 
 def mass_factor(poly: PencilPolynomial, u, v) -> np.ndarray:

@@ -38,6 +38,8 @@ from __future__ import annotations
 
 import functools
 import math
+import os
+import threading
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -295,6 +297,14 @@ def extended_frequencies(patch: PlatePatch, nu: float, kappa, basis=None,
     >>> float(w[0] / 1e-12)  # A0: Omega ~ sqrt(2 / (3 (1 - nu))) kappa^2 (eq 16)
     0.9759000729...
     """
+    with _FLINT_LOCK:  # flint's working precision is process-global
+        return _extended(patch, nu, kappa, basis, dps, slopes)
+
+
+_FLINT_LOCK = threading.Lock()
+
+
+def _extended(patch, nu, kappa, basis, dps, slopes):
     import flint
 
     key, nu = _Key(patch), float(nu)
@@ -450,11 +460,29 @@ def discrete_branches(patch: PlatePatch, nu: float, kappa, chunk: int = 20000,
     chunk = check_positive_int("chunk", chunk)
     zone = math.pi / float(patch.r) if patch.model == "bloch" else None
     plan = _plan(patch, nu)
-    parts, failures = [], []
-    for lo in range(0, kappa.size, chunk):
-        parts.append(_branches_block(patch, nu, kappa[lo:lo + chunk], group, plan, failures))
-        if progress is not None:
-            progress(min(chunk, kappa.size - lo))
+    failures = []
+    starts = range(0, kappa.size, chunk)
+
+    def work(lo):
+        return _branches_block(patch, nu, kappa[lo:lo + chunk], group, plan, failures)
+
+    workers = min(THREADS, len(starts), os.cpu_count() or 1)
+    if workers > 1:  # numpy releases the GIL in its loops: chunks run on both cores
+        from concurrent.futures import ThreadPoolExecutor
+
+        with ThreadPoolExecutor(workers) as pool:
+            parts = []
+            for lo, part in zip(starts, pool.map(work, starts)):
+                parts.append(part)
+                if progress is not None:
+                    progress(min(chunk, kappa.size - lo))
+    else:
+        parts = []
+        for lo in starts:
+            parts.append(work(lo))
+            if progress is not None:
+                progress(min(chunk, kappa.size - lo))
+    failures.sort(key=lambda f: (f[1], f[0], f[2]))
     symmetry = {}
     for _, sym, _ in parts:
         symmetry.update(sym)
@@ -479,6 +507,8 @@ KAPPA_TINY = 1e-20
 CERTIFIED_RTOL = 1e-10
 #: Relative accuracy certified for the group velocities (:func:`pencil_polynomial.slopes`).
 GROUP_RTOL = 1e-12
+#: Worker threads over the kappa chunks (the machine this was tuned on has two cores).
+THREADS = 2
 #: Anchors of the root guesses: every ANCHOR_STRIDE-th kappa (sorted) is solved by the float
 #: eigen-solver; guesses between anchors are interpolated, then polished and certified.
 ANCHOR_STRIDE = 16

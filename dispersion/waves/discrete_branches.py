@@ -325,7 +325,14 @@ def _extended(patch, nu, kappa, basis, dps, slopes):
         if slopes:
             lam, R = A.eig(right=True)
         else:
-            lam = A.eig()
+            try:
+                lam = A.eig()
+            except ValueError:  # a multiple eigenvalue (e.g. both rigid modes at kappa = 0)
+                lam = A.eig(nonstop=True)
+                tight = [float(v.rad()) <= 1e-20 * max(abs(float(v.mid())), 1.0)
+                         for v in (x.real for x in lam)]
+                if not all(tight):
+                    raise ValueError("eigenvalue enclosures too wide") from None
         order = sorted(range(len(lam)), key=lambda j: float(lam[j].real.mid()))
         roots = [max(lam[j].real.mid(), flint.arb(0)).sqrt() for j in order]
         W = np.array([float(v) for v in roots])
@@ -593,8 +600,19 @@ def _solve_block(patch, nu, kappa, block: _Block, group: bool, failures: list):
         guess = np.column_stack([np.interp(u, ua, mua[:, j]) for j in range(mua.shape[1])])
         mu, rad = pp.certified_roots(poly, u, v, guess, 2 * CERTIFIED_RTOL)
         with np.errstate(all="ignore"):
-            W = np.sqrt(mu / mx)
             ok = np.all((mu > 0) & (rad <= 2 * CERTIFIED_RTOL * mu), axis=1)
+        redo = np.flatnonzero(~ok)
+        if redo.size and anchors.size < n:
+            # interpolated guesses that fell to the wrong root (close roots): guesses from the
+            # float eigen-solver at those kappa, then the same polishing and certificate
+            Wr = _eigen_block(patch, nu, kappa[redo], block, False)[0]
+            m2, r2 = pp.certified_roots(poly, u[redo], None if v is None else v[redo],
+                                        Wr**2 * mx[redo], 2 * CERTIFIED_RTOL)
+            mu[redo], rad[redo] = m2, r2
+            with np.errstate(all="ignore"):
+                ok[redo] = np.all((m2 > 0) & (r2 <= 2 * CERTIFIED_RTOL * m2), axis=1)
+        with np.errstate(all="ignore"):
+            W = np.sqrt(mu / mx)
         if group:
             G, Gerr = pp.slopes(poly, u, v, dudk, mu)
             loose = ok & np.any(~(Gerr <= GROUP_RTOL * np.abs(G)), axis=1)

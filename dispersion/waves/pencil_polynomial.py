@@ -101,32 +101,6 @@ def u_of_kappa(model: str, r: float | None, kappa: np.ndarray):
     return 2 * half * half, 2 * co * co, r * np.sin(th)
 
 
-def _values(poly: PencilPolynomial, name: str, u, v, deriv: bool = False):
-    """Values and absolute sums of the u-polynomials of table ``name`` ("P", "Q", "I", "mx").
-
-    Where u > 1 (Bloch) the shifted table in v is used; ``deriv`` gives d/du instead.
-    Returns arrays of shape (len(u), rows of the table).
-    """
-    table = {"P": poly.coef, "mx": poly.mx[None, :]}
-    if poly.parity is not None:
-        table.update(Q=poly.parity[0], I=poly.parity[1])
-    coef = table[name]
-    hi = None if v is None or poly.shifted is None else np.flatnonzero(u > 1)
-
-    def run(c, x, sign):
-        if deriv:
-            c = sign * _derivative_u(c)
-        J = c.shape[0]
-        both = _horner_u(np.concatenate([c, np.abs(c)]), x)
-        return both[:, :J], both[:, J:]
-
-    val, bar = run(coef, u, 1)
-    if hi is not None and hi.size:
-        cv = poly.shifted[name]
-        val[hi], bar[hi] = run(cv, v[hi], -1)
-    return val, bar
-
-
 def _cheb(L: int, kind: str):
     """T_L(1 - u) or U_L(1 - u) as a list of Fraction coefficients in u (ascending)."""
     import flint
@@ -305,28 +279,17 @@ def pencil_polynomial(patch, nu: float, basis=None, parity: bool = False) -> Pen
     return _build(key)
 
 
+# Numerics below keep arrays as (rows, points): each Horner step is then a contiguous
+# row-broadcast, several times faster than the (points, rows) layout.
+
 def _horner_u(coef: np.ndarray, u: np.ndarray) -> np.ndarray:
-    """``sum_k coef[:, k] u^k`` for every u: shape (len(u), rows of coef)."""
-    out = np.empty((u.size, coef.shape[0]))
-    out[:] = coef[:, -1]
-    uu = u[:, None]
+    """``sum_k coef[:, k] u^k`` for every u: shape (rows of coef, len(u))."""
+    out = np.empty((coef.shape[0], u.size))
+    out[:] = coef[:, -1:]
     for k in range(coef.shape[1] - 2, -1, -1):
-        out *= uu
-        out += coef[:, k]
+        out *= u
+        out += coef[:, k:k + 1]
     return out
-
-
-def _horner_mu(c: np.ndarray, mu: np.ndarray):
-    """``P`` and ``P_mu`` at ``mu`` (shape (P, R)) from coefficient values c (shape (P, J))."""
-    p = np.empty_like(mu)
-    p[:] = c[:, -1:]
-    dp = np.zeros_like(mu)
-    for j in range(c.shape[1] - 2, -1, -1):
-        dp *= mu
-        dp += p
-        p *= mu
-        p += c[:, j:j + 1]
-    return p, dp
 
 
 def _derivative_u(coef: np.ndarray) -> np.ndarray:
@@ -334,14 +297,59 @@ def _derivative_u(coef: np.ndarray) -> np.ndarray:
     return (coef * k)[:, 1:] if coef.shape[1] > 1 else np.zeros_like(coef)
 
 
+def _values(poly: PencilPolynomial, name: str, u, v, deriv: bool = False, bars: bool = True):
+    """Values (and absolute sums) of the u-polynomials of table ``name`` ("P", "Q", "I", "mx").
+
+    Where u > 1 (Bloch) the shifted table in v is used; ``deriv`` gives d/du instead.
+    Returns arrays of shape (rows of the table, len(u)).
+    """
+    table = {"P": poly.coef, "mx": poly.mx[None, :]}
+    if poly.parity is not None:
+        table.update(Q=poly.parity[0], I=poly.parity[1])
+    hi = None if v is None or poly.shifted is None else np.flatnonzero(u > 1)
+
+    def run(c, x, sign):
+        if deriv:
+            c = sign * _derivative_u(c)
+        J = c.shape[0]
+        out = _horner_u(np.concatenate([c, np.abs(c)]) if bars else c, x)
+        return out[:J], (out[J:] if bars else None)
+
+    if hi is None or hi.size == 0:
+        return run(table[name], u, 1)
+    lo = np.flatnonzero(u <= 1)
+    val_lo, bar_lo = run(table[name], u[lo], 1)
+    val_hi, bar_hi = run(poly.shifted[name], v[hi], -1)
+    val = np.empty((val_lo.shape[0], u.size))
+    val[:, lo], val[:, hi] = val_lo, val_hi
+    bar = None
+    if bars:
+        bar = np.empty_like(val)
+        bar[:, lo], bar[:, hi] = bar_lo, bar_hi
+    return val, bar
+
+
+def _horner_mu(c: np.ndarray, mu: np.ndarray):
+    """``P`` and ``P_mu`` at ``mu`` (shape (R, points)) from coefficient values (J, points)."""
+    p = np.empty_like(mu)
+    p[:] = c[-1]
+    dp = np.zeros_like(mu)
+    for j in range(c.shape[0] - 2, -1, -1):
+        dp *= mu
+        dp += p
+        p *= mu
+        p += c[j]
+    return p, dp
+
+
 def certified_roots(poly: PencilPolynomial, u: np.ndarray, v, guess: np.ndarray,
-                    rtol: float = 2e-10, iterations: int = 3):
-    """Newton-polished roots ``mu`` (ascending, shape of ``guess``) and their radii.
+                    rtol: float = 2e-10, iterations: int = 8):
+    """Newton-polished roots ``mu`` (ascending, shape of ``guess`` = (points, R)) and radii.
 
     The radius is the inclusion bound of the module docstring; ``inf`` where it does not
     hold (disc overlapping a neighbour, a derivative lost in its error bound, NaN). One
     Newton step everywhere, up to ``iterations`` more where the radius is above
-    ``rtol * mu``.
+    ``rtol * mu`` or the first step was large.
     """
     c, cbar = _values(poly, "P", u, v)
     du, dm = poly.coef.shape[1] - 1, poly.coef.shape[0] - 1
@@ -350,44 +358,50 @@ def certified_roots(poly: PencilPolynomial, u: np.ndarray, v, guess: np.ndarray,
     g = 2 * (6 * du + 2 * dm + 4) * _EPS
     # Newton in the form mu' = (mu P_mu - P) / P_mu, numerator by its own Horner rule:
     # near mu = 0 it is -c_0 / c_1 without the cancellation of mu - P / P_mu
-    cn = c * (np.arange(c.shape[1]) - 1)
+    cn = c * (np.arange(c.shape[0]) - 1)[:, None]
     with np.errstate(all="ignore"):
-        mu = _newton(c, cn, _small_guesses(c, np.array(guess, dtype=float)))
+        mu0 = _small_guesses(c, np.array(guess, dtype=float).T.copy())
+        mu = _newton(c, cn, mu0)
         rad = _radius(c, cbar, mu, g, dm)
-        again = np.flatnonzero(np.any(~(rad <= rtol * mu), axis=1))
-        if again.size:
-            m = mu[again]
-            for _ in range(iterations):
-                m = _newton(c[again], cn[again], m)
-            mu[again] = m
-            rad[again] = _radius(c[again], cbar[again], m, g, dm)
-        if mu.shape[1] > 1 and not np.all(mu[:, 1:] >= mu[:, :-1]):
-            order = np.argsort(mu, axis=1)
-            mu = np.take_along_axis(mu, order, 1)
-            rad = np.take_along_axis(rad, order, 1)
-        if mu.shape[1] > 1:
-            clash = np.diff(mu, axis=1) <= rad[:, 1:] + rad[:, :-1]
+        # more steps where the radius is too wide, or where the step was above 1e-9 relative
+        # (quadratic convergence: after a step of size d the error is about d^2 relative)
+        again = np.flatnonzero(np.any(~(rad <= rtol * mu) | ~(np.abs(mu - mu0) <= 1e-9 * mu),
+                                      axis=0))
+        for _ in range(iterations):
+            if not again.size:
+                break
+            m0 = mu[:, again]
+            m = _newton(c[:, again], cn[:, again], m0)
+            mu[:, again] = m
+            rad[:, again] = _radius(c[:, again], cbar[:, again], m, g, dm)
+            again = again[np.any(~(np.abs(m - m0) <= 1e-9 * m), axis=0)]
+        if mu.shape[0] > 1 and not np.all(mu[1:] >= mu[:-1]):
+            order = np.argsort(mu, axis=0)
+            mu = np.take_along_axis(mu, order, 0)
+            rad = np.take_along_axis(rad, order, 0)
+        if mu.shape[0] > 1:
+            clash = np.diff(mu, axis=0) <= rad[1:] + rad[:-1]
             bad = np.zeros_like(rad, dtype=bool)
-            bad[:, 1:] |= clash
-            bad[:, :-1] |= clash
+            bad[1:] |= clash
+            bad[:-1] |= clash
             rad[bad] = np.inf
-    return mu, rad
+    return mu.T, rad.T
 
 
 def _newton(c: np.ndarray, cn: np.ndarray, mu: np.ndarray) -> np.ndarray:
     """One Newton step ``(sum (j - 1) c_j mu^j) / P_mu`` for every root (one Horner loop)."""
     p = np.empty_like(mu)
-    p[:] = c[:, -1:]
+    p[:] = c[-1]
     num = np.empty_like(mu)
-    num[:] = cn[:, -1:]
+    num[:] = cn[-1]
     dp = np.zeros_like(mu)
-    for j in range(c.shape[1] - 2, -1, -1):
+    for j in range(c.shape[0] - 2, -1, -1):
         dp *= mu
         dp += p
         p *= mu
-        p += c[:, j:j + 1]
+        p += c[j]
         num *= mu
-        num += cn[:, j:j + 1]
+        num += cn[j]
     return num / dp
 
 
@@ -395,20 +409,20 @@ def _radius(c, cbar, mu, g, dm):
     """Inclusion radius ``dm (|P| + e_P) / (|P_mu| - e_P')`` (inf where not positive)."""
     a = np.abs(mu)
     p = np.empty_like(mu)
-    p[:] = c[:, -1:]
+    p[:] = c[-1]
     pb = np.empty_like(mu)
-    pb[:] = cbar[:, -1:]
+    pb[:] = cbar[-1]
     dp = np.zeros_like(mu)
     dpb = np.zeros_like(mu)
-    for j in range(c.shape[1] - 2, -1, -1):
+    for j in range(c.shape[0] - 2, -1, -1):
         dp *= mu
         dp += p
         p *= mu
-        p += c[:, j:j + 1]
+        p += c[j]
         dpb *= a
         dpb += pb
         pb *= a
-        pb += cbar[:, j:j + 1]
+        pb += cbar[j]
     den = np.abs(dp) - g * dpb
     rad = dm * (np.abs(p) + g * pb) / den
     rad[~(den > 0) | ~np.isfinite(mu)] = np.inf
@@ -419,33 +433,34 @@ def _small_guesses(c: np.ndarray, mu: np.ndarray) -> np.ndarray:
     """Replace guesses lost in round-off (below 1e-8 of the largest) by the roots of the
     truncated polynomial: the rigid-body branches (at most two: u_x and u_y translations)
     are the roots of :math:`c_0 + c_1\\mu` or :math:`c_0 + c_1\\mu + c_2\\mu^2` to a
-    relative O(u) (the remaining roots are O(1))."""
-    small = mu < 1e-8 * np.max(mu, axis=1, keepdims=True)
-    z = small.sum(axis=1)
+    relative O(u) (the remaining roots are O(1)). Arrays are (rows, points)."""
+    small = mu < 1e-8 * np.max(mu, axis=0)
+    z = small.sum(axis=0)
     one = np.flatnonzero(z == 1)
     if one.size:
-        mu[one, 0] = -c[one, 0] / c[one, 1]
+        mu[0, one] = -c[0, one] / c[1, one]
     two = np.flatnonzero(z == 2)
-    if two.size and c.shape[1] > 2:
-        a0, a1, a2 = c[two, 0], c[two, 1], c[two, 2]
+    if two.size and c.shape[0] > 2:
+        a0, a1, a2 = c[0, two], c[1, two], c[2, two]
         q = -0.5 * (a1 + np.copysign(np.sqrt(np.maximum(a1 * a1 - 4 * a0 * a2, 0)), a1))
         r1, r2 = a0 / q, q / a2   # stable quadratic roots (Numerical Recipes 5.6)
-        mu[two, 0], mu[two, 1] = np.minimum(r1, r2), np.maximum(r1, r2)
+        mu[0, two], mu[1, two] = np.minimum(r1, r2), np.maximum(r1, r2)
     return mu
 
 
 def mass_factor(poly: PencilPolynomial, u, v) -> np.ndarray:
     """:math:`m_x(u)`, shape (len(u), 1)."""
-    return _values(poly, "mx", u, v)[0]
+    return _values(poly, "mx", u, v, bars=False)[0].T
 
 
 def slopes(poly: PencilPolynomial, u: np.ndarray, v, dudk: np.ndarray, mu: np.ndarray):
-    """:math:`d\\Omega/d\\kappa` at roots ``mu`` and a bound on its absolute error.
+    """:math:`d\\Omega/d\\kappa` at roots ``mu`` (points, R) and a bound on its absolute error.
 
     Implicitly :math:`d\\mu/du = -P_u / P_\\mu`; with :math:`\\Omega^2 = \\mu / m_x`,
     :math:`d\\Omega/d\\kappa = (\\mu_u m_x - \\mu m_x') u_\\kappa / (2 \\Omega m_x^2)`.
     """
     du, dm = poly.coef.shape[1] - 1, poly.coef.shape[0] - 1
+    mu = mu.T
     cu, cub = _values(poly, "P", u, v, deriv=True)
     c, cb = _values(poly, "P", u, v)
     with np.errstate(all="ignore"):
@@ -456,20 +471,21 @@ def slopes(poly: PencilPolynomial, u: np.ndarray, v, dudk: np.ndarray, mu: np.nd
         g = 2 * (6 * du + 2 * dm + 4) * _EPS
         mu_u = -pu / pm
         err_mu_u = (g * pub + np.abs(mu_u) * g * pmb) / np.abs(pm)
-        mx = mass_factor(poly, u, v)
-        mxd = _values(poly, "mx", u, v, deriv=True)[0]
+        mx = _values(poly, "mx", u, v, bars=False)[0]
+        mxd = _values(poly, "mx", u, v, deriv=True, bars=False)[0]
         omega = np.sqrt(mu / mx)
-        fac = dudk[:, None] / (2 * omega * mx * mx)
+        fac = dudk / (2 * omega * mx * mx)
         g_val = (mu_u * mx - mu * mxd) * fac
         g_err = np.abs(fac) * (err_mu_u * np.abs(mx) + 8 * _EPS * (np.abs(mu_u * mx)
                                                                    + np.abs(mu * mxd))) \
             + 8 * _EPS * np.abs(g_val)
-    return g_val, g_err
+    return g_val.T, g_err.T
 
 
 def parity_share(poly: PencilPolynomial, u: np.ndarray, v, mu: np.ndarray) -> np.ndarray:
-    """Share of each root's mode shape in the symmetric mirror subspace (0..1)."""
+    """Share of each root's mode shape in the symmetric mirror subspace (0..1), (points, R)."""
+    mu = mu.T
     with np.errstate(all="ignore"):
-        a, _ = _horner_mu(_values(poly, "Q", u, v)[0], mu)
-        b, _ = _horner_mu(_values(poly, "I", u, v)[0], mu)
-        return a / b
+        a, _ = _horner_mu(_values(poly, "Q", u, v, bars=False)[0], mu)
+        b, _ = _horner_mu(_values(poly, "I", u, v, bars=False)[0], mu)
+        return (a / b).T

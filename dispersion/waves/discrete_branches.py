@@ -602,15 +602,25 @@ def _solve_block(patch, nu, kappa, block: _Block, group: bool, failures: list):
         with np.errstate(all="ignore"):
             ok = np.all((mu > 0) & (rad <= 2 * CERTIFIED_RTOL * mu), axis=1)
         redo = np.flatnonzero(~ok)
-        if redo.size and anchors.size < n:
-            # interpolated guesses that fell to the wrong root (close roots): guesses from the
-            # float eigen-solver at those kappa, then the same polishing and certificate
-            Wr = _eigen_block(patch, nu, kappa[redo], block, False)[0]
+        if redo.size:
+            # guesses that fell to the wrong root (close roots) or radii too wide: guesses
+            # from the float eigen-solver at those kappa, the same polishing and certificate;
+            # a root whose radius stays too wide may still be certified by the eigen-solver's
+            # own bound (large roots, where float eigenvalues are accurate)
+            if anchors.size == n:  # every kappa is an anchor: its eigenvalues are at hand
+                Wr = np.empty_like(Wa)
+                Wr[anchors] = Wa
+                Wr = Wr[redo]
+            else:
+                Wr = _eigen_block(patch, nu, kappa[redo], block, False)[0]
             m2, r2 = pp.certified_roots(poly, u[redo], None if v is None else v[redo],
                                         Wr**2 * mx[redo], 2 * CERTIFIED_RTOL)
-            mu[redo], rad[redo] = m2, r2
             with np.errstate(all="ignore"):
-                ok[redo] = np.all((m2 > 0) & (r2 <= 2 * CERTIFIED_RTOL * m2), axis=1)
+                by_poly = (m2 > 0) & (r2 <= 2 * CERTIFIED_RTOL * m2)
+                by_eig = _float_error(Wr**2) <= 2 * CERTIFIED_RTOL
+            m2 = np.where(by_poly, m2, Wr**2 * mx[redo])
+            mu[redo], rad[redo] = m2, np.where(by_poly, r2, 0.0)
+            ok[redo] = np.all(by_poly | by_eig, axis=1)
         with np.errstate(all="ignore"):
             W = np.sqrt(mu / mx)
         if group:

@@ -66,12 +66,18 @@ def mp_frequencies(patch, nu, kappa, dps: int = 60) -> list:
         return [mpmath.sqrt(max(v, 0)) for v in lam]
 
 
-def mp_group_velocity(patch, nu, kappa, index: int, dps: int = 80):
-    """:math:`d\\Omega/d\\kappa` of the ``index``-th root (ascending) by a central difference
-    at ``dps`` digits, step 1e-12 kappa (truncation ~1e-24 relative, rounding ~1e-(dps-12))."""
+def mp_group_velocities(patch, nu, kappa, dps: int = 80) -> list:
+    """:math:`d\\Omega/d\\kappa` of every root (ascending) by a central difference at ``dps``
+    digits, step 1e-12 kappa (truncation ~1e-24 relative, rounding ~1e-(dps-12) of the
+    largest root over the smallest)."""
     with mpmath.workdps(dps):
         k = mpmath.mpf(kappa)
         h = k * mpmath.mpf(10) ** -12
-        up = mp_frequencies(patch, nu, k + h, dps)[index]
-        dn = mp_frequencies(patch, nu, k - h, dps)[index]
-        return (up - dn) / (2 * h)
+        up = mp_frequencies(patch, nu, k + h, dps)
+        dn = mp_frequencies(patch, nu, k - h, dps)
+        return [(a - b) / (2 * h) for a, b in zip(up, dn)]
+
+
+def mp_group_velocity(patch, nu, kappa, index: int, dps: int = 80):
+    """The ``index``-th of :func:`mp_group_velocities`."""
+    return mp_group_velocities(patch, nu, kappa, dps)[index]

@@ -741,18 +741,21 @@ def _branches_block(patch: PlatePatch, nu: float, kappa: np.ndarray, group: bool
         is_s = share >= 0.5
         rank_s = np.cumsum(is_s, axis=1) - 1
         rank_a = np.cumsum(~is_s, axis=1) - 1
+        # the column of the j-th root of each parity in every row (an index past the end,
+        # then NaN, where a row has fewer)
+        R = W.shape[1]
+        Wn = np.concatenate([W, np.full((W.shape[0], 1), np.nan)], axis=1)
+        Gn = np.concatenate([G, np.full((G.shape[0], 1), np.nan)], axis=1) if group else None
+        rows = np.arange(W.shape[0])
         for kind, mask, rank in (("S", is_s, rank_s), ("A", ~is_s, rank_a)):
-            for j in range(int(mask.sum(axis=1).max(initial=0))):
-                sel = mask & (rank == j)
-                has = sel.any(axis=1)
+            count = mask.sum(axis=1)
+            for j in range(int(count.max(initial=0))):
+                col = np.argmax(mask & (rank == j), axis=1)
+                col[count <= j] = R
                 label = f"{kind}{j}"
-                vals = np.full(kappa.size, np.nan)
-                vals[has] = W[has][sel[has]]
-                omega[label], symmetry[label] = vals, "mixed"
+                omega[label], symmetry[label] = Wn[rows, col], "mixed"
                 if group:
-                    g = np.full(kappa.size, np.nan)
-                    g[has] = G[has][sel[has]]
-                    slopes[label] = g
+                    slopes[label] = Gn[rows, col]
     return omega, symmetry, slopes
 
 

@@ -390,31 +390,35 @@ def certified_roots(poly: PencilPolynomial, u: np.ndarray, v, guess: np.ndarray,
 
 def _newton(c: np.ndarray, cn: np.ndarray, mu: np.ndarray) -> np.ndarray:
     """One Newton step ``(sum (j - 1) c_j mu^j) / P_mu`` for every root (one Horner loop)."""
-    p = np.empty_like(mu)
-    p[:] = c[-1]
-    num = np.empty_like(mu)
-    num[:] = cn[-1]
-    dp = np.zeros_like(mu)
-    for j in range(c.shape[0] - 2, -1, -1):
+    p = mu * c[-1]
+    p += c[-2]
+    dp = np.empty_like(mu)
+    dp[:] = c[-1]
+    num = mu * cn[-1]
+    num += cn[-2]
+    for j in range(c.shape[0] - 3, -1, -1):
         dp *= mu
         dp += p
         p *= mu
         p += c[j]
         num *= mu
         num += cn[j]
-    return num / dp
+    num /= dp
+    return num
 
 
 def _radius(c, cbar, mu, g, dm):
     """Inclusion radius ``dm (|P| + e_P) / (|P_mu| - e_P')`` (inf where not positive)."""
     a = np.abs(mu)
-    p = np.empty_like(mu)
-    p[:] = c[-1]
-    pb = np.empty_like(mu)
-    pb[:] = cbar[-1]
-    dp = np.zeros_like(mu)
-    dpb = np.zeros_like(mu)
-    for j in range(c.shape[0] - 2, -1, -1):
+    p = mu * c[-1]
+    p += c[-2]
+    pb = a * cbar[-1]
+    pb += cbar[-2]
+    dp = np.empty_like(mu)
+    dp[:] = c[-1]
+    dpb = np.empty_like(mu)
+    dpb[:] = cbar[-1]
+    for j in range(c.shape[0] - 3, -1, -1):
         dp *= mu
         dp += p
         p *= mu

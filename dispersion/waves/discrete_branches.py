@@ -1,20 +1,27 @@
 """Discrete dispersion branches of the plate patch: all finite roots of det(K - Omega^2 M) = 0.
 
 For each :math:`\\kappa` of a grid the pencil :math:`(K, M)` of
-:func:`dispersion.symbolic.plate.numeric_pencil` is solved in one batched call: massless DOFs
-(singular masses, :attr:`PlatePatch.massless`) are condensed out by the Schur complement
-of K, *by construction* (their eigenvalues are infinite), then
-:math:`M_{rr} = L L^T` and :math:`\\Omega^2 = \\operatorname{eig}(L^{-1} \\hat K L^{-T})`,
+:func:`dispersion.symbolic.plate.numeric_pencil` is solved in batches. Massless DOFs
+(singular masses, :attr:`PlatePatch.massless`) carry infinite eigenvalues and are never formed:
 
 .. math::
 
     \\hat K = K_{rr} - K_{rm} K_{mm}^{-1} K_{mr}, \\qquad
     \\det(\\hat K - \\Omega^2 M_{rr}) = 0.
 
-Accuracy at every kappa: a float eigenvalue is trusted to relative :data:`RTOL` only where
-the backward-error bound :math:`m\\epsilon\\lambda_{max}/\\lambda` says so; elsewhere (A0 and S0
-at small kappa, where :math:`\\Omega^2 \\sim \\kappa^4` or :math:`\\kappa^2` sits beside eigenvalues
-of order one) that kappa is solved again in ball arithmetic (:func:`extended_frequencies`).
+Accuracy at every kappa, at full speed (issue 23). Where a block of the pencil is small
+(:data:`dispersion.waves.pencil_polynomial.MAX_BLOCK`), its characteristic polynomial
+:math:`P(u, \\mu)` is known exactly (:mod:`dispersion.waves.pencil_polynomial`: the rigid-body
+cancellation at small kappa done once, in rational arithmetic). Its roots are Newton-polished
+from guesses interpolated between anchors (every :data:`ANCHOR_STRIDE`-th kappa solved by the
+float eigen-solver) and *certified* by an inclusion radius from a running error bound:
+:math:`\\Omega` to :data:`CERTIFIED_RTOL` relative, A0 (:math:`\\Omega^2 \\sim \\kappa^4`) and S0
+(:math:`\\kappa^2`) included. Where the polynomial cannot certify a root, the float eigenvalue
+is used if its backward-error bound :math:`m\\epsilon\\lambda_{max}/\\lambda` is small enough,
+else that kappa is solved in ball arithmetic (:func:`extended_frequencies`), and where that
+fails too the kappa is listed in ``DiscreteBranches.failures`` with the reason: nothing
+raises from an eigen-solver. Below :data:`KAPPA_TINY` every branch follows its leading power
+law exactly to the precision of floats; a frequency that underflows is listed, not guessed.
 
 Where the mass keeps the mirror symmetry y -> -y (:func:`dispersion.symbolic.plate.mirror_bases`),
 the pencil splits into a symmetric and an antisymmetric block and the branches are labelled

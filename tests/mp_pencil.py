@@ -44,10 +44,14 @@ def mp_pencil(patch, nu, kappa):
     return K, M
 
 
-def mp_frequencies(patch, nu, kappa, dps: int = 60) -> list:
-    """All finite Omega at ``kappa``, ascending, as mpf (``dps`` digits)."""
+def mp_frequencies(patch, nu, kappa, dps: int = 60, basis=None) -> list:
+    """All finite Omega at ``kappa``, ascending, as mpf (``dps`` digits); with ``basis`` (an
+    integer mirror basis) those of the projected block."""
     with mpmath.workdps(dps):
         K, M = mp_pencil(patch, nu, kappa)
+        if basis is not None:
+            E = mpmath.matrix([[int(v) for v in row] for row in basis.tolist()])
+            K, M = E.T * K * E, E.T * M * E
         n2 = K.rows
         zero = [i for i in range(n2) if all(M[i, j] == 0 for j in range(n2))]
         keep = [i for i in range(n2) if i not in zero]
@@ -66,15 +70,15 @@ def mp_frequencies(patch, nu, kappa, dps: int = 60) -> list:
         return [mpmath.sqrt(max(v, 0)) for v in lam]
 
 
-def mp_group_velocities(patch, nu, kappa, dps: int = 80) -> list:
+def mp_group_velocities(patch, nu, kappa, dps: int = 80, basis=None) -> list:
     """:math:`d\\Omega/d\\kappa` of every root (ascending) by a central difference at ``dps``
     digits, step 1e-12 kappa (truncation ~1e-24 relative, rounding ~1e-(dps-12) of the
     largest root over the smallest)."""
     with mpmath.workdps(dps):
         k = mpmath.mpf(kappa)
         h = k * mpmath.mpf(10) ** -12
-        up = mp_frequencies(patch, nu, k + h, dps)
-        dn = mp_frequencies(patch, nu, k - h, dps)
+        up = mp_frequencies(patch, nu, k + h, dps, basis)
+        dn = mp_frequencies(patch, nu, k - h, dps, basis)
         return [(a - b) / (2 * h) for a, b in zip(up, dn)]
 
 

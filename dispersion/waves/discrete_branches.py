@@ -635,11 +635,12 @@ def _solve_block(patch, nu, kappa, block: _Block, group: bool, failures: list):
             loose = ok & np.any(~(Gerr <= GROUP_RTOL * np.abs(G)), axis=1)
             for i in np.flatnonzero(loose):
                 j = int(np.argmax(Gerr[i] / np.maximum(np.abs(G[i]), 1e-300)))
+                rel = Gerr[i, j] / abs(G[i, j]) if G[i, j] != 0 else np.inf
                 failures.append(("group", float(kappa[i]),
                                  f"group velocity of root {j} ({block.kind or 'mixed'} block) "
-                                 f"certified to {Gerr[i, j]:.1e} absolute only "
-                                 f"(|c_g| = {abs(G[i, j]):.2e}: near a zero group velocity "
-                                 "or a double root)"))
+                                 f"certified to {rel:.1e} relative = {Gerr[i, j]:.1e} absolute, "
+                                 f"not {GROUP_RTOL:.0e} (rounding bound of P_u / P_mu; "
+                                 f"c_g = {G[i, j]:.3e})"))
         if mixed:
             share = pp.parity_share(poly, u, v, mu)
         todo = np.flatnonzero(~ok)

@@ -29,7 +29,7 @@ def _sorted_finite(br, i):
 def test_coefficients_are_the_exact_determinant(kind):
     # P(u, mu) against sympy's exact det of the projected dynamic stiffness (eq 3) at rational
     # kappa = 1/3 (u = 1/9) and Omega^2 = 7/5, x-exact consistent mass
-    patch = plate_patch()
+    patch = plate_patch(model="x-exact")
     E = mirror_bases(3, exact=True)[kind]
     poly = pp.pencil_polynomial(patch, 0.3, E)
     k, lam = sympy.Rational(1, 3), sympy.Rational(7, 5)
@@ -132,7 +132,7 @@ def test_no_sympy_matrix_is_printed(monkeypatch):
     monkeypatch.setattr(sympy.matrices.MatrixBase, "__str__", refuse)
     monkeypatch.setattr(sympy.matrices.MatrixBase, "__repr__", refuse)
     kappa = np.geomspace(1e-7, 1.0, 300)
-    db.discrete_branches(plate_patch(mass="lumped"), 0.3, kappa)
+    db.discrete_branches(plate_patch(model="x-exact", mass="lumped"), 0.3, kappa)
     monkeypatch.setattr(pp, "MAX_BLOCK", 0)
     db.discrete_branches(plate_patch(model="bloch", r=2, mass="lumped"), 0.29, kappa[:40])
 
@@ -141,7 +141,7 @@ def test_tiny_kappa_follows_power_laws_and_reports_underflow():
     # below KAPPA_TINY: Omega = Omega(k0) (k / k0)^e; S0 ~ c_plate kappa with the plate speed
     # sqrt(2 / (1 - nu)) of the discrete patch at small kappa (eq 16 leading term), A0 ~ kappa^2
     # underflows at 1e-300 and is listed, never silently NaN
-    patch = plate_patch()
+    patch = plate_patch(model="x-exact")
     br = db.discrete_branches(patch, 0.3, [0.0, 1e-300, 1e-100, 1e-30])
     s0 = br.omega["S0"]
     assert s0[0] == 0.0
@@ -212,7 +212,7 @@ def test_large_patch_at_large_kappa_never_raises():
 
 def test_group_velocity_reference_helper_is_sane():
     # the reference of the velocity tests: S0 slope at small kappa is the plate speed of eq 16
-    patch = plate_patch()
+    patch = plate_patch(model="x-exact")
     with mpmath.workdps(30):
         g = float(pytest.importorskip("mp_pencil").mp_group_velocity(patch, 0.3, 1e-4, 1))
     assert g == pytest.approx(math.sqrt(2 / 0.7), rel=1e-7)

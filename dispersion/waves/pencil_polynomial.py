@@ -30,7 +30,7 @@ about each estimate holds a root (:math:`P_\\mu / P = \\sum_i 1/(\\mu - \\mu_i)`
 pairwise disjoint discs hold all N roots, one each.
 
 >>> from dispersion.symbolic.plate import plate_patch, mirror_bases
->>> poly = pencil_polynomial(plate_patch(), 0.3, mirror_bases(3, exact=True)["A"])
+>>> poly = pencil_polynomial(plate_patch(model="x-exact"), 0.3, mirror_bases(3, exact=True)["A"])
 >>> poly.coef.shape   # degree 3 in mu, 3 in u = kappa^2
 (4, 4)
 

@@ -268,7 +268,8 @@ def race_markdown(race: dict) -> str:
     inp = race["inputs"]
     codes = list(race["rows"][0]["codes"])
     lines = [f"# Discrete branches: points/s and accuracy (Bloch r = {inp['r']}, "
-             f"nu = {inp['nu']})", "",
+             f"nu = {inp['nu']}; singular masses: contact {inp['contact']}, "
+             f"gamma_s = {inp['gamma_s']})", "",
              "Grids: " + "; ".join(f"{k}: {v}" for k, v in inp["grids"].items())
              + ". Points per code: " + ", ".join(f"{c} {inp['sizes'][c]}" for c in codes)
              + f". Best of {inp['repeat']}. Accuracy: largest relative error over a sample of "

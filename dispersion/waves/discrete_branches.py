@@ -534,29 +534,44 @@ def _branches_block(patch: PlatePatch, nu: float, kappa: np.ndarray, group: bool
     failures = [] if failures is None else failures
     tiny = kappa < KAPPA_TINY
     main = np.flatnonzero(~tiny)
-    k_all = kappa[main]
-    if np.any(tiny):
-        k_all = np.concatenate([k_all, [KAPPA_TINY, 2 * KAPPA_TINY]])
+    ref = np.array([KAPPA_TINY, 2 * KAPPA_TINY])
     omega, symmetry, slopes = {}, {}, {}
     results = []
     for block in plan:
-        W, G, share = _solve_block(patch, nu, k_all, block, group, failures)
-        Wf = np.empty((kappa.size, W.shape[1]))
-        Gf = np.empty_like(Wf) if group else None
-        Sf = np.empty_like(Wf) if share is not None else None
-        Wf[main] = W[:main.size]
-        if group:
-            Gf[main] = G[:main.size]
-        if share is not None:
-            Sf[main] = share[:main.size]
+        parts = {}
+        if main.size:
+            parts["main"] = _solve_block(patch, nu, kappa[main], block, group, failures)
         if np.any(tiny):
-            Wt, Gt = _tiny(kappa[tiny], W[-2], W[-1], None if G is None else G[-2],
-                           None if G is None else G[-1], failures)
+            # the power laws below KAPPA_TINY are read at two reference kappa; what cannot be
+            # certified there is reported at the kappa asked for
+            ref_fail = []
+            parts["ref"] = _solve_block(patch, nu, ref, block, group, ref_fail)
+            seen = set()
+            for what, k_ref, why in ref_fail:
+                if what not in seen:  # one entry per quantity and kappa
+                    seen.add(what)
+                    failures.extend((what, float(k), f"{why} (at the power-law reference "
+                                     f"kappa {k_ref:.0e})") for k in kappa[tiny])
+        cols = next(iter(parts.values()))[0].shape[1]
+        Wf = np.empty((kappa.size, cols))
+        Gf = np.empty_like(Wf) if group else None
+        Sf = np.empty_like(Wf) if block.kind is None else None
+        if main.size:
+            W, G, share = parts["main"]
+            Wf[main] = W
+            if group:
+                Gf[main] = G
+            if Sf is not None:
+                Sf[main] = share
+        if np.any(tiny):
+            W, G, share = parts["ref"]
+            Wt, Gt = _tiny(kappa[tiny], W[0], W[1], None if G is None else G[0],
+                           None if G is None else G[1], failures)
             Wf[tiny] = Wt
             if group:
                 Gf[tiny] = Gt
-            if share is not None:
-                Sf[tiny] = share[-2]
+            if Sf is not None:
+                Sf[tiny] = share[0]
         results.append((block, Wf, Gf, Sf))
     for block, W, G, share in results:
         if block.kind is not None:

@@ -472,7 +472,9 @@ def slopes(poly: PencilPolynomial, u: np.ndarray, v, dudk: np.ndarray, mu: np.nd
         pub, _ = _horner_mu(cub, np.abs(mu))
         _, pm = _horner_mu(c, mu)
         _, pmb = _horner_mu(cb, np.abs(mu))
-        g = 2 * (6 * du + 2 * dm + 4) * _EPS
+        # the rounding constants of certified_roots without its safety factor 2 (each is a
+        # worst-case bound already, Higham 2002, 3.1 and 5.1)
+        g = (6 * du + 2 * dm + 4) * _EPS
         mu_u = -pu / pm
         err_mu_u = (g * pub + np.abs(mu_u) * g * pmb) / np.abs(pm)
         mx = _values(poly, "mx", u, v, bars=False)[0]

@@ -396,9 +396,10 @@ def numeric_pencil(patch: PlatePatch, nu: float, kappa) -> tuple[np.ndarray, np.
         raise InputError("aspect ratio r must be a number for numeric evaluation")
     mat, xf = lame(nu), x_functions(patch, kappa)
     terms, M0 = numeric_terms(patch)
-    K = np.zeros((kappa.size, 2 * patch.n, 2 * patch.n))
-    for m, f, B in terms:
-        K += (mat[m] * xf[f])[:, None, None] * B
+    n2 = 2 * patch.n
+    # one matrix product: coefficients (points x terms) times the flattened term matrices
+    C = np.column_stack([np.broadcast_to(mat[m] * xf[f], kappa.shape) for m, f, _ in terms])
+    K = (C @ np.stack([B.ravel() for _, _, B in terms])).reshape(kappa.size, n2, n2)
     M = xf["mx"][:, None, None] * M0
     return K, M
 

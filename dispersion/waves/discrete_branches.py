@@ -103,10 +103,10 @@ def _condense(K, M, massless):
     r = np.setdiff1d(np.arange(n), m)
     if m.size == 0:
         return K, M, r, m
-    Krr, Krm = K[:, r][:, :, r], K[:, r][:, :, m]
-    Kmm = K[:, m][:, :, m]
+    Krr, Krm = K[:, r[:, None], r], K[:, r[:, None], m]
+    Kmm = K[:, m[:, None], m]
     Khat = Krr - Krm @ np.linalg.solve(Kmm, np.swapaxes(Krm, 1, 2))
-    return Khat, M[:, r][:, :, r], r, m
+    return Khat, M[:, r[:, None], r], r, m
 
 
 def pencil_frequencies(K, M, massless=(), vectors: bool = False):

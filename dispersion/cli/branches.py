@@ -285,6 +285,12 @@ def run(args) -> int:
         print(f"warning: exact {kind} branches at kappa={k:.6g}: {why}", file=sys.stderr)
     for label, k, why in vel.uncertain:
         print(f"warning: exact {label} group velocity at kappa={k:.6g}: {why}", file=sys.stderr)
+    for mass, d in results:
+        for what, k, why in d.failures[:5]:
+            print(f"warning: discrete {mass} {what} at kappa={k:.6g}: {why}", file=sys.stderr)
+        if len(d.failures) > 5:
+            print(f"warning: discrete {mass}: {len(d.failures) - 5} more kappa not certified",
+                  file=sys.stderr)
     inputs = _inputs(args, s)
     rows = _rows(kappa, exact.omega, vel.group, lambda lab: lab[0], "exact", s["material"],
                  args.thickness, args.omega_max)

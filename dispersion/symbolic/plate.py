@@ -67,6 +67,7 @@ __all__ = [
     "stiffness_terms",
     "dynamic_stiffness",
     "numeric_pencil",
+    "numeric_terms",
     "mirror_bases",
     "x_taylor",
 ]
@@ -394,11 +395,39 @@ def numeric_pencil(patch: PlatePatch, nu: float, kappa) -> tuple[np.ndarray, np.
     if patch.model == "bloch" and isinstance(patch.r, sympy.Symbol):
         raise InputError("aspect ratio r must be a number for numeric evaluation")
     mat, xf = lame(nu), x_functions(patch, kappa)
-    K = np.zeros((kappa.size, 2 * patch.n, 2 * patch.n))
-    for m, f, B in stiffness_terms(patch):
-        K += mat[m] * xf[f][:, None, None] * np.array(B, dtype=float)
-    M = xf["mx"][:, None, None] * np.array(mass_block(patch), dtype=float)
+    terms, M0 = numeric_terms(patch)
+    n2 = 2 * patch.n
+    # one matrix product: coefficients (points x terms) times the flattened term matrices
+    C = np.column_stack([np.broadcast_to(mat[m] * xf[f], kappa.shape) for m, f, _ in terms])
+    K = (C @ np.stack([B.ravel() for _, _, B in terms])).reshape(kappa.size, n2, n2)
+    M = xf["mx"][:, None, None] * M0
     return K, M
+
+
+def numeric_terms(patch: PlatePatch) -> tuple[tuple[tuple[str, str, np.ndarray], ...], np.ndarray]:
+    """:func:`stiffness_terms` and :func:`mass_block` as float arrays, built once per patch data.
+
+    >>> terms, M0 = numeric_terms(plate_patch())
+    >>> len(terms), M0.shape
+    (6, (6, 6))
+    """
+    return _numeric_terms(patch.p, patch.n, tuple(patch.My))
+
+
+@lru_cache(maxsize=64)
+def _numeric_terms(p: int, n: int, my: tuple):
+    from types import SimpleNamespace
+
+    terms = stiffness_terms(SimpleNamespace(Y=thickness_matrices(p, n), n=n))
+    out = []
+    for m, f, B in terms:
+        arr = np.array(B, dtype=float)
+        arr.setflags(write=False)  # cached and shared
+        out.append((m, f, arr))
+    My = sympy.Matrix(n, n, list(my))
+    M0 = np.array(sympy.diag(My, My), dtype=float)
+    M0.setflags(write=False)
+    return tuple(out), M0
 
 
 def mirror_bases(patch_or_n, exact: bool = False):

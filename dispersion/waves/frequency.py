@@ -375,12 +375,13 @@ def modes_at_frequency(nu: float, omega, *, kinds=("S", "A", "SH"), step: float 
     rows.sort(key=lambda r: (r[0], int(r[1].lstrip("SAH") or 0),
                              family[r[1].rstrip("0123456789")], r[2]))
     cutoffs = {}
+    top = wmax + math.pi  # the next cut-off of every family lies within pi
     for kind in kinds:
-        if kind == "SH":
-            cutoffs.update(dict(sh_cutoffs(wmax)))
-        else:
-            for j, (w, _) in enumerate(cutoff_frequencies(kind, nu, wmax)):
-                cutoffs[f"{kind}{j}"] = w
+        found = (sh_cutoffs(top) if kind == "SH" else
+                 [(f"{kind}{j}", w) for j, (w, _) in
+                  enumerate(cutoff_frequencies(kind, nu, top))])
+        above = [lab for lab, w in found if w > wmax][:1]
+        cutoffs.update({lab: w for lab, w in found if w <= wmax or lab in above})
     return FrequencyRoots(
         nu=nu, omega=omega,
         index=np.array([r[0] for r in rows], dtype=int),

@@ -90,13 +90,9 @@ class ModeTable:
 
     def zgv(self) -> list[dict]:
         """Zero-group-velocity points: mode, f [kHz], fd [MHz mm], c_p [m/s], wavelength."""
-        out = []
-        for p in self.roots.zgv:
-            f = float(self._khz(p.omega))
-            out.append({"mode": p.label, "f [kHz]": f, "fd [MHz mm]": f * self.thickness_mm
-                        * 1e-3, "c_p [m/s]": p.omega / p.kappa * self.material.c_T,
-                        "wavelength [mm]": 2 * math.pi * self.h_mm / p.kappa})
-        return out
+        from dispersion.waves.units import zgv_in_units
+
+        return zgv_in_units(self.roots.zgv, self.material, self.thickness_mm)
 
     def failures(self) -> list[dict]:
         """Frequencies whose roots a count did not certify, with the reason."""

@@ -41,6 +41,8 @@ __all__ = [
     "PhysicalBranches",
     "check_same_nu",
     "fd_mhz_mm",
+    "frequency_khz",
+    "zgv_in_units",
     "material_from_moduli",
     "physical_branches",
     "rayleigh_speed",
@@ -121,6 +123,15 @@ class PhysicalBranches:
         """Material, thickness and nu, for captions."""
         return f"{self.material.name}, d = {self.thickness_mm:g} mm, nu = {self.nu:.4f}"
 
+    def curves(self) -> dict[str, dict[str, np.ndarray]]:
+        """Per label, arrays along the kappa grid: ``f`` (kHz), ``fd``, ``c_p``, ``c_g`` (m/s),
+        ``k`` (rad/mm), for :func:`dispersion.plotting.lamb.figure_dispersion`."""
+        with np.errstate(divide="ignore"):
+            k = 2 * math.pi / self.wavelength
+        return {lab: {"f": self.frequency[lab], "fd": self.fd[lab], "c_p": self.phase[lab],
+                      "c_g": self.group.get(lab, np.full(k.shape, np.nan)), "k": k}
+                for lab in self.frequency}
+
 
 def physical_branches(kappa, omega: dict, group: dict | None, material: Material,
                       thickness_mm: float, *, nu: float | None = None) -> PhysicalBranches:
@@ -153,3 +164,26 @@ def physical_branches(kappa, omega: dict, group: dict | None, material: Material
     fd = {lab: fd_mhz_mm(w, material) for lab, w in omega.items()}
     grp = {lab: g * cT for lab, g in (group or {}).items()}
     return PhysicalBranches(material, float(thickness_mm), freq, fd, phase, grp, wavelength)
+
+
+
+def frequency_khz(Omega, material: Material, thickness_mm: float):
+    """:math:`f = \\Omega c_T / (2\\pi h)` in kHz for a plate of thickness d = 2h (mm)."""
+    return np.asarray(Omega, dtype=float) * material.c_T / (math.pi * thickness_mm)
+
+
+def zgv_in_units(points, material: Material, thickness_mm: float) -> list[dict]:
+    """Zero-group-velocity points (label, kappa, Omega) as dicts in the practitioner's units:
+    ``mode``, ``f [kHz]``, ``fd [MHz mm]``, ``c_p [m/s]``, ``wavelength [mm]``.
+
+    >>> from dispersion.waves.velocities import ZGVPoint
+    >>> zgv_in_units([ZGVPoint("S1", 1.0, 2.0)], ALUMINIUM, 1.0)[0]["c_p [m/s]"]
+    6260.0
+    """
+    out = []
+    for p in points:
+        f = float(frequency_khz(p.omega, material, thickness_mm))
+        out.append({"mode": p.label, "f [kHz]": f, "fd [MHz mm]": f * thickness_mm * 1e-3,
+                    "c_p [m/s]": p.omega / p.kappa * material.c_T,
+                    "wavelength [mm]": math.pi * thickness_mm / p.kappa})
+    return out

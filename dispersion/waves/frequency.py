@@ -56,7 +56,7 @@ from dispersion.waves.rayleigh_lamb import (
 )
 
 __all__ = ["FREQUENCY_OMEGA_MAX", "FREQUENCY_OMEGA_MIN", "MAX_SCAN_SAMPLES", "FrequencyRoots",
-           "modes_at_frequency"]
+           "modes_at_frequency", "zgv_points"]
 
 #: Smallest Omega accepted. Rule: the fundamental roots must stay above kappa = 1e-3, below
 #: which the tracer itself leaves the frequency function for the series (round-off); S0 has
@@ -316,6 +316,58 @@ def _class_roots(kind, nu, omega, step, rtol, max_depth, zgv_kappa):
     return rf, labels, roots, group, failures
 
 
+def zgv_points(nu: float, omega_top: float, per_unit: float = 40.0):
+    """Zero-group-velocity points of the exact branches with :math:`\\Omega \\le` omega_top.
+
+    The branches are traced (:func:`~dispersion.waves.exact_branches.trace_branches`) on
+    ``per_unit`` kappa samples per unit of kappa up to omega_top (a ZGV point has
+    :math:`c_p > c_T`, so :math:`\\kappa < \\Omega`); where the slope
+    :func:`~dispersion.waves.rayleigh_lamb.frequency_slope` changes sign along a branch, Brent's
+    method finds the kappa of zero slope, the branch being solved for Omega at each kappa.
+    The same points as :func:`dispersion.waves.velocities.zgv_points`, without the series of
+    S0 and A0 (which have no ZGV point), so no symbolic algebra is loaded.
+
+    >>> [(p.label, round(p.kappa, 6), round(p.omega, 6)) for p in zgv_points(0.3, 3.0)]
+    [('S1', 0.838288, 2.730307)]
+    """
+    from scipy.optimize import brentq
+
+    from dispersion.waves.exact_branches import trace_branches
+    from dispersion.waves.velocities import ZGVPoint
+
+    count = int(min(max(per_unit * omega_top, 120), 4000))
+    kappa = np.linspace(omega_top / count, omega_top, count)
+    tr = trace_branches(nu, kappa, omega_top)
+    h = kappa[1] - kappa[0]
+    out = []
+    for label, w in tr.omega.items():
+        if label[1:] == "0":
+            continue  # S0 and A0 rise monotonically
+        kind = label[0]
+        ok = np.isfinite(w)
+        g = np.full(w.shape, np.nan)
+        g[ok] = frequency_slope(kind, kappa[ok], w[ok], nu)
+        change = np.flatnonzero(np.isfinite(g[1:]) & np.isfinite(g[:-1])
+                                & (np.sign(g[1:]) != np.sign(g[:-1])))
+        for i in change:
+            width = 4 * h * (abs(g[i]) + abs(g[i + 1])) + 1e-3
+
+            def branch(kk, i=i, kind=kind, w=w, width=width):
+                t = (kk - kappa[i]) / h
+                guess = (1 - t) * w[i] + t * w[i + 1]
+                f = lambda W: float(deflated_with_noise(kind, kk, W, nu)[0])  # noqa: E731
+                return brentq(f, guess - width, guess + width, xtol=1e-15,
+                              rtol=4 * np.finfo(float).eps)
+
+            try:
+                kz = brentq(lambda kk: float(frequency_slope(kind, kk, branch(kk), nu)),
+                            kappa[i], kappa[i + 1], xtol=1e-14)
+                out.append(ZGVPoint(label, float(kz), float(branch(kz))))
+            except ValueError:  # no single bracketed root near the guess: not a ZGV point
+                continue
+    return sorted(out, key=lambda p: (p.omega, p.label))
+
+
 def modes_at_frequency(nu: float, omega, *, kinds=("S", "A", "SH"), step: float = 0.02,
                        rtol: float = 1e-15, max_depth: int = 12, zgv: bool = True,
                        ) -> FrequencyRoots:
@@ -356,9 +408,7 @@ def modes_at_frequency(nu: float, omega, *, kinds=("S", "A", "SH"), step: float 
     wmax = float(omega.max())
     points = ()
     if zgv and any(k in ("S", "A") for k in kinds):
-        from dispersion.waves.velocities import zgv_points
-
-        points = tuple(zgv_points(nu, wmax * 1.05 + 0.5, wmax * 1.05 + 0.5))
+        points = tuple(zgv_points(nu, wmax * 1.05 + 0.5))
     rows, failures = [], []
     for kind in kinds:
         if kind == "SH":

@@ -316,22 +316,32 @@ def _class_roots(kind, nu, omega, step, rtol, max_depth, zgv_kappa):
     return rf, labels, roots, group, failures
 
 
+def _scalar_root(f, a: float, b: float, rtol: float) -> float:
+    """Root of a scalar function with a sign change on [a, b] (Illinois; no scipy import)."""
+    fa, fb = f(a), f(b)
+    if not fa * fb < 0:
+        raise ValueError("no sign change")
+    root, active = _illinois(lambda idx, x: np.array([f(float(x[0]))]), np.array([a]),
+                             np.array([b]), np.array([fa]), np.array([fb]), rtol)
+    if active[0]:
+        raise ValueError("did not converge")
+    return float(root[0])
+
+
 def zgv_points(nu: float, omega_top: float, per_unit: float = 40.0):
     """Zero-group-velocity points of the exact branches with :math:`\\Omega \\le` omega_top.
 
     The branches are traced (:func:`~dispersion.waves.exact_branches.trace_branches`) on
     ``per_unit`` kappa samples per unit of kappa up to omega_top (a ZGV point has
     :math:`c_p > c_T`, so :math:`\\kappa < \\Omega`); where the slope
-    :func:`~dispersion.waves.rayleigh_lamb.frequency_slope` changes sign along a branch, Brent's
-    method finds the kappa of zero slope, the branch being solved for Omega at each kappa.
+    :func:`~dispersion.waves.rayleigh_lamb.frequency_slope` changes sign along a branch, the
+    Illinois method finds the kappa of zero slope, the branch solved for Omega at each kappa.
     The same points as :func:`dispersion.waves.velocities.zgv_points`, without the series of
     S0 and A0 (which have no ZGV point), so no symbolic algebra is loaded.
 
     >>> [(p.label, round(p.kappa, 6), round(p.omega, 6)) for p in zgv_points(0.3, 3.0)]
     [('S1', 0.838288, 2.730307)]
     """
-    from scipy.optimize import brentq
-
     from dispersion.waves.exact_branches import trace_branches
     from dispersion.waves.velocities import ZGVPoint
 
@@ -355,13 +365,12 @@ def zgv_points(nu: float, omega_top: float, per_unit: float = 40.0):
             def branch(kk, i=i, kind=kind, w=w, width=width):
                 t = (kk - kappa[i]) / h
                 guess = (1 - t) * w[i] + t * w[i + 1]
-                f = lambda W: float(deflated_with_noise(kind, kk, W, nu)[0])  # noqa: E731
-                return brentq(f, guess - width, guess + width, xtol=1e-15,
-                              rtol=4 * np.finfo(float).eps)
+                return _scalar_root(lambda W: float(deflated_with_noise(kind, kk, W, nu)[0]),
+                                    guess - width, guess + width, 1e-15)
 
             try:
-                kz = brentq(lambda kk: float(frequency_slope(kind, kk, branch(kk), nu)),
-                            kappa[i], kappa[i + 1], xtol=1e-14)
+                kz = _scalar_root(lambda kk: float(frequency_slope(kind, kk, branch(kk), nu)),
+                                  kappa[i], kappa[i + 1], 1e-14)
                 out.append(ZGVPoint(label, float(kz), float(branch(kz))))
             except ValueError:  # no single bracketed root near the guess: not a ZGV point
                 continue

@@ -341,10 +341,10 @@ def _physical_figure(kappa, exact, vel, material, thickness, omega_max):
     from dispersion.plotting.lamb import figure_dispersion
     from dispersion.waves.rayleigh_lamb import cutoff_frequencies
     from dispersion.waves.units import frequency_khz, physical_branches, zgv_in_units
-    from dispersion.waves.velocities import zgv_points
+    from dispersion.waves.frequency import zgv_points
 
     phys = physical_branches(kappa, exact.omega, vel.group, material, thickness)
-    zgv = zgv_points(exact.nu, float(kappa.max()), omega_max) if kappa.max() > 0 else []
+    zgv = [p for p in zgv_points(exact.nu, omega_max) if p.kappa <= kappa.max()]
     cut = {}
     for kind in ("S", "A"):
         for j, (w, _) in enumerate(cutoff_frequencies(kind, exact.nu, omega_max)):

@@ -51,11 +51,26 @@ def summary(data: dict) -> str:
     return "\n".join(out) + "\n"
 
 
+#: The figure of our modes of the benchmark plate (README links it).
+FIGURE = "lamb_aluminium.png"
+
+
 def render(data: dict, out: Path) -> str:
-    """Markdown of the section from the stored result of :func:`measure`."""
+    """Markdown of the section, and the figure of our modes, from the stored result."""
+    import numpy as np
+
+    from dispersion.io import save_figure
+    from dispersion.plotting.lamb import figure_dispersion
+
+    c = data["curves"]
+    modes = {lab: {k: np.array([np.nan if x is None else x for x in v], dtype=float)
+                   for k, v in d.items()} for lab, d in c["modes"].items()}
+    fig = figure_dispersion(modes, c["title"], c["zgv"], c["cutoffs [kHz]"])
+    save_figure(fig, Path(out) / FIGURE, dpi=130)
     m = data["material"]
     return (
         "## Side by side: Lamb-wave calculators from the package index\n\n"
+        f"![Lamb and SH modes of the benchmark plate]({FIGURE})\n\n"
         f"Plate: c_L = {m['c_L [m/s]']:g} m/s, c_T = {m['c_T [m/s]']:g} m/s, "
         f"d = {m['thickness [mm]']:g} mm. Each tool runs as a whole process in the same "
         "session (best of the repeats); reference roots are the textbook Rayleigh-Lamb "

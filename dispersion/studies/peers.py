@@ -217,11 +217,13 @@ def _reference(runs: dict, freqs: list[float]) -> list[list[float]]:
 @dataclass(frozen=True)
 class PeerRace:
     """Per task: the reference root count and, per tool, status, seconds, found, missed,
-    spurious, max and median relative c_p error, time over ours."""
+    spurious, max and median relative c_p error, time over ours. ``curves``: our modes of
+    the benchmark plate (S, A and SH) in physical units, for the report's figure."""
 
     tasks: dict
     material: dict
     python: str
+    curves: dict
 
 
 def _task(name: str, freqs: list[float], repeat: int) -> dict:
@@ -259,4 +261,18 @@ def measure(quick: bool = False, executor=None, repeat: int | None = None) -> Pe
              "s0a0": _task("S0 and A0 at 1 MHz", [1000.0], repeat)}
     # at 1 MHz only S0 and A0 propagate below the A1 cut-off (1565 kHz): every root counts
     return PeerRace(tasks, {"c_L [m/s]": C_L, "c_T [m/s]": C_T, "rho [kg/m^3]": RHO,
-                            "thickness [mm]": D_MM}, sys.version.split()[0])
+                            "thickness [mm]": D_MM}, sys.version.split()[0],
+                    _curves(100 if quick else 400))
+
+
+def _curves(count: int) -> dict:
+    """Our S, A and SH modes of the benchmark plate on ``count`` frequencies up to 3 MHz."""
+    from dispersion.waves.materials import user_material
+    from dispersion.waves.mode_table import lamb_modes
+
+    m = user_material(c_L=C_L, c_T=C_T, rho=RHO, name="aluminium")
+    t = lamb_modes(m, D_MM, frequency_khz=[3.0 + 2997.0 * i / (count - 1)
+                                           for i in range(count)])
+    return {"title": t.title(), "zgv": t.zgv(), "cutoffs [kHz]": t.cutoffs_khz(),
+            "modes": {lab: {k: v.tolist() for k, v in d.items()}
+                      for lab, d in t.curves().items()}}

@@ -108,9 +108,15 @@ class ModeTable:
     def curves(self) -> dict[str, dict[str, np.ndarray]]:
         """Per mode, arrays ordered along the branch (by kappa): ``f, fd, c_p, c_g, k``.
 
-        A backward branch (two roots of one label at one frequency) stays one curve.
+        A backward branch (two roots of one label at one frequency) stays one curve, through
+        its zero-group-velocity point when that lies within the frequencies.
         """
         rows = self.rows()
+        f_lo, f_hi = float(self.frequency_khz.min()), float(self.frequency_khz.max())
+        for p in self.zgv():
+            if f_lo <= p["f [kHz]"] <= f_hi:
+                rows.append({**p, "c_g [m/s]": 0.0, "k [rad/mm]": 2 * math.pi
+                             / p["wavelength [mm]"]})
         out: dict[str, dict[str, list]] = {}
         for row in rows:
             d = out.setdefault(row["mode"], {"f": [], "fd": [], "c_p": [], "c_g": [], "k": []})

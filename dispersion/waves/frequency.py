@@ -55,8 +55,8 @@ from dispersion.waves.rayleigh_lamb import (
     speed_ratio_squared,
 )
 
-__all__ = ["FREQUENCY_OMEGA_MAX", "FREQUENCY_OMEGA_MIN", "MAX_SCAN_SAMPLES", "FrequencyRoots",
-           "modes_at_frequency", "zgv_points"]
+__all__ = ["FREQUENCY_OMEGA_MAX", "FREQUENCY_OMEGA_MIN", "MAX_SCAN_SAMPLES", "SLOPE_OMEGA",
+           "FrequencyRoots", "modes_at_frequency", "zgv_points"]
 
 #: Smallest Omega accepted. Rule: the fundamental roots must stay above kappa = 1e-3, below
 #: which the tracer itself leaves the frequency function for the series (round-off); S0 has
@@ -243,6 +243,34 @@ def _polish(kind, kappa, omega, nu, width: float = 1e-9):
     return out
 
 
+#: Below this Omega the float slope :func:`~dispersion.waves.rayleigh_lamb.frequency_slope`
+#: loses about eps / Omega^2 to the trivial root of F at Omega = 0 (measured against mpmath:
+#: 2e-11 at Omega = 2e-3, 3e-12 at 1e-2, 4e-14 at 0.1); rule: where eps / Omega^2 > 1e-13
+#: the slope is taken in 30-digit arithmetic instead.
+SLOPE_OMEGA = 0.05
+
+
+def _slope_mp(kind, kappa, omega, nu) -> np.ndarray:
+    """:math:`d\\Omega/d\\kappa = -F_\\kappa / F_\\Omega` of the frequency function in mpmath."""
+    import mpmath
+
+    from dispersion.waves.rayleigh_lamb import frequency_function
+
+    out = np.empty(kappa.size)
+    with mpmath.workdps(30):
+        m_nu = mpmath.mpf(nu)
+
+        def F(k, W):
+            return mpmath.re(frequency_function(
+                kind, k**2, W**2, m_nu, lambda z: mpmath.cos(mpmath.sqrt(z)),
+                lambda z: mpmath.sinc(mpmath.sqrt(z))))
+
+        for i, (k, W) in enumerate(zip(kappa, omega)):
+            k, W = mpmath.mpf(float(k)), mpmath.mpf(float(W))
+            out[i] = float(-mpmath.diff(lambda x: F(x, W), k) / mpmath.diff(lambda x: F(k, x), W))
+    return out
+
+
 def _class_roots(kind, nu, omega, step, rtol, max_depth, zgv_kappa):
     """Roots of one class (``"S"`` or ``"A"``) at every Omega, labelled by the count."""
     failures = []
@@ -284,6 +312,9 @@ def _class_roots(kind, nu, omega, step, rtol, max_depth, zgv_kappa):
     roots = _polish(kind, roots, omega[rf], nu)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         group = np.asarray(frequency_slope(kind, roots, omega[rf], nu), dtype=float)
+    low = np.flatnonzero(omega[rf] < SLOPE_OMEGA)
+    if low.size:
+        group[low] = _slope_mp(kind, roots[low], omega[rf][low], nu)
     labels = [""] * roots.size
     cut = np.array([w for w, _ in cutoff_frequencies(kind, nu, float(omega.max()))])
     for i in range(omega.size):

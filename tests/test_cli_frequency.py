@@ -143,3 +143,27 @@ def test_user_material_from_moduli_matches_speeds(capsys):
     b = json.loads(capsys.readouterr().out)["result"]["rows"]
     np.testing.assert_allclose([r["c_p [m/s]"] for r in a], [r["c_p [m/s]"] for r in b],
                                rtol=1e-12)
+
+
+@pytest.mark.slow
+def test_csv_never_has_nan_or_inf_over_random_plates():
+    # the "never" of issue 20 searched for counterexamples: random plates and frequencies
+    from hypothesis import given, settings
+    from hypothesis import strategies as st
+
+    from dispersion.cli.frequency import render_csv
+
+    @settings(max_examples=25, deadline=None)
+    @given(ct=st.floats(1000.0, 4000.0), ratio=st.floats(1.2, 3.0), d=st.floats(0.2, 10.0),
+           fd=st.lists(st.floats(0.01, 8.0), min_size=1, max_size=4))
+    def check(ct, ratio, d, fd):
+        from dispersion.waves.materials import user_material
+
+        t = lamb_modes(user_material(c_L=ct * ratio, c_T=ct), d, fd_mhz_mm=fd)
+        text = render_csv(t.rows(), [])
+        for r in _rows(text):
+            for key, v in r.items():
+                if key not in ("mode", "family"):
+                    assert math.isfinite(float(v)), (key, v)
+
+    check()

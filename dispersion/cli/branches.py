@@ -1,5 +1,8 @@
 """``dispersion branches``: discrete and exact Rayleigh-Lamb branches with velocities and units.
 
+With ``--frequency``/``--fd`` the frequency is the input axis instead of kappa: every
+propagating S, A and SH mode at each frequency (:mod:`dispersion.cli.frequency`).
+
 Rows ``kappa, Omega, branch, symmetry, source, c_p/c_T, c_g/c_T`` (dimensionless: kappa = kh,
 Omega = omega h / c_T) and, with a material and a thickness, ``f [kHz], fd [MHz mm],
 c_p [m/s], c_g [m/s], wavelength [mm]``. ``--csv FILE`` / ``--figure FILE`` write files
@@ -290,6 +293,15 @@ def run(args) -> int:
     for kind, k, why in exact.failures:
         print(f"warning: exact {kind} branches at kappa={k:.6g}: {why}", file=sys.stderr)
     inputs = _inputs(args, s)
+    if s["material"] is not None:  # the practitioner's path: ZGV points in the output
+        from dispersion.waves.frequency import zgv_points
+        from dispersion.waves.units import zgv_in_units
+
+        points = zgv_in_units(zgv_points(nu, args.omega_max), s["material"], args.thickness)
+        for p in points:
+            inputs[f"ZGV {p['mode']}"] = (f"f = {p['f [kHz]']:.10g} kHz, fd = "
+                                          f"{p['fd [MHz mm]']:.10g} MHz mm, c_p = "
+                                          f"{p['c_p [m/s]']:.10g} m/s")
     rows = _rows(kappa, exact.omega, vel.group, lambda lab: lab[0], "exact", s["material"],
                  args.thickness, args.omega_max, nu)
     for mass, d in results:

@@ -179,3 +179,15 @@ def test_random_frequencies_certified_and_accurate():
             assert nums == list(range(len(nums))) or (fam == "S" and 0 in nums)
 
     check()
+
+
+@pytest.mark.parametrize(("nu", "W"), [(1 / 3, math.pi), (0.3, math.pi), (0.3, 1.5 * math.pi)])
+def test_frequency_exactly_at_a_cut_off(nu, W):
+    # found by the property search: Omega on a cut-off (at nu = 1/3 a double one, c_L = 2 c_T)
+    # leaves that mode at kappa = 0 (not propagating); the others are labelled by the count
+    r = modes_at_frequency(nu, [W], kinds=("S", "A"), zgv=False)
+    assert not r.failures
+    assert all(lab[1:].isdigit() for lab in r.label) and np.all(r.kappa > 0)
+    for lab, kappa in zip(r.label, r.kappa):
+        ref, _ = _mp_root_and_slope(lab[0], kappa, W, nu)
+        assert abs(kappa - ref) <= RTOL * ref

@@ -271,6 +271,19 @@ def _slope_mp(kind, kappa, omega, nu) -> np.ndarray:
     return out
 
 
+def _walk(n0: int, signs) -> list[int] | None:
+    """Branch indices of the roots met walking up in kappa from the count ``n0`` at kappa = 0
+    (each root changes the count by ``-sign(c_g)``); None unless it ends at zero."""
+    n, out = n0, []
+    for s in signs:
+        j = n - 1 if s > 0 else n
+        if j < 0:
+            return None
+        out.append(j)
+        n -= int(s)
+    return out if n == 0 else None
+
+
 def _class_roots(kind, nu, omega, step, rtol, max_depth, zgv_kappa):
     """Roots of one class (``"S"`` or ``"A"``) at every Omega, labelled by the count."""
     failures = []
@@ -319,31 +332,30 @@ def _class_roots(kind, nu, omega, step, rtol, max_depth, zgv_kappa):
     cut = np.array([w for w, _ in cutoff_frequencies(kind, nu, float(omega.max()))])
     for i in range(omega.size):
         mine = np.flatnonzero(rf == i)
-        if np.any(np.abs(cut - omega[i]) <= 8 * np.spacing(omega[i])):
-            failures.append((float(omega[i]), kind, "Omega at a cut-off (kappa = 0 there)"))
-            continue
-        n = int(np.count_nonzero(cut < omega[i]))
-        ok = True
-        for r in mine:  # roots are sorted by kappa within a frequency
-            s = np.sign(group[r])
-            if not np.isfinite(group[r]) or s == 0:
-                failures.append((float(omega[i]), kind, f"group velocity undefined at "
-                                 f"kappa={roots[r]:.6g}"))
-                ok = False
-                break
-            j_branch = n - 1 if s > 0 else n
-            if j_branch < 0:
-                ok = False
-                break
-            labels[r] = f"{kind}{j_branch}"
-            n -= int(s)
-        if ok and n != 0:
-            ok = False
-        if not ok:
+        g = group[mine]
+        if not np.all(np.isfinite(g) & (g != 0)):
+            bad = roots[mine][~(np.isfinite(g) & (g != 0))][0]
+            failures.append((float(omega[i]), kind, f"group velocity undefined at "
+                             f"kappa={bad:.6g}"))
+            walk = None
+        else:
+            # N(0+): the cut-offs below Omega; a branch whose cut-off *is* Omega (within
+            # round-off) may start just below or above it, so both counts are tried and
+            # the one whose walk adds up is kept (its root at kappa = 0 is not propagating)
+            tol = 8 * np.spacing(omega[i])
+            lo = int(np.count_nonzero(cut < omega[i] - tol))
+            hi = int(np.count_nonzero(cut <= omega[i] + tol))
+            walks = [w for w in (_walk(n0, np.sign(g)) for n0 in range(lo, hi + 1))
+                     if w is not None]
+            walk = walks[0] if len(walks) == 1 else None
+        if walk is None:
             for r in mine:
-                labels[r] = labels[r] or f"{kind}?"
+                labels[r] = f"{kind}?"
             failures.append((float(omega[i]), kind, "root count does not add up to the "
                              "branches below Omega (a root may be missing)"))
+            continue
+        for r, j in zip(mine, walk):
+            labels[r] = f"{kind}{j}"
     return rf, labels, roots, group, failures
 
 
@@ -462,8 +474,11 @@ def modes_at_frequency(nu: float, omega, *, kinds=("S", "A", "SH"), step: float 
         failures += fails
         rows += list(zip(rf.tolist(), labels, roots.tolist(), group.tolist()))
     family = {"S": 0, "A": 1, "SH": 2}
-    rows.sort(key=lambda r: (r[0], int(r[1].lstrip("SAH") or 0),
-                             family[r[1].rstrip("0123456789")], r[2]))
+    def number(label):  # "S?" (an uncertified root) sorts after every numbered mode
+        digits = label.lstrip("SAH")
+        return int(digits) if digits.isdigit() else 10**9
+
+    rows.sort(key=lambda r: (r[0], number(r[1]), family[r[1].rstrip("0123456789?")], r[2]))
     cutoffs = {}
     top = wmax + math.pi  # the next cut-off of every family lies within pi
     for kind in kinds:

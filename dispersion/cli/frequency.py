@@ -116,7 +116,8 @@ def material_from_args(args):
         given.append("--nu")
     if args.material:
         if given:
-            raise InputError(f"give --material or user values ({', '.join(given)}), not both")
+            raise InputError(f"--material must not be combined with user values "
+                             f"({', '.join(given)})")
         return material(args.material)
     if not given:
         return None
@@ -134,7 +135,7 @@ def material_from_args(args):
 
 def _check(args):
     if args.frequency is not None and args.fd is not None:
-        raise InputError("give --frequency or --fd, not both")
+        raise InputError("--frequency and --fd must not be given together (one input axis)")
     if not args.exact:
         raise InputError("--frequency/--fd need --exact (the exact Rayleigh-Lamb and SH modes; "
                          "discrete branches are on the kappa grid only)")
@@ -229,8 +230,8 @@ def _fields(table, label: str):
     r = table.roots
     picks = [i for i, lab in enumerate(r.label) if lab == label]
     if not picks:
-        raise InputError(f"--mode-shape {label}: no such propagating mode at this frequency "
-                         f"(present: {', '.join(dict.fromkeys(r.label))})")
+        raise InputError(f"--mode-shape must be one of the modes propagating at this "
+                         f"frequency ({', '.join(dict.fromkeys(r.label))}), got {label!r}")
     y = np.linspace(-1.0, 1.0, 41)
     out = []
     for i in picks:
@@ -274,7 +275,7 @@ def run(args) -> int:
     if args.mode_shape is not None:
         count = (f_khz if fd is None else fd).size
         if count != 1:
-            raise InputError(f"--mode-shape needs exactly one frequency, got {count}")
+            raise InputError(f"--mode-shape needs exactly one frequency (at most 1), got {count}")
     table = lamb_modes(mat, args.thickness, frequency_khz=f_khz, fd_mhz_mm=fd)
     for x in table.failures():
         print(f"warning: f = {x['f [kHz]']:.6g} kHz ({x['family']}): {x['reason']}",

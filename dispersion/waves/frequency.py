@@ -454,8 +454,8 @@ def modes_at_frequency(nu: float, omega, *, kinds=("S", "A", "SH"), step: float 
         raise InputError(f"kinds must be a non-empty subset of S, A, SH; got {kinds!r}")
     samples = float(np.sum(_kappa_start(nu, omega))) / step * len(kinds)
     if samples > MAX_SCAN_SAMPLES:
-        raise InputError(f"the frequencies ask for about {samples:.3g} kappa samples, more "
-                         f"than {MAX_SCAN_SAMPLES:.0e} (about a minute): fewer or lower "
+        raise InputError(f"the frequencies ask for about {samples:.3g} kappa samples; they "
+                         f"must be <= {MAX_SCAN_SAMPLES:.0e} (about a minute): fewer or lower "
                          f"frequencies, or a larger step")
     wmax = float(omega.max())
     points = ()

@@ -180,7 +180,9 @@ def _header(table, extra: dict) -> list[str]:
 
     lines = [f"# {k}: {v}" for k, v in table.inputs().items()]
     lines += [f"# {k}: {v}" for k, v in extra.items()]
-    lines.append("# units: " + ", ".join(c for c in _columns(table)))
+    from dispersion.waves.mode_table import COLUMNS
+
+    lines.append("# units: " + ", ".join(COLUMNS))
     lines.append(f"# {EMPTY_NOTE}")
     lines += [f"# cut-off {lab}: {f:.10g} kHz" for lab, f in table.cutoffs_khz().items()]
     lines += [f"# ZGV {p['mode']}: f = {p['f [kHz]']:.10g} kHz, fd = {p['fd [MHz mm]']:.10g} "
@@ -189,12 +191,6 @@ def _header(table, extra: dict) -> list[str]:
               for x in table.failures()]
     lines.append(f"# dispersion-iga: {package_versions(('dispersion-iga',))['dispersion-iga']}")
     return lines
-
-
-def _columns(table):
-    from dispersion.waves.mode_table import COLUMNS
-
-    return COLUMNS
 
 
 def render_csv(rows: list[dict], header: list[str]) -> str:
@@ -283,9 +279,10 @@ def run(args) -> int:
     if args.mode_shape is not None:
         fields = _fields(table, args.mode_shape)
         rows = _field_rows(fields)
+        from dispersion.waves.mode_shapes import FIELD_NORMALISATION
+
         header = _header(table, {"mode shape": args.mode_shape,
-                                 "normalisation": "max |u| = 1; stresses in mu max|u| / h, "
-                                                  "y from the mid-plane"})
+                                 "normalisation": FIELD_NORMALISATION})
     else:
         fields = None
         rows = table.rows()

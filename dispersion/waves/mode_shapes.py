@@ -61,6 +61,8 @@ __all__ = [
 SAMPLES = np.linspace(-1.0, 1.0, 21)
 #: Below this MAC a pair is not trusted and the error is not reported (NaN).
 MAC_MIN = 0.5
+#: How :func:`exact_mode_fields` scales its fields (headers and captions quote it).
+FIELD_NORMALISATION = "max |u| = 1; stresses in mu max|u| / h; y from the mid-plane"
 
 
 def _profiles(kind: str, P: float, Q: float, y: np.ndarray):

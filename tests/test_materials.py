@@ -95,3 +95,12 @@ def test_names_resolve_case_and_aliases():
     assert dispersion.material("Stainless Steel") is MATERIALS["stainless-steel"]
     assert dispersion.material("aluminum") is MATERIALS["aluminium"]
     assert list(itertools.islice(MATERIALS, 1)) == ["aluminium"]
+
+
+def test_branches_keep_their_nu_through_pickling():
+    # parallel sweeps pickle results: the nu tag must survive (dispersion.waves.branch_set)
+    import pickle
+
+    ex = dispersion.exact_branches([0.5, 1.0], nu=0.25, omega_max=2.0)
+    back = pickle.loads(pickle.dumps(ex))
+    assert back.omega.nu == 0.25 and dict(back.omega).keys() == ex.omega.keys()

@@ -62,9 +62,12 @@ __all__ = ["FREQUENCY_OMEGA_MAX", "FREQUENCY_OMEGA_MIN", "MAX_SCAN_SAMPLES", "SL
 #: which the tracer itself leaves the frequency function for the series (round-off); S0 has
 #: kappa = Omega / 1.69.. there, so Omega >= 2e-3 (fd >= about 0.002 MHz mm in metals).
 FREQUENCY_OMEGA_MIN = 2e-3
-#: Largest Omega accepted: kappa_hi (about 1.2 Omega / 0.9) must stay below the tracer's
-#: kappa bound of 300 (cosh overflow of the frequency function).
-FREQUENCY_OMEGA_MAX = 200.0
+#: Largest Omega accepted. Rule: the largest Omega at which the scan was seen free of
+#: failures -- 1800 random (nu in [-0.5, 0.49], Omega <= 30) requests certified every root;
+#: from Omega = 36 on (nu = 0.45) the deflated function's cancellation at kappa ~ Omega leaves
+#: stretches within round-off (listed as failures). A scaled, cancellation-free frequency
+#: function would lift this bound. Omega = 30 is fd = 30 c_T / pi (about 30 MHz mm in metals).
+FREQUENCY_OMEGA_MAX = 30.0
 #: Largest scan of one call (kappa samples over all frequencies). Rule: the tracer's bound
 #: (about a minute of work at ~3 us per sample).
 MAX_SCAN_SAMPLES = 20_000_000

@@ -124,7 +124,7 @@ def test_bad_frequencies_are_refused(kwargs, match):
         lamb_modes(material("steel"), 1.0, **kwargs)
 
 
-@pytest.mark.parametrize("W", [FREQUENCY_OMEGA_MIN, 0.03])
+@pytest.mark.parametrize("W", [FREQUENCY_OMEGA_MIN, pytest.param(0.03, marks=pytest.mark.slow)])
 def test_low_frequencies_are_accurate(W):
     # below SLOPE_OMEGA the group velocity is taken in 30 digits (the float slope loses
     # eps / Omega^2); both sides of that switch are checked
@@ -181,7 +181,11 @@ def test_random_frequencies_certified_and_accurate():
     check()
 
 
-@pytest.mark.parametrize(("nu", "W"), [(1 / 3, math.pi), (0.3, math.pi), (0.3, 1.5 * math.pi)])
+@pytest.mark.parametrize(("nu", "W"), [
+    (1 / 3, math.pi),
+    pytest.param(0.3, math.pi, marks=pytest.mark.slow),
+    pytest.param(0.3, 1.5 * math.pi, marks=pytest.mark.slow),
+])
 def test_frequency_exactly_at_a_cut_off(nu, W):
     # found by the property search: Omega on a cut-off (at nu = 1/3 a double one, c_L = 2 c_T)
     # leaves that mode at kappa = 0 (not propagating); the others are labelled by the count

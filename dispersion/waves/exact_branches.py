@@ -133,6 +133,13 @@ class ExactBranches:
     omega_max: float
     failures: list[tuple[str, float, str]] = field(default_factory=list)
 
+    def __post_init__(self):
+        # the branches carry their nu, so they cannot be put in units of another material
+        from dispersion.waves.branch_set import BranchSet
+
+        if not isinstance(self.omega, BranchSet) or self.omega.nu != self.nu:
+            self.omega = BranchSet(self.omega, nu=self.nu)
+
     def symmetry(self, label: str) -> str:
         """``"S"`` or ``"A"``."""
         return label[0]

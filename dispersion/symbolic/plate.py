@@ -28,8 +28,10 @@ pencil is real symmetric,
         \\cdot & (\\lambda + 2\\mu) m Y_{11} + \\mu d Y_{00} \\end{bmatrix}, \\qquad
     M = m_x \\begin{bmatrix} M_y & 0 \\\\ 0 & M_y \\end{bmatrix},
 
-with :math:`M_y` the thickness mass of the chosen variant (:mod:`dispersion.symbolic.mass`) and
-:math:`m_x = m` (consistent in x) or 1 (lumped variants).
+with :math:`M_y` the thickness mass of the chosen rule (:mod:`dispersion.symbolic.mass_rule`) and
+:math:`m_x = \\sum_L a_L \\cos L\\theta` the Bloch sum of the rule's x-mass
+(:func:`dispersion.symbolic.mass_rule.x_mass_coefficients`: :math:`m_x = m` consistent, 1
+row-sum lumped or HRZ; 1 in the x-exact model).
 
 >>> patch = plate_patch()
 >>> patch.Y["00"].tolist()
@@ -51,7 +53,8 @@ import sympy
 
 from dispersion.symbolic import bspline
 from dispersion.errors import InputError, check_nu, check_positive_int
-from dispersion.symbolic.mass import MASS_VARIANTS, contact_weights, mass_variant, redistribution_matrix
+from dispersion.symbolic.mass import contact_weights, mass_variant, redistribution_matrix
+from dispersion.symbolic.mass_rule import get_rule, x_mass_coefficients
 
 __all__ = [
     "MODELS",
@@ -180,7 +183,11 @@ def lame(nu, scaled: bool = False) -> dict[str, object]:
 
 @dataclass(frozen=True)
 class PlatePatch:
-    """The representative patch: basis data, mass variant and derived matrices (exact)."""
+    """The representative patch: basis data, mass rule and derived matrices (exact).
+
+    ``mass`` is the rule's name, ``rule`` the :class:`~dispersion.symbolic.mass_rule.MassRule`
+    itself, ``x_mass`` the Bloch coefficients ``((L, a_L), ...)`` of its mass along x.
+    """
 
     p: int
     n: int
@@ -191,6 +198,8 @@ class PlatePatch:
     Y: dict = field(repr=False)
     My: sympy.Matrix = field(repr=False)
     x_lumped: bool = False
+    x_mass: tuple = ()
+    rule: object = field(default=None, repr=False, compare=False)
 
     @property
     def massless(self) -> tuple[int, ...]:
@@ -229,7 +238,11 @@ def plate_patch(
     r : number, sympy Rational or None
         Aspect ratio b/h of the Bloch model, in ``R_RANGE`` = [1/1000, 1000] (None: kept as
         the symbol ``r``). Checked but unused for x-exact (the CLI refuses it there).
-    mass : ``"consistent"``, ``"lumped"``, ``"singular"``, ``"singular-lumped"``
+    mass : str or MassRule
+        A registered rule (:data:`dispersion.symbolic.mass_rule.RULE_NAMES`: ``"consistent"``,
+        ``"lumped"``, ``"hrz"``, ``"nodal-greville"``, ``"nodal-lobatto"``, ``"singular"``,
+        ``"singular-lumped"``) or a user :class:`~dispersion.symbolic.mass_rule.MassRule`;
+        its matrix through the thickness is checked against its stated properties.
     contact, gamma_s :
         Contact set and the paper's weight (see :func:`dispersion.symbolic.mass.contact_weights`).
     weights : mapping, optional
@@ -238,8 +251,7 @@ def plate_patch(
     p, n = check_size(p, n)
     if model not in MODELS:
         raise InputError(f"model must be one of {', '.join(MODELS)}; got {model!r}")
-    if mass not in MASS_VARIANTS:
-        raise InputError(f"mass must be one of {', '.join(MASS_VARIANTS)}; got {mass!r}")
+    rule = get_rule(mass)
     if model == "bloch":
         if r is None:
             r = sympy.Symbol("r", positive=True)
@@ -253,12 +265,15 @@ def plate_patch(
         gamma_s = _rational("gamma_s", gamma_s)
     Y = thickness_matrices(p, n)
     R = None
-    if mass.startswith("singular"):
+    if rule.redistributes:
         if weights is None:
             weights = contact_weights(n, contact, gamma_s)
         R = redistribution_matrix(n, weights, allow_negative=allow_negative)
-    My = mass_variant(Y["00"], mass, R)
-    return PlatePatch(p, n, model, r, mass, R, Y, My, x_lumped=mass.endswith("lumped"))
+    kv = bspline.open_knot_vector(p, n - p, -1, 1)
+    My = mass_variant(Y["00"], rule, R, kv=kv)
+    x_mass = x_mass_coefficients(rule.x_rule, p)
+    return PlatePatch(p, n, model, r, rule.name, R, Y, My,
+                      x_lumped=x_mass == ((0, sympy.Integer(1)),), x_mass=x_mass, rule=rule)
 
 
 #: Valid aspect ratios r = b/h of the Bloch model. Outside, the float pencil of the numeric
@@ -312,8 +327,12 @@ def x_functions(patch: PlatePatch, kappa) -> dict[str, object]:
             "s": -2 / r * sum(conv(c["10"][L]) * sin(L * th) for L in range(1, patch.p + 1)),
             "d": sum(conv(v) * cos(L * th) for L, v in c["11"].items()) / r**2,
         }
-    out["mx"] = (np.ones_like(out["m"]) if numeric else sympy.Integer(1)) if patch.x_lumped \
-        else out["m"]
+    if patch.model == "x-exact" or patch.x_lumped:
+        out["mx"] = np.ones_like(out["m"]) if numeric else sympy.Integer(1)
+    else:
+        th = kappa * (float(patch.r) if numeric else patch.r)
+        conv = float if numeric else (lambda v: v)
+        out["mx"] = sum(conv(v) * cos(L * th) for L, v in patch.x_mass)
     return out
 
 
@@ -346,8 +365,11 @@ def x_taylor(patch: PlatePatch, D: int) -> dict[str, list[tuple[sympy.Rational, 
                              / sympy.factorial(2 * k + 1), 2 * k))
             out["d"].append((sign * sum(v * L ** (2 * k) for L, v in c["11"].items())
                              / sympy.factorial(2 * k), 2 * k - 2))
-    out["mx"] = [(sympy.Integer(1), 0)] + [(sympy.Integer(0), 0)] * D if patch.x_lumped \
-        else out["m"]
+    if patch.model == "x-exact" or patch.x_lumped:
+        out["mx"] = [(sympy.Integer(1), 0)] + [(sympy.Integer(0), 0)] * D
+    else:
+        out["mx"] = [((-1) ** k * sum(v * L ** (2 * k) for L, v in patch.x_mass)
+                      / sympy.factorial(2 * k), 2 * k) for k in range(D + 1)]
     return out
 
 

@@ -186,7 +186,7 @@ class _Key:
 
     def __init__(self, patch: PlatePatch):
         self.patch = patch
-        self.key = (patch.p, patch.n, patch.model, str(patch.r), str(patch.My), patch.x_lumped)
+        self.key = (patch.p, patch.n, patch.model, str(patch.r), str(patch.My), patch.x_mass)
 
     def __hash__(self):
         return hash(self.key)

@@ -1,0 +1,619 @@
+"""Mass rules: one registry of the ways to build a mass matrix, each with its stated properties.
+
+A *mass rule* turns the consistent Gram matrix :math:`\\mathbf M` of a B-spline space (and,
+for the singular rules, a redistribution :math:`\\mathbf R`, :mod:`dispersion.symbolic.mass`)
+into the mass matrix an analysis uses:
+
+=====================  =================================================================
+``consistent``         :math:`\\mathbf M`
+``lumped``             row sums, :math:`M^L_{ii} = \\sum_j M_{ij}`
+``hrz``                per element :math:`M^e_{ii} \\, m_e / \\operatorname{tr} \\mathbf M^e`
+                       (the diagonal scaled to the element mass :math:`m_e = \\sum_{ij} M^e_{ij}`),
+                       assembled (Hinton, Rock, Zienkiewicz 1976)
+``nodal-greville``     :math:`\\sum_q w_q \\mathbf N(g_q) \\mathbf N(g_q)^T`, points at the Greville
+                       abscissae :math:`g_q`, weights :math:`w_q = \\int N_q` (exact for linear f)
+``nodal-lobatto``      per element, the :math:`p + 1` Gauss-Lobatto points (exact to degree
+                       :math:`2p - 1`); for p = 1 this is the row-sum lumped mass
+``singular``           :math:`\\mathbf R^T \\mathbf M \\mathbf R` (paper eq 1, left)
+``singular-lumped``    row sums of :math:`\\mathbf R^T \\mathbf M \\mathbf R` (paper eq 1, right)
+=====================  =================================================================
+
+and user rules: :func:`user_rule` (a Python callable of the :class:`MassSpace`) or
+:func:`rule_from_toml` (a table of redistribution weights). Each rule *states* its properties
+(:class:`MassProperties`); :func:`mass_matrix` builds the matrix and checks them on the space
+(:func:`check_mass`): a rule whose matrix contradicts what it states, is not symmetric, or has
+massless directions that are not zero rows (the explicit scheme condenses zero rows only) is
+refused with the reason; an indefinite matrix or lost translational mass is warned about.
+
+Along x of the Bloch plate (no contact there) a rule acts through :attr:`MassRule.x_rule`;
+:func:`x_mass_coefficients` gives its Bloch coefficients :math:`a_L`,
+:math:`m_x(\\theta) = \\sum_L a_L \\cos L\\theta`.
+
+>>> import sympy
+>>> from dispersion.symbolic.bspline import open_knot_vector
+>>> kv = open_knot_vector(2, 1, -1, 1)
+>>> space = gram_space(kv)
+>>> mass_matrix("hrz", space).tolist()      # diag(2/5, 4/15, 2/5) scaled to the mass 2
+[[3/4, 0, 0], [0, 1/2, 0], [0, 0, 3/4]]
+>>> x_mass_coefficients("lumped", 2)
+((0, 1),)
+
+References
+----------
+E. Hinton, T. Rock, O. C. Zienkiewicz, "A note on mass lumping and related processes in the
+finite element method", Earthq. Eng. Struct. Dyn. 4 (1976) 245-249.
+A. Tkachuk et al., eqs (1)-(4). J. A. Cottrell, A. Reali, Y. Bazilevs, T. J. R. Hughes,
+CMAME 195 (2006) 5257-5296 (lumped IGA masses). M. Abramowitz, I. Stegun, 25.4.32
+(Lobatto quadrature and its error term).
+"""
+from __future__ import annotations
+
+import math
+import warnings
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, fields
+from fractions import Fraction
+from functools import lru_cache
+
+import numpy as np
+import sympy
+
+from dispersion.errors import IndefiniteMassWarning, InputError, check_positive_int
+
+__all__ = [
+    "MassProperties",
+    "MassSpace",
+    "MassRule",
+    "MassCheck",
+    "RULES",
+    "RULE_NAMES",
+    "TranslationalMassWarning",
+    "get_rule",
+    "gram_space",
+    "mass_matrix",
+    "check_mass",
+    "user_rule",
+    "rule_from_toml",
+    "x_mass_coefficients",
+    "lobatto_rule",
+]
+
+
+class TranslationalMassWarning(UserWarning):
+    """A mass rule changed the total (translational) mass of the space."""
+
+
+@dataclass(frozen=True)
+class MassProperties:
+    """Properties of a mass matrix, stated by a rule or measured on a space.
+
+    ``zero_rows``: the matrix may have (stated) or has (measured) identically zero rows, the
+    massless DOFs the explicit scheme condenses.
+    """
+
+    symmetric: bool = True
+    psd: bool = True
+    translational: bool = True
+    diagonal: bool = False
+    zero_rows: bool = False
+
+    def as_dict(self) -> dict:
+        return {f.name: getattr(self, f.name) for f in fields(self)}
+
+
+@dataclass(frozen=True)
+class MassSpace:
+    """What a rule may use: the consistent mass ``M`` of a 1D B-spline space and its data.
+
+    ``M`` is a sympy matrix (exact) or a numpy / scipy.sparse array; ``kv`` the knot vector
+    (rules that evaluate the basis need it); ``elements`` optional float element matrices
+    ``(conn (n_el, nf) int, Me (n_el, nf, nf))`` of a space without a 1D knot vector (the
+    ring patch); ``R`` the redistribution of the contact set (singular rules).
+    """
+
+    M: object
+    kv: object = None
+    elements: tuple | None = None
+    R: object = None
+
+    @property
+    def n(self) -> int:
+        return int(self.M.shape[0])
+
+    @property
+    def exact(self) -> bool:
+        return isinstance(self.M, sympy.MatrixBase)
+
+
+@dataclass(frozen=True)
+class MassRule:
+    """A named way to build a mass matrix from a :class:`MassSpace`.
+
+    ``build(space)`` returns the matrix (same kind as ``space.M``); ``states`` are the
+    properties it promises; ``x_rule`` names the registered rule used along x of the Bloch
+    plate; ``redistributes``: it needs ``space.R`` (a contact set).
+    """
+
+    name: str
+    build: Callable = None
+    states: MassProperties = MassProperties()
+    x_rule: str = "consistent"
+    redistributes: bool = False
+    description: str = ""
+
+    def __post_init__(self):
+        if not isinstance(self.name, str) or not self.name:
+            raise InputError(f"mass rule name must be a non-empty string, got {self.name!r}")
+        if not callable(self.build):
+            raise InputError(f"mass rule {self.name!r}: build must be callable")
+        if self.x_rule not in _BUILTIN:
+            raise InputError(f"mass rule {self.name!r}: x_rule must be one of "
+                             f"{', '.join(n for n in _BUILTIN if not _BUILTIN[n][3])}, "
+                             f"got {self.x_rule!r}")
+        if _BUILTIN[self.x_rule][3]:
+            raise InputError(f"mass rule {self.name!r}: x_rule {self.x_rule!r} needs a "
+                             "contact set, which the x-direction has not")
+
+
+def _total(M):
+    if isinstance(M, sympy.MatrixBase):
+        return sum(M)
+    return float(np.asarray(M.sum()))
+
+
+def _dense(M) -> np.ndarray:
+    if isinstance(M, sympy.MatrixBase):
+        return np.array(M.tolist(), dtype=float)
+    import scipy.sparse as sp
+
+    return M.toarray() if sp.issparse(M) else np.asarray(M, dtype=float)
+
+
+def _like(A_exact: sympy.Matrix, space: MassSpace, reference_exact: sympy.Matrix):
+    """The exact matrix ``A_exact`` in the kind of ``space.M``, scaled like it.
+
+    A float ``M`` is taken as ``scale * reference_exact`` (constant density, affine map), the
+    scale being the ratio of the totals.
+    """
+    if space.exact:
+        return A_exact
+    import scipy.sparse as sp
+
+    scale = _total(space.M) / float(sum(reference_exact))
+    A = scale * np.array(A_exact.tolist(), dtype=float)
+    return sp.csr_matrix(A) if sp.issparse(space.M) else A
+
+
+def _row_sum(M):
+    from dispersion.symbolic.mass import row_sum_lump
+
+    return row_sum_lump(M)
+
+
+def _need_kv(space: MassSpace, name: str):
+    if space.kv is None:
+        raise InputError(f"mass rule {name!r} evaluates the basis and needs a 1D B-spline space "
+                         "(knot vector); this space has none (the ring patch supports "
+                         "consistent, lumped, hrz, singular, singular-lumped and user rules)")
+    return space.kv
+
+
+def _build_consistent(space):
+    return space.M
+
+
+def _build_lumped(space):
+    return _row_sum(space.M)
+
+
+def _build_singular(space, lump: bool = False):
+    from dispersion.symbolic.mass import redistributed_mass
+
+    if space.R is None:
+        raise InputError("a singular mass rule needs a contact set (redistribution matrix R)")
+    return redistributed_mass(space.M, space.R, lump)
+
+
+def _build_hrz(space):
+    if space.kv is not None and (space.exact or space.elements is None):
+        return _like(_hrz_exact(space.kv), space, _gram_exact(space.kv))
+    if space.elements is None:
+        _need_kv(space, "hrz")
+    conn, Me = space.elements
+    import scipy.sparse as sp
+
+    diag = np.einsum("eii->ei", Me)
+    diag = diag * (Me.sum(axis=(1, 2)) / diag.sum(axis=1))[:, None]
+    d = np.bincount(np.asarray(conn).ravel(), diag.ravel(), minlength=space.n)
+    return sp.diags(d).tocsr() if sp.issparse(space.M) else np.diag(d)
+
+
+def _build_greville(space):
+    kv = _need_kv(space, "nodal-greville")
+    return _like(_greville_exact(kv), space, _gram_exact(kv))
+
+
+def _build_lobatto(space):
+    kv = _need_kv(space, "nodal-lobatto")
+    return _like(_lobatto_exact(kv), space, _gram_exact(kv))
+
+
+@lru_cache(maxsize=64)
+def _elements_exact(kv) -> tuple:
+    """Per span: ``(a, b, active, C)``, C the exact extraction operator as Fractions (Borden 2011)."""
+    from dispersion.symbolic.bspline import as_fraction_matrix, extraction_operators
+
+    return tuple((Fraction(int(a.p), int(a.q)), Fraction(int(b.p), int(b.q)), tuple(act),
+                  as_fraction_matrix(C)) for (a, b), act, C in extraction_operators(kv))
+
+
+@lru_cache(maxsize=None)
+def _bernstein_gram(p: int) -> np.ndarray:
+    r""":math:`\int_0^1 B_i B_j du = \binom{p}{i}\binom{p}{j} / ((2p+1)\binom{2p}{i+j})`."""
+    return np.array([[Fraction(math.comb(p, i) * math.comb(p, j),
+                               (2 * p + 1) * math.comb(2 * p, i + j)) for j in range(p + 1)]
+                     for i in range(p + 1)], dtype=object)
+
+
+def _bernstein_at(p: int, u: Fraction) -> np.ndarray:
+    return np.array([math.comb(p, b) * u**b * (1 - u) ** (p - b) for b in range(p + 1)],
+                    dtype=object)
+
+
+def _element_gram(a, b, C, p):
+    return (b - a) * C.dot(_bernstein_gram(p)).dot(C.T)
+
+
+def _to_sympy(A: np.ndarray) -> sympy.ImmutableMatrix:
+    return sympy.ImmutableMatrix(A.shape[0], A.shape[1],
+                                 lambda i, j: sympy.Rational(A[i, j].numerator,
+                                                             A[i, j].denominator))
+
+
+def _zeros(n: int) -> np.ndarray:
+    return np.full((n, n), Fraction(0), dtype=object)
+
+
+@lru_cache(maxsize=64)
+def _gram_exact(kv) -> sympy.ImmutableMatrix:
+    M = _zeros(kv.n)
+    for a, b, act, C in _elements_exact(kv):
+        M[np.ix_(act, act)] += _element_gram(a, b, C, kv.p)
+    return _to_sympy(M)
+
+
+@lru_cache(maxsize=64)
+def _hrz_exact(kv) -> sympy.ImmutableMatrix:
+    d = np.full(kv.n, Fraction(0), dtype=object)
+    for a, b, act, C in _elements_exact(kv):
+        Me = _element_gram(a, b, C, kv.p)
+        diag = np.array([Me[k, k] for k in range(len(act))], dtype=object)
+        d[list(act)] += diag * (Me.sum() / diag.sum())
+    return _to_sympy(np.diag(d) + _zeros(kv.n))
+
+
+@lru_cache(maxsize=64)
+def _greville_exact(kv) -> sympy.ImmutableMatrix:
+    n, p = kv.n, kv.p
+    w = np.full(n, Fraction(0), dtype=object)
+    for a, b, act, C in _elements_exact(kv):
+        w[list(act)] += (b - a) * C.dot(np.full(p + 1, Fraction(1, p + 1), dtype=object))
+    g = [Fraction(int(x.p), int(x.q)) for x in kv.greville()]
+    N = _zeros(n)  # N[q, i] = N_i(g_q)
+    last = Fraction(int(kv.knots[-1].p), int(kv.knots[-1].q))
+    for a, b, act, C in _elements_exact(kv):
+        for q, gq in enumerate(g):
+            # a point on a knot belongs to the span on its right (the last one to its left)
+            if a <= gq < b or (gq == b == last):
+                N[q, list(act)] = C.dot(_bernstein_at(p, (gq - a) / (b - a)))
+    return _to_sympy(N.T.dot(np.diag(w) + _zeros(n)).dot(N))
+
+
+def lobatto_rule(m: int) -> tuple[np.ndarray, np.ndarray]:
+    """Float Gauss-Lobatto points and weights on [-1, 1] with ``m >= 2`` points.
+
+    Points: :math:`\\pm 1` and the roots of :math:`P'_{m-1}`; weights
+    :math:`2 / (m (m-1) P_{m-1}(x_q)^2)` (Abramowitz, Stegun 25.4.32).
+
+    >>> x, w = lobatto_rule(3)
+    >>> x.round(12).tolist(), w.round(12).tolist()
+    ([-1.0, 0.0, 1.0], [0.333333333333, 1.333333333333, 0.333333333333])
+    """
+    m = check_positive_int("Lobatto points m", m, minimum=2)
+    P = np.polynomial.legendre.Legendre.basis(m - 1)
+    inner = np.sort(P.deriv().roots().real) if m > 2 else np.array([])
+    x = np.concatenate([[-1.0], inner, [1.0]])
+    return x, 2.0 / (m * (m - 1) * P(x) ** 2)
+
+
+def _lobatto_error_constant(m: int) -> sympy.Rational:
+    """:math:`K_m` with :math:`Q_m(g) = \\int_{-1}^1 g + K_m g^{(2m-2)}` for deg g <= 2m - 2.
+
+    Abramowitz, Stegun 25.4.32: the Lobatto error is
+    :math:`-\\frac{m (m-1)^3 2^{2m-1} ((m-2)!)^4}{(2m-1) ((2m-2)!)^3} f^{(2m-2)}(\\xi)`.
+    """
+    f = sympy.factorial
+    return sympy.Rational(m * (m - 1) ** 3 * 2 ** (2 * m - 1) * f(m - 2) ** 4,
+                          (2 * m - 1) * f(2 * m - 2) ** 3)
+
+
+@lru_cache(maxsize=64)
+def _lobatto_exact(kv) -> sympy.ImmutableMatrix:
+    # p + 1 Lobatto points per span integrate N_i N_j (degree 2p) up to the error term, which
+    # is exact and rational: Q = (h/2) (int g + K g^(2p)) with g the product in s in [-1, 1];
+    # g^(2p) = (2p)! lead_i lead_j / 2^(2p), lead the u^p coefficient (u = (s + 1)/2)
+    p, n = kv.p, kv.n
+    K = _lobatto_error_constant(p + 1)
+    K = Fraction(int(K.p), int(K.q))
+    lead_b = np.array([math.comb(p, b) * (-1) ** (p - b) for b in range(p + 1)], dtype=object)
+    M = _zeros(n)
+    for a, b, act, C in _elements_exact(kv):
+        lead = C.dot(lead_b)
+        corr = (b - a) / 2 * K * math.factorial(2 * p) / 2 ** (2 * p) * np.outer(lead, lead)
+        M[np.ix_(act, act)] += _element_gram(a, b, C, p) + corr
+    return _to_sympy(M)
+
+
+# name -> (build, stated properties, x rule, redistributes, description)
+_BUILTIN = {
+    "consistent": (_build_consistent, MassProperties(), "consistent", False,
+                   "consistent Gram matrix"),
+    "lumped": (_build_lumped, MassProperties(diagonal=True), "lumped", False,
+               "row-sum lumped"),
+    "hrz": (_build_hrz, MassProperties(diagonal=True), "hrz", False,
+            "HRZ: element diagonal scaled to the element mass"),
+    "nodal-greville": (_build_greville, MassProperties(), "nodal-greville", False,
+                       "nodal quadrature at the Greville points"),
+    "nodal-lobatto": (_build_lobatto, MassProperties(), "nodal-lobatto", False,
+                      "nodal quadrature at p+1 Gauss-Lobatto points per element"),
+    "singular": (_build_singular, MassProperties(zero_rows=True), "consistent", True,
+                 "singular: R^T M R (paper eq 1 left)"),
+    "singular-lumped": (lambda s: _build_singular(s, lump=True),
+                        MassProperties(diagonal=True, zero_rows=True), "lumped", True,
+                        "singular lumped: row sums of R^T M R (paper eq 1 right)"),
+}
+
+#: The registered rules, by name (one registry for patch, bar, contact scenes and CLI).
+RULES: dict[str, MassRule] = {
+    name: MassRule(name, build, states, x_rule, redis, desc)
+    for name, (build, states, x_rule, redis, desc) in _BUILTIN.items()
+}
+RULE_NAMES = tuple(RULES)
+
+
+def get_rule(mass) -> MassRule:
+    """The :class:`MassRule` for a registered name or a rule object.
+
+    >>> get_rule("hrz").states.diagonal
+    True
+    """
+    if isinstance(mass, MassRule):
+        return mass
+    if isinstance(mass, str) and mass in RULES:
+        return RULES[mass]
+    raise InputError(f"mass must be one of {', '.join(RULE_NAMES)} or a MassRule; got {mass!r}")
+
+
+def gram_space(kv, R=None) -> MassSpace:
+    """The exact :class:`MassSpace` of knot vector ``kv``: its Gram matrix :math:`\\int N N^T`."""
+    return MassSpace(sympy.Matrix(_gram_exact(kv)), kv, None, R)
+
+
+@dataclass(frozen=True)
+class MassCheck:
+    """Properties measured on a space, and the reasons a rule is refused or warned about."""
+
+    measured: MassProperties
+    refused: tuple[str, ...]
+    warned: tuple[str, ...]
+
+
+def check_mass(rule: MassRule, Mv, M, tol: float = 1e-10) -> MassCheck:
+    """Measure the properties of ``Mv`` (built by ``rule`` from the consistent ``M``).
+
+    Refused: not symmetric; stated diagonal but is not; zero rows it did not state; a
+    massless direction that is no zero row. Warned: indefinite; translational mass changed
+    (the warning says if the rule stated otherwise). ``tol`` is relative to the largest entry (float matrices; exact ones compare
+    exactly, except the eigenvalues).
+    """
+    A = _dense(Mv)
+    n = A.shape[0]
+    if A.shape != (n, n) or A.shape[0] != M.shape[0]:
+        raise InputError(f"mass rule {rule.name!r} returned shape {A.shape}, expected "
+                         f"{tuple(M.shape)}")
+    if not np.all(np.isfinite(A)):
+        raise InputError(f"mass rule {rule.name!r} returned non-finite entries")
+    scale = max(float(np.abs(A).max(initial=0.0)), np.finfo(float).tiny)
+    exact = isinstance(Mv, sympy.MatrixBase)
+    if exact:
+        symmetric = Mv.is_symmetric()
+        diagonal = Mv.is_diagonal()
+        zero = [i for i in range(n) if all(v == 0 for v in Mv.row(i))]
+        translational = sympy.expand(sum(Mv) - sum(sympy.Matrix(M))) == 0 \
+            if isinstance(M, sympy.MatrixBase) else abs(float(sum(Mv)) - _total(M)) <= tol * scale * n
+    else:
+        symmetric = bool(np.allclose(A, A.T, rtol=0, atol=tol * scale))
+        diagonal = bool(np.all(np.abs(A - np.diag(np.diag(A))) <= tol * scale))
+        zero = [i for i in range(n) if np.all(np.abs(A[i]) <= tol * scale)]
+        translational = abs(A.sum() - _total(M)) <= tol * scale * n
+    keep = np.setdiff1d(np.arange(n), zero)
+    Ar = A[np.ix_(keep, keep)]
+    ev = np.linalg.eigvalsh((Ar + Ar.T) / 2) if keep.size else np.zeros(0)
+    psd = bool(ev.size == 0 or ev.min() >= -tol * scale * n)
+    nonsingular_rest = bool(ev.size == 0 or np.abs(ev).min() > tol * scale * n)
+    measured = MassProperties(bool(symmetric), psd, bool(translational), bool(diagonal),
+                              bool(zero))
+    refused, warned = [], []
+    if not measured.symmetric:
+        refused.append("it is not symmetric")
+    if psd and not nonsingular_rest:
+        refused.append("it has massless directions that are not zero rows (the explicit "
+                       "scheme condenses zero rows only)")
+    if zero and not rule.states.zero_rows:
+        refused.append(f"it has zero rows {zero} but does not state zero_rows")
+    if rule.states.diagonal and not measured.diagonal:
+        refused.append("it states diagonal but is not")
+    # indefinite or mass-changing matrices are legitimate objects of study (negative weights
+    # on request, mass scaling): warned, with the stated promise named if it is broken
+    if not psd:
+        broken = " although it states psd" if rule.states.psd else ""
+        warned.append(f"it is indefinite (smallest eigenvalue {ev.min():.3g}){broken}")
+    if not measured.translational:
+        broken = " although it states translational" if rule.states.translational else ""
+        warned.append(f"it changes the translational mass{broken}")
+    return MassCheck(measured, tuple(refused), tuple(warned))
+
+
+def mass_matrix(mass, space: MassSpace, *, check: bool = True):
+    """The mass matrix of rule ``mass`` (name or :class:`MassRule`) on ``space``, checked.
+
+    Raises :class:`InputError` naming the rule and the reason where :func:`check_mass`
+    refuses it; warns (:class:`IndefiniteMassWarning`, :class:`TranslationalMassWarning`)
+    where it only warns.
+    """
+    rule = get_rule(mass)
+    Mv = rule.build(space)
+    if isinstance(Mv, (list, tuple)):
+        Mv = np.asarray(Mv, dtype=float)
+    if space.exact and not isinstance(Mv, sympy.MatrixBase):
+        Mv = sympy.Matrix(Mv)
+    if check:
+        result = check_mass(rule, Mv, space.M)
+        if result.refused:
+            raise InputError(f"mass rule {rule.name!r} refused: " + "; ".join(result.refused))
+        for reason in result.warned:
+            cls = IndefiniteMassWarning if "indefinite" in reason else TranslationalMassWarning
+            warnings.warn(f"mass rule {rule.name!r}: {reason}", cls, stacklevel=2)
+    return Mv
+
+
+def user_rule(name: str, build: Callable, *, states: MassProperties | None = None,
+              x_rule: str = "consistent", description: str = "user rule") -> MassRule:
+    """A :class:`MassRule` from a callable ``build(space: MassSpace) -> matrix``.
+
+    ``states`` defaults to symmetric, positive semi-definite, translational mass kept, not
+    diagonal, no zero rows; the toolkit checks them whenever the rule builds a matrix.
+
+    >>> half = user_rule("half-lumped", lambda s: (s.M + _row_sum(s.M)) / 2)
+    >>> from dispersion.symbolic.bspline import open_knot_vector
+    >>> mass_matrix(half, gram_space(open_knot_vector(1, 1))).tolist()
+    [[5/12, 1/12], [1/12, 5/12]]
+    """
+    if name in RULES:
+        raise InputError(f"user rule name {name!r} is taken by a registered rule")
+    return MassRule(name, build, states or MassProperties(), x_rule, False, description)
+
+
+def _resolve(index: int, n: int) -> int:
+    return index + n if index < 0 else index
+
+
+def rule_from_toml(source) -> MassRule:
+    """A redistribution rule from a TOML table (text or path), read as plain data.
+
+    ::
+
+        name = "far-half"
+        lumped = false            # row-sum lump R^T M R (eq 1 right) if true
+        [weights]                 # contact index -> {target index: weight}; negative
+        "-1" = { "-2" = 0.5, "-3" = 0.5 }   # indices count from the far end (any n)
+
+    The weights go through :func:`dispersion.symbolic.mass.redistribution_matrix` (sum one,
+    in [0, 1]) on every space the rule is applied to.
+
+    >>> rule = rule_from_toml('name = "far-half"\\n[weights]\\n"-1" = {"-2" = 0.5, "-3" = 0.5}')
+    >>> from dispersion.symbolic.bspline import open_knot_vector
+    >>> mass_matrix(rule, gram_space(open_knot_vector(1, 2))).tolist()  # M00 + M02 + M22/4 = 5/24
+    [[5/24, 1/6, 0], [1/6, 11/24, 0], [0, 0, 0]]
+    """
+    import os
+    import tomllib
+
+    from dispersion.symbolic.mass import redistribution_matrix
+
+    text = source
+    if isinstance(source, os.PathLike) or (isinstance(source, str) and "\n" not in source
+                                           and source.endswith(".toml")):
+        try:
+            with open(source, "rb") as fh:
+                text = fh.read().decode("utf-8")
+        except OSError as exc:
+            raise InputError(f"mass rule file {source}: {exc.strerror}") from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError(f"mass rule TOML: {exc}") from None
+    unknown = set(data) - {"name", "lumped", "weights", "description"}
+    if unknown:
+        raise InputError(f"mass rule TOML: unknown keys {sorted(unknown)} (allowed: name, lumped, "
+                         "weights, description)")
+    name = data.get("name")
+    if not isinstance(name, str) or not name or name in RULES:
+        raise InputError(f"mass rule TOML: name must be a new non-empty string, got {name!r}")
+    lumped = data.get("lumped", False)
+    if not isinstance(lumped, bool):
+        raise InputError(f"mass rule TOML: lumped must be true or false, got {lumped!r}")
+    raw = data.get("weights")
+    if not isinstance(raw, Mapping) or not raw:
+        raise InputError("mass rule TOML: [weights] must be a non-empty table")
+    table = {}
+    for c, ws in raw.items():
+        if not isinstance(ws, Mapping):
+            raise InputError(f"mass rule TOML: weights of {c!r} must be a table {{index = weight}}")
+        try:
+            table[int(c)] = {int(j): w for j, w in ws.items()}
+        except ValueError:
+            raise InputError(f"mass rule TOML: weight indices must be integers, got {c!r}: "
+                             f"{dict(ws)!r}") from None
+        for j, w in ws.items():
+            if isinstance(w, bool) or not isinstance(w, (int, float)) or not math.isfinite(w):
+                raise InputError(f"mass rule TOML: weight [{c}][{j}] must be a finite number, "
+                                 f"got {w!r}")
+
+    def build(space: MassSpace):
+        n = space.n
+        weights = {}
+        for c, ws in table.items():
+            cr = _resolve(c, n)
+            if cr in weights:
+                raise InputError(f"mass rule {name!r}: contact index {c} repeats another on n = {n}")
+            weights[cr] = {_resolve(j, n): w for j, w in ws.items()}
+        R = redistribution_matrix(n, weights)
+        if not space.exact:
+            R = np.array(R.tolist(), dtype=float)
+        return _build_singular(MassSpace(space.M, space.kv, space.elements, R), lump=lumped)
+
+    return MassRule(name, build, MassProperties(diagonal=lumped, zero_rows=True),
+                    "lumped" if lumped else "consistent", False,
+                    str(data.get("description", "redistribution weights from TOML")))
+
+
+def _bloch_mesh(p: int) -> int:
+    # function 2p of an open mesh of 3p + 1 unit spans: every span under its support carries
+    # only cardinal (uniform interior) functions, so its row is the periodic stencil
+    return 3 * p + 1
+
+
+@lru_cache(maxsize=None)
+def x_mass_coefficients(rule, p: int) -> tuple[tuple[int, sympy.Rational], ...]:
+    """Bloch coefficients :math:`((L, a_L), ...)` of a rule (name or object) on the uniform x-mesh.
+
+    Read off the middle row of the rule's matrix on an open uniform mesh of unit elements
+    long enough that the row sees interior (cardinal) elements only; zeros are dropped.
+
+    >>> x_mass_coefficients("consistent", 1)
+    ((-1, 1/6), (0, 2/3), (1, 1/6))
+    >>> x_mass_coefficients("nodal-greville", 2)   # N = 3/4 at its Greville point, 1/8 beside
+    ((-2, 1/64), (-1, 3/16), (0, 19/32), (1, 3/16), (2, 1/64))
+    """
+    from dispersion.symbolic.bspline import open_knot_vector
+
+    rule = get_rule(rule)
+    if rule.redistributes:
+        raise InputError(f"mass rule {rule.name!r} needs a contact set; the x-direction has none")
+    p = check_positive_int("degree p", p)
+    ne = _bloch_mesh(p)
+    kv = open_knot_vector(p, ne, 0, ne)
+    M = mass_matrix(rule, gram_space(kv), check=False)
+    mid = 2 * p  # the first function whose spans carry cardinal functions only
+    return tuple((L, M[mid, mid + L]) for L in range(-p, p + 1) if M[mid, mid + L] != 0)

@@ -154,7 +154,8 @@ class CriticalStep:
                        f"points through the thickness, element length h = {self.h:g} m, "
                        f"aspect ratio r = b/H = {self.r}, c_T = {self.wave_speed:g} m/s")
             unit = "omega_max H / c_T"
-        exact = f" = {self.omega_max_exact}" if self.omega_max_exact is not None else ""
+        exact = "" if self.omega_max_exact is None or str(self.omega_max_exact) == \
+            f"{self.omega_max:.12g}" else f" = {self.omega_max_exact}"
         mat = f", material {self.material}" if self.material else ""
         return "\n".join([
             f"mass {self.mass}, p = {self.p}{mat}; {setting}",

@@ -208,10 +208,12 @@ def float_pencil(patch, nu: float):
     return pencil
 
 
-def patch_omega_max(patch, nu: float, n_theta: int = 65) -> tuple[float, object, float, str]:
+def patch_omega_max(patch, nu: float, n_theta: int = 65, exact: bool = True
+                    ) -> tuple[float, object, float, str]:
     """Largest :math:`\\Omega` of a numeric Bloch patch over the zone: ``(value, exact, theta, method)``.
 
-    ``exact`` is a sympy number where the maximum sits at a zone end (else None).
+    ``exact`` (returned) is a sympy number where the maximum sits at a zone end (else None);
+    ``exact=False`` skips that symbolic check and reports the float maximum of the grid.
     """
     from scipy.optimize import minimize_scalar
 
@@ -237,6 +239,8 @@ def patch_omega_max(patch, nu: float, n_theta: int = 65) -> tuple[float, object,
         if -res.fun > best:
             best, where = float(-res.fun), float(res.x)
         return best, None, where, f"numeric: grid of {n_theta} phases, bounded refinement"
+    if not exact:
+        return best, None, where, f"numeric: grid of {n_theta} phases, maximum at a zone end"
     edge = _edge_omega_max(patch, nu, 0 if i == 0 else 1)
     if edge is None or abs(edge[1] - best) > 1e-9 * best:
         raise InputError("exact and float largest frequency disagree at the zone end; "

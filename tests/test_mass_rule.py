@@ -168,3 +168,24 @@ def test_series_leading_term_is_exact_for_rules_keeping_translational_mass(name)
 
     s = discrete_series("S0", 4, nu=sympy.Rational(3, 10), mass=name, p=2, n=3)
     assert s[2] == sympy.Rational(20, 7)
+
+
+@pytest.mark.parametrize("name", ["hrz", "nodal-greville", "nodal-lobatto"])
+def test_periodic_bar_dispersion_takes_any_rule(name):
+    # the float dispersion of the bar against the exact rational function of cos(theta)
+    from dispersion.waves.bar_dispersion import bar_frequency
+    from dispersion.waves.timestep import bar_omega_squared
+
+    theta = np.linspace(0.1, np.pi, 7)
+    f = sympy.lambdify(sympy.Symbol("z"), bar_omega_squared(name, 3), "numpy")
+    assert np.allclose(bar_frequency(3, name, theta) ** 2, f(np.cos(theta)), rtol=1e-12)
+    with pytest.raises(InputError, match="contact boundary"):
+        bar_frequency(2, "singular", theta)
+
+
+@pytest.mark.parametrize("name", ["consistent", "hrz", "nodal-greville", "nodal-lobatto"])
+def test_closed_periodic_rows_equal_the_mesh_rows(name):
+    # a user rule with the same builder takes the general path (middle row of an open mesh)
+    twin = user_rule(f"twin-{name}", RULES[name].build, states=RULES[name].states)
+    for p in (2, 3):
+        assert x_mass_coefficients(twin, p) == x_mass_coefficients(name, p)

@@ -440,13 +440,24 @@ def check_mass(rule: MassRule, Mv, M, tol: float = 1e-10) -> MassCheck:
     Ar = A[np.ix_(keep, keep)]
     ev = np.linalg.eigvalsh((Ar + Ar.T) / 2) if keep.size else np.zeros(0)
     psd = bool(ev.size == 0 or ev.min() >= -tol * scale * n)
-    nonsingular_rest = bool(ev.size == 0 or np.abs(ev).min() > tol * scale * n)
+    if exact and keep.size:
+        # rank decided exactly (fraction-free over QQ): high-degree nodal masses are
+        # nonsingular but far too ill-conditioned for a float test
+        from sympy.polys.matrices import DomainMatrix
+
+        rest = Mv.extract(list(keep), list(keep))
+        try:
+            nonsingular_rest = DomainMatrix.from_Matrix(rest).to_field().rank() == keep.size
+        except (ValueError, TypeError, NotImplementedError, sympy.polys.polyerrors.PolynomialError):
+            nonsingular_rest = bool(np.abs(ev).min() > tol * scale * n)
+    else:
+        nonsingular_rest = bool(ev.size == 0 or np.abs(ev).min() > tol * scale * n)
     measured = MassProperties(bool(symmetric), psd, bool(translational), bool(diagonal),
                               bool(zero))
     refused, warned = [], []
     if not measured.symmetric:
         refused.append("it is not symmetric")
-    if psd and not nonsingular_rest:
+    if not nonsingular_rest:
         refused.append("it has massless directions that are not zero rows (the explicit "
                        "scheme condenses zero rows only)")
     if zero and not rule.states.zero_rows:
@@ -612,8 +623,84 @@ def x_mass_coefficients(rule, p: int) -> tuple[tuple[int, sympy.Rational], ...]:
     if rule.redistributes:
         raise InputError(f"mass rule {rule.name!r} needs a contact set; the x-direction has none")
     p = check_positive_int("degree p", p)
-    ne = _bloch_mesh(p)
-    kv = open_knot_vector(p, ne, 0, ne)
-    M = mass_matrix(rule, gram_space(kv), check=False)
-    mid = 2 * p  # the first function whose spans carry cardinal functions only
-    return tuple((L, M[mid, mid + L]) for L in range(-p, p + 1) if M[mid, mid + L] != 0)
+    if RULES.get(rule.name) is rule and rule.name in _UNIFORM:
+        row = _UNIFORM[rule.name](p)
+    else:  # any other rule: the middle row of its matrix on the open mesh
+        ne = _bloch_mesh(p)
+        kv = open_knot_vector(p, ne, 0, ne)
+        M = mass_matrix(rule, gram_space(kv), check=False)
+        mid = 2 * p  # the first function whose spans carry cardinal functions only
+        row = {L: M[mid, mid + L] for L in range(-p, p + 1)}
+    return tuple((L, sympy.Rational(v.numerator, v.denominator) if isinstance(v, Fraction)
+                  else v) for L, v in sorted(row.items()) if v != 0)
+
+
+@lru_cache(maxsize=None)
+def _uniform_powers(p: int) -> np.ndarray:
+    """Power-basis coefficients (row k: :math:`u^0..u^p`) of the p + 1 functions on the unit
+    span [0, 1] of a uniform mesh, left to right: function k is the cardinal piece p - k,
+    :math:`N(j + u) = \\frac{1}{p!} \\sum_{i \\le j} (-1)^i \\binom{p+1}{i} (j - i + u)^p`."""
+    P = np.full((p + 1, p + 1), Fraction(0), dtype=object)
+    for k in range(p + 1):
+        j = p - k
+        for i in range(j + 1):
+            c = Fraction((-1) ** i * math.comb(p + 1, i), math.factorial(p))
+            for m in range(p + 1):
+                P[k, m] += c * math.comb(p, m) * (j - i) ** (p - m)
+    return P
+
+
+def _uniform_gram(p: int) -> np.ndarray:
+    P = _uniform_powers(p)
+    H = np.array([[Fraction(1, i + j + 1) for j in range(p + 1)] for i in range(p + 1)],
+                 dtype=object)
+    return P.dot(H).dot(P.T)
+
+
+def _periodic_row(E: np.ndarray) -> dict:
+    """Row of the assembled periodic matrix of one element matrix E on unit elements:
+    :math:`a_L = \\sum_k E_{k, k+L}` (a function meets the p + 1 elements as k = 0..p)."""
+    q = E.shape[0]
+    return {L: sum((E[k, k + L] for k in range(q) if 0 <= k + L < q), Fraction(0))
+            for L in range(-(q - 1), q)}
+
+
+def _uniform_consistent(p):
+    return _periodic_row(_uniform_gram(p))
+
+
+def _uniform_lumped(p):
+    return {0: Fraction(1)}  # row sums of a partition of unity on unit elements
+
+
+def _uniform_hrz(p):
+    Me = _uniform_gram(p)
+    d = np.array([Me[k, k] for k in range(p + 1)], dtype=object)
+    return _periodic_row(np.diag(d * (Me.sum() / d.sum())) + _zeros(p + 1))
+
+
+def _uniform_lobatto(p):
+    K = _lobatto_error_constant(p + 1)
+    lead = _uniform_powers(p)[:, p]  # u^p coefficients (u in [0, 1], unit span)
+    corr = Fraction(int(K.p), int(K.q)) * math.factorial(2 * p) / 2 ** (2 * p + 1) \
+        * np.outer(lead, lead)
+    return _periodic_row(_uniform_gram(p) + corr)
+
+
+def _cardinal(p: int, x: Fraction) -> Fraction:
+    """Cardinal B-spline on [0, p+1]: :math:`\\frac{1}{p!} \\sum_i (-1)^i \\binom{p+1}{i} (x-i)_+^p`."""
+    return sum((Fraction((-1) ** i * math.comb(p + 1, i)) * (x - i) ** p
+                for i in range(p + 2) if x > i), Fraction(0)) / math.factorial(p)
+
+
+def _uniform_greville(p):
+    # function j: N(x - j), Greville point j + (p+1)/2, weight 1 (unit elements)
+    c = Fraction(p + 1, 2)
+    vals = {j: _cardinal(p, c + j) for j in range(-p - 1, p + 2)}  # N_0 at g_j
+    return {L: sum((vals[j] * vals[j - L] for j in vals if j - L in vals), Fraction(0))
+            for L in range(-p, p + 1)}
+
+
+#: Closed periodic rows of the built-in rules (the mesh fallback gives the same; tested).
+_UNIFORM = {"consistent": _uniform_consistent, "lumped": _uniform_lumped, "hrz": _uniform_hrz,
+            "nodal-lobatto": _uniform_lobatto, "nodal-greville": _uniform_greville}

@@ -50,7 +50,7 @@ from dispersion.symbolic.mass_rule import get_rule, x_mass_coefficients
 from dispersion.waves.units import MATERIALS as _UNIT_MATERIALS
 from dispersion.waves.units import Material, material_from_moduli
 
-__all__ = ["STEEL", "MATERIALS", "MODELS", "CriticalStep", "bar_omega_squared", "float_pencil",
+__all__ = ["STEEL", "MATERIALS", "MODELS", "EXACT_MAX_DOFS", "MAX_N", "CriticalStep", "bar_omega_squared", "float_pencil",
            "bar_omega_max", "patch_omega_max", "critical_step", "matrix_critical_step"]
 
 #: Structural steel: E = 210 GPa, nu = 0.3 (EN 1993-1-1, 3.2.6), rho = 7850 kg/m^3
@@ -208,6 +208,15 @@ def float_pencil(patch, nu: float):
     return pencil
 
 
+#: Largest pencil (2n DOFs) whose zone-end maximum is certified symbolically. Rule: the
+#: exact characteristic polynomial takes at most about a second (measured, p = 2, HRZ:
+#: 2n = 8 0.29 s, 10 0.61 s, 12 0.88 s, 14 2.0 s on the shared 2-core machine).
+EXACT_MAX_DOFS = 12
+#: Most control points through the thickness for a critical step (as ``dispersion branches``):
+#: the exact patch of p = 2, n = 24 builds and is maximised in about 8 s (measured).
+MAX_N = 24
+
+
 def patch_omega_max(patch, nu: float, n_theta: int = 65, exact: bool = True
                     ) -> tuple[float, object, float, str]:
     """Largest :math:`\\Omega` of a numeric Bloch patch over the zone: ``(value, exact, theta, method)``.
@@ -239,7 +248,7 @@ def patch_omega_max(patch, nu: float, n_theta: int = 65, exact: bool = True
         if -res.fun > best:
             best, where = float(-res.fun), float(res.x)
         return best, None, where, f"numeric: grid of {n_theta} phases, bounded refinement"
-    if not exact:
+    if not exact or 2 * patch.n > EXACT_MAX_DOFS:
         return best, None, where, f"numeric: grid of {n_theta} phases, maximum at a zone end"
     edge = _edge_omega_max(patch, nu, 0 if i == 0 else 1)
     if edge is None or abs(edge[1] - best) > 1e-9 * best:
@@ -295,6 +304,9 @@ def critical_step(mass, p: int = 2, *, model: str = "plate", material: Material 
 
     n = max(p + 1, 3) if n is None else n
     p, n = check_size(p, n)
+    if n > MAX_N:
+        raise InputError(f"control points n must be an integer in [p + 1, {MAX_N}] for a "
+                         f"critical step, got {n}")
     r = sympy.Rational(2, n - p)
     nu = material.nu
     patch = plate_patch(p, n, "bloch", r, rule, contact, gamma_s)

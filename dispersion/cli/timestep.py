@@ -54,7 +54,7 @@ def _material(args):
     if args.material and (args.cl is not None or args.ct is not None):
         raise InputError("give --material or --cl/--ct, not both")
     if (args.cl is None) != (args.ct is None):
-        raise InputError("--cl and --ct go together (bulk speeds in m/s)")
+        raise InputError("--cl and --ct must be given together (bulk speeds in m/s)")
     if args.cl is not None:
         return Material(args.cl, args.ct)
     return MATERIALS[args.material or "steel"]

@@ -303,10 +303,10 @@ def critical_step(mass, p: int = 2, *, model: str = "plate", material: Material 
     from dispersion.symbolic.plate import check_size, plate_patch
 
     n = max(p + 1, 3) if n is None else n
-    p, n = check_size(p, n)
-    if n > MAX_N:
+    if isinstance(n, int) and not isinstance(n, bool) and n > MAX_N:  # plate allows N_MAX
         raise InputError(f"control points n must be an integer in [p + 1, {MAX_N}] for a "
                          f"critical step, got {n}")
+    p, n = check_size(p, n)
     r = sympy.Rational(2, n - p)
     nu = material.nu
     patch = plate_patch(p, n, "bloch", r, rule, contact, gamma_s)

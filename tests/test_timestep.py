@@ -160,3 +160,16 @@ def test_cli_branches_fully_discrete(capsys):
     out = capsys.readouterr().out
     assert "lumped central C=0.9" in out and "# scheme: central" in out
     assert main(["branches", "--scheme", "central", "--courant", "1.5"]) == 2
+
+
+def test_cli_user_rule_from_toml(tmp_path, capsys):
+    from dispersion.cli import main
+
+    rule = tmp_path / "rule.toml"
+    rule.write_text('name = "far-quarter"\nlumped = true\n[weights]\n'
+                    '"-1" = { "-2" = 0.75, "-3" = 0.25 }\n')
+    assert main(["branches", "--mass-rule", str(rule), "--count", "2", "--kappa-max", "0.5",
+                 "--omega-max", "1"]) == 0
+    assert ",far-quarter," in capsys.readouterr().out
+    assert main(["timestep", "--mass-rule", str(rule), "--p", "2"]) == 0
+    assert "mass far-quarter, p = 2" in capsys.readouterr().out

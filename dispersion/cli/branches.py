@@ -59,6 +59,8 @@ def register(sub) -> None:
                     "and group velocity, optionally in physical units.")
     p.add_argument("--mass", choices=MASS_VARIANTS, action="append",
                    help="mass variant (repeat for several; default: consistent and singular)")
+    p.add_argument("--mass-rule", action="append", default=[], metavar="FILE",
+                   help="a user mass rule: TOML table of redistribution weights (repeatable)")
     p.add_argument("--contact", choices=CONTACT_SETS, default=None,
                    help=f"contact set of a singular mass (default: {defaults.CONTACT})")
     p.add_argument("--gamma-s", type=number("gamma_s"), default=None,
@@ -155,8 +157,17 @@ def _settings(args) -> dict:
                          ("--gamma-s", args.gamma_s), ("--r", args.r), ("--model", args.model)):
             if val is not None:
                 raise InputError(f"{opt} does not apply with --exact (no discrete patch)")
-    masses = [] if args.exact else (args.mass or ["consistent", "singular"])
-    if masses and not any(m.startswith("singular") for m in masses):
+    if args.exact and args.mass_rule:
+        raise InputError("--mass-rule does not apply with --exact (no discrete patch)")
+    if args.mass_rule:
+        from dispersion.symbolic.mass_rule import rule_from_toml
+
+        rules = [rule_from_toml(path) for path in args.mass_rule]
+    else:
+        rules = []
+    masses = [] if args.exact else (args.mass or ([] if rules else ["consistent", "singular"]))
+    masses = masses + rules
+    if masses and not any(_redistributes(m) for m in masses):
         for opt, val in (("--contact", args.contact), ("--gamma-s", args.gamma_s)):
             if val is not None:
                 raise InputError(f"{opt} applies to singular masses only")
@@ -199,6 +210,17 @@ def _settings(args) -> dict:
     }
 
 
+def _redistributes(mass) -> bool:
+    """True for rules that take the contact set (the singular ones)."""
+    from dispersion.symbolic.mass_rule import get_rule
+
+    return get_rule(mass).redistributes
+
+
+def _name(mass) -> str:
+    return getattr(mass, "name", mass)
+
+
 def _check_scheme(args, masses) -> None:
     if args.scheme is None:
         if args.courant is not None:
@@ -223,12 +245,12 @@ def _inputs(args, s) -> dict:
     from dispersion.results import package_versions
 
     out = {"nu": s["nu"], "model": args.model, "p": args.p, "n": args.n,
-           "masses": s["masses"], "kappa": [args.kappa_min, args.kappa_max, args.count],
+           "masses": [_name(m) for m in s["masses"]], "kappa": [args.kappa_min, args.kappa_max, args.count],
            "omega_max": args.omega_max,
            "dispersion-iga": package_versions(("dispersion-iga",))["dispersion-iga"]}
     if args.model == "bloch" and s["masses"]:
         out["r"] = s["r"]
-    if any(m.startswith("singular") for m in s["masses"]):
+    if any(_redistributes(m) for m in s["masses"]):
         out["contact"], out["gamma_s"] = s["contact"], s["gamma_s"]
     if args.scheme is not None:
         out["scheme"], out["courant"] = args.scheme, args.courant
@@ -323,10 +345,11 @@ def run(args) -> int:
             from dispersion.waves.timestep import patch_omega_max
 
             tau = args.courant * 2 / patch_omega_max(patch, nu)[0]
-            s.setdefault("tau", {})[mass] = tau
+            s.setdefault("tau", {})[_name(mass)] = tau
             d = fully_discrete_branches(d, tau, args.scheme)
-            mass = f"{mass} {args.scheme} C={args.courant:g}"
-        results.append((mass, d))
+            results.append((f"{_name(mass)} {args.scheme} C={args.courant:g}", d))
+        else:
+            results.append((_name(mass), d))
     if bar:
         bar.close()
     for kind, k, why in exact.failures:
@@ -357,8 +380,8 @@ def run(args) -> int:
             from dispersion.studies.branch_study import figure2_data
 
             data, _ = figure2_data(nu, kappa, args.omega_max, {
-                mass: plate_patch(p=args.p, n=args.n, model=args.model, r=s["r"], mass=mass,
-                                  contact=s["contact"], gamma_s=s["gamma_s"])
+                _name(mass): plate_patch(p=args.p, n=args.n, model=args.model, r=s["r"],
+                                         mass=mass, contact=s["contact"], gamma_s=s["gamma_s"])
                 for mass in masses})
             fig = figure2(data, title=f"nu = {nu:g}, {model}, p = {args.p}, n = {args.n}")
         else:

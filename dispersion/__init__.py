@@ -39,6 +39,8 @@ _MODULES = {
     "discrete_branches": "waves.discrete_branches", "velocities": "waves.velocities",
     "units": "waves.units", "mode_shapes": "waves.mode_shapes",
     "bar_dispersion": "waves.bar_dispersion", "errata": "claims.errata",
+    "mass_rule": "symbolic.mass_rule", "timestep": "waves.timestep",
+    "fully_discrete": "waves.fully_discrete", "cost_accuracy": "studies.cost_accuracy",
 }
 _SUBMODULES = tuple(_MODULES)
 

@@ -63,3 +63,25 @@ ratio = 1.01
 def test_bad_explicit_claims_name_the_field(body, field):
     with pytest.raises(InputError, match=re.escape(f"field '{field}'")):
         parse_claims(f'[[claim]]\nname = "x"\n{body}\n')
+
+
+def test_series_claims_take_any_registered_rule():
+    # leading S0 coefficient 2/(1 - nu) (Rayleigh-Lamb long-wave limit) for rules keeping the
+    # translational mass; the exact comparison says 'differs' for a wrong one
+    claims = parse_claims('''
+[defaults]
+model = "x-exact"
+branch = "S0"
+nu = "3/10"
+[[claim]]
+name = "lobatto"
+mass = "nodal-lobatto"
+coefficients = {2 = "20/7"}
+[[claim]]
+name = "hrz, wrong"
+mass = "hrz"
+coefficients = {2 = "2"}
+expect = "differs"
+''')
+    res = verify_claims(claims, jobs=1)
+    assert [r.status for r in res.results] == ["holds", "differs (expected)"]

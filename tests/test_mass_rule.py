@@ -189,3 +189,17 @@ def test_closed_periodic_rows_equal_the_mesh_rows(name):
     twin = user_rule(f"twin-{name}", RULES[name].build, states=RULES[name].states)
     for p in (2, 3):
         assert x_mass_coefficients(twin, p) == x_mass_coefficients(name, p)
+
+
+def test_ring_patch_takes_hrz_and_refuses_nodal_with_the_reason():
+    # HRZ from the ring's own (rational, 2D) element matrices: diagonal, positive, and the
+    # translational mass rho * area = rho * pi (R^2 - r^2) / 4 of the quarter ring kept
+    from dispersion.contact.assembly import discretize, patch_mass
+    from dispersion.contact.nurbs import quarter_ring
+
+    disc = discretize(quarter_ring(1.0, 2.0, 2, 1))
+    M = patch_mass(disc, 3.0, "hrz").toarray()
+    assert np.count_nonzero(M - np.diag(np.diag(M))) == 0 and np.all(np.diag(M) > 0)
+    assert M.sum() / 2 == pytest.approx(3.0 * np.pi * 3 / 4, rel=1e-6)  # 2 components
+    with pytest.raises(InputError, match="1D B-spline space"):
+        patch_mass(disc, 3.0, "nodal-greville")

@@ -19,13 +19,13 @@ from dispersion.symbolic.mass_rule import (
     TranslationalMassWarning,
     check_mass,
     gram_space,
-    lobatto_rule,
     mass_matrix,
     rule_from_toml,
     user_rule,
     x_mass_coefficients,
 )
 from dispersion.symbolic.plate import bloch_coefficients, plate_patch
+from dispersion.symbolic.spline_mass import lobatto_rule
 
 TOML_RULE = '''
 name = "far-quarter"

@@ -203,3 +203,21 @@ def test_ring_patch_takes_hrz_and_refuses_nodal_with_the_reason():
     assert M.sum() / 2 == pytest.approx(3.0 * np.pi * 3 / 4, rel=1e-6)  # 2 components
     with pytest.raises(InputError, match="1D B-spline space"):
         patch_mass(disc, 3.0, "nodal-greville")
+
+
+def test_large_float_masses_are_checked_sparse_like_small_ones():
+    # the sparse inertia path (n > DENSE_CHECK_MAX) against the dense one on the same matrices
+    import scipy.sparse as sp
+
+    from dispersion.symbolic import mass_rule
+
+    n = mass_rule.DENSE_CHECK_MAX + 1
+    lap = sp.diags([np.full(n - 1, 1.0), np.full(n, 4.0), np.full(n - 1, 1.0)], [-1, 0, 1])
+    cases = {"spd": lap.tocsr(), "indefinite": (lap - 5.5 * sp.eye(n)).tocsr()}
+    rule = user_rule("as-given", lambda s: s.M,
+                     states=MassProperties(psd=False, translational=True))
+    for name, A in cases.items():
+        big = check_mass(rule, A, A)
+        small = check_mass(rule, A[:50, :50].toarray(), A[:50, :50].toarray())
+        assert big.measured == small.measured, name
+        assert big.measured.psd == (name == "spd")

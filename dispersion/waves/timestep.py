@@ -299,7 +299,8 @@ def critical_step(mass, p: int = 2, *, model: str = "plate", material: Material 
         w, w_ref = float(exact), float(ref)
         return CriticalStep(rule.name, p, "bar", h, c, w, exact, theta,
                             "exact (rational function of cos theta)", 2 * h / (c * w),
-                            2 * h / (c * w_ref), material=material.name)
+                            2 * h / (c * w_ref),
+                            material=None if wave_speed is not None else material.name)
     from dispersion.symbolic.plate import check_size, plate_patch
 
     n = max(p + 1, 3) if n is None else n

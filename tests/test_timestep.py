@@ -173,3 +173,17 @@ def test_cli_user_rule_from_toml(tmp_path, capsys):
     assert ",far-quarter," in capsys.readouterr().out
     assert main(["timestep", "--mass-rule", str(rule), "--p", "2"]) == 0
     assert "mass far-quarter, p = 2" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("mass", ["singular", pytest.param("consistent", marks=SLOW),
+                                  pytest.param("nodal-lobatto", marks=SLOW)])
+def test_certified_bound_holds_and_a_false_bound_is_not_proven(mass):
+    # the proof can fail: 0.5 % below the numeric maximum there is a larger frequency, so no
+    # cover of the zone proves it; the proven bound itself lies in [w, w (1 + rtol)]
+    from dispersion.waves.timestep import certified_omega_max
+
+    patch = plate_patch(2, 3, "bloch", 2, mass, "top", sympy.Rational(1, 2))
+    w = patch_omega_max(patch, 0.3, exact=False)[0]
+    assert w <= certified_omega_max(patch, 0.3, w) <= w * (1 + 1e-3)
+    with pytest.raises(InputError, match="does not hold|did not prove"):
+        certified_omega_max(patch, 0.3, 0.995 * w, rtol=1e-3, max_cells=4000)

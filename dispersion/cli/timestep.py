@@ -43,6 +43,9 @@ def register(sub) -> None:
                    help="contact set of the singular rules (default: top)")
     p.add_argument("--gamma-s", type=number("gamma_s"), default=0.5,
                    help="singular rules: share sent to the second neighbour (default: 1/2)")
+    p.add_argument("--certify", action="store_true",
+                   help="plate: also prove an upper bound on omega_max within 0.1 %% by "
+                        "interval arithmetic (a proven stable step)")
     p.add_argument("--format", choices=("text", "json"), default="text")
     p.set_defaults(func=run)
 
@@ -68,6 +71,8 @@ def run(args: argparse.Namespace) -> int:
         raise InputError("--c applies to --model bar only")
     if args.n is not None and args.model != "plate":
         raise InputError("--n applies to --model plate only")
+    if args.certify and args.model != "plate":
+        raise InputError("--certify applies to --model plate only (the bar's maximum is exact)")
     material = _material(args)
     rules = list(args.mass or ([] if args.mass_rule else RULE_NAMES))
     rules += [rule_from_toml(path) for path in args.mass_rule]
@@ -80,7 +85,7 @@ def run(args: argparse.Namespace) -> int:
             rules = [r for r in rules if get_rule(r).name not in skipped]
     results = [critical_step(rule, args.p, model=args.model, material=material, h=args.h,
                              n=args.n, wave_speed=args.c, contact=args.contact,
-                             gamma_s=args.gamma_s) for rule in rules]
+                             gamma_s=args.gamma_s, certify=args.certify) for rule in rules]
     if args.format == "json":
         from dispersion.results import dumps, envelope
 
@@ -89,6 +94,8 @@ def run(args: argparse.Namespace) -> int:
                  "omega_max (dimensionless)": r.omega_max,
                  "omega_max exact": None if r.omega_max_exact is None else str(r.omega_max_exact),
                  "theta": r.theta, "method": r.method, "dt_crit [s]": r.dt,
+                 "omega_max proven bound": r.omega_certified,
+                 "proven stable dt [s]": r.dt_certified,
                  "ratio to consistent": r.ratio} for r in results]
         print(dumps(envelope("timestep", {"rows": rows},
                              inputs={"material": material.as_dict(), "p": args.p,

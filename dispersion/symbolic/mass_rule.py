@@ -480,7 +480,11 @@ def rule_from_toml(source) -> MassRule:
     [[5/24, 1/6, 0], [1/6, 11/24, 0], [0, 0, 0]]
     """
     import os
-    import tomllib
+
+    try:  # Python >= 3.11
+        import tomllib
+    except ModuleNotFoundError:  # pragma: no cover - Python 3.10
+        import tomli as tomllib
 
     from dispersion.symbolic.mass import redistribution_matrix
 

@@ -42,6 +42,8 @@ _MODULES = {
     "bar_dispersion": "waves.bar_dispersion", "errata": "claims.errata",
     "materials": "waves.materials", "frequency": "waves.frequency", "sh": "waves.sh",
     "mode_table": "waves.mode_table",
+    "mass_rule": "symbolic.mass_rule", "timestep": "waves.timestep",
+    "fully_discrete": "waves.fully_discrete", "cost_accuracy": "studies.cost_accuracy",
 }
 _SUBMODULES = tuple(_MODULES)
 

@@ -346,7 +346,29 @@ IMPACT = [
     Cli("impact", f"{SCENE} --scheme euler", r"scheme"),
 ]
 
-CLI_CASES = SERIES + BRANCHES + RING + REPRODUCE + BENCH + VERIFY + IMPACT
+# ---------------------------------------------------------------------------- timestep
+TIMESTEP = [
+    Cli("timestep", "--p 0", r"\bp\b|degree"),
+    Cli("timestep", "--p 100", r"\bp\b|degree"),
+    Cli("timestep", "--p 1.5", r"\bp\b|degree"),
+    Cli("timestep", "--h 0", r"\bh\b"),
+    Cli("timestep", "--h nan", r"\bh\b"),
+    Cli("timestep", "--h -1", r"\bh\b"),
+    Cli("timestep", "--mass heavy", r"mass"),
+    Cli("timestep", "--material unobtainium", r"material"),
+    Cli("timestep", "--cl 6000", r"--cl"),
+    Cli("timestep", "--cl 100 --ct 5000", r"c_L"),
+    Cli("timestep", "--model bar --mass singular", r"singular|contact"),
+    Cli("timestep", "--n 2", r"\bn\b|control points"),
+    Cli("timestep", "--p 24 --n 200", r"\bn\b|control points"),
+    Cli("timestep", "--c 5", r"--c\b"),
+    Cli("timestep", "--model bar --c -3 --mass lumped", r"wave_speed|--c"),
+    Cli("timestep", "--mass-rule nosuch.toml", r"nosuch\.toml"),
+    Cli("timestep", "--mass singular --gamma-s 2", r"gamma_s"),
+    Cli("timestep", "--format xml", r"format"),
+]
+
+CLI_CASES = SERIES + BRANCHES + RING + REPRODUCE + BENCH + VERIFY + IMPACT + TIMESTEP
 
 
 # ----------------------------------------------------------------------------- the API

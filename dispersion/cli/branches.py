@@ -5,7 +5,10 @@ propagating S, A and SH mode at each frequency (:mod:`dispersion.cli.frequency`)
 
 Rows ``kappa, Omega, branch, symmetry, source, c_p/c_T, c_g/c_T`` (dimensionless: kappa = kh,
 Omega = omega h / c_T) and, with a material and a thickness, ``f [kHz], fd [MHz mm],
-c_p [m/s], c_g [m/s], wavelength [mm]``. ``--csv FILE`` / ``--figure FILE`` write files
+c_p [m/s], c_g [m/s], wavelength [mm]``. ``--scheme central --courant 0.9`` gives the fully
+discrete branches of the discrete patch (:mod:`dispersion.waves.fully_discrete`: each mass
+integrated in time at ``courant`` times its own central-difference critical step; group
+velocities are then left empty). ``--csv FILE`` / ``--figure FILE`` write files
 (``-``: stdout); without them the rows go to stdout as ``--format`` says. Every CSV starts
 with ``#`` lines naming its inputs and the package version; JSON carries them as ``inputs``.
 """
@@ -60,6 +63,8 @@ def register(sub) -> None:
                     "and group velocity, optionally in physical units.")
     p.add_argument("--mass", choices=MASS_VARIANTS, action="append",
                    help="mass variant (repeat for several; default: consistent and singular)")
+    p.add_argument("--mass-rule", action="append", default=[], metavar="FILE",
+                   help="a user mass rule: TOML table of redistribution weights (repeatable)")
     p.add_argument("--contact", choices=CONTACT_SETS, default=None,
                    help=f"contact set of a singular mass (default: {defaults.CONTACT})")
     p.add_argument("--gamma-s", type=number("gamma_s"), default=None,
@@ -93,6 +98,12 @@ def register(sub) -> None:
     p.add_argument("--ct", type=number("ct"), help="shear speed c_T in m/s")
     p.add_argument("--thickness", type=number("thickness"),
                    help="plate thickness d = 2h in mm (with a material: physical columns)")
+    p.add_argument("--scheme", choices=_schemes(), default=None,
+                   help="time integrator for fully discrete branches (default: none, "
+                        "semi-discrete); Bloch model only")
+    p.add_argument("--courant", type=number("courant"), default=None,
+                   help="time step as a fraction of each mass's central-difference critical "
+                        "step, in (0, 10] (with --scheme; explicit schemes need <= 1)")
     p.add_argument("--exact", action="store_true", help="Rayleigh-Lamb branches only")
     p.add_argument("--exact-only", dest="exact", action="store_true", help=argparse.SUPPRESS)
     p.add_argument("--format", choices=("text", "csv", "json"), default="csv",
@@ -103,6 +114,12 @@ def register(sub) -> None:
                    help="tqdm progress bar on stderr (default: on a terminal)")
     _frequency.add_arguments(p)
     p.set_defaults(func=run)
+
+
+def _schemes():
+    from dispersion.waves.fully_discrete import SCHEMES
+
+    return tuple(SCHEMES)
 
 
 def _materials():
@@ -146,8 +163,17 @@ def _settings(args) -> dict:
                          ("--gamma-s", args.gamma_s), ("--r", args.r), ("--model", args.model)):
             if val is not None:
                 raise InputError(f"{opt} does not apply with --exact (no discrete patch)")
-    masses = [] if args.exact else (args.mass or ["consistent", "singular"])
-    if masses and not any(m.startswith("singular") for m in masses):
+    if args.exact and args.mass_rule:
+        raise InputError("--mass-rule does not apply with --exact (no discrete patch)")
+    if args.mass_rule:
+        from dispersion.symbolic.mass_rule import rule_from_toml
+
+        rules = [rule_from_toml(path) for path in args.mass_rule]
+    else:
+        rules = []
+    masses = [] if args.exact else (args.mass or ([] if rules else ["consistent", "singular"]))
+    masses = masses + rules
+    if masses and not any(_redistributes(m) for m in masses):
         for opt, val in (("--contact", args.contact), ("--gamma-s", args.gamma_s)):
             if val is not None:
                 raise InputError(f"{opt} applies to singular masses only")
@@ -182,6 +208,7 @@ def _settings(args) -> dict:
         check_output_file(args.figure, option="--figure", allow_stdout=False,
                           suffixes=FIGURE_SUFFIXES)
     r = float(defaults.FIGURE2_R) if args.r is None else args.r
+    _check_scheme(args, masses)
     return {
         "nu": nu, "kappa": kappa, "masses": masses, "material": material, "r": r,
         "contact": args.contact or defaults.CONTACT,
@@ -189,17 +216,51 @@ def _settings(args) -> dict:
     }
 
 
+def _redistributes(mass) -> bool:
+    """True for rules that take the contact set (the singular ones)."""
+    from dispersion.symbolic.mass_rule import get_rule
+
+    return get_rule(mass).redistributes
+
+
+def _name(mass) -> str:
+    return getattr(mass, "name", mass)
+
+
+def _check_scheme(args, masses) -> None:
+    if args.scheme is None:
+        if args.courant is not None:
+            raise InputError("--courant applies with --scheme only")
+        return
+    if not masses:
+        raise InputError("--scheme applies to the discrete branches (not with --exact)")
+    if args.model != "bloch":
+        raise InputError("--scheme needs --model bloch (the x-exact model has no largest "
+                         "frequency, hence no critical step)")
+    if args.figure is not None:
+        raise InputError("--figure does not draw fully discrete branches yet; use --csv")
+    if args.courant is None:
+        raise InputError("--scheme needs --courant (the step over the critical step)")
+    limit = 1.0 if args.scheme == "central" else 10.0
+    if not (math.isfinite(args.courant) and 0 < args.courant <= limit):
+        raise InputError(f"courant must be in (0, {limit:g}] for scheme {args.scheme}, "
+                         f"got {args.courant}")
+
+
 def _inputs(args, s) -> dict:
     from dispersion.results import package_versions
 
     out = {"nu": s["nu"], "model": args.model, "p": args.p, "n": args.n,
-           "masses": s["masses"], "kappa": [args.kappa_min, args.kappa_max, args.count],
+           "masses": [_name(m) for m in s["masses"]], "kappa": [args.kappa_min, args.kappa_max, args.count],
            "omega_max": args.omega_max,
            "dispersion-iga": package_versions(("dispersion-iga",))["dispersion-iga"]}
     if args.model == "bloch" and s["masses"]:
         out["r"] = s["r"]
-    if any(m.startswith("singular") for m in s["masses"]):
+    if any(_redistributes(m) for m in s["masses"]):
         out["contact"], out["gamma_s"] = s["contact"], s["gamma_s"]
+    if args.scheme is not None:
+        out["scheme"], out["courant"] = args.scheme, args.courant
+        out["tau"] = s["tau"]
     if s["material"] is not None:
         out["material"] = s["material"].as_dict()
         out["thickness [mm]"] = args.thickness
@@ -287,7 +348,17 @@ def run(args) -> int:
     for mass in masses:
         patch = plate_patch(p=args.p, n=args.n, model=args.model, r=s["r"], mass=mass,
                             contact=s["contact"], gamma_s=s["gamma_s"])
-        results.append((mass, discrete_branches(patch, nu, kappa, progress=tick, group=True)))
+        d = discrete_branches(patch, nu, kappa, progress=tick, group=args.scheme is None)
+        if args.scheme is not None:
+            from dispersion.waves.fully_discrete import fully_discrete_branches
+            from dispersion.waves.timestep import patch_omega_max
+
+            tau = args.courant * 2 / patch_omega_max(patch, nu)[0]
+            s.setdefault("tau", {})[_name(mass)] = tau
+            d = fully_discrete_branches(d, tau, args.scheme)
+            results.append((f"{_name(mass)} {args.scheme} C={args.courant:g}", d))
+        else:
+            results.append((_name(mass), d))
     if bar:
         bar.close()
     for kind, k, why in exact.failures:
@@ -313,7 +384,7 @@ def run(args) -> int:
     rows = _rows(kappa, exact.omega, vel.group, lambda lab: lab[0], "exact", s["material"],
                  args.thickness, args.omega_max, nu)
     for mass, d in results:
-        rows += _rows(kappa, d.omega, d.group, d.symmetry.get, mass, s["material"],
+        rows += _rows(kappa, d.omega, d.group or {}, d.symmetry.get, mass, s["material"],
                       args.thickness, args.omega_max, nu)
     if not args.csv and not args.figure:
         if args.format == "csv":
@@ -339,8 +410,8 @@ def run(args) -> int:
             from dispersion.studies.branch_study import figure2_data
 
             data, _ = figure2_data(nu, kappa, args.omega_max, {
-                mass: plate_patch(p=args.p, n=args.n, model=args.model, r=s["r"], mass=mass,
-                                  contact=s["contact"], gamma_s=s["gamma_s"])
+                _name(mass): plate_patch(p=args.p, n=args.n, model=args.model, r=s["r"],
+                                         mass=mass, contact=s["contact"], gamma_s=s["gamma_s"])
                 for mass in masses})
             fig = figure2(data, title=f"nu = {nu:g}, {model}, p = {args.p}, n = {args.n}")
         else:

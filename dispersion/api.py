@@ -79,10 +79,20 @@ class Patch:
                            self.gamma_s, self.weights)
 
     def K_dyn(self, kappa=None, Omega=None, nu=None) -> sympy.Matrix:
-        """:math:`K - \\Omega^2 M` (sympy); symbols ``kappa``, ``Omega``, ``nu`` by default."""
+        """:math:`K - \\Omega^2 M` (sympy); symbols ``kappa``, ``Omega``, ``nu`` by default.
+
+        Each value is a finite real number or a sympy expression with symbols; anything else
+        (NaN, infinity, a string, a complex number) is an :class:`~dispersion.errors.InputError`.
+
+        >>> patch().K_dyn(kappa=float("nan"))
+        Traceback (most recent call last):
+        ...
+        dispersion.errors.InputError: kappa must be a finite real number or a sympy symbol, got nan
+        """
         from dispersion.symbolic.plate import dynamic_stiffness
 
-        return dynamic_stiffness(self.plate, kappa, Omega, nu)
+        return dynamic_stiffness(self.plate, _value("kappa", kappa), _value("Omega", Omega),
+                                 _value("nu", nu))
 
     def K(self, kappa=None, nu=None) -> sympy.Matrix:
         """Stiffness :math:`K(\\kappa)` over the shear modulus (sympy)."""
@@ -100,7 +110,7 @@ class Patch:
 
         from dispersion.symbolic.plate import mass_block, x_functions
 
-        kappa = sympy.Symbol("kappa") if kappa is None else sympy.sympify(kappa)
+        kappa = sympy.Symbol("kappa") if kappa is None else sympy.sympify(_value("kappa", kappa))
         return x_functions(self.plate, kappa)["mx"] * mass_block(self.plate)
 
     def series(self, branch: str = "S0", order: int = 8, nu=None) -> dict[int, sympy.Expr]:
@@ -119,6 +129,22 @@ class Patch:
         if r is not None and not getattr(r, "is_number", True):
             raise InputError(f"r must be a number > 0 for numeric branches, got the symbol {r}")
         return discrete_branches(self.plate, nu, kappa)
+
+
+def _value(name: str, value):
+    """``value`` of a patch matrix: None (the symbol), an expression with symbols, or a
+    finite real number; anything else raises :class:`InputError` naming ``name``."""
+    from dispersion.errors import as_real
+
+    if value is None or getattr(value, "free_symbols", None):
+        return value
+    try:
+        return as_real(name, value, "a finite real number or a sympy symbol")
+    except InputError:
+        raise
+    except Exception:  # an object whose comparison or conversion fails
+        raise InputError(f"{name} must be a finite real number or a sympy symbol, "
+                         f"got {type(value).__name__}") from None
 
 
 def patch(p: int = defaults.P, n: int = defaults.N, model: str = defaults.MODEL,

@@ -60,6 +60,7 @@ __all__ = [
     "make_dir",
     "umask",
     "write_unit",
+    "unit_target",
     "stale_temporaries",
     "remove_stale_temporaries",
 ]
@@ -211,6 +212,22 @@ def atomic_write(path, mode: str = "w", *, option: str | None = None, **kwargs):
             unit.commit()
         except OSError as exc:
             raise _error(exc, target, option) from None
+
+
+def unit_target(path) -> Path | None:
+    """Where a unit writes ``path``: the file a link points to; None for a stream (``-``,
+    a device, a FIFO, a path through ``/dev``), which is written through, not staged.
+
+    >>> unit_target("-") is None, unit_target("/dev/null") is None
+    (True, True)
+    """
+    if str(path) == STDOUT or os.path.abspath(path) in _STREAM_PATHS:
+        return None
+    path = Path(path)
+    st = _stat(path)
+    if st is not None and (_is_stream(st) or _through_dev(path)):
+        return None
+    return Path(os.path.realpath(path)) if path.is_symlink() else path
 
 
 def write_text(path, text: str, *, option: str | None = None) -> Path:
@@ -421,7 +438,9 @@ def write_files(folder, files: Mapping[str, str | bytes], *, option: str | None 
 def write_unit(files: Mapping[Path, str | bytes], *, option: str | None = None) -> list[Path]:
     """Write files that may lie in different folders as one unit (see :func:`write_files`).
 
-    Each target must be a regular file or absent (a link or a device is refused).
+    Each target must be a regular file or absent (a link or a device is refused: pass
+    :func:`unit_target` of a user's path, which resolves links and says which paths are
+    streams to write through instead).
 
     >>> import tempfile, pathlib
     >>> root = pathlib.Path(tempfile.mkdtemp())

@@ -120,6 +120,14 @@ def simulate_ring(sc: Scenario | None = None, mass: str = "singular", scheme: st
     contact; ``None`` when the run ends in contact).
     """
     sc = sc or Scenario()
+    sc.check_work()
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):  # errors, not warnings
+        return _simulate(sc, mass, scheme, progress, tol, solver, contact_threshold,
+                         perturbation, seed, consistent, reuse_tangent)
+
+
+def _simulate(sc, mass, scheme, progress, tol, solver, contact_threshold, perturbation, seed,
+              consistent, reuse_tangent) -> RingResult:
     if not (np.isfinite(contact_threshold) and 0 < contact_threshold < 1):
         raise InputError(f"contact_threshold must lie in (0, 1), got {contact_threshold!r}")
     if not (np.isfinite(perturbation) and perturbation >= 0):

@@ -18,7 +18,8 @@ files of :func:`dispersion.io.write_files`, a report folder of
 **Recovery** (:func:`recover`, run by every writer on the folder it writes into) acts on a
 leftover only when everything verifies: the folder's name is ``.dispersion-stage.`` plus 32
 hex digits, it is a real folder (not a link), its ``.stage.json`` holds the same token, no
-live writer holds its lock, and every journal entry renames ``STAGE/k`` (``k`` a number) to
+live writer holds its lock, it holds only the names a writer makes there (``.stage.json``,
+``.journal.json``, numbered entries), and every journal entry renames ``STAGE/k`` (``k`` a number) to
 a plain name in the very folder that holds that stage (no ``/``, no ``..``, no link on the
 way). A verified stage with a journal is rolled forward (the unit ends all new); one without
 is removed (the unit stays all old). Inside a stage only the names the writer makes are
@@ -348,8 +349,18 @@ def _read_json(path: Path):
         return None
 
 
+def _only_ours(stage: Path) -> bool:
+    """True if ``stage`` holds nothing but names a writer makes there."""
+    try:
+        names = os.listdir(stage)
+    except OSError:
+        return False
+    return all(n in (_MARK, _JOURNAL, _JOURNAL_TMP) or _ENTRY.fullmatch(n) for n in names)
+
+
 def _verified_stage(stage: Path, token: str | None = None) -> dict | None:
-    """The marker of ``stage`` if it is a stage folder of ours whose token verifies."""
+    """The marker of ``stage`` if it is a stage folder of ours whose token verifies and
+    which holds nothing a writer does not make (a user's file in it: not ours)."""
     found = _STAGE_NAME.fullmatch(stage.name)
     if found is None or (token is not None and found.group(1) != token):
         return None
@@ -359,7 +370,8 @@ def _verified_stage(stage: Path, token: str | None = None) -> dict | None:
     except OSError:
         return None
     mark = _read_json(stage / _MARK)
-    if not isinstance(mark, dict) or mark.get("token") != found.group(1):
+    if not isinstance(mark, dict) or mark.get("token") != found.group(1) \
+            or not _only_ours(stage):
         return None
     return mark
 

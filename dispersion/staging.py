@@ -131,6 +131,18 @@ def _lock(path: Path, *, wait: bool) -> int | None:
     return fd
 
 
+def _held(path: Path) -> bool:
+    """True if a live writer holds the lock of folder ``path``."""
+    try:
+        fd = _lock(path, wait=False)
+    except OSError:
+        return False
+    if fd is None:
+        return True
+    os.close(fd)
+    return False
+
+
 def _marker_token(folder: Path, marker: str) -> str | None:
     """The token recorded in ``folder/marker`` (a line ``token: HEX``), if any."""
     path = folder / marker
@@ -446,6 +458,8 @@ def recover(folder, *, notice=None) -> list[Path]:
         return removed
     for name in sorted(names):
         path = folder / name
+        if is_stage_name(name) and _held(path):
+            continue  # a live writer (between its mkdir and its marker, or at work)
         mark = _verified_stage(path)
         if mark is None:
             if _LOOKALIKE.match(name) and str(path) not in _noticed:

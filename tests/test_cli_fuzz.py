@@ -29,7 +29,7 @@ _GARBAGE = st.sampled_from(["nan", "inf", "-inf", "-1", "0", "1e300", "1e-300", 
                             "1e999999999", "0x10", "--", " 3", "1_000", "\x1b[31m"])
 _PATHS = st.sampled_from([
     "", "-", ".", "..", "new_out", "sub/new_out", "user.txt", "userdir", "link_to_user",
-    "dangling", "user.txt/inside", "/", "/proc/self/status", "ABS/new_abs", "ABS/user.txt",
+    "dangling", "user.txt/inside", "ABS", "/proc/self/status", "ABS/new_abs", "ABS/user.txt",
     "new.png", "userdir/new.svg", "fig.pdf", "link_to_dir"])
 
 
@@ -119,20 +119,30 @@ def _branches_args(draw):
 _BUILDERS = {"ring": _ring_args, "impact": _impact_args, "branches": _branches_args}
 
 
+#: The files each command writes into its --out folder (its docstring and --help).
+_OUT_FILES = {"ring": ("summary.json", "result.json", "history.csv", "figure.png"),
+              "impact": ("history.csv", "summary.json")}
+
+
 def _outputs(args: list[str], root: Path) -> set[str]:
-    """Sandbox paths a run may create or change: the named outputs (and what links name)."""
+    """Sandbox paths a run may create or change: the named output files (and the files that
+    links name), or for ``--out`` the folder and the files the command writes into it."""
     allowed = set()
     for opt in ("--out", "--csv", "--figure"):
-        if opt in args[:-1]:
-            raw = args[args.index(opt) + 1]
-            if raw in ("", "-"):
-                continue
-            path = Path(os.path.abspath(root / raw))
-            for p in (path, Path(os.path.realpath(path))):
-                try:
-                    allowed.add(str(p.relative_to(root)))
-                except ValueError:
-                    pass
+        if opt not in args[:-1]:
+            continue
+        raw = args[args.index(opt) + 1]
+        if raw in ("", "-"):
+            continue
+        path = Path(os.path.abspath(root / raw))
+        paths = {path, Path(os.path.realpath(path))}
+        if opt == "--out":
+            paths |= {p / name for p in set(paths) for name in _OUT_FILES[args[0]]}
+        for p in paths:
+            try:
+                allowed.add(str(p.relative_to(root)))
+            except ValueError:
+                pass
     return allowed
 
 
@@ -160,8 +170,7 @@ def _check(command: str, data, tmp_path_factory, capsys) -> None:
     after = snapshot(root)
     allowed = _outputs(args, root)
     changed = {k for k in set(before) | set(after) if before.get(k) != after.get(k)}
-    stray = {k for k in changed
-             if not any(k == a or k.startswith(a + "/") for a in allowed)}
+    stray = changed - allowed
     # a folder the run created on the way to a named output is part of that output
     stray = {k for k in stray if not any(a.startswith(k + "/") for a in allowed)}
     assert not stray, (args, code, stray)

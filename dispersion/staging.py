@@ -29,9 +29,9 @@ reported in one line (once per process).
 >>> import tempfile, pathlib
 >>> folder = pathlib.Path(tempfile.mkdtemp())
 >>> with Stage() as stage:
-...     stage.file(folder / "a.txt").write_text("new")
+...     _ = stage.file(folder / "a.txt").write_text("new")
 ...     stage.commit()
-3
+1
 >>> sorted(p.name for p in folder.iterdir())
 ['a.txt']
 """

@@ -95,3 +95,12 @@ def test_k_dyn_of_nan_is_an_input_error():
             dispersion.patch().K_dyn(kappa=bad)
     with pytest.raises(InputError, match="Omega"):
         dispersion.patch().K_dyn(Omega=float("nan"))
+
+
+@pytest.mark.parametrize("args, word", [
+    (["--v0", "1e300"], "E = 2 (1 + nu) rho"), (["--v0", "1e-300"], "E = 2 (1 + nu) rho"),
+    (["--dt", "1e300"], "dt must lie in"), (["--dt", "1e-200"], "dt must lie in")])
+def test_ring_values_beyond_double_precision_are_refused(args, word, capsys):
+    # counterexamples the slow CLI fuzz found (OverflowError tracebacks before the fix)
+    assert main(["ring", "--t-end", "0.1", *args]) == 2
+    assert word in _one_line(capsys)

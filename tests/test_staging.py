@@ -326,3 +326,32 @@ def test_cli_sigterm_unwinds_and_removes_the_stage(tmp_path):
     assert proc.stderr.strip() == "dispersion: terminated"
     assert sorted(p.name for p in out.iterdir()) == ["history.csv"]
     assert (out / "history.csv").read_text() == "OLD"
+
+
+def test_branches_csv_and_figure_are_one_unit(tmp_path, monkeypatch, capsys):
+    # a full disk while the second file is staged: both keep their old content, and no
+    # stage is left; then a run that succeeds writes both
+    from dispersion.cli import main
+
+    csv, fig = tmp_path / "a" / "rows.csv", tmp_path / "b" / "fig.png"
+    for path in (csv, fig):
+        path.parent.mkdir()
+        path.write_text("OLD")
+    args = ["branches", "--count", "2", "--omega-max", "1", "--kappa-max", "1",
+            "--csv", str(csv), "--figure", str(fig)]
+    real, calls = os.fsync, []
+
+    def full(fd):
+        calls.append(fd)
+        if len(calls) == 2:
+            raise OSError(28, "No space left on device")
+        real(fd)
+
+    monkeypatch.setattr(io.os, "fsync", full)
+    assert main(args) == 1
+    assert "No space left" in capsys.readouterr().err
+    assert csv.read_text() == "OLD" and fig.read_text() == "OLD"
+    monkeypatch.undo()
+    assert main(args) == 0
+    assert csv.read_text().startswith("#") and fig.read_bytes()[:4] == b"\x89PNG"
+    assert sorted(p.name for p in tmp_path.rglob("*")) == ["a", "b", "fig.png", "rows.csv"]

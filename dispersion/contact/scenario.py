@@ -115,8 +115,19 @@ class Scenario:
             raise InputError(f"theta0_deg must be finite, got {self.theta0_deg}")
         if not np.isfinite(self.gap):
             raise InputError(f"gap must be a finite number >= 0, got {self.gap}")
-        if not (self.dt**2 > 0 and 1 / self.dt**2 < np.inf):
-            raise InputError(f"dt must be >= 1e-150 s (1/dt^2 overflows), got {self.dt}")
+        if not 1e-150 <= self.dt <= 1e150:  # the step matrices scale like 1 / dt^2
+            raise InputError(f"dt must lie in [1e-150, 1e150] s (dt^2 and 1/dt^2 must stay "
+                             f"finite), got {self.dt}")
+        # E = 2 (1 + nu) rho (v0 / v0_over_cT)^2 must be a positive double, or K is 0 or inf
+        with np.errstate(over="ignore", under="ignore"):
+            try:
+                youngs = self.E
+            except OverflowError:
+                youngs = np.inf
+        if not 1e-300 < youngs < 1e300:
+            raise InputError(f"v0, v0_over_cT and rho give E = 2 (1 + nu) rho (v0 / v0_over_cT)"
+                             f"^2 = {youngs:g} Pa, outside double precision; choose values "
+                             f"whose E lies in (1e-300, 1e300)")
         if self.t_end < self.dt:
             raise InputError(f"t_end must be >= dt = {self.dt:g} s (one step), got {self.t_end:g}")
         steps = self.t_end / self.dt

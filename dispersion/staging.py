@@ -467,8 +467,11 @@ def recover(folder, *, notice=None) -> list[Path]:
                 notice(f"left {path} untouched: it looks like a leftover of dispersion but "
                        "does not verify as one")
             continue
-        if _settle(path, mark, notice):
-            removed.append(path)
+        try:
+            if _settle(path, mark, notice):
+                removed.append(path)
+        except OSError as exc:  # e.g. a folder now stands where a file is to go
+            notice(f"left {path} as it is: {exc.strerror or exc} ({exc.filename or path})")
     return removed
 
 

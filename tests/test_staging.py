@@ -355,3 +355,20 @@ def test_branches_csv_and_figure_are_one_unit(tmp_path, monkeypatch, capsys):
     assert main(args) == 0
     assert csv.read_text().startswith("#") and fig.read_bytes()[:4] == b"\x89PNG"
     assert sorted(p.name for p in tmp_path.rglob("*")) == ["a", "b", "fig.png", "rows.csv"]
+
+
+def test_recovery_that_cannot_finish_is_one_notice_not_an_error(tmp_path):
+    # a unit killed after its commit, then a folder put where one of its files goes: the
+    # next writer into the folder still works and says in one line what it left
+    code = (f"import os; os.environ['{staging.FAULT_ENV}'] = '6:SIGKILL'\n"
+            "import dispersion.io as io\n"
+            f"io.write_files({str(tmp_path)!r}, {{'a.csv': 'new a', 'b.csv': 'new b'}})\n")
+    assert subprocess.run([sys.executable, "-c", code]).returncode == -9
+    (tmp_path / "a.csv").mkdir()
+    (tmp_path / "a.csv" / "user.txt").write_text("mine")
+    notices = []
+    io.write_files(tmp_path, {"c.csv": "c"}, option="--out")
+    io.remove_stale_temporaries(tmp_path, notice=notices.append)
+    assert len(notices) == 1 and "left" in notices[0]
+    assert (tmp_path / "a.csv" / "user.txt").read_text() == "mine"
+    assert (tmp_path / "c.csv").read_text() == "c"

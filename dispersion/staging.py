@@ -13,7 +13,9 @@ files of :func:`dispersion.io.write_files`, a report folder of
    into the primary stage: that is the point of no return.
 3. **Rename.** Each staged entry is renamed onto its target (a folder is swapped with
    ``renameat2(RENAME_EXCHANGE)`` where Linux offers it), then the stages are removed,
-   the secondary ones first, the journal last.
+   the secondary ones first, the journal last. Ctrl-C or SIGTERM (under the CLI's handler)
+   in this phase is held until the unit is complete; a kill before the journal leaves the
+   unit all old, one after it all new once recovered.
 
 **Recovery** (:func:`recover`, run by every writer on the folder it writes into) acts on a
 leftover only when everything verifies: the folder's name is ``.dispersion-stage.`` plus 32
@@ -256,16 +258,24 @@ class Stage:
         _fsync_dir(primary)
         checkpoint()
         self._done = True
+        interrupted = None
         try:
             for entry in self._entries:
-                _apply(entry, self.token)
-                checkpoint()
+                while True:  # Ctrl-C or SIGTERM now: finish the unit first (renames are quick)
+                    try:
+                        _apply(entry, self.token)  # safe to repeat
+                        checkpoint()
+                        break
+                    except KeyboardInterrupt as exc:
+                        interrupted = exc
         except BaseException:
             for _, fd in self._stages.values():  # the next writer here finishes the unit
                 os.close(fd)
             self._stages.clear()
             raise
         self._remove_stages()
+        if interrupted is not None:
+            raise interrupted
         return len(self._entries)
 
     def abort(self) -> None:

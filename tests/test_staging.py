@@ -294,38 +294,47 @@ def test_kill_each_writer_at_every_checkpoint_leaves_old_or_new(tmp_path_factory
     _every_checkpoint(tmp_path_factory, writer)
 
 
-def test_sigterm_under_the_cli_handler_unwinds_and_removes_the_stage(tmp_path, monkeypatch):
-    # in this process: the CLI's SIGTERM handler raises, the writer unwinds like on Ctrl-C
+@pytest.mark.parametrize("point, new", [(3, False), (7, True)])
+def test_sigterm_under_the_cli_handler_unwinds_and_removes_the_stage(tmp_path, monkeypatch,
+                                                                      point, new):
+    # in this process: the CLI's SIGTERM handler raises, the writer unwinds like on Ctrl-C;
+    # while staging (3) the unit stays old, between the renames (7) it is finished first
     from dispersion.cli import Terminated, _sigterm_unwinds
 
     out = tmp_path / "res"
     out.mkdir()
     (out / "a.csv").write_text("OLD")
-    monkeypatch.setenv(staging.FAULT_ENV, "3:SIGTERM")
+    monkeypatch.setenv(staging.FAULT_ENV, f"{point}:SIGTERM")
     monkeypatch.setattr(staging, "_checkpoints", [0])
     with pytest.raises(Terminated), _sigterm_unwinds():
         io.write_files(out, {"a.csv": "NEW", "b.csv": "NEW"})
-    assert sorted(p.name for p in out.iterdir()) == ["a.csv"]
-    assert (out / "a.csv").read_text() == "OLD"
+    assert sorted(p.name for p in out.iterdir()) == (["a.csv", "b.csv"] if new else ["a.csv"])
+    assert (out / "a.csv").read_text() == ("NEW" if new else "OLD")
 
 
 @pytest.mark.slow
-def test_cli_sigterm_unwinds_and_removes_the_stage(tmp_path):
-    # SIGTERM under the CLI's handler unwinds like Ctrl-C: the stage is removed at once, the
-    # exit status is 143 and the target keeps its old content
+@pytest.mark.parametrize("point", range(1, 10))
+def test_cli_sigterm_at_every_checkpoint_unwinds(tmp_path, point):
+    # SIGTERM under the CLI's handler unwinds like Ctrl-C: exit 143, one line, the stage
+    # removed at once, and the unit all old (before the commit) or all new (after it)
     out = tmp_path / "res"
     out.mkdir()
-    (out / "history.csv").write_text("OLD")
-    code = (f"import os; os.environ['{staging.FAULT_ENV}'] = '3:SIGTERM'\n"
+    for name in ("history.csv", "summary.json"):
+        (out / name).write_text("OLD")
+    code = (f"import os; os.environ['{staging.FAULT_ENV}'] = '{point}:SIGTERM'\n"
             "from dispersion.cli import main\n"
             f"raise SystemExit(main(['impact', 'signorini-1d', '--t-end', '0.1', '--out', "
-            f"{str(out)!r}]))")
-    proc = subprocess.run([sys.executable, "-c", code], stderr=subprocess.PIPE, text=True,
-                          timeout=120)
+            f"{str(out)!r}, '--format', 'json']))")
+    proc = subprocess.run([sys.executable, "-c", code], stderr=subprocess.PIPE,
+                          stdout=subprocess.DEVNULL, text=True, timeout=120)
+    assert sorted(p.name for p in out.iterdir()) == ["history.csv", "summary.json"]
+    got = {(out / name).read_text() != "OLD" for name in ("history.csv", "summary.json")}
+    assert len(got) == 1  # all old or all new
+    if proc.returncode == 0:
+        assert point > 8 and got == {True}
+        return
     assert proc.returncode == 143, proc.stderr
     assert proc.stderr.strip() == "dispersion: terminated"
-    assert sorted(p.name for p in out.iterdir()) == ["history.csv"]
-    assert (out / "history.csv").read_text() == "OLD"
 
 
 def test_branches_csv_and_figure_are_one_unit(tmp_path, monkeypatch, capsys):

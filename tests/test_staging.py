@@ -346,7 +346,7 @@ def test_branches_csv_and_figure_are_one_unit(tmp_path, monkeypatch, capsys):
     for path in (csv, fig):
         path.parent.mkdir()
         path.write_text("OLD")
-    args = ["branches", "--count", "2", "--omega-max", "1", "--kappa-max", "1",
+    args = ["branches", "--exact", "--count", "2", "--omega-max", "1", "--kappa-max", "1",
             "--csv", str(csv), "--figure", str(fig)]
     real, calls = os.fsync, []
 

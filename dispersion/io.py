@@ -150,6 +150,10 @@ def make_dir(path, option: str | None = None) -> Path:
 def atomic_write(path, mode: str = "w", *, option: str | None = None, **kwargs):
     """Open a temporary file beside ``path``; rename it onto ``path`` only on success.
 
+    The temporary lives in a stage folder ``.dispersion-stage.TOKEN`` beside ``path``
+    (:class:`dispersion.staging.Stage`); an error, Ctrl-C or SIGTERM removes it, and what a
+    SIGKILL leaves is removed by the next writer into that folder.
+
     ``path`` ``"-"`` yields standard output (text or binary by ``mode``); a device, FIFO or
     socket is opened and written through; a symbolic link to a regular file has its target
     replaced (the link stays). ``option`` names the CLI option in error messages.

@@ -133,6 +133,13 @@ def _lock(path: Path, *, wait: bool) -> int | None:
     return fd
 
 
+def _empty_dir(path: Path) -> bool:
+    try:
+        return stat.S_ISDIR(os.lstat(path).st_mode) and not os.listdir(path)
+    except OSError:
+        return False
+
+
 def _held(path: Path) -> bool:
     """True if a live writer holds the lock of folder ``path``."""
     try:
@@ -468,8 +475,8 @@ def recover(folder, *, notice=None) -> list[Path]:
         return removed
     for name in sorted(names):
         path = folder / name
-        if is_stage_name(name) and _held(path):
-            continue  # a live writer (between its mkdir and its marker, or at work)
+        if is_stage_name(name) and (_held(path) or _empty_dir(path)):
+            continue  # a live writer (at work, or between its mkdir and its lock)
         mark = _verified_stage(path)
         if mark is None:
             if _LOOKALIKE.match(name) and str(path) not in _noticed:

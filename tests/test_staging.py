@@ -94,12 +94,52 @@ def test_stage_with_matching_token_but_escaping_entries_is_left_untouched(tmp_pa
         (stage / "0").write_text("attacker")
         entry = {k: v.replace("STAGE", str(stage)) for k, v in entry.items()}
         (stage / ".journal.json").write_text(json.dumps({"token": token, "entries": [entry]}))
+    # a link named like a stage, to a folder whose marker and journal verify; a stage whose
+    # marker is a link to a valid marker elsewhere
+    token = secrets.token_hex(16)
+    real = outside / f"{staging.STAGE_PREFIX}{token}"
+    real.mkdir()
+    (real / ".stage.json").write_text(json.dumps({"token": token, "pid": 4194300,
+                                                  "primary": str(real)}))
+    (real / "0").write_text("attacker")
+    (real / ".journal.json").write_text(json.dumps({"token": token, "entries": [
+        {"stage": str(real), "k": "0", "name": "victim.txt", "kind": "file"}]}))
+    (out / real.name).symlink_to(real)
+    token2 = secrets.token_hex(16)
+    linked = out / f"{staging.STAGE_PREFIX}{token2}"
+    linked.mkdir()
+    (outside / "mark.json").write_text(json.dumps({"token": token2, "pid": 4194300}))
+    (linked / ".stage.json").symlink_to(outside / "mark.json")
     before = snapshot(tmp_path)
     io.remove_stale_temporaries(out, notice=lambda text: None)
     io.write_files(out, {"a.csv": "x"})
     after = snapshot(tmp_path)
     del after["out/a.csv"]
     assert after == before
+
+
+def test_concurrent_writers_never_remove_each_others_stages(tmp_path):
+    # threads writing into one folder: each recovery meets the others' live stages (locked)
+    import threading
+
+    errors = []
+
+    def writer(i):
+        try:
+            for j in range(15):
+                io.write_files(tmp_path, {f"w{i}.csv": f"{i} {j}", f"v{i}.csv": f"{i} {j}"})
+        except Exception as exc:  # collected for the assertion
+            errors.append(exc)
+
+    threads = [threading.Thread(target=writer, args=(i,)) for i in range(4)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert errors == []
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(
+        [f"w{i}.csv" for i in range(4)] + [f"v{i}.csv" for i in range(4)])
+    assert all((tmp_path / f"w{i}.csv").read_text() == f"{i} 14" for i in range(4))
 
 
 # --- look-alikes, generated -----------------------------------------------------------------

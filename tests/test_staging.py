@@ -421,3 +421,30 @@ def test_recovery_that_cannot_finish_is_one_notice_not_an_error(tmp_path):
     assert len(notices) == 1 and "left" in notices[0]
     assert (tmp_path / "a.csv" / "user.txt").read_text() == "mine"
     assert (tmp_path / "c.csv").read_text() == "c"
+
+
+def test_issue_reproduce_command_with_look_alikes(tmp_path, monkeypatch, capsys):
+    # issue 17 item 4, through the CLI: 'reproduce --quick --sections coefficients --out
+    # reports' beside look-alike user folders (a stub section stands for the measurement)
+    import types
+
+    from dispersion.cli import main
+
+    stub = types.ModuleType("dispersion.report.coefficients")
+    stub.measure = lambda quick=False, executor=None: {"value": 1}
+    stub.render = lambda data, out: "## coefficients\n"
+    monkeypatch.setitem(sys.modules, "dispersion.report.coefficients", stub)
+    monkeypatch.chdir(tmp_path)
+    for folder, name in ((".reports.old-backup", "precious.txt"), (".reports.old-2", "thesis.tex")):
+        (tmp_path / folder).mkdir()
+        (tmp_path / folder / name).write_text("user data")
+    (tmp_path / ".reports.tmp-mine").mkdir()
+    (tmp_path / ".reports.old-file").write_text("a file")
+    before = snapshot(tmp_path)
+    args = ["reproduce", "--quick", "--sections", "coefficients", "--out", "reports", "--jobs", "1"]
+    assert main(args) == 0
+    after = snapshot(tmp_path)
+    assert {k: v for k, v in after.items() if not k.startswith("reports")} == before
+    assert "removed" not in capsys.readouterr().err
+    assert main(["reproduce", "--out", ""]) == 2
+    assert snapshot(tmp_path) == after

@@ -14,7 +14,8 @@ records the random token of the run that wrote it. The rules:
   folder then replaces the target in one atomic exchange (Linux
   ``renameat2(RENAME_EXCHANGE)``): under every interruption the target holds either the
   complete old or the complete new result. Where the exchange is not available, two renames
-  are used under a journal, and the next run finishes them.
+  are used under a journal (a kill between them leaves the target absent), and the next run
+  finishes them.
 - One run at a time per parent folder: a second concurrent run is refused in one line.
 - What a killed run left is settled by the next run, by :func:`dispersion.staging.recover`:
   only stage folders whose name and recorded token verify; it names them in a one-line

@@ -209,7 +209,11 @@ class Stage:
         recover(parent, notice=self.notice)
         stage = parent / f"{STAGE_PREFIX}{self.token}"
         os.mkdir(stage, 0o700)
-        fd = _lock(stage, wait=True)
+        try:
+            fd = _lock(stage, wait=True)
+        except BaseException:
+            os.rmdir(stage)
+            raise
         self._stages[parent] = (stage, fd)
         primary = next(iter(self._stages.values()))[0]
         mark = {"token": self.token, "pid": os.getpid(), "primary": str(primary)}
@@ -344,6 +348,8 @@ def _remove_stage(stage: Path) -> bool:
                 os.unlink(path)
         except FileNotFoundError:
             pass
+        except OSError:
+            return False  # e.g. read-only: left for a later run
     try:
         os.rmdir(stage)
     except FileNotFoundError:

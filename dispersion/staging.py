@@ -40,14 +40,11 @@ reported in one line (once per process).
 from __future__ import annotations
 
 import contextlib
-import ctypes
 import errno
 import fcntl
 import json
 import os
 import re
-import secrets
-import shutil
 import signal
 import stat
 import sys
@@ -106,6 +103,8 @@ def _exchange(a: Path, b: Path) -> bool:
     """Atomically swap two paths (Linux ``renameat2`` RENAME_EXCHANGE); False if unsupported."""
     if not sys.platform.startswith("linux"):
         return False
+    import ctypes  # only here: the rest of the writer needs no ctypes (start-up time)
+
     try:
         renameat2 = ctypes.CDLL(None, use_errno=True).renameat2
     except (OSError, AttributeError):
@@ -184,7 +183,7 @@ class Stage:
     """
 
     def __init__(self, *, notice=None):
-        self.token = secrets.token_hex(16)
+        self.token = os.urandom(16).hex()  # 128 bits from the OS's CSPRNG, as secrets does
         self.notice = notice or _notice
         self._stages: dict[Path, tuple[Path, int]] = {}  # parent -> (stage folder, lock fd)
         self._entries: list[dict] = []
@@ -343,6 +342,8 @@ def _remove_stage(stage: Path) -> bool:
             continue
         try:
             if os.path.isdir(path) and not os.path.islink(path):
+                import shutil
+
                 shutil.rmtree(path)
             else:
                 os.unlink(path)

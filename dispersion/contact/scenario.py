@@ -119,11 +119,10 @@ class Scenario:
             raise InputError(f"dt must lie in [1e-150, 1e150] s (dt^2 and 1/dt^2 must stay "
                              f"finite), got {self.dt}")
         # E = 2 (1 + nu) rho (v0 / v0_over_cT)^2 must be a positive double, or K is 0 or inf
-        with np.errstate(over="ignore", under="ignore"):
-            try:
-                youngs = self.E
-            except OverflowError:
-                youngs = np.inf
+        try:
+            youngs = self.E  # Python floats: an overflow raises, an underflow gives 0
+        except OverflowError:
+            youngs = float("inf")
         if not 1e-300 < youngs < 1e300:
             raise InputError(f"v0, v0_over_cT and rho give E = 2 (1 + nu) rho (v0 / v0_over_cT)"
                              f"^2 = {youngs:g} Pa, outside double precision; choose values "

@@ -104,3 +104,16 @@ def test_ring_values_beyond_double_precision_are_refused(args, word, capsys):
     # counterexamples the slow CLI fuzz found (OverflowError tracebacks before the fix)
     assert main(["ring", "--t-end", "0.1", *args]) == 2
     assert word in _one_line(capsys)
+
+
+def test_impact_before_the_first_contact_states_no_nan(capsys):
+    # the exact contact stress is 0 until t = 1 (exact solution by characteristics): its
+    # relative error is undefined and is stated so (null in JSON), never a silent NaN
+    import json
+
+    assert main(["impact", "signorini-1d", "--t-end", "0.1", "--format", "json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert summary["stress_rel_l2"] is None and summary["u0_rel_l2"] > 0
+    assert main(["impact", "signorini-1d", "--t-end", "0.1"]) == 0
+    out = capsys.readouterr().out
+    assert "contact stress n/a (exact value 0)" in out and "nan" not in out

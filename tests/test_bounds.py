@@ -5,6 +5,8 @@ replaced by one that fails the test if it is reached.
 """
 from __future__ import annotations
 
+import re
+
 import pytest
 
 from dispersion.cli import main
@@ -80,12 +82,12 @@ def test_exact_signorini_time_bounded_up_front():
 
 
 @pytest.mark.parametrize("args, code, word", [
-    (["--r-outer", "1e300"], 2, "leave double precision"),
+    (["--r-outer", "1e300"], 2, "non-finite|leave double precision"),
     (["--v0", "1e12"], 1, "ConvergenceError")])
 def test_ring_scale_failures_are_one_line_without_warnings(args, code, word, capsys):
     # pytest turns RuntimeWarnings into errors (pyproject): none may escape the integrator
     assert main(["ring", "--t-end", "0.1", *args]) == code
-    assert word in _one_line(capsys)
+    assert re.search(word, _one_line(capsys))
 
 
 def test_k_dyn_of_nan_is_an_input_error():

@@ -407,7 +407,6 @@ def run(args) -> int:
             _emit("-", dumps(env))
     if args.figure and s["material"] is not None:
         fig = _physical_figure(kappa, exact, vel, s["material"], args.thickness, args.omega_max)
-        save_figure(fig, args.figure, dpi=150)
     elif args.figure:
         from dispersion.plotting.branches import figure2, plot_exact
 
@@ -425,6 +424,7 @@ def run(args) -> int:
             ax.set_title(f"Rayleigh-Lamb, nu = {nu:g}", fontsize="small")
             ax.legend(fontsize="small")
             fig = ax.figure
+    if args.figure:
         figure_bytes = io.BytesIO()
         fig.savefig(figure_bytes, format=args.figure.rsplit(".", 1)[-1].lower(), dpi=150)
     # the CSV and the figure are one unit (io.write_unit): both new, or both old; a stream

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import concurrent.futures as cf
 import contextlib
+import contextvars
 import ctypes
 import multiprocessing
 import os
@@ -30,12 +31,20 @@ from typing import Any, TypeVar
 
 from dispersion.errors import check_positive_int
 
-__all__ = ["parallel_map", "default_jobs", "process_pool", "die_with_parent"]
+__all__ = ["parallel_map", "default_jobs", "process_pool", "die_with_parent",
+           "MAX_JOBS_PER_CPU"]
 
 _PR_SET_PDEATHSIG = 1  # <linux/prctl.h>
 
 T = TypeVar("T")
 R = TypeVar("R")
+
+
+#: Most workers of :func:`process_pool` per usable CPU. More only queue for the cores while
+#: each holds its own copy of the toolkit in memory (about 150 MB); 4 leaves room for
+#: workers that wait on I/O. :func:`parallel_map` starts at most one per usable CPU: its
+#: calls are CPU-bound sweeps.
+MAX_JOBS_PER_CPU = 4
 
 
 def default_jobs() -> int:
@@ -131,8 +140,24 @@ def process_pool(max_workers: int | None = None, mp_context=None) -> cf.ProcessP
     2
     """
     workers = default_jobs() if max_workers is None else check_positive_int(
-        "max_workers", max_workers)
+        "max_workers", max_workers, maximum=MAX_JOBS_PER_CPU * default_jobs())
     return _Pool(workers, mp_context)
+
+
+#: Whether ``parallel_map(progress=None)`` shows a bar: None (the default) means only when
+#: stderr is a terminal; :func:`progress_bars` sets it for a block (``--no-progress``).
+_PROGRESS = contextvars.ContextVar("dispersion_progress", default=None)
+
+
+@contextlib.contextmanager
+def progress_bars(enabled: bool | None):
+    """Within the block, sweeps called with ``progress=None`` show bars iff ``enabled``
+    (``None``: only on a terminal), e.g. ``dispersion reproduce --no-progress``."""
+    token = _PROGRESS.set(enabled)
+    try:
+        yield
+    finally:
+        _PROGRESS.reset(token)
 
 
 def _progress(total: int, enabled: bool | None, desc: str | None):
@@ -140,6 +165,8 @@ def _progress(total: int, enabled: bool | None, desc: str | None):
     # ``disable=None`` is tqdm's own "only when stderr is a terminal", so logs stay clean.
     from tqdm import tqdm
 
+    if enabled is None:
+        enabled = _PROGRESS.get()
     return tqdm(total=total, disable=None if enabled is None else not enabled, desc=desc,
                 leave=False, file=None)
 
@@ -167,8 +194,11 @@ def parallel_map(
         :class:`~concurrent.futures.ProcessPoolExecutor` with ``jobs`` workers, created
         and shut down here.
     jobs : int, optional
-        Worker count of the default pool (default: the usable CPU count). ``jobs=1``
-        without an executor runs the calls in this process, one after the other.
+        Largest worker count of the default pool (default: the usable CPU count). The pool
+        has at most as many workers as usable CPUs (``os.sched_getaffinity``) and as items,
+        whatever ``jobs`` says: its calls are CPU-bound, so more would only queue for the
+        cores (``jobs=10**6`` starts two workers on two CPUs). ``jobs=1`` without an
+        executor runs the calls in this process, one after the other.
     progress : bool, optional
         Show a tqdm progress bar on stderr as calls complete; default (``None``): only when
         stderr is a terminal.
@@ -182,6 +212,8 @@ def parallel_map(
 
     Raises
     ------
+    InputError
+        ``jobs`` is not an integer >= 1.
     Exception
         The first exception raised by a call (in completion order) is re-raised here
         unchanged; calls not yet started are cancelled.
@@ -193,9 +225,9 @@ def parallel_map(
     ...     parallel_map(str.upper, ["s0", "a0"], executor=pool, progress=False)
     ['S0', 'A0']
     """
-    items = list(items)
-    if jobs is not None:
+    if jobs is not None:  # checked before the items are drawn or a worker starts
         jobs = check_positive_int("jobs", jobs)
+    items = list(items)
     bar = _progress(len(items), progress, desc)
     try:
         if executor is None and (jobs == 1 or len(items) <= 1):
@@ -205,7 +237,7 @@ def parallel_map(
                 bar.update(1)
             return results
         if executor is None:
-            workers = min(jobs or default_jobs(), len(items))
+            workers = min(jobs or default_jobs(), default_jobs(), len(items))
             with process_pool(workers) as pool:
                 return _run(pool, func, items, bar)
         return _run(executor, func, items, bar)

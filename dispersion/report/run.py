@@ -21,11 +21,10 @@ In a notebook::
 from __future__ import annotations
 
 import concurrent.futures as cf
-import contextlib
 import os
 import sys
 import time
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -36,7 +35,7 @@ from dispersion.report import SECTIONS, section_module
 from dispersion.report.compare import SectionComparison, Verdict, compare_envelopes
 from dispersion.report.folder import check_target, open_report
 from dispersion.report.index import SectionResult, render_index
-from dispersion.sweep import default_jobs, process_pool
+from dispersion.sweep import MAX_JOBS_PER_CPU, default_jobs, process_pool, progress_bars
 
 __all__ = ["DEFAULT_OUT", "DEFAULT_REFERENCE", "MAX_JOBS_PER_CPU", "ReproduceRun",
            "reproduce", "measure_sections", "render_folder", "check_sections"]
@@ -45,11 +44,8 @@ __all__ = ["DEFAULT_OUT", "DEFAULT_REFERENCE", "MAX_JOBS_PER_CPU", "ReproduceRun
 DEFAULT_OUT = "reproduced"
 #: The committed reference a run is compared with.
 DEFAULT_REFERENCE = "reports"
-#: More workers than this per usable CPU only queue for the cores while each holds its own
-#: copy of the toolkit in memory; the bound keeps ``jobs`` a count a user means.
-MAX_JOBS_PER_CPU = 4
-#: Sections whose renderer draws figures (matplotlib, the ``plots`` extra).
-_FIGURES = ("branches", "ring", "series_speed", "studies")
+#: Sections whose renderer draws no figure; every other one needs matplotlib (``plots``).
+_NO_FIGURES = ("coefficients",)
 
 
 @dataclass(frozen=True)
@@ -77,23 +73,6 @@ def check_sections(names: Sequence[str]) -> list[str]:
         if name not in SECTIONS:
             raise InputError(f"--sections must be among {', '.join(SECTIONS)}, got {name!r}")
     return names
-
-
-@contextlib.contextmanager
-def _tqdm_disabled(disabled: bool) -> Iterator[None]:
-    """Switch off every tqdm bar (nested ones in sweeps and workers too) while ``disabled``."""
-    if not disabled:
-        yield
-        return
-    old = os.environ.get("TQDM_DISABLE")
-    os.environ["TQDM_DISABLE"] = "1"  # tqdm >= 4.66 reads TQDM_* overrides; workers inherit it
-    try:
-        yield
-    finally:
-        if old is None:
-            os.environ.pop("TQDM_DISABLE", None)
-        else:
-            os.environ["TQDM_DISABLE"] = old
 
 
 def measure_sections(
@@ -240,13 +219,13 @@ def reproduce(
         raise InputError(f"--reference {reference} is not a folder of reference results")
     for name in names:
         section_module(name)  # a broken installation fails before any work
-    if any(n in _FIGURES for n in (SECTIONS if render else names)):
+    if any(n not in _NO_FIGURES for n in (SECTIONS if render else names)):
         from dispersion.plotting import require_matplotlib
 
         require_matplotlib("dispersion reproduce (its figures)")
     ref_envs = _load_reference(reference) if reference.is_dir() else {}
     show = sys.stderr.isatty() if progress is None else bool(progress)
-    with _tqdm_disabled(not show), open_report(target, notice=notice) as staged:
+    with progress_bars(show), open_report(target, notice=notice) as staged:
         if not render:
             pool = _pool(jobs)
             try:

@@ -1,7 +1,7 @@
 """Errata of the paper's eqs (13)-(20): the printed terms against the derivation.
 
 The printed formulas are data, the claims file ``dispersion/data/paper_claims.toml``
-(:func:`dispersion.claims.claims.paper_claims_path`), never results. Each row of :func:`errata_table`
+(:func:`dispersion.claims.paper_claims_path`), never results. Each row of :func:`errata_table`
 holds one printed term of a series claim of that file (eqs 14-20), the derived coefficient
 under the claim's model, the status, and which discrete models reproduce the printed term
 (Bloch with square elements b = 2h, r = 2; x-exact; Bloch with h/b = 2, r = 1/2, the aspect
@@ -25,8 +25,8 @@ from dataclasses import dataclass
 import sympy
 
 from dispersion import defaults
-from dispersion.claims.claims import (Claim, ClaimResult, _same, _series, load_claims, paper_claims_path,
-                     verify_claims)
+from dispersion.claims.schema import Claim, load_claims, paper_claims_path
+from dispersion.claims.verify import ClaimResult, _same, _series, verify_claims
 from dispersion.errors import InputError
 from dispersion.waves.exact_series import exact_leading_balance
 
@@ -152,7 +152,7 @@ def paper_errata(quick: bool = False, executor=None) -> PaperErrata:
     """Verify the paper's claims file and build its errata rows (the coefficients section).
 
     ``quick`` is accepted for the report protocol (the work is the same); ``executor`` runs
-    independent derivations (see :func:`dispersion.claims.claims.verify_claims`).
+    independent derivations (see :func:`dispersion.claims.verify_claims`).
     """
     claims = load_claims(paper_claims_path())
     verified = verify_claims(claims, executor=executor, jobs=None if executor else 1)

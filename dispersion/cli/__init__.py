@@ -22,16 +22,11 @@ _SUBCOMMANDS = ("series", "branches", "ring", "impact", "verify", "reproduce", "
 
 
 def number(name: str, convert=float):
-    """argparse ``type`` that parses a number with ``convert`` and names ``name`` on failure.
+    """argparse ``type`` of a number option; see :mod:`dispersion.cli.options` (one grammar
+    for every command: ``0.3``, ``3/10``, ``1e-3``, bounded digits)."""
+    from dispersion.cli.options import number as typed
 
-    Range checks stay with the API (``InputError``), so the CLI and Python callers agree.
-    """
-    def parse(text):
-        try:
-            return convert(text)
-        except (TypeError, ValueError):  # sympy.SympifyError is a ValueError
-            raise argparse.ArgumentTypeError(f"{name} must be a number, got {text!r}") from None
-    return parse
+    return typed(name, convert)
 
 
 class _Parser(argparse.ArgumentParser):
@@ -79,7 +74,10 @@ def main(argv: list[str] | None = None) -> int:
     words = sys.argv[1:] if argv is None else list(argv)
     chosen = next((w for w in words if not w.startswith("-")), None)
     parser = build_parser(chosen if chosen in _SUBCOMMANDS else None)
-    args = parser.parse_args(words)
+    try:
+        args = parser.parse_args(words)
+    except SystemExit as exc:  # argparse's one-line error (2) or --help (0), as a status
+        return exc.code if isinstance(exc.code, int) else 2
     if args.version:
         print(f"dispersion {version()}")
         return 0

@@ -22,7 +22,7 @@ from dispersion.io import check_output_file, save_figure, write_text
 from dispersion.symbolic.mass import CONTACT_SETS, MASS_VARIANTS
 from dispersion.symbolic.plate import MODELS
 from dispersion.waves.exact_branches import check_samples
-from dispersion.cli import number
+from dispersion.cli.options import integer, real
 
 #: Up-front bounds (issue 11); the exact tracer's scan is bounded by
 #: :data:`dispersion.waves.exact_branches.MAX_SAMPLES` (count * (omega-max / 0.05 + 1)).
@@ -37,17 +37,6 @@ MAX_DISCRETE_WORK = 2 * 400 * MAX_N**3
 FIGURE_SUFFIXES = (".png", ".pdf", ".svg")
 
 
-def integer(name: str, lo: int, hi: int):
-    """argparse ``type``: an integer; on a parse failure the message states ``[lo, hi]``."""
-    def parse(text):
-        try:
-            return int(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(
-                f"{name} must be an integer in [{lo}, {hi}], got {text!r}") from None
-    return parse
-
-
 def register(sub) -> None:
     p = sub.add_parser(
         "branches", help="dispersion branches: discrete patch and Rayleigh-Lamb",
@@ -58,12 +47,12 @@ def register(sub) -> None:
                    help="mass variant (repeat for several; default: consistent and singular)")
     p.add_argument("--contact", choices=CONTACT_SETS, default=None,
                    help=f"contact set of a singular mass (default: {defaults.CONTACT})")
-    p.add_argument("--gamma-s", type=number("gamma_s"), default=None,
+    p.add_argument("--gamma-s", type=real("gamma_s"), default=None,
                    help="share of a contact shape function sent to the second neighbour, "
                         "singular masses only (default: 0, Figure 2)")
     p.add_argument("--model", choices=MODELS, default=None,
                    help=f"patch model along x (default: {defaults.MODEL})")
-    p.add_argument("--r", type=number("r"), default=None,
+    p.add_argument("--r", type=real("r"), default=None,
                    help=f"aspect ratio b/h of the Bloch model, dimensionless "
                         f"(default: {float(defaults.FIGURE2_R):g}, Figure 2's h/b = 2)")
     p.add_argument("--p", type=integer("degree p", 1, MAX_N - 1), default=defaults.P,
@@ -72,21 +61,21 @@ def register(sub) -> None:
     p.add_argument("--n", type=integer("control points n", 2, MAX_N), default=defaults.N,
                    help=f"control points through the thickness, p+1..{MAX_N} "
                         f"(default: {defaults.N})")
-    p.add_argument("--nu", type=number("nu"), default=None,
+    p.add_argument("--nu", type=real("nu"), default=None,
                    help=f"Poisson's ratio (default: {defaults.NU_FLOAT}, or the material's)")
-    p.add_argument("--kappa-min", type=number("kappa-min"), default=0.0,
+    p.add_argument("--kappa-min", type=real("kappa-min"), default=0.0,
                    help="smallest kappa = kh, dimensionless (default: 0)")
-    p.add_argument("--kappa-max", type=number("kappa-max"), default=8.0,
+    p.add_argument("--kappa-max", type=real("kappa-max"), default=8.0,
                    help="largest kappa = kh, dimensionless (default: 8)")
     p.add_argument("--count", type=integer("count", 2, MAX_COUNT), default=400,
                    help=f"number of kappa points, 2..{MAX_COUNT} (default: 400)")
-    p.add_argument("--omega-max", type=number("omega-max"), default=8.0,
+    p.add_argument("--omega-max", type=real("omega-max"), default=8.0,
                    help=f"largest Omega = omega h / c_T, in (0, {MAX_OMEGA:g}] (default: 8)")
     p.add_argument("--material", choices=sorted(_materials()),
                    help="material for physical units (aluminium: c_L = 6320, c_T = 3130 m/s)")
-    p.add_argument("--cl", type=number("cl"), help="longitudinal speed c_L in m/s")
-    p.add_argument("--ct", type=number("ct"), help="shear speed c_T in m/s")
-    p.add_argument("--thickness", type=number("thickness"),
+    p.add_argument("--cl", type=real("cl"), help="longitudinal speed c_L in m/s")
+    p.add_argument("--ct", type=real("ct"), help="shear speed c_T in m/s")
+    p.add_argument("--thickness", type=real("thickness"),
                    help="plate thickness d = 2h in mm (with a material: physical columns)")
     p.add_argument("--exact", action="store_true", help="Rayleigh-Lamb branches only")
     p.add_argument("--exact-only", dest="exact", action="store_true", help=argparse.SUPPRESS)

@@ -32,7 +32,7 @@ from dispersion.report import SECTIONS, section_module
 from dispersion.report.folder import check_target, open_report
 from dispersion.report.index import SectionResult, render_index
 from dispersion.sweep import default_jobs, process_pool
-from dispersion.cli import number
+from dispersion.cli.options import number
 
 __all__ = ["register", "measure_sections", "render_folder", "handler", "MAX_JOBS_PER_CPU"]
 

@@ -14,7 +14,7 @@ from dataclasses import replace
 from dispersion.contact.scenario import MAX_STEPS, Scenario
 from dispersion.errors import InputError
 from dispersion.symbolic.mass import MASS_VARIANTS
-from dispersion.cli import number
+from dispersion.cli.options import number
 
 DEFAULT = Scenario()
 

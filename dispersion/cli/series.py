@@ -11,6 +11,7 @@ import json
 import sys
 from fractions import Fraction
 
+from dispersion.cli.options import integer, rational
 from dispersion.errors import InputError
 
 #: Options of the discrete patch, with their defaults (None: not given on the command line).
@@ -44,24 +45,12 @@ class _Default:
 
 
 def _fraction(name):
-    def parse(text):
-        try:
-            return Fraction(text)
-        except (TypeError, ValueError, ZeroDivisionError):
-            raise argparse.ArgumentTypeError(f"{name} must be a rational number such as 0.3 "
-                                             f"or 3/10, got {text!r}") from None
-    return parse
+    return rational(name)
 
 
 def _integer(name: str, valid):
     """argparse ``type``: an integer; on failure the message states ``valid()`` (the range)."""
-    def parse(text):
-        try:
-            return int(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"{name} must be an integer {valid()}, "
-                                             f"got {text!r}") from None
-    return parse
+    return integer(name, valid=valid)
 
 
 def _order_range() -> str:
@@ -84,7 +73,7 @@ def _points_range() -> str:
 
 
 def _aspect(text):
-    return "r" if text == "r" else _fraction("r")(text)
+    return rational("r", symbol="r")(text)
 
 
 def register(sub) -> None:

@@ -13,6 +13,8 @@ claim 'typo' (<string>:1) differs
 """
 from __future__ import annotations
 
+import json
+
 from dispersion.claims import Claim, ClaimResult, check_claim, load_claims, parse_claims
 
 __all__ = ["assert_claim", "assert_series", "assert_claims_file", "claims_in", "failure_message"]
@@ -43,13 +45,16 @@ def assert_claim(claim: Claim) -> ClaimResult:
 
 
 def _toml(value) -> str:
+    """``value`` as TOML: a JSON string is a TOML basic string (every character escaped that
+    must be), so no text given here can change the structure of the claim."""
     if isinstance(value, dict):
-        return "{" + ", ".join(f'"{k}" = {_toml(v)}' for k, v in value.items()) + "}"
+        return "{" + ", ".join(f"{json.dumps(str(k))} = {_toml(v)}"
+                               for k, v in value.items()) + "}"
     if isinstance(value, bool):
         return "true" if value else "false"
     if isinstance(value, (int, float)):
         return repr(value)
-    return '"' + str(value).replace("\\", "\\\\").replace('"', '\\"') + '"'
+    return json.dumps(str(value))
 
 
 def assert_series(branch: str, coefficients, *, name: str = "series", **fields) -> ClaimResult:
@@ -59,7 +64,8 @@ def assert_series(branch: str, coefficients, *, name: str = "series", **fields) 
     key = "coefficients" if isinstance(coefficients, dict) else "series"
     body[key] = ({str(k): str(v) for k, v in coefficients.items()} if key == "coefficients"
                  else coefficients)
-    text = "[[claim]]\n" + "\n".join(f"{k} = {_toml(v)}" for k, v in body.items()) + "\n"
+    text = "[[claim]]\n" + "\n".join(f"{json.dumps(str(k))} = {_toml(v)}"
+                                     for k, v in body.items()) + "\n"
     return assert_claim(parse_claims(text)[0])
 
 

@@ -97,9 +97,9 @@ def _fail(message: str) -> None:
 def _tokens(text: str, latex: bool) -> list[tuple[str, str, int]]:
     """``(kind, text, position)`` tokens; position counts from 1 for the messages."""
     if not isinstance(text, str):
-        _fail(f"must be text (a string), got {type(text).__name__}")
+        _fail(f"an expression must be text (a string), got {type(text).__name__}")
     if len(text) > MAX_LENGTH:
-        _fail(f"is {len(text)} characters long, more than the limit of {MAX_LENGTH}")
+        _fail(f"text of {len(text)} characters, more than the limit of {MAX_LENGTH}")
     bad = next((i for i, ch in enumerate(text) if not (" " <= ch <= "~" or ch in "\t\n\r")),
                None)
     if bad is not None:
@@ -414,7 +414,7 @@ def parse(text: str, syntax: str = "sympy", *, equation: bool = False):
     if syntax not in SYNTAXES:
         _fail(f"syntax must be one of {', '.join(SYNTAXES)}, got {syntax!r}")
     if isinstance(text, str) and not text.strip():
-        _fail("is empty")
+        _fail("empty expression")
     tree = _Parser(text, syntax == "latex").top(equation)
     _check_size(tree)
     return tree
@@ -462,9 +462,10 @@ def _size(node) -> tuple[int, int, int, int]:
 def _check_size(tree) -> None:
     nd, dd, nb, db = _size(tree)
     if nd + dd > MAX_DEGREE:
-        _fail(f"would reach degree {nd + dd}, more than the limit of {MAX_DEGREE}")
+        _fail(f"the expression would reach degree {nd + dd}, more than the limit of {MAX_DEGREE}")
     if nb + db > MAX_BITS:
-        _fail(f"would reach numbers of {nb + db} bits, more than the limit of {MAX_BITS}")
+        _fail(f"the expression would reach numbers of {nb + db} bits, more than the limit of "
+              f"{MAX_BITS}")
 
 
 # --------------------------------------------------------------------------- values
@@ -479,7 +480,7 @@ def to_fraction(tree) -> Fraction:
     if kind == "pow":
         base, e = to_fraction(tree[1]), tree[2]
         if e.denominator != 1:
-            _fail("is not a rational number (fractional power)")
+            _fail("not a rational number (fractional power)")
         if base == 0 and e < 0:
             _fail("division by zero")
         return base ** int(e)
@@ -497,8 +498,8 @@ def to_fraction(tree) -> Fraction:
                 value *= x
         return value
     if kind == "sym":
-        _fail(f"must be a number, not the symbol {tree[1]!r}")
-    _fail(f"must be a rational number ({kind}(...) is not allowed here)")
+        _fail(f"a number is required here, not the symbol {tree[1]!r}")
+    _fail(f"a rational number is required here ({kind}(...) is not allowed)")
 
 
 def to_sympy(tree):
@@ -510,9 +511,9 @@ def to_sympy(tree):
 
     expr = _build(tree, sympy)
     if expr.has(sympy.zoo, sympy.nan, sympy.oo, -sympy.oo):
-        _fail("divides by zero")
+        _fail("division by zero")
     if expr.has(sympy.I):
-        _fail("is not real (square root of a negative number)")
+        _fail("not a real number (square root of a negative number)")
     return expr
 
 

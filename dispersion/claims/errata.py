@@ -175,6 +175,13 @@ def _tex(text: str) -> str:
     return "".join(_TEX_SPECIAL.get(ch, ch) for ch in str(text))
 
 
+def _expr(value, names: tuple[str, ...] = ()):
+    """An expression of a row: text (from JSON) read by the whitelist reader, never sympified."""
+    from dispersion.claims.reader import read
+
+    return read(value, names=names) if isinstance(value, str) else value
+
+
 def format_table(rows, fmt: str = "text") -> str:
     """Render errata rows (objects or their JSON dictionaries) as ``text``, ``markdown``, ``latex``.
 
@@ -185,8 +192,8 @@ def format_table(rows, fmt: str = "text") -> str:
 
     def cells(r):
         if fmt == "latex":
-            printed = _get(r, "printed_latex") or sympy.latex(sympy.sympify(_get(r, "printed")))
-            derived = _get(r, "derived_latex") or sympy.latex(sympy.sympify(_get(r, "derived")))
+            printed = _get(r, "printed_latex") or sympy.latex(_expr(_get(r, "printed")))
+            derived = _get(r, "derived_latex") or sympy.latex(_expr(_get(r, "derived")))
         else:
             printed, derived = str(_get(r, "printed")), str(_get(r, "derived"))
         return (f"({_get(r, 'equation')})", f"kappa^{_get(r, 'power')}", printed, derived,
@@ -226,7 +233,7 @@ def errata_document(rows, eq13=None, title: str = "Errata of eqs (13)-(20)") -> 
                   r"$\Omega^2 = w\,\kappa^{2\sigma}$}", r"\begin{itemize}"]
         for branch, standard, printed in eq13:
             parts.append(rf"\item {_tex(branch)}: standard "
-                         rf"${sympy.latex(sympy.sympify(standard))}$; printed "
-                         rf"${sympy.latex(sympy.sympify(printed))}$")
+                         rf"${sympy.latex(_expr(standard, ('w',)))}$; printed "
+                         rf"${sympy.latex(_expr(printed, ('w',)))}$")
         parts.append(r"\end{itemize}")
     return "\n".join(parts + [r"\end{document}"]) + "\n"

@@ -156,8 +156,9 @@ def _number(word: str) -> Fraction:
 # ("sqrt", node), ("O", node): the tree is data, never code.
 
 class _Parser:
-    def __init__(self, text: str, latex: bool):
+    def __init__(self, text: str, latex: bool, names: tuple[str, ...] = ()):
         self.latex = latex
+        self.names = _NAMES + tuple(names)
         self.toks = _tokens(text, latex)
         self.i = 0
         self.depth = 0
@@ -207,6 +208,8 @@ class _Parser:
             if tree != ("pow", ("sym", "Omega"), Fraction(2)):
                 _fail("the left-hand side of '=' must be Omega^2")
             tree = self.expr()
+        elif self.is_op("="):
+            _fail("an equation (Omega^2 = ...) is allowed only as a whole series, not here")
         if self.peek()[0] != "end":
             _fail(f"unexpected {self.where()}")
         return tree
@@ -325,7 +328,7 @@ class _Parser:
                     return self.call("O")
                 _fail(f"unknown symbol {word!r} at position {pos} (use \\nu, \\kappa, r, "
                       "\\Omega, O)")
-            if word in _NAMES:
+            if word in self.names:
                 return ("sym", word)
             if word in _FUNCTIONS:
                 return self.call(word)
@@ -403,10 +406,12 @@ def _is_kappa_power(node) -> bool:
             and node[2] > 0)
 
 
-def parse(text: str, syntax: str = "sympy", *, equation: bool = False):
+def parse(text: str, syntax: str = "sympy", *, equation: bool = False,
+          names: tuple[str, ...] = ()):
     """The syntax tree of ``text`` (nested tuples), its size bounded; see the module doc.
 
-    ``equation`` accepts a leading ``Omega^2 =`` (``\\Omega^2 =`` in LaTeX).
+    ``equation`` accepts a leading ``Omega^2 =`` (``\\Omega^2 =`` in LaTeX); ``names`` are
+    further plain symbols allowed (lower-case identifiers, e.g. ``("w",)``).
 
     >>> parse("nu^2 + 1")
     ('add', ((1, ('pow', ('sym', 'nu'), Fraction(2, 1))), (1, ('num', Fraction(1, 1)))))
@@ -415,7 +420,11 @@ def parse(text: str, syntax: str = "sympy", *, equation: bool = False):
         _fail(f"syntax must be one of {', '.join(SYNTAXES)}, got {syntax!r}")
     if isinstance(text, str) and not text.strip():
         _fail("empty expression")
-    tree = _Parser(text, syntax == "latex").top(equation)
+    for name in names:
+        if not (isinstance(name, str) and re.fullmatch(r"[a-z]\w{0,15}", name)) or \
+                name in _FUNCTIONS:
+            _fail(f"names must be lower-case identifiers other than the functions, got {name!r}")
+    tree = _Parser(text, syntax == "latex", tuple(names)).top(equation)
     _check_size(tree)
     return tree
 
@@ -520,7 +529,8 @@ def to_sympy(tree):
 def _symbols(sympy) -> dict:
     from dispersion.symbolic.power_balance import NU, R_SYM
 
-    return {"nu": NU, "r": R_SYM, "kappa": sympy.Symbol("kappa"), "Omega": sympy.Symbol("Omega")}
+    return {"nu": NU, "r": R_SYM, "kappa": sympy.Symbol("kappa"),
+            "Omega": sympy.Symbol("Omega")}
 
 
 def _build(node, sympy):
@@ -530,7 +540,8 @@ def _build(node, sympy):
     if kind == "sym":
         if node[1] == "Omega":
             _fail("Omega may appear only as Omega^2 on the left of '='")
-        return _symbols(sympy)[node[1]]
+        known = _symbols(sympy)
+        return known[node[1]] if node[1] in known else sympy.Symbol(node[1])
     if kind == "neg":
         return -_build(node[1], sympy)
     if kind == "sqrt":
@@ -549,9 +560,10 @@ def _build(node, sympy):
     return out
 
 
-def read(text: str, syntax: str = "sympy", *, equation: bool = False):
+def read(text: str, syntax: str = "sympy", *, equation: bool = False,
+         names: tuple[str, ...] = ()):
     """``text`` (plain sympy-like text or LaTeX) as a sympy expression; see the module doc."""
-    return to_sympy(parse(text, syntax, equation=equation))
+    return to_sympy(parse(text, syntax, equation=equation, names=names))
 
 
 def read_number(text: str) -> Fraction:

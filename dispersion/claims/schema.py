@@ -342,6 +342,7 @@ def _claim(entry: dict, own: dict, i: int, lines: _Lines) -> Claim:
         key = "error_order" if kind == "error_order" else (
             "coefficients" if "coefficients" in entry else "series")
         _check_work(claim, key, fail)
+    _check_patch(model, entry, fail)
     return claim
 
 
@@ -418,7 +419,7 @@ def _model(entry: dict, own: dict, fail) -> Model:
         if given:
             fail(given[0], "not a setting of the exact model (rayleigh-lamb)")
         return Model(EXACT)
-    from dispersion.symbolic.plate import MODELS, check_size, plate_patch
+    from dispersion.symbolic.plate import MODELS, check_size
 
     if name not in MODELS:
         fail("model", f"must be {EXACT!r} or a patch model ({', '.join(MODELS)}), "
@@ -448,12 +449,27 @@ def _model(entry: dict, own: dict, fail) -> Model:
         if (2 * model.n) ** 2 * 2 > MAX_WORK:  # the least work of any series claim
             raise InputError(f"control points n must satisfy (2n)^2 * order <= {MAX_WORK} "
                              f"(bounded time and memory), got n = {model.n}")
+    except InputError as exc:
+        _patch_failure(exc, entry, fail)
+    return model
+
+
+def _patch_failure(exc: InputError, entry: dict, fail) -> None:
+    words = str(exc).split(" must")[0].replace("(", " ").split()
+    key = next((k for k in PATCH_KEYS if k in words and k in entry), "model")
+    fail(key, f"the toolkit cannot build this patch: {exc}")
+
+
+def _check_patch(model: Model, entry: dict, fail) -> None:
+    """Build the patch once (after the work is known to be bounded): every setting checked."""
+    if model.exact:
+        return
+    from dispersion.symbolic.plate import plate_patch
+
+    try:
         plate_patch(**model.patch_kwargs())
     except InputError as exc:
-        words = str(exc).split(" must")[0].replace("(", " ").split()
-        key = next((k for k in PATCH_KEYS if k in words and k in entry), "model")
-        fail(key, f"the toolkit cannot build this patch: {exc}")
-    return model
+        _patch_failure(exc, entry, fail)
 
 
 def _weights(w, fail) -> tuple:

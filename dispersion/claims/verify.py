@@ -249,9 +249,9 @@ def _error_order_tasks(claim: Claim) -> list[tuple]:
 
 
 def _error_order_verdict(claim: Claim, patch: dict, exact: dict) -> Verdict:
-    diffs = [k for k in sorted(set(patch) | set(exact))
-             if k <= claim.order and not _same(patch.get(k, 0), exact.get(k, 0))]
-    lead = diffs[0] if diffs else None
+    from dispersion.symbolic.power_balance import first_difference
+
+    lead = first_difference(patch, exact, upto=claim.order)
     m = claim.error_order
     holds = lead is not None and (lead >= m if claim.bound else lead == m) or (
         lead is None and claim.bound)

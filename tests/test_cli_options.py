@@ -52,8 +52,9 @@ def test_fractions_give_the_same_branches_as_decimals(capsys):
     for nu, r in (("3/10", "1/2"), ("0.3", "0.5")):
         assert main(["branches", "--mass", "consistent", "--count", "2", "--kappa-max", "0.5",
                      "--omega-max", "1", "--nu", nu, "--r", r, "--format", "json"]) == 0
-        outs.append(capsys.readouterr().out)
-    assert outs[0] == outs[1]
+        record = json.loads(capsys.readouterr().out)
+        outs.append((record["result"], record["inputs"]))
+    assert outs[0] == outs[1] and outs[0][1]["nu"] == 0.3 and outs[0][1]["r"] == 0.5
 
 
 @pytest.mark.parametrize("argv, words", [

@@ -20,7 +20,7 @@ from dispersion import defaults
 from dispersion.errors import InputError
 from dispersion.io import check_output_file, save_figure, write_text
 from dispersion.symbolic.mass import CONTACT_SETS, MASS_VARIANTS
-from dispersion.symbolic.plate import MODELS
+from dispersion.symbolic.plate import MODELS, R_RANGE
 from dispersion.waves.exact_branches import check_samples
 from dispersion.cli.options import integer, real
 
@@ -47,12 +47,12 @@ def register(sub) -> None:
                    help="mass variant (repeat for several; default: consistent and singular)")
     p.add_argument("--contact", choices=CONTACT_SETS, default=None,
                    help=f"contact set of a singular mass (default: {defaults.CONTACT})")
-    p.add_argument("--gamma-s", type=real("gamma_s"), default=None,
+    p.add_argument("--gamma-s", type=real("gamma_s", 0, 1), default=None,
                    help="share of a contact shape function sent to the second neighbour, "
                         "singular masses only (default: 0, Figure 2)")
     p.add_argument("--model", choices=MODELS, default=None,
                    help=f"patch model along x (default: {defaults.MODEL})")
-    p.add_argument("--r", type=real("r"), default=None,
+    p.add_argument("--r", type=real("r", *R_RANGE), default=None,
                    help=f"aspect ratio b/h of the Bloch model, dimensionless "
                         f"(default: {float(defaults.FIGURE2_R):g}, Figure 2's h/b = 2)")
     p.add_argument("--p", type=integer("degree p", 1, MAX_N - 1), default=defaults.P,
@@ -61,15 +61,15 @@ def register(sub) -> None:
     p.add_argument("--n", type=integer("control points n", 2, MAX_N), default=defaults.N,
                    help=f"control points through the thickness, p+1..{MAX_N} "
                         f"(default: {defaults.N})")
-    p.add_argument("--nu", type=real("nu"), default=None,
+    p.add_argument("--nu", type=real("nu", -1, 0.5, lo_open=True, hi_open=True), default=None,
                    help=f"Poisson's ratio (default: {defaults.NU_FLOAT}, or the material's)")
-    p.add_argument("--kappa-min", type=real("kappa-min"), default=0.0,
+    p.add_argument("--kappa-min", type=real("kappa-min", 0), default=0.0,
                    help="smallest kappa = kh, dimensionless (default: 0)")
-    p.add_argument("--kappa-max", type=real("kappa-max"), default=8.0,
+    p.add_argument("--kappa-max", type=real("kappa-max", 0), default=8.0,
                    help="largest kappa = kh, dimensionless (default: 8)")
     p.add_argument("--count", type=integer("count", 2, MAX_COUNT), default=400,
                    help=f"number of kappa points, 2..{MAX_COUNT} (default: 400)")
-    p.add_argument("--omega-max", type=real("omega-max"), default=8.0,
+    p.add_argument("--omega-max", type=real("omega-max", 0, MAX_OMEGA, lo_open=True), default=8.0,
                    help=f"largest Omega = omega h / c_T, in (0, {MAX_OMEGA:g}] (default: 8)")
     p.add_argument("--material", choices=sorted(_materials()),
                    help="material for physical units (aluminium: c_L = 6320, c_T = 3130 m/s)")

@@ -37,15 +37,25 @@ def span(lo=None, hi=None, lo_open: bool = False, hi_open: bool = False) -> str:
     return f"{left}{'-inf' if lo is None else lo}, {'inf' if hi is None else hi}{right}"
 
 
+def _exact(bound) -> Fraction:
+    """A range end as a Fraction: ints, floats, "1/2", Fractions and sympy Rationals."""
+    if isinstance(bound, (int, float, str, Fraction)):
+        return Fraction(bound)
+    return Fraction(int(bound.p), int(bound.q))  # sympy.Rational
+
+
 def _in(value, lo, hi, lo_open, hi_open) -> bool:
-    return not ((lo is not None and (value <= Fraction(lo) if lo_open else value < Fraction(lo)))
-                or (hi is not None and (value >= Fraction(hi) if hi_open else
-                                        value > Fraction(hi))))
+    below = lo is not None and (value <= _exact(lo) if lo_open else value < _exact(lo))
+    above = hi is not None and (value >= _exact(hi) if hi_open else value > _exact(hi))
+    return not (below or above)
 
 
 def _shown(q: Fraction) -> str:
-    if q.denominator == 1:
-        return str(q.numerator) if abs(q.numerator) < 10**16 else f"{float(q):g}"
+    if q.denominator == 1 and abs(q.numerator) < 10**16:
+        return str(q.numerator)
+    if not Fraction(10) ** -300 < abs(q) < Fraction(10) ** 300:  # beyond the floats
+        digits = len(str(abs(q.numerator))) - len(str(q.denominator))
+        return f"{'-' if q < 0 else ''}about 1e{digits:+d}"
     return f"{float(q):.6g}"
 
 

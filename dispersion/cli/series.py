@@ -44,10 +44,6 @@ class _Default:
         return str(self.value())
 
 
-def _fraction(name):
-    return rational(name)
-
-
 def _integer(name: str, valid):
     """argparse ``type``: an integer; on failure the message states ``valid()`` (the range)."""
     return integer(name, valid=valid)
@@ -93,7 +89,7 @@ def register(sub) -> None:
     p.add_argument("--contact", default=_Default("CONTACT"),
                    help="contact set of a singular mass: top, bottom, both "
                         "(default %(default)s)")
-    p.add_argument("--gamma-s", type=_fraction("gamma_s"), default=_Default("GAMMA_S"),
+    p.add_argument("--gamma-s", type=rational("gamma_s", 0, 1), default=_Default("GAMMA_S"),
                    help="singular mass: share of a contact shape function sent to the second "
                         "neighbour (paper's gamma_s), in [0, 1] (default %(default)s)")
     p.add_argument("--model", default=_Default("MODEL"),
@@ -112,7 +108,7 @@ def register(sub) -> None:
                    default=_Default("order", ORDER),
                    help="highest power of kappa, even, at most power_balance.MAX_ORDER "
                         "(default %(default)s)")
-    p.add_argument("--nu", type=_fraction("nu"), default=None,
+    p.add_argument("--nu", type=rational("nu", -1, 0.5, lo_open=True, hi_open=True), default=None,
                    help="substitute a value for Poisson's ratio nu, in (-1, 0.5); "
                         "None: symbolic")
     p.add_argument("--format", choices=("text", "latex", "json", "csv"), default="text",

@@ -114,6 +114,18 @@ def test_derivations_beyond_the_engine_limits_are_refused_before_work(monkeypatc
             parse_claims(base + body + "\n")
 
 
+def test_the_number_of_distinct_derivations_is_bounded_before_work(monkeypatch):
+    import dispersion.claims.verify as verify_mod
+
+    monkeypatch.setattr(verify_mod, "_run_task", lambda *a: pytest.fail("derivation started"))
+    n = verify_mod.MAX_DERIVATIONS + 1
+    text = "".join(f'[[claim]]\nname = "v{i}"\nkind = "value"\nmodel = "rayleigh-lamb"\n'
+                   f'branch = "S0"\nkappa = {i / 100}\nnu = 0.3\nomega = 1.0\nrtol = 0.1\n'
+                   for i in range(n))
+    with pytest.raises(InputError, match=f"{n} distinct derivations"):
+        verify_claims(parse_claims(text))
+
+
 def test_assert_series_text_cannot_change_the_claim():
     # name and values are written as TOML strings: quotes and newlines stay inside them
     name = 'x"\nmodel = "bloch'

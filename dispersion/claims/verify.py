@@ -17,7 +17,7 @@ from dispersion.claims.schema import EXACT, Claim, Model, load_claims, paper_cla
 from dispersion.errors import DispersionError, InputError, check_int_in_range
 from dispersion.symbolic.power_balance import NU
 
-__all__ = ["MAX_JOBS", "Term", "ClaimResult", "Verification", "KIND_RULES", "describe_difference",
+__all__ = ["MAX_JOBS", "MAX_DERIVATIONS", "Term", "ClaimResult", "Verification", "KIND_RULES", "describe_difference",
            "check_claim", "check_jobs", "verify_claims", "verify_file"]
 
 #: Most worker processes :func:`verify_claims` starts. A worker is a Python process holding
@@ -25,6 +25,11 @@ __all__ = ["MAX_JOBS", "Term", "ClaimResult", "Verification", "KIND_RULES", "des
 #: workers stay under a third of this machine's 24 GiB, and on its 2 cores more workers than
 #: derivations or cores only add start-up time.
 MAX_JOBS = 64
+#: Most distinct derivations one verification runs. Each is bounded by the engine's own
+#: limits (about a minute at worst, :func:`dispersion.symbolic.power_balance.check_request`);
+#: the paper's file needs 8 and a series to kappa^8 takes ~0.1 s, so 100 cheap ones take
+#: seconds, and a file cannot ask for more than 100 dear ones.
+MAX_DERIVATIONS = 100
 
 
 @dataclass(frozen=True)
@@ -368,6 +373,9 @@ def verify_claims(claims: list[Claim], *, executor=None, jobs: int | None = None
             if key not in tasks or (t[0] == "series" and t[3] > tasks[key][3]):
                 tasks[key] = t
     todo = list(tasks.values())
+    if len(todo) > MAX_DERIVATIONS:
+        raise InputError(f"the claims need {len(todo)} distinct derivations, more than the "
+                         f"limit of {MAX_DERIVATIONS} per verification (split the files)")
     if jobs is None and executor is None:
         # series to kappa^8 take ~0.1 s each: a process pool costs more than it saves
         # (paper file, 2 cores: 3.4 s in-process vs 3.9 s with a pool, whole CLI)

@@ -15,13 +15,15 @@ from __future__ import annotations
 
 import json
 
-from dispersion.claims import Claim, ClaimResult, check_claim, load_claims, parse_claims
+from dispersion.claims import (Claim, ClaimResult, check_claim, load_claims, parse_claims,
+                               plain)
 
 __all__ = ["assert_claim", "assert_series", "assert_claims_file", "claims_in", "failure_message"]
 
 
 def failure_message(result: ClaimResult) -> str:
-    """Printed vs derived, term by term, for an assertion message."""
+    """Printed vs derived, term by term, for an assertion message (control sequences from
+    the claims file escaped, see :func:`dispersion.claims.report.plain`)."""
     lines = [f"claim {result.name!r} ({result.file}:{result.line}) {result.status}",
              f"  source:     {result.source or '-'}", f"  model:      {result.model}"]
     if result.terms:
@@ -33,7 +35,7 @@ def failure_message(result: ClaimResult) -> str:
         lines += [f"  printed:    {result.printed}", f"  derived:    {result.derived}"]
     if result.difference:
         lines.append(f"  difference: {result.difference}")
-    return "\n".join(lines)
+    return plain("\n".join(lines), newlines=True)
 
 
 def assert_claim(claim: Claim) -> ClaimResult:

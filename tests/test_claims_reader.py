@@ -78,10 +78,28 @@ def test_an_equation_may_start_with_omega_squared():
     ("1/(nu - nu)", "division by zero"),
     ("sqrt(-1)", "not a real number"),
     ("O(nu)", "power of kappa"),
+    ("(1 + nu + r)^40", "terms"),  # C(42, 2) = 861 terms once expanded
+    ("(1 + nu)^100 * (1 + r)^3", "terms"),  # 101 * 4 = 404
 ])
 def test_sizes_are_bounded_before_any_arithmetic(text, match):
     with pytest.raises(InputError, match=match):
         read(text)
+
+
+def test_a_series_is_bounded_coefficient_by_coefficient():
+    # a long series is many small coefficients: eq (14) to kappa^32 (16 terms, denominators
+    # up to (1 - nu)^31) reads whole, each coefficient within the limits on its own
+    from dispersion.waves.exact_series import exact_series
+
+    derived = exact_series("S0", 32)
+    text = " + ".join(f"({c})*kappa^{k}" for k, c in sorted(derived.items())) + " + O(kappa^34)"
+    found, order = reader.read_series(text)
+    assert order == 34 and sorted(found) == sorted(derived)
+    assert all(sympy.cancel(found[k] - derived[k]) == 0 for k in derived)
+    with pytest.raises(InputError, match="sum of terms"):
+        reader.read_series("kappa^2*(2/(1-nu) + kappa^2)")
+    with pytest.raises(InputError, match="coefficient of kappa\\^2 would expand"):
+        reader.read_series("(1 + nu + r)^40*kappa^2 + kappa^4")
 
 
 def test_read_number_is_exact_and_bounded():

@@ -21,10 +21,11 @@ Size is bounded before any arithmetic, by these rules:
 * a power: its exponent is a written integer or fraction (``^2``, ``^{-2}``, ``**(1/2)``) of
   size at most :data:`MAX_EXPONENT` (the highest series order the toolkit derives is
   kappa^128), never an expression (``2**2**2`` is refused, so is ``9**9**9``);
-* the whole: an upper bound of the degree (:data:`MAX_DEGREE`) and of the bits of the
-  numbers (:data:`MAX_BITS`) the expression would reach once put over one denominator,
-  computed on the tree. Within these bounds sympy's arithmetic and ``cancel`` take
-  milliseconds.
+* an expression (a coefficient; a series is checked coefficient by coefficient): upper
+  bounds of the degree (:data:`MAX_DEGREE`), of the bits of its numbers (:data:`MAX_BITS`)
+  and of its terms (:data:`MAX_TERMS`) once put over one denominator and expanded,
+  computed on the tree before sympy sees it. Within these bounds sympy's ``factor`` and
+  ``cancel`` take about a second at most.
 
 >>> read("2/(1 - nu)*kappa^2 + O(kappa^4)")
 2*kappa**2/(1 - nu) + O(kappa**4)
@@ -49,13 +50,15 @@ from fractions import Fraction
 from dispersion.errors import InputError
 
 __all__ = ["MAX_LENGTH", "MAX_TOKENS", "MAX_DEPTH", "MAX_DIGITS", "MAX_DECIMAL_EXPONENT",
-           "MAX_EXPONENT", "MAX_DEGREE", "MAX_BITS", "SYNTAXES", "parse", "read", "read_number",
-           "to_sympy", "to_fraction"]
+           "MAX_EXPONENT", "MAX_DEGREE", "MAX_BITS", "MAX_TERMS", "SYNTAXES", "parse",
+           "check_size", "series_terms", "read", "read_series", "read_number", "to_sympy",
+           "to_fraction"]
 
-#: Characters of one expression. The paper's longest series (eq 17 in LaTeX) has 170.
-MAX_LENGTH = 4000
+#: Characters of one expression. The paper's longest series (eq 17 in LaTeX) has 170; the
+#: exact S0 series to kappa^32 written out as sympy prints it has 6700.
+MAX_LENGTH = 20_000
 #: Tokens of one expression (numbers, names, operators): bounds the number of terms.
-MAX_TOKENS = 1000
+MAX_TOKENS = 6000
 #: Nesting levels (parentheses, braces, calls, signs); the parser recurses a few frames a level.
 MAX_DEPTH = 40
 #: Digits of one number as written (integer and fraction part together).
@@ -68,6 +71,10 @@ MAX_EXPONENT = 256
 MAX_DEGREE = 512
 #: Largest size in bits of the numbers an expression may reach (about 6000 decimal digits).
 MAX_BITS = 20_000
+#: Most terms an expression (one coefficient) may expand to, numerator or denominator.
+#: Multivariate factoring is the dearest step: (1 + nu + r)^20, 231 terms, takes about a
+#: second; the paper's longest coefficient has 7 terms.
+MAX_TERMS = 256
 SYNTAXES = ("sympy", "latex")
 
 _NAMES = ("nu", "kappa", "r", "Omega")
@@ -408,7 +415,8 @@ def _is_kappa_power(node) -> bool:
 
 def parse(text: str, syntax: str = "sympy", *, equation: bool = False,
           names: tuple[str, ...] = ()):
-    """The syntax tree of ``text`` (nested tuples), its size bounded; see the module doc.
+    """The syntax tree of ``text`` (nested tuples): length, tokens, depth, digits and exponents
+    bounded (:func:`check_size` bounds what the tree would grow to; :func:`read` applies it).
 
     ``equation`` accepts a leading ``Omega^2 =`` (``\\Omega^2 =`` in LaTeX); ``names`` are
     further plain symbols allowed (lower-case identifiers, e.g. ``("w",)``).
@@ -424,9 +432,7 @@ def parse(text: str, syntax: str = "sympy", *, equation: bool = False,
         if not (isinstance(name, str) and re.fullmatch(r"[a-z]\w{0,15}", name)) or \
                 name in _FUNCTIONS:
             _fail(f"names must be lower-case identifiers other than the functions, got {name!r}")
-    tree = _Parser(text, syntax == "latex", tuple(names)).top(equation)
-    _check_size(tree)
-    return tree
+    return _Parser(text, syntax == "latex", tuple(names)).top(equation)
 
 
 # --------------------------------------------------------------------------- size
@@ -435,46 +441,133 @@ def _bits(q: Fraction) -> int:
     return abs(q.numerator).bit_length() + q.denominator.bit_length()
 
 
-def _size(node) -> tuple[int, int, int, int]:
-    """Upper bounds ``(numerator degree, denominator degree, numerator bits, denominator
-    bits)`` of ``node`` written over one denominator (the rule of the module doc)."""
+def _capped_comb(n: int, k: int) -> int:
+    """``C(n, k)``, capped just above :data:`MAX_TERMS` (no huge intermediate numbers)."""
+    out = 1
+    for i in range(min(k, n - k)):
+        out = out * (n - i) // (i + 1)
+        if out > MAX_TERMS:
+            return MAX_TERMS + 1
+    return out
+
+
+def _size(node) -> tuple[int, ...]:
+    """Upper bounds of ``node`` written over one denominator and expanded: ``(numerator
+    degree, denominator degree, numerator bits, denominator bits, numerator terms,
+    denominator terms)`` (the rule of the module doc; term counts capped at MAX_TERMS + 1)."""
     kind = node[0]
+    cap = MAX_TERMS + 1
     if kind == "num":
         q = node[1]
-        return 0, 0, abs(q.numerator).bit_length(), q.denominator.bit_length()
+        return 0, 0, abs(q.numerator).bit_length(), q.denominator.bit_length(), 1, 1
     if kind == "sym":
-        return 1, 0, 1, 1
+        return 1, 0, 1, 1, 1, 1
     if kind in ("neg", "sqrt", "O"):
         return _size(node[1])
     if kind == "pow":
-        nd, dd, nb, db = _size(node[1])
+        nd, dd, nb, db, nt, dt = _size(node[1])
         e = node[2]
         k = -(-abs(e.numerator) // e.denominator)  # ceil(|e|)
         grow = (nd + dd + 1).bit_length()  # binomial-like growth of expanded coefficients
-        nd, dd, nb, db = nd * k, dd * k, (nb + grow) * k, (db + grow) * k
-        return (dd, nd, db, nb) if e < 0 else (nd, dd, nb, db)
+        # an expanded sum of t terms to the power k has at most C(t + k - 1, k) terms
+        nt, dt = (_capped_comb(t + k - 1, k) if t > 1 else 1 for t in (nt, dt))
+        out = (nd * k, dd * k, (nb + grow) * k, (db + grow) * k, nt, dt)
+        return (out[1], out[0], out[3], out[2], out[5], out[4]) if e < 0 else out
     parts = [_size(child) for _, child in node[1]]
     if kind == "mul":
         nd = dd = nb = db = 0
-        for (op, _), (a, b, c, d) in zip(node[1], parts):
+        nt = dt = 1
+        for (op, _), (a, b, c, d, t, u) in zip(node[1], parts):
             if op == "/":
-                a, b, c, d = b, a, d, c
+                a, b, c, d, t, u = b, a, d, c, u, t
             nd, dd, nb, db = nd + a, dd + b, nb + c, db + d
-        return nd, dd, nb, db
+            nt, dt = min(nt * t, cap), min(dt * u, cap)
+        return nd, dd, nb, db, nt, dt
     # a sum over the common denominator: each numerator times the other denominators
     dd, db = sum(p[1] for p in parts), sum(p[3] for p in parts)
     nd = max(p[0] - p[1] for p in parts) + dd
     nb = max(p[2] - p[3] for p in parts) + db + len(parts).bit_length()
-    return nd, dd, nb, db
+    dt = 1
+    for p in parts:
+        dt = min(dt * p[5], cap)
+    nt = min(sum(min(p[4] * dt // p[5], cap) for p in parts), cap)
+    return nd, dd, nb, db, nt, dt
 
 
-def _check_size(tree) -> None:
-    nd, dd, nb, db = _size(tree)
+def check_size(tree, what: str = "the expression") -> None:
+    """Refuse a tree whose degree, numbers or expanded terms exceed the limits (module doc)."""
+    nd, dd, nb, db, nt, dt = _size(tree)
     if nd + dd > MAX_DEGREE:
-        _fail(f"the expression would reach degree {nd + dd}, more than the limit of {MAX_DEGREE}")
+        _fail(f"{what} would reach degree {nd + dd}, more than the limit of {MAX_DEGREE}")
     if nb + db > MAX_BITS:
-        _fail(f"the expression would reach numbers of {nb + db} bits, more than the limit of "
+        _fail(f"{what} would reach numbers of {nb + db} bits, more than the limit of "
               f"{MAX_BITS}")
+    if max(nt, dt) > MAX_TERMS:
+        _fail(f"{what} would expand to more than {MAX_TERMS} terms (write it factored, or "
+              "split it)")
+
+
+def _has_kappa(node) -> bool:
+    stack = [node]
+    while stack:
+        n = stack.pop()
+        if n == ("sym", "kappa") or n[0] == "O":
+            return True
+        if n[0] in ("add", "mul"):
+            stack += [child for _, child in n[1]]
+        elif n[0] in ("neg", "pow", "sqrt"):
+            stack.append(n[1])
+    return False
+
+
+def _kappa_term(node) -> tuple[int, list]:
+    """``(power of kappa, [(op, factor), ...])`` of one term ``c * kappa^k``; kappa may stand
+    only as a factor of the term's product, never inside a sum, a quotient or a root."""
+    power, factors, stack = 0, [], [("*", node)]
+    while stack:
+        op, n = stack.pop()
+        if op == "*" and n[0] == "neg":
+            factors.append(("*", ("num", Fraction(-1))))
+            stack.append(("*", n[1]))
+        elif op == "*" and n[0] == "mul":
+            stack += list(reversed(n[1]))
+        elif op == "*" and n == ("sym", "kappa"):
+            power += 1
+        elif op == "*" and n[0] == "pow" and n[1] == ("sym", "kappa") and n[2].denominator == 1 \
+                and n[2] > 0:
+            power += int(n[2])
+        elif _has_kappa(n):
+            _fail("write the series as a sum of terms, each a coefficient times a power of "
+                  "kappa (kappa^k), and the order term as + O(kappa^k)")
+        else:
+            factors.append((op, n))
+    return power, factors
+
+
+def series_terms(tree) -> tuple[dict[int, tuple], int | None]:
+    """The coefficient trees of a series ``sum c_k kappa^k + O(kappa^m)`` and ``m`` (or None).
+
+    Terms of equal power are added; each coefficient is checked by :func:`check_size`.
+    """
+    terms = tree[1] if tree[0] == "add" else ((1, tree),)
+    found: dict[int, list] = {}
+    order = None
+    for sign, term in terms:
+        if term[0] == "O":
+            if order is not None:
+                _fail("more than one order term O(...)")
+            arg = term[1]
+            order = 1 if arg == ("sym", "kappa") else int(arg[2])
+            continue
+        power, factors = _kappa_term(term)
+        coef = ("mul", (("*", ("num", Fraction(sign))), *factors))
+        found.setdefault(power, []).append((1, coef))
+    out = {}
+    for power, parts in sorted(found.items()):
+        coef = parts[0][1] if len(parts) == 1 else ("add", tuple(parts))
+        check_size(coef, f"the coefficient of kappa^{power}")
+        out[power] = coef
+    return out, order
 
 
 # --------------------------------------------------------------------------- values
@@ -562,8 +655,24 @@ def _build(node, sympy):
 
 def read(text: str, syntax: str = "sympy", *, equation: bool = False,
          names: tuple[str, ...] = ()):
-    """``text`` (plain sympy-like text or LaTeX) as a sympy expression; see the module doc."""
-    return to_sympy(parse(text, syntax, equation=equation, names=names))
+    """``text`` (plain sympy-like text or LaTeX) as one sympy expression, its size checked by
+    :func:`check_size` as a whole; see the module doc."""
+    tree = parse(text, syntax, equation=equation, names=names)
+    check_size(tree)
+    return to_sympy(tree)
+
+
+def read_series(text: str, syntax: str = "sympy") -> tuple[dict, int | None]:
+    """A series ``[Omega^2 =] sum c_k kappa^k [+ O(kappa^m)]`` as ``({k: c_k}, m or None)``.
+
+    Each coefficient is checked by :func:`check_size` on its own (a long series is many
+    small coefficients) and built in sympy only then.
+
+    >>> read_series(r"\\Omega^2 = \\frac{2}{1-\\nu}\\kappa^2 + O(\\kappa^4)", "latex")
+    ({2: 2/(1 - nu)}, 4)
+    """
+    coefficients, order = series_terms(parse(text, syntax, equation=True))
+    return {k: to_sympy(c) for k, c in coefficients.items()}, order
 
 
 def read_number(text: str) -> Fraction:
@@ -574,4 +683,6 @@ def read_number(text: str) -> Fraction:
     ...
     dispersion.errors.InputError: number at position 1: decimal exponent -999999999 out of range (at most 400 in size)
     """
-    return to_fraction(parse(text))
+    tree = parse(text)
+    check_size(tree)
+    return to_fraction(tree)

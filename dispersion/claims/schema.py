@@ -492,14 +492,14 @@ def _weights(w, fail) -> tuple:
     return tuple(sorted(out))
 
 
-def _expression(text, key, syntax, fail, *, equation: bool = False):
+def _expression(text, key, syntax, fail):
     """A coefficient or series: text through the reader; a TOML number as an exact value."""
     if isinstance(text, (int, float)) and not isinstance(text, bool):
         return _rational(text, key, fail)
     if not isinstance(text, str) or not text.strip():
         fail(key, f"must be an expression (a string), got {_shown(text)}")
     try:
-        return reader.read(text, syntax, equation=equation)
+        return reader.read(text, syntax)
     except InputError as exc:
         what = "LaTeX" if syntax == "latex" else "sympy text"
         fail(key, f"{exc} (reading {what} {_shown(text)})")
@@ -536,29 +536,29 @@ def _series_claim(entry: dict, common: dict, fail) -> Claim:
             printed[int(k)] = expr
         written = "; ".join(f"kappa^{k}: {v}" for k, v in table.items())
     else:
-        expr = _expression(entry["series"], "series", syntax, fail, equation=True)
-        order_term = expr.getO()
-        expr = expr.removeO()
+        text = entry["series"]
+        if not text.strip():
+            fail("series", "must be an expression (a string), got an empty one")
         try:
-            poly = sympy.Poly(expr, KAPPA)
-        except sympy.PolynomialError:
-            fail("series", "must be a polynomial in kappa (plus an optional O(kappa^k) term)")
-        powers = {m[0] for m in poly.monoms() if poly.coeff_monomial(KAPPA**m[0]) != 0}
-        bad = sorted(k for k in powers if k < 2 * sigma or k % 2 or k > top_order)
+            found, order = reader.read_series(text, syntax)
+        except InputError as exc:
+            what = "LaTeX" if syntax == "latex" else "sympy text"
+            fail("series", f"{exc} (reading {what} {_shown(text)})")
+        bad = sorted(k for k in found if k < 2 * sigma or k % 2 or k > top_order)
         if bad:
             fail("series", f"{rule}, got kappa^{bad[0]}")
-        if order_term is not None:
-            top = sympy.degree(order_term.expr, KAPPA) - 1
+        if order is not None:
+            top = order - 1
             if top > top_order:
-                fail("series", f"order term O(kappa^{top + 1}) beyond the highest power "
+                fail("series", f"order term O(kappa^{order}) beyond the highest power "
                                f"{top_order} derived for {branch}")
         else:
-            top = max(powers, default=0)
-        powers |= set(range(2 * sigma, top + 1, 2))
+            top = max(found, default=0)
+        powers = set(found) | set(range(2 * sigma, top + 1, 2))
         if not powers:
             fail("series", "claims no power of kappa")
-        printed = {k: sympy.factor(poly.coeff_monomial(KAPPA**k)) for k in sorted(powers)}
-        written = entry["series"]
+        printed = {k: sympy.factor(found.get(k, sympy.Integer(0))) for k in sorted(powers)}
+        written = text
     nu = entry.get("nu")
     if nu is not None:
         nu = _rational(nu, "nu", fail)

@@ -28,9 +28,11 @@ Keys of a claim (``[defaults]`` may set any of them except ``name``):
     keys take the toolkit's defaults (:mod:`dispersion.defaults`).
 ``coefficients`` or ``series`` (series claims)
     Either a table power -> coefficient of :math:`\\Omega^2` (each power listed is claimed),
-    or the whole expression in ``kappa``, e.g. ``"2/(1-nu)*kappa^2 + O(kappa^4)"``: every
+    or the whole expression in ``kappa``, e.g. ``"2/(1-nu)*kappa^2 + O(kappa^4)"``, a sum
+    of terms, each a coefficient times a power of kappa, and an optional order term: every
     even power from the branch's first up to the order term (or the highest power written)
-    is claimed, a missing one as zero.
+    is claimed, a missing one as zero. Powers are even, from the branch's first up to the
+    highest the toolkit derives (kappa^32 for a patch, kappa^128 exact).
 ``syntax``
     ``"sympy"`` (default: sympy text, ``^`` or ``**`` for powers, symbols ``nu``, ``kappa``,
     ``r``) or ``"latex"`` (``\\nu``, ``\\kappa``, ``\\frac``, ``O(\\kappa^8)``, as printed in a

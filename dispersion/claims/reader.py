@@ -23,9 +23,10 @@ Size is bounded before any arithmetic, by these rules:
   kappa^128), never an expression (``2**2**2`` is refused, so is ``9**9**9``);
 * an expression (a coefficient; a series is checked coefficient by coefficient): upper
   bounds of the degree (:data:`MAX_DEGREE`), of the bits of its numbers (:data:`MAX_BITS`)
-  and of its terms (:data:`MAX_TERMS`) once put over one denominator and expanded,
-  computed on the tree before sympy sees it. Within these bounds sympy's ``factor`` and
-  ``cancel`` take about a second at most.
+  and of its terms (:data:`MAX_TERMS`) once put over one denominator and expanded, and of
+  the numbers under a root (:data:`MAX_ROOT_BITS`), computed on the tree before sympy sees
+  it. The limits are a few times what the exact series to kappa^32 needs; within them
+  sympy's ``factor`` and ``cancel`` of a coefficient take at most about a second.
 
 >>> read("2/(1 - nu)*kappa^2 + O(kappa^4)")
 2*kappa**2/(1 - nu) + O(kappa**4)
@@ -50,7 +51,8 @@ from fractions import Fraction
 from dispersion.errors import InputError
 
 __all__ = ["MAX_LENGTH", "MAX_TOKENS", "MAX_DEPTH", "MAX_DIGITS", "MAX_DECIMAL_EXPONENT",
-           "MAX_EXPONENT", "MAX_DEGREE", "MAX_BITS", "MAX_TERMS", "SYNTAXES", "parse",
+           "MAX_EXPONENT", "MAX_DEGREE", "MAX_BITS", "MAX_TERMS", "MAX_ROOT_BITS", "SYNTAXES",
+           "parse",
            "check_size", "series_terms", "read", "read_series", "read_number", "to_sympy",
            "to_fraction"]
 
@@ -67,14 +69,19 @@ MAX_DIGITS = 60
 MAX_DECIMAL_EXPONENT = 400
 #: Largest exponent written after ``^``/``**`` (numerator and denominator of a fraction).
 MAX_EXPONENT = 256
-#: Largest degree (numerator plus denominator, all symbols) an expression may reach.
-MAX_DEGREE = 512
-#: Largest size in bits of the numbers an expression may reach (about 6000 decimal digits).
-MAX_BITS = 20_000
-#: Most terms an expression (one coefficient) may expand to, numerator or denominator.
-#: Multivariate factoring is the dearest step: (1 + nu + r)^20, 231 terms, takes about a
-#: second; the paper's longest coefficient has 7 terms.
-MAX_TERMS = 256
+#: Largest degree (numerator plus denominator, all symbols) an expression may reach. The
+#: coefficients of the exact series to kappa^32, written out, reach 61.
+MAX_DEGREE = 128
+#: Largest size in bits of the numbers an expression may reach (about 1200 decimal digits);
+#: the exact series to kappa^32 reaches about 3000.
+MAX_BITS = 4096
+#: Most terms an expression (one coefficient) may expand to, numerator or denominator; the
+#: exact series to kappa^32 reaches 32. Factoring is the dearest step sympy takes on a
+#: printed coefficient, and it grows fast with the terms and digits of multivariate input.
+MAX_TERMS = 64
+#: Largest size in bits of a number under a root (``sqrt``, a fractional power): sympy looks
+#: for perfect powers and small factors there, fast below this size.
+MAX_ROOT_BITS = 256
 SYNTAXES = ("sympy", "latex")
 
 _NAMES = ("nu", "kappa", "r", "Omega")
@@ -496,6 +503,18 @@ def _size(node) -> tuple[int, ...]:
 
 def check_size(tree, what: str = "the expression") -> None:
     """Refuse a tree whose degree, numbers or expanded terms exceed the limits (module doc)."""
+    stack = [tree]
+    while stack:  # roots first: their arguments are small numbers or symbols
+        node = stack.pop()
+        if node[0] == "sqrt" or (node[0] == "pow" and node[2].denominator != 1):
+            _, _, nb, db, _, _ = _size(node[1])
+            if nb + db > MAX_ROOT_BITS:
+                _fail(f"{what} takes a root of numbers of {nb + db} bits, more than the limit "
+                      f"of {MAX_ROOT_BITS}")
+        if node[0] in ("add", "mul"):
+            stack += [child for _, child in node[1]]
+        elif node[0] in ("neg", "pow", "sqrt", "O"):
+            stack.append(node[1])
     nd, dd, nb, db, nt, dt = _size(tree)
     if nd + dd > MAX_DEGREE:
         _fail(f"{what} would reach degree {nd + dd}, more than the limit of {MAX_DEGREE}")

@@ -13,7 +13,8 @@ from typing import Callable
 
 import sympy
 
-from dispersion.claims.schema import EXACT, Claim, Model, load_claims, paper_claims_path
+from dispersion.claims.schema import (EXACT, Claim, Model, load_claims, paper_claims_path,
+                                      readable)
 from dispersion.errors import DispersionError, InputError, check_int_in_range
 from dispersion.symbolic.power_balance import NU
 
@@ -170,7 +171,7 @@ def describe_difference(printed, derived) -> str:
     'numerator term 2 -> 3 (same denominator 1 - nu)'
     """
     printed, derived = _expr(printed, "printed"), _expr(derived, "derived")
-    diff = sympy.factor(sympy.cancel(printed - derived))
+    diff = sympy.cancel(printed - derived)
     if diff == 0:
         return ""
     if derived == 0:
@@ -194,16 +195,16 @@ def describe_difference(printed, derived) -> str:
             syms = sorted(sympy.expand(pn + dn).free_symbols, key=str)
             mono = sympy.Mul(*[s**e for s, e in zip(syms, m)])
             was, now = b.get(m, 0) * mono, a.get(m, 0) * mono
-            return f"numerator term {was} -> {now} (same denominator {_show(sympy.factor(pd))})"
-        return (f"numerator: printed {sympy.factor(pn)}, derived {sympy.factor(dn)} "
-                f"(same denominator {sympy.factor(dd)})")
+            return f"numerator term {was} -> {now} (same denominator {_show(readable(pd))})"
+        return (f"numerator: printed {readable(pn)}, derived {readable(dn)} "
+                f"(same denominator {readable(dd)})")
     k = sympy.cancel(pn / dn)
     if k.is_number:  # same numerator up to a constant: the denominators differ
         pd, dd = sympy.expand(pd / k), sympy.expand(dd)
         if dd.as_coeff_Add()[0] < 0:
             pd, dd = -pd, -dd
-        return f"denominator: printed {_show(sympy.factor(pd))}, derived {_show(sympy.factor(dd))}"
-    return f"difference printed - derived = {diff}"
+        return f"denominator: printed {_show(readable(pd))}, derived {_show(readable(dd))}"
+    return f"difference printed - derived = {readable(diff)}"
 
 
 @dataclass(frozen=True)

@@ -211,7 +211,8 @@ def latex(t) -> str:
     return rf"\left({latex(t[1])}\right) {kind} \left({latex(t[2])}\right)"
 
 
-SIZE_LIMITS = ("would reach", "nested", "tokens", "characters", "digits", "out of range")
+SIZE_LIMITS = ("would reach", "would expand", "root of numbers", "nested", "tokens",
+               "characters", "digits", "out of range")
 
 
 def _check_round_trip(tree):

@@ -16,11 +16,9 @@ from dispersion.cli.options import integer
 from dispersion.errors import InputError
 from dispersion.io import check_output_file, write_text
 
-#: Same bound as :data:`dispersion.claims.MAX_JOBS` (kept here so ``--help`` imports no sympy).
-_MAX_JOBS = 64
-
-
 def register(sub) -> None:
+    from dispersion.claims.verify import MAX_JOBS  # the command needs sympy anyway
+
     p = sub.add_parser("verify", help="check claimed series/values against the derivation",
                        description="Derive every claim of the claims files (TOML, see "
                                    "dispersion.claims) and compare exactly; exit 1 if any "
@@ -32,8 +30,8 @@ def register(sub) -> None:
     p.add_argument("--format", choices=("text", "markdown"), default="text",
                    help="how the results are printed: text (one block per claim, wrapped to "
                         "the terminal) or a Markdown table (default: text)")
-    p.add_argument("--jobs", type=integer("--jobs", 1, _MAX_JOBS), default=None,
-                   help=f"worker processes for independent derivations, 1 to {_MAX_JOBS} "
+    p.add_argument("--jobs", type=integer("--jobs", 1, MAX_JOBS), default=None,
+                   help=f"worker processes for independent derivations, 1 to {MAX_JOBS} "
                         "(default: in-process for series to kappa^8 or less, else the CPU "
                         "count)")
     p.set_defaults(func=run)

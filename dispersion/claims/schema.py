@@ -30,7 +30,8 @@ try:  # Python >= 3.11
 except ModuleNotFoundError:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
-__all__ = ["EXACT", "KINDS", "KAPPA", "PATCH_KEYS", "CLAIM_KEYS", "MAX_FILE_BYTES",
+__all__ = ["EXACT", "KINDS", "KAPPA", "PATCH_KEYS", "KIND_FIELDS", "CLAIM_KEYS",
+           "MAX_FILE_BYTES",
            "MAX_NESTING", "MAX_INT_BITS", "Model", "Claim", "paper_claims_path", "load_claims",
            "parse_claims"]
 
@@ -39,9 +40,13 @@ EXACT = "rayleigh-lamb"
 KINDS = ("series", "error_order", "value")
 KAPPA = sympy.Symbol("kappa")
 PATCH_KEYS = ("p", "n", "r", "mass", "contact", "gamma_s", "weights")
-CLAIM_KEYS = {"name", "source", "note", "kind", "branch", "model", *PATCH_KEYS, "syntax",
-              "coefficients", "series", "nu", "rtol", "error_order", "bound", "kappa",
-              "omega", "expect"}
+#: The keys that belong to one kind of claim only (a claim of another kind refuses them).
+KIND_FIELDS = {"series": ("syntax", "coefficients", "series", "nu", "rtol"),
+               "error_order": ("error_order", "bound"),
+               "value": ("kappa", "nu", "omega", "rtol")}
+_KIND_KEYS = {key for keys in KIND_FIELDS.values() for key in keys}
+CLAIM_KEYS = {"name", "source", "note", "kind", "branch", "model", *PATCH_KEYS, "expect",
+              *_KIND_KEYS}
 TOP_KEYS = ("title", "format", "defaults", "claim")
 #: Largest claims file read. The paper's file has 4 KiB; a manuscript with a thousand claims
 #: stays under 1 MiB, and TOML parsing of 1 MiB takes well under a second.
@@ -348,31 +353,25 @@ def _claim(entry: dict, own: dict, i: int, lines: _Lines) -> Claim:
     common = dict(name=name, kind=kind, branch=branch, model=model, file=lines.file,
                   line=lines.line(i), source=entry.get("source"), note=entry.get("note"),
                   expect=expect)
-    wrong = {"series": ("error_order", "bound", "kappa", "omega"),
-             "error_order": ("coefficients", "series", "nu", "rtol", "kappa", "omega"),
-             "value": ("coefficients", "series", "error_order", "bound")}[kind]
-    for key in wrong:
+    for key in sorted(_KIND_KEYS - set(KIND_FIELDS[kind])):
         if key in own:
             fail(key, f"not a field of a {kind} claim")
-    if kind == "series":
-        claim = _series_claim(entry, common, fail)
-    elif kind == "error_order":
-        if model.exact:
-            fail("model", "an error order compares a patch with the exact model: give a patch")
-        m = entry.get("error_order")
-        if type(m) is not int or m < 2 or m % 2:
-            fail("error_order", f"must be an even integer >= 2, got {_shown(m)}")
-        bound = entry.get("bound", False)
-        if not isinstance(bound, bool):
-            fail("bound", "must be true or false")
-        claim = Claim(**common, error_order=m, bound=bound, written=f"O(kappa^{m})")
-    else:
-        claim = _value_claim(entry, common, model, fail)
-    if kind != "value":
-        key = "error_order" if kind == "error_order" else (
-            "coefficients" if "coefficients" in entry else "series")
-        _check_work(claim, key, fail)
+    claim = KIND_PARSERS[kind](entry, common, fail)
     _check_patch(model, entry, fail)
+    return claim
+
+
+def _error_order_claim(entry: dict, common: dict, fail) -> Claim:
+    if common["model"].exact:
+        fail("model", "an error order compares a patch with the exact model: give a patch")
+    m = entry.get("error_order")
+    if type(m) is not int or m < 2 or m % 2:
+        fail("error_order", f"must be an even integer >= 2, got {_shown(m)}")
+    bound = entry.get("bound", False)
+    if not isinstance(bound, bool):
+        fail("bound", "must be true or false")
+    claim = Claim(**common, error_order=m, bound=bound, written=f"O(kappa^{m})")
+    _check_work(claim, "error_order", fail)
     return claim
 
 
@@ -390,7 +389,8 @@ def _check_work(claim: Claim, key: str, fail) -> None:
         fail(word, f"the derivation would be too large: {exc}")
 
 
-def _value_claim(entry: dict, common: dict, model: Model, fail) -> Claim:
+def _value_claim(entry: dict, common: dict, fail) -> Claim:
+    model = common["model"]
     values = {}
     for key in ("kappa", "nu", "omega", "rtol"):
         if key not in entry:
@@ -612,5 +612,14 @@ def _series_claim(entry: dict, common: dict, fail) -> Claim:
         if rtol is not None and not v.is_number:
             fail(str(k) if has_c else "series", "a tolerance needs numbers: the coefficient "
                                                  f"still holds {sorted(map(str, v.free_symbols))}")
-    return Claim(**common, printed=tuple(sorted(printed.items())), written=written, nu=nu,
-                 rtol=rtol)
+    claim = Claim(**common, printed=tuple(sorted(printed.items())), written=written, nu=nu,
+                  rtol=rtol)
+    _check_work(claim, "coefficients" if has_c else "series", fail)
+    return claim
+
+
+#: The parser of each kind of claim: ``(merged entry, common fields, fail) -> Claim``. A new
+#: kind adds its name to :data:`KINDS`, its own keys to :data:`KIND_FIELDS`, a parser here
+#: and its derivation and verdict in :data:`dispersion.claims.verify.KIND_RULES`.
+KIND_PARSERS = {"series": _series_claim, "error_order": _error_order_claim,
+                "value": _value_claim}

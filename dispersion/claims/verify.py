@@ -2,7 +2,8 @@
 
 Each kind of claim is one entry of :data:`KIND_RULES`: the derivations it needs
 (``tasks``) and how it compares them with what was printed (``verdict``). A new kind (say a
-critical time step) adds its parsing in :mod:`dispersion.claims.schema` and one entry here.
+critical time step) adds its parsing in :mod:`dispersion.claims.schema` (``KINDS``,
+``KIND_FIELDS``, ``KIND_PARSERS``) and one entry here.
 """
 from __future__ import annotations
 

@@ -78,7 +78,7 @@ changed term of the numerator, or the difference itself.
 'holds'
 
 The package is split by what each part holds: :mod:`~dispersion.claims.reader` (the
-expression reader), :mod:`~dispersion.claims.schema` (TOML to :class:`Claim` values),
+expression reader) with :mod:`~dispersion.claims.limits` (its size rules), :mod:`~dispersion.claims.schema` (TOML to :class:`Claim` values),
 :mod:`~dispersion.claims.verify` (derivations, scheduling, verdicts),
 :mod:`~dispersion.claims.report` (text, Markdown, JUnit XML) and
 :mod:`~dispersion.claims.errata` (the paper's errata table).

@@ -22,6 +22,7 @@ import sympy
 
 from dispersion import defaults
 from dispersion.claims import reader
+from dispersion.claims.report import readable
 from dispersion.errors import InputError
 from dispersion.symbolic.power_balance import BRANCHES, NU, R_SYM
 
@@ -133,36 +134,6 @@ class Claim:
         if self.kind == "error_order":
             return self.error_order + 2
         return max((k for k, _ in self.printed), default=2 * BRANCHES[self.branch][1])
-
-
-#: Largest expression :func:`readable` factors (terms of numerator and denominator, bits of
-#: the largest coefficient). Factoring multivariate input with long coefficients takes
-#: minutes ((10^60 + nu)^18 against a series in nu and r: 45 s); below these sizes it takes
-#: well under a second, and the paper's coefficients (at most 10 terms of 60 bits) pass.
-READABLE_TERMS = 40
-READABLE_BITS = 512
-
-
-def readable(expr):
-    """``expr`` factored for display when factoring is cheap, else cancelled (never slow).
-
-    >>> nu = sympy.Symbol("nu")
-    >>> readable(2*nu**2 - 2)
-    2*(nu - 1)*(nu + 1)
-    """
-    expr = sympy.cancel(expr)
-    if expr.is_number:
-        return expr
-    gens = sorted(expr.free_symbols, key=str)
-    num, den = sympy.fraction(expr)
-    try:
-        polys = [sympy.Poly(part, *gens) for part in (num, den)]
-    except sympy.PolynomialError:  # roots, Order terms: shown as they are
-        return expr
-    terms = sum(len(p.terms()) for p in polys)
-    bits = max((max(abs(c.p).bit_length(), c.q.bit_length()) if c.is_Rational
-                else READABLE_BITS + 1) for p in polys for c in p.coeffs())
-    return sympy.factor(expr) if terms <= READABLE_TERMS and bits <= READABLE_BITS else expr
 
 
 # --------------------------------------------------------------------------- files

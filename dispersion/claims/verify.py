@@ -14,8 +14,8 @@ from typing import Callable
 
 import sympy
 
-from dispersion.claims.schema import (EXACT, Claim, Model, load_claims, paper_claims_path,
-                                      readable)
+from dispersion.claims.report import readable
+from dispersion.claims.schema import EXACT, Claim, Model, load_claims, paper_claims_path
 from dispersion.errors import DispersionError, InputError, check_int_in_range
 from dispersion.symbolic.power_balance import NU
 

@@ -67,6 +67,7 @@ Comparisons are exact: the printed minus the derived coefficient, cancelled over
 must be zero. A mismatch is described as simply as possible: a sign, a constant factor, a
 changed term of the numerator, or the difference itself.
 
+>>> from dispersion.claims import check_claim, parse_claims
 >>> claims = parse_claims('''
 ... [[claim]]
 ... name = "A0 leading"
@@ -89,16 +90,30 @@ A. Tkachuk, M. Matzen, R. Kolman, M. Bischoff, eqs (13)-(20).
 """
 from __future__ import annotations
 
-from dispersion.claims.report import format_results, junit_xml, plain
-from dispersion.claims.schema import (EXACT, KAPPA, KINDS, Claim, Model, load_claims,
-                                      paper_claims_path, parse_claims)
-from dispersion.claims.verify import (KIND_RULES, MAX_JOBS, ClaimResult, Term, Verification,
-                                      check_claim, check_jobs, describe_difference,
-                                      verify_claims, verify_file)
+import importlib
 
-__all__ = [
-    "EXACT", "KINDS", "KAPPA", "Model", "Claim", "Term", "ClaimResult", "Verification",
-    "parse_claims", "load_claims", "check_claim", "verify_claims", "verify_file",
-    "describe_difference", "format_results", "junit_xml", "paper_claims_path", "MAX_JOBS",
-    "check_jobs", "KIND_RULES", "plain",
-]
+#: Public names and the module of the package that holds each. They are imported on first
+#: use, so that ``dispersion.claims.reader`` (the CLI's number options) loads without sympy.
+_HOMES = {
+    "EXACT": "schema", "KINDS": "schema", "KAPPA": "schema", "Model": "schema",
+    "Claim": "schema", "parse_claims": "schema", "load_claims": "schema",
+    "paper_claims_path": "schema",
+    "Term": "verify", "ClaimResult": "verify", "Verification": "verify",
+    "check_claim": "verify", "verify_claims": "verify", "verify_file": "verify",
+    "describe_difference": "verify", "MAX_JOBS": "verify", "check_jobs": "verify",
+    "KIND_RULES": "verify",
+    "format_results": "report", "junit_xml": "report", "plain": "report",
+}
+__all__ = list(_HOMES)
+
+
+def __getattr__(name: str):
+    if name in _HOMES:
+        value = getattr(importlib.import_module(f"{__name__}.{_HOMES[name]}"), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_HOMES))

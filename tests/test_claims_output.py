@@ -5,6 +5,7 @@ Issue 17 items 2, 6 and 8 (the claims part) and issue 19 item 6 (whole expressio
 """
 from __future__ import annotations
 
+import json
 import os
 import re
 import xml.etree.ElementTree as ET
@@ -195,3 +196,48 @@ def test_verify_shows_whole_expressions_wrapped_to_the_width(tmp_path, capsys):
     path.write_text(GOOD.replace("2/(1 - nu)", long))
     assert main(["verify", str(path)]) == 1
     assert "..." not in capsys.readouterr().out
+
+
+# --------------------------------------------------------------------------- schema fuzz
+
+def _toml(value) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, float):
+        return {"nan": "nan", "inf": "inf", "-inf": "-inf"}.get(repr(value), repr(value))
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, str):
+        return json.dumps(value)
+    if isinstance(value, list):
+        return "[" + ", ".join(map(_toml, value)) + "]"
+    return "{" + ", ".join(f"{json.dumps(str(k))} = {_toml(v)}" for k, v in value.items()) + "}"
+
+
+SCALARS = st.one_of(
+    st.booleans(), st.integers(-10, 40), st.integers(), st.floats(allow_nan=True),
+    st.sampled_from(["S0", "A0", "S1", "series", "value", "error_order", "bloch", "x-exact",
+                     "rayleigh-lamb", "singular", "consistent", "top", "latex", "sympy",
+                     "holds", "differs", "r", "1/2", "3/10", "1/0", "nan", "2/(1-nu)",
+                     "2/(1-nu)*kappa^2 + O(kappa^4)", "kappa^3", "O(\"x\")", "__import__"]),
+    st.text(max_size=12))
+VALUES = st.recursive(SCALARS, lambda inner: st.one_of(
+    st.lists(inner, max_size=3), st.dictionaries(st.sampled_from(["0", "1", "2", "4", "02"]),
+                                                 inner, max_size=3)), max_leaves=6)
+KEYS = st.sampled_from(sorted(__import__("dispersion.claims.schema", fromlist=["x"]).CLAIM_KEYS
+                              - {"name", "p", "n"}) + ["p", "n", "colour"])
+
+
+@settings(max_examples=60, deadline=None, derandomize=True)
+@given(st.dictionaries(KEYS, VALUES, max_size=6), st.integers(1, 6), st.integers(2, 8))
+def test_any_claim_fields_parse_or_raise_input_error(fields, p, n):
+    # p, n kept small: a valid patch is built once while parsing (bounded, but not free)
+    fields = {k: v for k, v in fields.items() if k not in ("p", "n")}
+    text = "[[claim]]\nname = \"x\"\n" + f"p = {p}\nn = {n}\n" + "".join(
+        f"{k} = {_toml(v)}\n" for k, v in fields.items())
+    try:
+        claims = parse_claims(text, "fuzz.toml")
+    except InputError as exc:
+        assert "\n" not in str(exc) and str(exc).startswith("fuzz.toml")
+        return
+    assert len(claims) == 1 and claims[0].name == "x"

@@ -110,11 +110,11 @@ def format_results(results, fmt: str = "text", width: int | None = None) -> str:
         raise InputError(f"format must be one of {', '.join(FORMATS)}, got {fmt!r}")
     rows = [_row(r) for r in results]
     if fmt == "markdown":
-        head = ("claim", "source", "printed", "derived", "status", "difference")
-        out = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
-        out += ["| " + " | ".join(plain(row[k if k != "claim" else "name"]).replace("|", "\\|")
-                                  for k in head) + " |" for row in rows]
-        return "\n".join(out)
+        from dispersion.table import markdown_table
+
+        keys = ("name", "source", "printed", "derived", "status", "difference")
+        head = ("claim", *keys[1:])
+        return markdown_table(head, [[plain(row[k]) for k in keys] for row in rows])
     width = _width(width)
     blocks = []
     for row in rows:

@@ -99,17 +99,17 @@ def test_every_case_is_refused_by_parse_claims(sandbox, no_derivation):
         assert "\x1b" not in msg and "\x00" not in msg, case
 
 
-def test_every_case_is_refused_by_dispersion_verify(sandbox, tmp_path, capsys, no_derivation):
+CODE = [c for c in CASES if "pwned" in c or "\\1" in c]  # the cases that try to run code
+
+
+def _through_verify(cases, forms, tmp_path, capsys):
     files = tmp_path / "files"
     files.mkdir()
-    for i, case in enumerate(CASES):
+    for i, case in enumerate(cases):
         path = files / f"case{i}.toml"
         path.write_text(claims_text(case), encoding="utf-8")
         junit = files / f"junit{i}.xml"
-        # every case with a process pool allowed and a report asked for; the code cases
-        # also in the plain form
-        forms = [["--jobs", "2", "--junit", str(junit)]] + ([[]] if "pwned" in case else [])
-        for extra in forms:
+        for extra in forms(junit):
             assert main(["verify", str(path), *extra]) == 2, case
             captured = capsys.readouterr()
             err = captured.err.strip()
@@ -117,6 +117,19 @@ def test_every_case_is_refused_by_dispersion_verify(sandbox, tmp_path, capsys, n
             assert not any(ch in err for ch in "\x1b\x00\x07"), case
             assert captured.out == ""
             assert not junit.exists()
+
+
+def test_code_cases_are_refused_by_dispersion_verify(sandbox, tmp_path, capsys, no_derivation):
+    # a process pool allowed and a report asked for; every case in the slow run below
+    assert len(CODE) >= 30
+    _through_verify(CODE, lambda junit: [["--jobs", "2", "--junit", str(junit)]], tmp_path,
+                    capsys)
+
+
+@pytest.mark.slow
+def test_every_case_is_refused_by_dispersion_verify(sandbox, tmp_path, capsys, no_derivation):
+    _through_verify(CASES, lambda junit: [[], ["--jobs", "2", "--junit", str(junit)]],
+                    tmp_path, capsys)
 
 
 def test_every_case_is_refused_by_assert_series(sandbox, no_derivation):
@@ -143,8 +156,7 @@ def test_every_case_is_refused_by_assert_series(sandbox, no_derivation):
 @pytest.mark.slow
 def test_code_cases_create_no_file_through_the_installed_command(tmp_path):
     # the real entry point in a fresh process, with a process pool allowed (--jobs 2)
-    code = [c for c in CASES if "pwned" in c or "\\1" in c]
-    assert len(code) >= 30
+    code = CODE
     for i, case in enumerate(code):
         path = tmp_path / f"case{i}.toml"
         path.write_text(claims_text(case), encoding="utf-8")

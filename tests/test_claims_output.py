@@ -228,7 +228,7 @@ KEYS = st.sampled_from(sorted(__import__("dispersion.claims.schema", fromlist=["
                               - {"name", "p", "n"}) + ["p", "n", "colour"])
 
 
-@settings(max_examples=60, deadline=None, derandomize=True)
+@settings(max_examples=30, deadline=None, derandomize=True)
 @given(st.dictionaries(KEYS, VALUES, max_size=6), st.integers(1, 6), st.integers(2, 8))
 def test_any_claim_fields_parse_or_raise_input_error(fields, p, n):
     # p, n kept small: a valid patch is built once while parsing (bounded, but not free)
@@ -241,3 +241,10 @@ def test_any_claim_fields_parse_or_raise_input_error(fields, p, n):
         assert "\n" not in str(exc) and str(exc).startswith("fuzz.toml")
         return
     assert len(claims) == 1 and claims[0].name == "x"
+
+
+@pytest.mark.slow
+@settings(max_examples=1000, deadline=None)
+@given(st.dictionaries(KEYS, VALUES, max_size=6), st.integers(1, 6), st.integers(2, 8))
+def test_any_claim_fields_parse_or_raise_input_error_long(fields, p, n):
+    test_any_claim_fields_parse_or_raise_input_error.hypothesis.inner_test(fields, p, n)

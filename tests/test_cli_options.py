@@ -16,7 +16,7 @@ from hypothesis import strategies as st
 from dispersion.cli import build_parser, main
 from dispersion.cli.options import integer, rational, real
 
-QUICK = settings(max_examples=80, deadline=None, derandomize=True)
+QUICK = settings(max_examples=40, deadline=None, derandomize=True)
 
 
 def _parse(command: str, *argv: str) -> argparse.Namespace:
@@ -45,16 +45,6 @@ def test_fractions_give_the_same_series_as_decimals(capsys):
                      "--format", "json"]) == 0
         outs.append(json.loads(capsys.readouterr().out))
     assert outs[0] == outs[1] and outs[0]["nu"] == "3/10"
-
-
-def test_fractions_give_the_same_branches_as_decimals(capsys):
-    outs = []
-    for nu, r in (("3/10", "1/2"), ("0.3", "0.5")):
-        assert main(["branches", "--mass", "consistent", "--count", "2", "--kappa-max", "0.5",
-                     "--omega-max", "1", "--nu", nu, "--r", r, "--format", "json"]) == 0
-        record = json.loads(capsys.readouterr().out)
-        outs.append((record["result"], record["inputs"]))
-    assert outs[0] == outs[1] and outs[0][1]["nu"] == 0.3 and outs[0][1]["r"] == 0.5
 
 
 @pytest.mark.parametrize("argv, words", [

@@ -101,6 +101,14 @@ def test_a_claim_may_be_pasted_with_omega_squared():
         assert check_claim(parse_claims(text)[0]).status == "holds"
 
 
+@pytest.mark.parametrize("printed", ["sqrt(nu)/(1-nu)", "2/(1-nu) + sqrt(nu)", "nu^(1/3)",
+                                     "(nu + sqrt(2))/(1 - nu)"])
+def test_roots_in_a_printed_coefficient_are_described_not_raised(printed):
+    # Poly() refuses sqrt(nu) as a term: the description falls back to whole numerators
+    r = check_claim(parse_claims(GOOD.replace("2/(1 - nu)", printed))[0])
+    assert r.status == "differs" and r.difference.startswith("kappa^2: ")
+
+
 def test_derivations_beyond_the_engine_limits_are_refused_before_work(monkeypatch):
     import dispersion.claims.verify as verify_mod
 

@@ -298,3 +298,25 @@ def test_random_text_reads_to_whitelisted_nodes_long(text, syntax):
     cwd = os.listdir(".")
     _check_whitelisted(text, syntax)
     assert os.listdir(".") == cwd
+
+
+def _check_described(tree):
+    from dispersion.claims import describe_difference
+    from dispersion.waves.exact_series import exact_series
+
+    try:
+        printed = read(plain(tree))
+    except InputError:
+        return
+    for derived in (exact_series("S0", 4)[4], sympy.Integer(0), 2 / (1 - nu) + r):
+        text = describe_difference(printed, derived)
+        assert isinstance(text, str) and "\n" not in text
+
+
+@pytest.mark.slow
+@settings(max_examples=400, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(TREES)
+def test_any_printed_coefficient_is_described_never_raises(tree):
+    # the verdict of any coefficient the reader accepts is a sentence, never an exception
+    # (sympy takes ~0.1 s a comparison, so this search runs with the slow tests only)
+    _check_described(tree)

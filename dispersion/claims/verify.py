@@ -143,9 +143,14 @@ def _show(expr) -> str:
     return f"{const} - {-rest}" if const and rest.could_extract_minus_sign() else str(expr)
 
 
-def _numer_terms(expr) -> dict:
-    num = sympy.Poly(expr, *sorted(expr.free_symbols, key=str)) if expr.free_symbols else None
-    return dict(num.terms()) if num is not None else {(): expr}
+def _numer_terms(expr, gens: list) -> dict | None:
+    """Monomials of a polynomial numerator in ``gens`` (None if it is not one: sqrt(nu))."""
+    if not gens:
+        return {(): expr}
+    try:
+        return dict(sympy.Poly(expr, *gens).terms())
+    except sympy.PolynomialError:
+        return None
 
 
 def _expr(value, name: str):
@@ -189,11 +194,12 @@ def describe_difference(printed, derived) -> str:
         pn, pd = sympy.expand(pn / q), sympy.expand(pd / q)
         if sympy.expand(pd).as_coeff_Add()[0] < 0:  # write 1 - nu rather than nu - 1
             pn, pd, dn = -pn, sympy.expand(-pd), -dn
-        a, b = _numer_terms(sympy.expand(pn)), _numer_terms(sympy.expand(dn))
-        changed = [m for m in set(a) | set(b) if a.get(m, 0) != b.get(m, 0)]
+        syms = sorted(sympy.expand(pn).free_symbols | sympy.expand(dn).free_symbols, key=str)
+        a, b = _numer_terms(sympy.expand(pn), syms), _numer_terms(sympy.expand(dn), syms)
+        changed = ([m for m in set(a) | set(b) if a.get(m, 0) != b.get(m, 0)]
+                   if a is not None and b is not None else [])
         if len(changed) == 1:
             m = changed[0]
-            syms = sorted(sympy.expand(pn + dn).free_symbols, key=str)
             mono = sympy.Mul(*[s**e for s, e in zip(syms, m)])
             was, now = b.get(m, 0) * mono, a.get(m, 0) * mono
             return f"numerator term {was} -> {now} (same denominator {_show(readable(pd))})"

@@ -256,3 +256,22 @@ def test_any_claim_fields_parse_or_raise_input_error(fields, p, n):
 @given(st.dictionaries(KEYS, VALUES, max_size=6), st.integers(1, 6), st.integers(2, 8))
 def test_any_claim_fields_parse_or_raise_input_error_long(fields, p, n):
     test_any_claim_fields_parse_or_raise_input_error.hypothesis.inner_test(fields, p, n)
+
+
+def test_a_comparison_that_fails_is_an_error_of_its_claim_only(monkeypatch):
+    import dispersion.claims.verify as verify_mod
+
+    calls = []
+    real = verify_mod.describe_difference
+
+    def broken_on_the_second_claim(*args):
+        calls.append(args)
+        if len(calls) == 2:
+            raise ZeroDivisionError("inside sympy")
+        return real(*args)
+
+    claims = parse_claims(GOOD + GOOD.replace('"bar"', '"baz"'))
+    monkeypatch.setattr(verify_mod, "describe_difference", broken_on_the_second_claim)
+    result = verify_claims(claims, jobs=1)
+    assert [r.status for r in result.results] == ["holds", "error"]
+    assert "ZeroDivisionError" in result.results[1].difference and not result.passed

@@ -401,9 +401,21 @@ def verify_claims(claims: list[Claim], *, executor=None, jobs: int | None = None
                                        claim.model.label(), claim.file, claim.line, claim.written,
                                        "", "error", False, failure, note=claim.note))
         else:
-            results.append(check_claim(claim, *got))
+            results.append(_checked(claim, got))
     files = tuple(dict.fromkeys(c.file for c in claims))
     return Verification(files, tuple(results), time.perf_counter() - start)
+
+
+def _checked(claim: Claim, got: list) -> ClaimResult:
+    """The verdict, or an ``error`` result naming what failed: one claim's printed text
+    (written by a stranger) must not stop the verification of the others."""
+    try:
+        return check_claim(claim, *got)
+    except Exception as exc:  # noqa: BLE001 - reported per claim, the run goes on
+        return ClaimResult(claim.name, claim.source, claim.kind, claim.branch,
+                           claim.model.label(), claim.file, claim.line, claim.written, "",
+                           "error", False, f"the comparison failed: {type(exc).__name__}: "
+                           f"{str(exc)[:200]}", note=claim.note)
 
 
 def verify_file(*paths, quick: bool = False, executor=None, jobs: int | None = None

@@ -201,9 +201,9 @@ def format_table(rows, fmt: str = "text") -> str:
 
     body = [cells(r) for r in rows]
     if fmt == "markdown":
-        lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
-        lines += ["| " + " | ".join(c.replace("|", "\\|") for c in row) + " |" for row in body]
-        return "\n".join(lines)
+        from dispersion.table import markdown_table
+
+        return markdown_table(head, body)
     if fmt == "latex":
         lines = [r"\begin{tabular}{llllll}", " & ".join(head) + r" \\ \hline"]
         for row in body:
@@ -211,9 +211,9 @@ def format_table(rows, fmt: str = "text") -> str:
             tex[1] = rf"$\kappa^{{{row[1].split('^')[1]}}}$"
             lines.append(" & ".join(tex) + r" \\")
         return "\n".join(lines + [r"\end{tabular}"])
-    widths = [max(len(x) for x in col) for col in zip(head, *body)]
-    return "\n".join("  ".join(c.ljust(w) for c, w in zip(row, widths)).rstrip()
-                     for row in [head, *body])
+    from dispersion.table import text_table
+
+    return text_table(head, body)
 
 
 def errata_document(rows, eq13=None, title: str = "Errata of eqs (13)-(20)") -> str:

@@ -229,9 +229,11 @@ SCALARS = st.one_of(
                      "holds", "differs", "r", "1/2", "3/10", "1/0", "nan", "2/(1-nu)",
                      "2/(1-nu)*kappa^2 + O(kappa^4)", "kappa^3", "O(\"x\")", "__import__"]),
     st.text(max_size=12))
-VALUES = st.recursive(SCALARS, lambda inner: st.one_of(
-    st.lists(inner, max_size=3), st.dictionaries(st.sampled_from(["0", "1", "2", "4", "02"]),
-                                                 inner, max_size=3)), max_leaves=6)
+POWERS = st.sampled_from(["0", "1", "2", "4", "02"])
+NESTED = st.one_of(SCALARS, st.lists(SCALARS, max_size=3),
+                   st.dictionaries(POWERS, SCALARS, max_size=3))
+VALUES = st.one_of(NESTED, st.lists(NESTED, max_size=3),
+                   st.dictionaries(POWERS, NESTED, max_size=3))
 KEYS = st.sampled_from(sorted(__import__("dispersion.claims.schema", fromlist=["x"]).CLAIM_KEYS
                               - {"name", "p", "n"}) + ["p", "n", "colour"])
 

@@ -24,7 +24,7 @@ from dispersion.errors import InputError
 nu, r, kappa = sympy.Symbol("nu"), sympy.Symbol("r", positive=True), sympy.Symbol("kappa")
 QUICK = settings(max_examples=40, deadline=None, derandomize=True,
                  suppress_health_check=[HealthCheck.too_slow])
-LONG = settings(max_examples=3000, deadline=None,
+LONG = settings(max_examples=1500, deadline=None,
                 suppress_health_check=[HealthCheck.too_slow])
 NODES = {"num", "sym", "add", "mul", "neg", "pow", "sqrt", "O"}
 

@@ -5,6 +5,8 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 import dispersion.cli as cli
 from dispersion.testing import assert_claims_file
@@ -128,3 +130,51 @@ def test_jobs_states_its_range(main, capsys, jobs, shown):
     assert status == 2
     err = capsys.readouterr().err.strip()
     assert err.endswith(f"--jobs must be an integer in [1, {MAX_JOBS}], got {shown}"), err
+
+
+def _flags(jobs):
+    return st.lists(st.one_of(
+        st.just(["--paper"]), st.just(["--format", "markdown"]), st.just(["--format", "text"]),
+        st.tuples(st.just("--format"), st.text(max_size=5)).map(list),
+        st.tuples(st.just("--jobs"), st.sampled_from(jobs)).map(list),
+        st.tuples(st.just("--junit"), st.sampled_from(["-", "j.xml", "", "sub/j.xml", "good.toml",
+                                                        "/dev/null/x", "\x1b[2J.xml"])).map(list),
+        st.sampled_from([["good.toml"], ["bad.toml"], ["missing.toml"], ["."], ["--"], ["-x"]]),
+    ), max_size=4).map(lambda groups: [w for g in groups for w in g])
+
+
+# a process pool (--jobs 2) costs a second or two to start: in the slow run only
+JOBS = ["1", "0", "-1", "65", "x", "1e3", "", "9" * 30]
+
+
+@settings(max_examples=8, deadline=None, derandomize=True,
+          suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(_flags(JOBS))
+def test_random_verify_flags_exit_0_1_or_2_in_one_line(tmp_path, monkeypatch, capsys, argv):
+    _check_flags(tmp_path, monkeypatch, capsys, argv)
+
+
+@pytest.mark.slow
+@settings(max_examples=150, deadline=None,
+          suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(_flags(JOBS + ["2"]))
+def test_random_verify_flags_long(tmp_path, monkeypatch, capsys, argv):
+    _check_flags(tmp_path, monkeypatch, capsys, argv)
+
+
+def _check_flags(tmp_path, monkeypatch, capsys, argv):
+    # issue 17.6: any flag combination ends with a status and at most one error line, and
+    # writes nothing but the JUnit file it was asked for, inside the working directory
+    import dispersion.claims
+
+    monkeypatch.chdir(tmp_path)  # --paper: a one-claim file, so that each example is quick
+    monkeypatch.setattr(dispersion.claims, "paper_claims_path", lambda: tmp_path / "good.toml")
+    (tmp_path / "good.toml").write_text(CLAIMS.format(a0=17).split("\n\n[[claim]]")[0] + "\n")
+    (tmp_path / "bad.toml").write_text("[[claim]]\nname = 5\n")
+    before = {p.name for p in tmp_path.iterdir()}
+    status = cli.main(["verify", *argv])
+    err = capsys.readouterr().err
+    assert status in (0, 1, 2), status
+    assert "Traceback" not in err and len(err.strip().splitlines()) <= 1 and "\x1b" not in err
+    made = {p.name for p in tmp_path.iterdir()} - before
+    assert made <= {"j.xml"}, made

@@ -155,7 +155,7 @@ def test_random_verify_flags_exit_0_1_or_2_in_one_line(tmp_path, monkeypatch, ca
 
 
 @pytest.mark.slow
-@settings(max_examples=150, deadline=None,
+@settings(max_examples=300, deadline=None,
           suppress_health_check=[HealthCheck.function_scoped_fixture])
 @given(_flags(JOBS + ["2"]))
 def test_random_verify_flags_long(tmp_path, monkeypatch, capsys, argv):

@@ -177,4 +177,5 @@ def _check_flags(tmp_path, monkeypatch, capsys, argv):
     assert status in (0, 1, 2), status
     assert "Traceback" not in err and len(err.strip().splitlines()) <= 1 and "\x1b" not in err
     made = {p.name for p in tmp_path.iterdir()} - before
-    assert made <= {"j.xml"}, made
+    asked = {argv[i + 1] for i, w in enumerate(argv[:-1]) if w == "--junit"}
+    assert made <= asked, (made, argv)

@@ -277,3 +277,19 @@ def test_a_comparison_that_fails_is_an_error_of_its_claim_only(monkeypatch):
     result = verify_claims(claims, jobs=1)
     assert [r.status for r in result.results] == ["holds", "error"]
     assert "ZeroDivisionError" in result.results[1].difference and not result.passed
+
+
+def test_report_json_text_is_read_never_run(tmp_path, monkeypatch):
+    # `dispersion reproduce --render` re-renders the errata from reports/*.json: a forged
+    # coefficient string there was sympified (run) before; now it is read by the reader
+    from dispersion.claims.errata import errata_document, format_table
+
+    monkeypatch.chdir(tmp_path)
+    payload = "__import__('os').system('touch pwned')"
+    with pytest.raises(InputError):
+        errata_document([], eq13=[("S0", payload, "-4")])
+    row = {"equation": "14", "power": 2, "printed": payload, "derived": "2/(1 - nu)",
+           "status": "match", "reproduced_by": []}
+    with pytest.raises(InputError):
+        format_table([row], "latex")
+    assert list(tmp_path.iterdir()) == []

@@ -289,7 +289,7 @@ def test_report_json_text_is_read_never_run(tmp_path, monkeypatch):
     with pytest.raises(InputError):
         errata_document([], eq13=[("S0", payload, "-4")])
     row = {"equation": "14", "power": 2, "printed": payload, "derived": "2/(1 - nu)",
-           "status": "match", "reproduced_by": []}
+           "status": "match", "reproduced_by": [], "printed_latex": "", "derived_latex": ""}
     with pytest.raises(InputError):
         format_table([row], "latex")
     assert list(tmp_path.iterdir()) == []

@@ -38,17 +38,22 @@ __all__ = ["EXACT", "KINDS", "KAPPA", "PATCH_KEYS", "KIND_FIELDS", "CLAIM_KEYS",
 
 #: Name of the exact model (the Rayleigh-Lamb equation of :mod:`dispersion.waves.rayleigh_lamb`).
 EXACT = "rayleigh-lamb"
-KINDS = ("series", "error_order", "value")
+KINDS = ("series", "error_order", "value", "critical_step", "fully_discrete_series")
 KAPPA = sympy.Symbol("kappa")
 PATCH_KEYS = ("p", "n", "r", "mass", "contact", "gamma_s", "weights")
 #: The keys that belong to one kind of claim only (a claim of another kind refuses them).
 KIND_FIELDS = {"series": ("syntax", "coefficients", "series", "nu", "rtol"),
                "error_order": ("error_order", "bound"),
-               "value": ("kappa", "nu", "omega", "rtol")}
+               "value": ("kappa", "nu", "omega", "rtol"),
+               # explicit dynamics (dispersion.claims.explicit)
+               "critical_step": ("ratio", "omega_max", "nu", "rtol"),
+               "fully_discrete_series": ("coefficients", "scheme", "nu", "syntax")}
 _KIND_KEYS = {key for keys in KIND_FIELDS.values() for key in keys}
 CLAIM_KEYS = {"name", "source", "note", "kind", "branch", "model", *PATCH_KEYS, "expect",
               *_KIND_KEYS}
 TOP_KEYS = ("title", "format", "defaults", "claim")
+#: The kinds read by :mod:`dispersion.claims.explicit` (critical time step, fully discrete).
+EXPLICIT_KINDS = ("critical_step", "fully_discrete_series")
 #: Largest claims file read. The paper's file has 4 KiB; a manuscript with a thousand claims
 #: stays under 1 MiB, and TOML parsing of 1 MiB takes well under a second.
 MAX_FILE_BYTES = 2**20
@@ -97,6 +102,8 @@ class Model:
         """Short description, e.g. ``bloch p=2 n=3 r=2, singular mass (top, gamma_s=0)``."""
         if self.exact:
             return "Rayleigh-Lamb (exact)"
+        if self.name == "bar":
+            return f"periodic bar p={self.p}, {self.mass} mass"
         geom = f"{self.name} p={self.p} n={self.n}" + (f" r={self.r}" if self.name == "bloch"
                                                         else "")
         mass = f"{self.mass} mass"
@@ -312,6 +319,8 @@ def _claim(entry: dict, own: dict, i: int, lines: _Lines) -> Claim:
     kind = entry.get("kind", "series")
     if kind not in KINDS:
         fail("kind", f"must be one of {', '.join(KINDS)}, got {_shown(kind)}")
+    if kind in EXPLICIT_KINDS:
+        return _explicit_claim(entry, own, name, kind, lines.file, lines.line(i), fail)
     branch = entry.get("branch")
     ok = (re.fullmatch(r"[SA]\d{1,3}", branch or "") if kind == "value" else branch in BRANCHES)
     if not isinstance(branch, str) or not ok:
@@ -329,6 +338,23 @@ def _claim(entry: dict, own: dict, i: int, lines: _Lines) -> Claim:
             fail(key, f"not a field of a {kind} claim")
     claim = KIND_PARSERS[kind](entry, common, fail)
     _check_patch(model, entry, fail)
+    return claim
+
+
+def _explicit_claim(entry, own, name, kind, file, line, fail) -> Claim:
+    """A claim of :mod:`dispersion.claims.explicit`, read with this module's model builder
+    and expression reader (one reader, one model builder)."""
+    from dispersion.claims import explicit
+
+    expect = entry.get("expect", "holds")
+    if expect not in ("holds", "differs"):
+        fail("expect", f"must be 'holds' or 'differs', got {_shown(expect)}")
+    common = dict(name=name, kind=kind, branch=str(entry.get("branch", "-"))[:20], model=None,
+                  file=file, line=line, source=entry.get("source"), note=entry.get("note"),
+                  expect=expect)
+    claim = explicit.parse(entry, own, common, fail, _model, _expression)
+    if claim.model.name != "bar":
+        _check_patch(claim.model, entry, fail)
     return claim
 
 

@@ -15,7 +15,8 @@ from typing import Callable
 import sympy
 
 from dispersion.claims.report import readable
-from dispersion.claims.schema import EXACT, Claim, Model, load_claims, paper_claims_path
+from dispersion.claims.schema import (EXACT, EXPLICIT_KINDS, Claim, Model, load_claims,
+                                      paper_claims_path)
 from dispersion.errors import DispersionError, InputError, check_int_in_range
 from dispersion.symbolic.power_balance import NU
 
@@ -117,6 +118,10 @@ def _key(task: tuple) -> tuple:
 
 
 def _run_task(task: tuple):
+    if task[0] in EXPLICIT_KINDS:
+        from dispersion.claims import explicit
+
+        return explicit.run(task)
     if task[0] == "series":
         return _series(*task[1:])
     if task[0] == "value":
@@ -296,11 +301,25 @@ class KindRule:
     verdict: Callable[..., Verdict]
 
 
+def _explicit_tasks(claim: Claim) -> list[tuple]:
+    from dispersion.claims import explicit
+
+    return [explicit.task(claim)]
+
+
+def _explicit_verdict(claim: Claim, derived) -> Verdict:
+    from dispersion.claims import explicit
+
+    return Verdict(*explicit.verdict(claim, derived))
+
+
 #: One entry per kind of claim (the keys are :data:`dispersion.claims.schema.KINDS`).
 KIND_RULES = {
     "series": KindRule(_series_tasks, _series_verdict),
     "error_order": KindRule(_error_order_tasks, _error_order_verdict),
     "value": KindRule(_value_tasks, _value_verdict),
+    "critical_step": KindRule(_explicit_tasks, _explicit_verdict),
+    "fully_discrete_series": KindRule(_explicit_tasks, _explicit_verdict),
 }
 
 

@@ -101,7 +101,9 @@ def main(argv: list[str] | None = None) -> int:
     parser = build_parser(chosen if chosen in _SUBCOMMANDS else None)
     try:
         args = parser.parse_args(words)
-    except SystemExit as exc:  # argparse's one-line error (2) or --help (0), as a status
+    except SystemExit as exc:  # argparse's one-line error: a status, like InputError's
+        if exc.code in (0, None):  # --help: argparse's own exit
+            raise
         return exc.code if isinstance(exc.code, int) else 2
     if args.version:
         print(f"dispersion {version()}")

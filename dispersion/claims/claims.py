@@ -99,12 +99,12 @@ __all__ = [
 
 #: Name of the exact model (the Rayleigh-Lamb equation of :mod:`dispersion.waves.rayleigh_lamb`).
 EXACT = "rayleigh-lamb"
-KINDS = ("series", "error_order", "value")
+KINDS = ("series", "error_order", "value", "critical_step", "fully_discrete_series")
 KAPPA = sympy.Symbol("kappa")
 PATCH_KEYS = ("p", "n", "r", "mass", "contact", "gamma_s", "weights")
 CLAIM_KEYS = {"name", "source", "note", "kind", "branch", "model", *PATCH_KEYS, "syntax",
               "coefficients", "series", "nu", "rtol", "error_order", "bound", "kappa",
-              "omega", "expect"}
+              "omega", "expect", "ratio", "omega_max", "scheme"}
 #: Most worker processes :func:`verify_claims` starts. A worker is a Python process holding
 #: sympy and its caches: ``verify --paper`` in one process peaks at 110 MiB resident, so 64
 #: workers stay under a third of this machine's 24 GiB, and on its 2 cores more workers than
@@ -150,6 +150,8 @@ class Model:
         """Short description, e.g. ``bloch p=2 n=3 r=2, singular mass (top, gamma_s=0)``."""
         if self.exact:
             return "Rayleigh-Lamb (exact)"
+        if self.name == "bar":
+            return f"periodic bar p={self.p}, {self.mass} mass"
         geom = f"{self.name} p={self.p} n={self.n}" + (f" r={self.r}" if self.name == "bloch"
                                                         else "")
         mass = f"{self.mass} mass"
@@ -333,6 +335,8 @@ def _claim(entry: dict, own: dict, i: int, lines: _Lines) -> Claim:
     kind = entry.get("kind", "series")
     if kind not in KINDS:
         fail("kind", f"must be one of {', '.join(KINDS)}, got {kind!r}")
+    if kind in ("critical_step", "fully_discrete_series"):  # dispersion.claims.explicit
+        return _explicit_claim(entry, own, name, kind, lines.file, lines.line(i), fail)
     branch = entry.get("branch")
     ok = (re.fullmatch(r"[SA]\d+", branch or "") if kind == "value" else branch in BRANCHES)
     if not isinstance(branch, str) or not ok:
@@ -382,6 +386,18 @@ def _claim(entry: dict, own: dict, i: int, lines: _Lines) -> Claim:
         fail("r", "a value claim needs a number for the aspect ratio r")
     return Claim(**common, written=f"Omega({values['kappa']:g}) = {values['omega']:.12g}",
                  **values)
+
+
+def _explicit_claim(entry, own, name, kind, file, line, fail) -> Claim:
+    from dispersion.claims import explicit
+
+    expect = entry.get("expect", "holds")
+    if expect not in ("holds", "differs"):
+        fail("expect", f"must be 'holds' or 'differs', got {expect!r}")
+    common = dict(name=name, kind=kind, branch=str(entry.get("branch", "-")), model=None,
+                  file=file, line=line, source=entry.get("source"), note=entry.get("note"),
+                  expect=expect)
+    return explicit.parse(entry, own, common, fail, _model, _parse)
 
 
 def _number(text, key, fail, symbol=None):
@@ -623,6 +639,10 @@ def _omega(model: Model, branch: str, kappa: float, nu: float, guess: float) -> 
 
 def _task(claim: Claim) -> list[tuple]:
     """The derivations a claim needs (shared between claims with equal tasks)."""
+    if claim.kind in ("critical_step", "fully_discrete_series"):
+        from dispersion.claims import explicit
+
+        return [explicit.task(claim)]
     if claim.kind == "value":
         return [("value", claim.model, claim.branch, claim.kappa, claim.nu, claim.omega)]
     tasks = [("series", claim.model, claim.branch, claim.order)]
@@ -632,6 +652,10 @@ def _task(claim: Claim) -> list[tuple]:
 
 
 def _run_task(task: tuple):
+    if task[0] in ("critical_step", "fully_discrete_series"):
+        from dispersion.claims import explicit
+
+        return explicit.run(task)
     if task[0] == "series":
         return _series(*task[1:])
     return _omega(*task[1:])
@@ -752,6 +776,10 @@ def check_claim(claim: Claim, derived=None, exact=None) -> ClaimResult:
                            for t in terms)
         d_tex = " + ".join(fr"\left({sympy.latex(t.derived)}\right)\kappa^{{{t.power}}}"
                            for t in terms)
+    elif claim.kind in ("critical_step", "fully_discrete_series"):
+        from dispersion.claims import explicit
+
+        holds, printed, shown, diff = explicit.verdict(claim, derived)
     elif claim.kind == "error_order":
         holds, lead, diff = _error_order(claim, derived, exact)
         printed = ("at least " if claim.bound else "") + f"O(kappa^{claim.error_order})"

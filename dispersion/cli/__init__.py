@@ -1,4 +1,4 @@
-"""Command line: ``dispersion series | branches | ring | impact | verify | reproduce | bench``.
+"""Command line: ``dispersion series | branches | ring | impact | verify | reproduce | bench | timestep``.
 
 A thin layer over the API. Each subcommand lives in its own module exposing
 ``register(subparsers)``, which adds the parser and sets ``func(args) -> int``.
@@ -18,7 +18,8 @@ import sys
 
 from dispersion.errors import DispersionError, InputError
 
-_SUBCOMMANDS = ("series", "branches", "ring", "impact", "verify", "reproduce", "bench")
+_SUBCOMMANDS = ("series", "branches", "ring", "impact", "verify", "reproduce", "bench",
+               "timestep")
 
 
 def number(name: str, convert=float):

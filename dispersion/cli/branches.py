@@ -1,8 +1,14 @@
 """``dispersion branches``: discrete and exact Rayleigh-Lamb branches with velocities and units.
 
+With ``--frequency``/``--fd`` the frequency is the input axis instead of kappa: every
+propagating S, A and SH mode at each frequency (:mod:`dispersion.cli.frequency`).
+
 Rows ``kappa, Omega, branch, symmetry, source, c_p/c_T, c_g/c_T`` (dimensionless: kappa = kh,
 Omega = omega h / c_T) and, with a material and a thickness, ``f [kHz], fd [MHz mm],
-c_p [m/s], c_g [m/s], wavelength [mm]``. ``--csv FILE`` / ``--figure FILE`` write files
+c_p [m/s], c_g [m/s], wavelength [mm]``. ``--scheme central --courant 0.9`` gives the fully
+discrete branches of the discrete patch (:mod:`dispersion.waves.fully_discrete`: each mass
+integrated in time at ``courant`` times its own central-difference critical step; group
+velocities are then left empty). ``--csv FILE`` / ``--figure FILE`` write files
 (``-``: stdout); without them the rows go to stdout as ``--format`` says. Every CSV starts
 with ``#`` lines naming its inputs and the package version; JSON carries them as ``inputs``.
 """
@@ -22,6 +28,7 @@ from dispersion.io import check_output_file, save_figure, write_text
 from dispersion.symbolic.mass import CONTACT_SETS, MASS_VARIANTS
 from dispersion.symbolic.plate import MODELS
 from dispersion.waves.exact_branches import check_samples
+from dispersion.cli import frequency as _frequency
 from dispersion.cli import number
 
 #: Up-front bounds (issue 11); the exact tracer's scan is bounded by
@@ -56,6 +63,8 @@ def register(sub) -> None:
                     "and group velocity, optionally in physical units.")
     p.add_argument("--mass", choices=MASS_VARIANTS, action="append",
                    help="mass variant (repeat for several; default: consistent and singular)")
+    p.add_argument("--mass-rule", action="append", default=[], metavar="FILE",
+                   help="a user mass rule: TOML table of redistribution weights (repeatable)")
     p.add_argument("--contact", choices=CONTACT_SETS, default=None,
                    help=f"contact set of a singular mass (default: {defaults.CONTACT})")
     p.add_argument("--gamma-s", type=number("gamma_s"), default=None,
@@ -74,20 +83,27 @@ def register(sub) -> None:
                         f"(default: {defaults.N})")
     p.add_argument("--nu", type=number("nu"), default=None,
                    help=f"Poisson's ratio (default: {defaults.NU_FLOAT}, or the material's)")
-    p.add_argument("--kappa-min", type=number("kappa-min"), default=0.0,
+    p.add_argument("--kappa-min", type=number("kappa-min"), default=None,
                    help="smallest kappa = kh, dimensionless (default: 0)")
-    p.add_argument("--kappa-max", type=number("kappa-max"), default=8.0,
+    p.add_argument("--kappa-max", type=number("kappa-max"), default=None,
                    help="largest kappa = kh, dimensionless (default: 8)")
-    p.add_argument("--count", type=integer("count", 2, MAX_COUNT), default=400,
+    p.add_argument("--count", type=integer("count", 2, MAX_COUNT), default=None,
                    help=f"number of kappa points, 2..{MAX_COUNT} (default: 400)")
-    p.add_argument("--omega-max", type=number("omega-max"), default=8.0,
+    p.add_argument("--omega-max", type=number("omega-max"), default=None,
                    help=f"largest Omega = omega h / c_T, in (0, {MAX_OMEGA:g}] (default: 8)")
     p.add_argument("--material", choices=sorted(_materials()),
-                   help="material for physical units (aluminium: c_L = 6320, c_T = 3130 m/s)")
+                   help="material for physical units (bulk speeds and density of the CRC "
+                        "handbook row in dispersion.waves.materials)")
     p.add_argument("--cl", type=number("cl"), help="longitudinal speed c_L in m/s")
     p.add_argument("--ct", type=number("ct"), help="shear speed c_T in m/s")
     p.add_argument("--thickness", type=number("thickness"),
                    help="plate thickness d = 2h in mm (with a material: physical columns)")
+    p.add_argument("--scheme", choices=_schemes(), default=None,
+                   help="time integrator for fully discrete branches (default: none, "
+                        "semi-discrete); Bloch model only")
+    p.add_argument("--courant", type=number("courant"), default=None,
+                   help="time step as a fraction of each mass's central-difference critical "
+                        "step, in (0, 10] (with --scheme; explicit schemes need <= 1)")
     p.add_argument("--exact", action="store_true", help="Rayleigh-Lamb branches only")
     p.add_argument("--exact-only", dest="exact", action="store_true", help=argparse.SUPPRESS)
     p.add_argument("--format", choices=("text", "csv", "json"), default="csv",
@@ -96,7 +112,14 @@ def register(sub) -> None:
     p.add_argument("--figure", help="write the figure to FILE (.png, .pdf or .svg)")
     p.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
                    help="tqdm progress bar on stderr (default: on a terminal)")
+    _frequency.add_arguments(p)
     p.set_defaults(func=run)
+
+
+def _schemes():
+    from dispersion.waves.fully_discrete import SCHEMES
+
+    return tuple(SCHEMES)
 
 
 def _materials():
@@ -118,14 +141,7 @@ def kappa_grid(kmin: float, kmax: float, count: int) -> np.ndarray:
 
 
 def _material(args):
-    from dispersion.waves.units import MATERIALS, Material
-
-    if args.material and (args.cl is not None or args.ct is not None):
-        raise InputError("give --material or --cl/--ct, not both")
-    if (args.cl is None) != (args.ct is None):
-        raise InputError("--cl and --ct go together (bulk speeds in m/s)")
-    mat = MATERIALS[args.material] if args.material else (
-        Material(args.cl, args.ct) if args.cl is not None else None)
+    mat = _frequency.material_from_args(args)
     if mat is not None and args.thickness is None:
         raise InputError("a material needs --thickness (plate thickness d = 2h in mm)")
     if mat is None and args.thickness is not None:
@@ -135,13 +151,29 @@ def _material(args):
 
 def _settings(args) -> dict:
     """Validate every option before any work; return the resolved inputs."""
+    for opt, val in (("--mode-shape", args.mode_shape), ("--json", args.json)):
+        if val is not None:
+            raise InputError(f"{opt} applies with --frequency/--fd only")
+    args.kappa_min = 0.0 if args.kappa_min is None else args.kappa_min
+    args.kappa_max = 8.0 if args.kappa_max is None else args.kappa_max
+    args.count = 400 if args.count is None else args.count
+    args.omega_max = 8.0 if args.omega_max is None else args.omega_max
     if args.exact:
         for opt, val in (("--mass", args.mass), ("--contact", args.contact),
                          ("--gamma-s", args.gamma_s), ("--r", args.r), ("--model", args.model)):
             if val is not None:
                 raise InputError(f"{opt} does not apply with --exact (no discrete patch)")
-    masses = [] if args.exact else (args.mass or ["consistent", "singular"])
-    if masses and not any(m.startswith("singular") for m in masses):
+    if args.exact and args.mass_rule:
+        raise InputError("--mass-rule does not apply with --exact (no discrete patch)")
+    if args.mass_rule:
+        from dispersion.symbolic.mass_rule import rule_from_toml
+
+        rules = [rule_from_toml(path) for path in args.mass_rule]
+    else:
+        rules = []
+    masses = [] if args.exact else (args.mass or ([] if rules else ["consistent", "singular"]))
+    masses = masses + rules
+    if masses and not any(_redistributes(m) for m in masses):
         for opt, val in (("--contact", args.contact), ("--gamma-s", args.gamma_s)):
             if val is not None:
                 raise InputError(f"{opt} applies to singular masses only")
@@ -159,7 +191,7 @@ def _settings(args) -> dict:
             raise InputError(f"count * (mass variants) * n^3 must be <= {MAX_DISCRETE_WORK} "
                              f"(about a minute and a half), got {work}")
     material = _material(args)
-    if args.nu is not None and material is not None:
+    if args.nu is not None and material is not None and args.youngs_modulus is None:
         raise InputError("--nu does not apply with a material (nu follows from c_L and c_T)")
     nu = material.nu if material is not None else (
         defaults.NU_FLOAT if args.nu is None else args.nu)
@@ -176,6 +208,7 @@ def _settings(args) -> dict:
         check_output_file(args.figure, option="--figure", allow_stdout=False,
                           suffixes=FIGURE_SUFFIXES)
     r = float(defaults.FIGURE2_R) if args.r is None else args.r
+    _check_scheme(args, masses)
     return {
         "nu": nu, "kappa": kappa, "masses": masses, "material": material, "r": r,
         "contact": args.contact or defaults.CONTACT,
@@ -183,29 +216,63 @@ def _settings(args) -> dict:
     }
 
 
+def _redistributes(mass) -> bool:
+    """True for rules that take the contact set (the singular ones)."""
+    from dispersion.symbolic.mass_rule import get_rule
+
+    return get_rule(mass).redistributes
+
+
+def _name(mass) -> str:
+    return getattr(mass, "name", mass)
+
+
+def _check_scheme(args, masses) -> None:
+    if args.scheme is None:
+        if args.courant is not None:
+            raise InputError("--courant applies with --scheme only")
+        return
+    if not masses:
+        raise InputError("--scheme applies to the discrete branches (not with --exact)")
+    if args.model != "bloch":
+        raise InputError("--scheme needs --model bloch (the x-exact model has no largest "
+                         "frequency, hence no critical step)")
+    if args.figure is not None:
+        raise InputError("--figure does not draw fully discrete branches yet; use --csv")
+    if args.courant is None:
+        raise InputError("--scheme needs --courant (the step over the critical step)")
+    limit = 1.0 if args.scheme == "central" else 10.0
+    if not (math.isfinite(args.courant) and 0 < args.courant <= limit):
+        raise InputError(f"courant must be in (0, {limit:g}] for scheme {args.scheme}, "
+                         f"got {args.courant}")
+
+
 def _inputs(args, s) -> dict:
     from dispersion.results import package_versions
 
     out = {"nu": s["nu"], "model": args.model, "p": args.p, "n": args.n,
-           "masses": s["masses"], "kappa": [args.kappa_min, args.kappa_max, args.count],
+           "masses": [_name(m) for m in s["masses"]], "kappa": [args.kappa_min, args.kappa_max, args.count],
            "omega_max": args.omega_max,
            "dispersion-iga": package_versions(("dispersion-iga",))["dispersion-iga"]}
     if args.model == "bloch" and s["masses"]:
         out["r"] = s["r"]
-    if any(m.startswith("singular") for m in s["masses"]):
+    if any(_redistributes(m) for m in s["masses"]):
         out["contact"], out["gamma_s"] = s["contact"], s["gamma_s"]
+    if args.scheme is not None:
+        out["scheme"], out["courant"] = args.scheme, args.courant
+        out["tau"] = s["tau"]
     if s["material"] is not None:
         out["material"] = s["material"].as_dict()
         out["thickness [mm]"] = args.thickness
     return out
 
 
-def _rows(kappa, omega, group, symmetry, source, material, thickness, omega_max):
-    """Row dicts of one branch set (finite Omega <= omega_max)."""
+def _rows(kappa, omega, group, symmetry, source, material, thickness, omega_max, nu):
+    """Row dicts of one branch set (finite Omega <= omega_max) computed at ``nu``."""
     from dispersion.waves.units import physical_branches
     from dispersion.waves.velocities import phase_velocity
 
-    phys = (physical_branches(kappa, omega, group, material, thickness)
+    phys = (physical_branches(kappa, omega, group, material, thickness, nu=nu)
             if material is not None else None)
     rows = []
     for label, om in omega.items():
@@ -229,12 +296,13 @@ def _csv(rows, inputs) -> str:
     buf = io.StringIO()
     for key, val in inputs.items():
         buf.write(f"# {key}: {val}\n")
+    buf.write(f"# {_frequency.EMPTY_NOTE}\n")
     if not rows:
         return buf.getvalue()
     w = csv.DictWriter(buf, fieldnames=list(rows[0]), lineterminator="\n")
     w.writeheader()
     for row in rows:
-        w.writerow({k: (repr(v) if isinstance(v, float) else v) for k, v in row.items()})
+        w.writerow({k: _frequency._cell(v) for k, v in row.items()})
     return buf.getvalue()
 
 
@@ -262,6 +330,8 @@ def run(args) -> int:
     from dispersion.waves.exact_branches import trace_branches
     from dispersion.waves.velocities import exact_velocities
 
+    if _frequency.requested(args):
+        return _frequency.run(args)
     s = _settings(args)
     kappa, masses, nu = s["kappa"], s["masses"], s["nu"]
     show = sys.stderr.isatty() if args.progress is None else args.progress
@@ -278,11 +348,23 @@ def run(args) -> int:
     for mass in masses:
         patch = plate_patch(p=args.p, n=args.n, model=args.model, r=s["r"], mass=mass,
                             contact=s["contact"], gamma_s=s["gamma_s"])
-        results.append((mass, discrete_branches(patch, nu, kappa, progress=tick, group=True)))
+        d = discrete_branches(patch, nu, kappa, progress=tick, group=args.scheme is None)
+        if args.scheme is not None:
+            from dispersion.waves.fully_discrete import fully_discrete_branches
+            from dispersion.waves.timestep import patch_omega_max
+
+            tau = args.courant * 2 / patch_omega_max(patch, nu)[0]
+            s.setdefault("tau", {})[_name(mass)] = tau
+            d = fully_discrete_branches(d, tau, args.scheme)
+            results.append((f"{_name(mass)} {args.scheme} C={args.courant:g}", d))
+        else:
+            results.append((_name(mass), d))
     if bar:
         bar.close()
     for kind, k, why in exact.failures:
         print(f"warning: exact {kind} branches at kappa={k:.6g}: {why}", file=sys.stderr)
+    for label, k, why in vel.uncertain:
+        print(f"warning: exact {label} group velocity at kappa={k:.6g}: {why}", file=sys.stderr)
     for mass, d in results:
         for what, k, why in d.failures[:5]:
             print(f"warning: discrete {mass} {what} at kappa={k:.6g}: {why}", file=sys.stderr)
@@ -290,11 +372,20 @@ def run(args) -> int:
             print(f"warning: discrete {mass}: {len(d.failures) - 5} more kappa not certified",
                   file=sys.stderr)
     inputs = _inputs(args, s)
+    if s["material"] is not None:  # the practitioner's path: ZGV points in the output
+        from dispersion.waves.frequency import zgv_points
+        from dispersion.waves.units import zgv_in_units
+
+        points = zgv_in_units(zgv_points(nu, args.omega_max), s["material"], args.thickness)
+        for p in points:
+            inputs[f"ZGV {p['mode']}"] = (f"f = {p['f [kHz]']:.10g} kHz, fd = "
+                                          f"{p['fd [MHz mm]']:.10g} MHz mm, c_p = "
+                                          f"{p['c_p [m/s]']:.10g} m/s")
     rows = _rows(kappa, exact.omega, vel.group, lambda lab: lab[0], "exact", s["material"],
-                 args.thickness, args.omega_max)
+                 args.thickness, args.omega_max, nu)
     for mass, d in results:
-        rows += _rows(kappa, d.omega, d.group, d.symmetry.get, mass, s["material"],
-                      args.thickness, args.omega_max)
+        rows += _rows(kappa, d.omega, d.group or {}, d.symmetry.get, mass, s["material"],
+                      args.thickness, args.omega_max, nu)
     if not args.csv and not args.figure:
         if args.format == "csv":
             _emit("-", _csv(rows, inputs))
@@ -304,10 +395,14 @@ def run(args) -> int:
             from dispersion.results import dumps, envelope
 
             env = envelope("branches", {"rows": rows,
-                                        "failures": [list(f) for f in exact.failures]},
+                                        "failures": [list(f) for f in exact.failures],
+                                        "velocity_uncertain": [list(u) for u in vel.uncertain]},
                            inputs=inputs)
             _emit("-", dumps(env))
-    if args.figure:
+    if args.figure and s["material"] is not None:
+        fig = _physical_figure(kappa, exact, vel, s["material"], args.thickness, args.omega_max)
+        save_figure(fig, args.figure, dpi=150)
+    elif args.figure:
         from dispersion.plotting.branches import figure2, plot_exact
 
         model = args.model + (f", r = {s['r']:g}" if args.model == "bloch" else "")
@@ -315,8 +410,8 @@ def run(args) -> int:
             from dispersion.studies.branch_study import figure2_data
 
             data, _ = figure2_data(nu, kappa, args.omega_max, {
-                mass: plate_patch(p=args.p, n=args.n, model=args.model, r=s["r"], mass=mass,
-                                  contact=s["contact"], gamma_s=s["gamma_s"])
+                _name(mass): plate_patch(p=args.p, n=args.n, model=args.model, r=s["r"],
+                                         mass=mass, contact=s["contact"], gamma_s=s["gamma_s"])
                 for mass in masses})
             fig = figure2(data, title=f"nu = {nu:g}, {model}, p = {args.p}, n = {args.n}")
         else:
@@ -330,3 +425,22 @@ def run(args) -> int:
     if args.csv:
         _emit(args.csv, _csv(rows, inputs))
     return 0
+
+
+def _physical_figure(kappa, exact, vel, material, thickness, omega_max):
+    """The exact branches in the practitioner's units (c_p, c_g against fd; k against f),
+    ZGV points and cut-offs marked, titled from the result."""
+    from dispersion.plotting.lamb import figure_dispersion
+    from dispersion.waves.rayleigh_lamb import cutoff_frequencies
+    from dispersion.waves.units import frequency_khz, physical_branches, zgv_in_units
+    from dispersion.waves.frequency import zgv_points
+
+    phys = physical_branches(kappa, exact.omega, vel.group, material, thickness)
+    zgv = [p for p in zgv_points(exact.nu, omega_max) if p.kappa <= kappa.max()]
+    cut = {}
+    for kind in ("S", "A"):
+        for j, (w, _) in enumerate(cutoff_frequencies(kind, exact.nu, omega_max)):
+            if w > 0:
+                cut[f"{kind}{j}"] = float(frequency_khz(w, material, thickness))
+    return figure_dispersion(phys.curves(), phys.title(), zgv_in_units(zgv, material, thickness),
+                             cut)

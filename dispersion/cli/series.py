@@ -99,7 +99,8 @@ def register(sub) -> None:
     p.add_argument("--exact", action="store_true",
                    help="exact Rayleigh-Lamb series (eqs 14-15); takes none of the patch options")
     p.add_argument("--mass", default=_Default("MASS"),
-                   help="mass variant: consistent, lumped, singular, singular-lumped "
+                   help="mass rule: consistent, lumped, hrz, nodal-greville, nodal-lobatto, "
+                        "singular, singular-lumped "
                         "(default %(default)s)")
     p.add_argument("--contact", default=_Default("CONTACT"),
                    help="contact set of a singular mass: top, bottom, both "

@@ -11,7 +11,8 @@ displacement and velocity fields and a body force :math:`b(x)`:
     \\rho u_{tt} = E u_{xx} + b, \\qquad g = \\mathrm{gap} \\pm u(x_c) \\ge 0, \\quad
     \\lambda \\ge 0, \\quad \\lambda g = 0 .
 
-The mass variants are :data:`dispersion.symbolic.mass.MASS_VARIANTS`; the singular ones redistribute
+The mass is any rule of :mod:`dispersion.symbolic.mass_rule` (a name or a
+:class:`~dispersion.symbolic.mass_rule.MassRule`); the singular ones redistribute
 the contact end's function onto its two neighbours (paper eqs 2-4).
 
 Validation case (:func:`simulate_bar`): a free bar moving with velocity :math:`-v_0` touches
@@ -39,7 +40,8 @@ import scipy.sparse as sp
 from dispersion.symbolic.bspline import open_knot_vector
 from dispersion.defaults import GAMMA_S
 from dispersion.errors import InputError, check_positive, check_positive_int, check_real_in_range
-from dispersion.symbolic.mass import MASS_VARIANTS, mass_variant
+from dispersion.symbolic.mass import mass_variant
+from dispersion.symbolic.mass_rule import get_rule
 from dispersion.contact.assembly import float_redistribution
 from dispersion.contact.newmark import ContactProblem, History, Newmark, integrate
 from dispersion.contact.nurbs import SplineBasis1D
@@ -95,8 +97,7 @@ class Bar:
         check_positive_int("p", self.p)
         for name in ("L", "E", "rho"):
             check_positive(name, getattr(self, name))
-        if self.mass not in MASS_VARIANTS:
-            raise InputError(f"mass must be one of {', '.join(MASS_VARIANTS)}; got {self.mass!r}")
+        rule = get_rule(self.mass)
         if self.contact not in ENDS:
             raise InputError(f"contact must be one of {', '.join(ENDS)}; got {self.contact!r}")
         bad = [e for e in self.clamped if e not in ENDS]
@@ -106,7 +107,7 @@ class Bar:
             raise InputError(f"clamped: the contact end {self.contact!r} cannot be clamped")
         if not (np.isfinite(self.gap) and self.gap >= 0):
             raise InputError(f"gap must be a finite number >= 0, got {self.gap!r}")
-        if self.mass.startswith("singular") and self.n_elements + self.p < 3:
+        if rule.redistributes and self.n_elements + self.p < 3:
             raise InputError("n_elements: a singular mass needs >= 3 functions "
                              f"(n_elements + p >= 3), got {self.n_elements} + {self.p}")
 
@@ -165,8 +166,9 @@ def bar_model(bar: Bar) -> BarModel:
     M = sp.csr_matrix(((bar.rho * w[:, None, None] * N[:, :, None] * N[:, None, :]).ravel(),
                        (rows, cols)), shape=(n, n))
     side = "bottom" if bar.contact == "left" else "top"
-    R = float_redistribution(n, side, bar.gamma_s) if bar.mass.startswith("singular") else None
-    Mv = sp.csr_matrix(mass_variant(M, bar.mass, R))
+    rule = get_rule(bar.mass)
+    R = float_redistribution(n, side, bar.gamma_s) if rule.redistributes else None
+    Mv = sp.csr_matrix(mass_variant(M, rule, R, kv=basis.kv))
     Mv.eliminate_zeros()
     f_ext = None
     if bar.body_force is not None:

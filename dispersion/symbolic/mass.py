@@ -37,6 +37,7 @@ import sympy
 
 from dispersion.errors import (IndefiniteMassWarning, InputError, as_real, check_choice,
                      check_positive_int, check_real_in_range)
+from dispersion.symbolic.mass_rule import RULE_NAMES
 
 __all__ = [
     "MASS_VARIANTS",
@@ -44,10 +45,12 @@ __all__ = [
     "contact_weights",
     "redistribution_matrix",
     "mass_variant",
+    "redistributed_mass",
     "row_sum_lump",
 ]
 
-MASS_VARIANTS = ("consistent", "lumped", "singular", "singular-lumped")
+#: Names of the registered mass rules (:mod:`dispersion.symbolic.mass_rule`).
+MASS_VARIANTS = RULE_NAMES
 CONTACT_SETS = ("top", "bottom", "both")
 
 
@@ -144,25 +147,8 @@ def row_sum_lump(M):
     return np.diag(np.asarray(M).sum(axis=1))
 
 
-def mass_variant(M, variant: str, R=None):
-    """Mass matrix of ``variant`` from the consistent mass ``M`` and redistribution ``R``.
-
-    ``"consistent"``: M; ``"lumped"``: row sums of M; ``"singular"``: R^T M R (eq 1 left);
-    ``"singular-lumped"``: row sums of R^T M R (eq 1 right).
-    """
-    check_choice("mass", variant, MASS_VARIANTS)
-    shape = getattr(M, "shape", None)
-    if shape is None or len(shape) != 2 or shape[0] != shape[1]:
-        raise InputError(f"M must be a square matrix, got shape {shape}")
-    if R is not None and tuple(getattr(R, "shape", np.shape(R))) != tuple(shape):
-        raise InputError(f"R must have the shape of M {tuple(shape)}, got "
-                         f"{tuple(getattr(R, 'shape', np.shape(R)))}")
-    if variant == "consistent":
-        return M
-    if variant == "lumped":
-        return row_sum_lump(M)
-    if R is None:
-        raise InputError(f"mass variant {variant!r} needs a redistribution matrix R")
+def redistributed_mass(M, R, lumped: bool = False):
+    """:math:`R^T M R` (eq 1 left), or its row sums with ``lumped=True`` (eq 1 right)."""
     if isinstance(M, sympy.MatrixBase):
         R = sympy.Matrix(R)
         Mm = R.T * M * R
@@ -172,4 +158,28 @@ def mass_variant(M, variant: str, R=None):
         if not sp.issparse(R):
             R = np.asarray(R, dtype=float)
         Mm = R.T @ M @ R
-    return Mm if variant == "singular" else row_sum_lump(Mm)
+    return row_sum_lump(Mm) if lumped else Mm
+
+
+def mass_variant(M, variant, R=None, *, kv=None, elements=None, check: bool = True):
+    """Mass matrix of rule ``variant`` from the consistent mass ``M`` and redistribution ``R``.
+
+    ``variant`` is a name of :data:`MASS_VARIANTS` or a
+    :class:`dispersion.symbolic.mass_rule.MassRule`. ``"consistent"``: M; ``"lumped"``: row
+    sums of M; ``"singular"``: R^T M R (eq 1 left); ``"singular-lumped"``: row sums of
+    R^T M R (eq 1 right); ``"hrz"`` and the nodal quadratures need the knot vector ``kv``
+    (or, HRZ, the float element matrices ``elements``). The result is checked against the
+    rule's stated properties (:func:`dispersion.symbolic.mass_rule.mass_matrix`).
+    """
+    from dispersion.symbolic.mass_rule import MassSpace, get_rule, mass_matrix
+
+    rule = get_rule(variant)
+    shape = getattr(M, "shape", None)
+    if shape is None or len(shape) != 2 or shape[0] != shape[1]:
+        raise InputError(f"M must be a square matrix, got shape {shape}")
+    if R is not None and tuple(getattr(R, "shape", np.shape(R))) != tuple(shape):
+        raise InputError(f"R must have the shape of M {tuple(shape)}, got "
+                         f"{tuple(getattr(R, 'shape', np.shape(R)))}")
+    if rule.redistributes and R is None:
+        raise InputError(f"mass variant {rule.name!r} needs a redistribution matrix R")
+    return mass_matrix(rule, MassSpace(M, kv, elements, R), check=check)

@@ -60,7 +60,8 @@ class Patch:
         ``"bloch"`` (one Bloch-periodic column, aspect ratio ``r = b/h``) or ``"x-exact"``.
     r : number, ``"r"`` or None
         Aspect ratio b/h of the Bloch model (``"r"``: kept as a symbol); None for x-exact.
-    mass : str
+    mass : str or MassRule
+        A rule of :mod:`dispersion.symbolic.mass_rule` (name or a user rule object).
         ``"consistent"``, ``"lumped"``, ``"singular"`` or ``"singular-lumped"``.
     contact, gamma_s :
         Contact set and redistribution weight of the singular masses (ignored otherwise).
@@ -84,15 +85,13 @@ class Patch:
     def __post_init__(self):
         import sympy
 
-        from dispersion.symbolic.mass import MASS_VARIANTS
+        from dispersion.symbolic.mass_rule import get_rule
         from dispersion.symbolic.plate import MODELS, _aspect_ratio, _rational, check_size
 
         p, n = check_size(self.p, self.n)
         if self.model not in MODELS:
             raise InputError(f"model must be one of {', '.join(MODELS)}; got {self.model!r}")
-        if self.mass not in MASS_VARIANTS:
-            raise InputError(f"mass must be one of {', '.join(MASS_VARIANTS)}; "
-                             f"got {self.mass!r}")
+        get_rule(self.mass)  # a registered name or a MassRule, else InputError
         r = self.r
         if self.model == "x-exact":
             if r is not None and r != defaults.R:
@@ -104,7 +103,7 @@ class Patch:
             r = _aspect_ratio(r)
         gamma_s = None if self.gamma_s is None else _rational("gamma_s", self.gamma_s)
         weights = _freeze_weights(self.weights)
-        if not self.mass.startswith("singular"):  # contact set and weights do not apply
+        if not self.singular:  # contact set and weights do not apply
             contact, gamma_s, weights = defaults.CONTACT, defaults.GAMMA_S, None
             object.__setattr__(self, "contact", contact)
         nu = self.nu
@@ -121,7 +120,14 @@ class Patch:
     @property
     def singular(self) -> bool:
         """True for the singular masses (contact set and weights apply)."""
-        return self.mass.startswith("singular")
+        from dispersion.symbolic.mass_rule import get_rule
+
+        return get_rule(self.mass).redistributes
+
+    @property
+    def mass_name(self) -> str:
+        """The mass rule's name (``mass`` may be a rule object)."""
+        return getattr(self.mass, "name", self.mass)
 
     @property
     def symbolic_r(self) -> bool:
@@ -145,6 +151,7 @@ class Patch:
     def as_dict(self) -> dict:
         """JSON-ready fields (numbers as strings where exact)."""
         out = asdict(self)
+        out["mass"] = self.mass_name
         for key in ("r", "gamma_s", "nu"):
             out[key] = None if out[key] is None else str(out[key])
         out["weights"] = self.weights_dict and {str(c): {str(j): str(w) for j, w in ws.items()}
@@ -170,7 +177,7 @@ class Patch:
         """Short description, e.g. ``bloch p=2 n=3 r=2, singular mass (top, gamma_s=0)``."""
         geom = f"{self.model} p={self.p} n={self.n}" + (f" r={self.r}" if self.r is not None
                                                          else "")
-        mass = f"{self.mass} mass"
+        mass = f"{self.mass_name} mass"
         if self.singular:
             mass += (f" (weights {self.weights_dict})" if self.weights is not None
                      else f" ({self.contact}, gamma_s={self.gamma_s})")
@@ -185,7 +192,7 @@ class Patch:
         'Bloch r = b/h = 1/2, p = 2, n = 3, singular mass (contact top, gamma_s = 1/2)'
         """
         geom = ("Bloch r = b/h = " + str(self.r) if self.model == "bloch" else "x-exact")
-        text = f"{geom}, p = {self.p}, n = {self.n}, {self.mass} mass"
+        text = f"{geom}, p = {self.p}, n = {self.n}, {self.mass_name} mass"
         if self.singular:
             text += (f" (weights {self.weights_dict})" if self.weights is not None
                      else f" (contact {self.contact}, gamma_s = {self.gamma_s})")
@@ -196,7 +203,7 @@ class Patch:
     def header_lines(self) -> list[str]:
         """``key = value`` lines of the fields that apply (for CSV ``#`` headers)."""
         out = [f"model = {self.model}"] + ([f"r = {self.r}"] if self.r is not None else [])
-        out += [f"p = {self.p}", f"n = {self.n}", f"mass = {self.mass}"]
+        out += [f"p = {self.p}", f"n = {self.n}", f"mass = {self.mass_name}"]
         if self.singular:
             out += ([f"weights = {self.weights_dict}"] if self.weights is not None
                     else [f"contact = {self.contact}", f"gamma_s = {self.gamma_s}"])

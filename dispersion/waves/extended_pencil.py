@@ -38,7 +38,7 @@ class _Key:
     def __init__(self, patch: PlatePatch):
         self.patch = patch
         # the entries themselves (hashable sympy numbers): never the printed matrix
-        self.key = (patch.p, patch.n, patch.model, patch.r, tuple(patch.My), patch.x_lumped)
+        self.key = (patch.p, patch.n, patch.model, patch.r, tuple(patch.My), patch.x_mass)
 
     def __hash__(self):
         return hash(self.key)

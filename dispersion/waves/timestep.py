@@ -161,8 +161,11 @@ class CriticalStep:
                        f"points through the thickness, element length h = {self.h:g} m, "
                        f"aspect ratio r = b/H = {self.r}, c_T = {self.wave_speed:g} m/s")
             unit = "omega_max H / c_T"
-        exact = "" if self.omega_max_exact is None or str(self.omega_max_exact) == \
-            f"{self.omega_max:.12g}" else f" = {self.omega_max_exact}"
+        shown = str(self.omega_max_exact)
+        # a closed form only where it reads better than the number (a float nu rationalises
+        # to long integers)
+        exact = "" if self.omega_max_exact is None or shown == f"{self.omega_max:.12g}" \
+            or len(shown) > 40 else f" = {shown}"
         mat = f", material {self.material}" if self.material else ""
         lines = [
             f"mass {self.mass}, p = {self.p}{mat}; {setting}",

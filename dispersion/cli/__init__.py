@@ -4,7 +4,8 @@ A thin layer over the API. Each subcommand lives in its own module exposing
 ``register(subparsers)``, which adds the parser and sets ``func(args) -> int``.
 Errors print one line to stderr, never a traceback: exit status 2 for bad input
 (:class:`~dispersion.errors.InputError`, and argparse's own errors), 1 for other toolkit
-errors and for failures of the file system (a full disk, a vanished folder).
+errors and for failures of the file system (a full disk, a vanished folder). SIGTERM is
+handled like Ctrl-C: the command unwinds (removing its temporaries) and exits 143.
 
 >>> main(["--version"])  # doctest: +ELLIPSIS
 dispersion ...
@@ -13,8 +14,11 @@ dispersion ...
 from __future__ import annotations
 
 import argparse
+import contextlib
 import importlib
+import signal
 import sys
+import threading
 
 from dispersion.errors import DispersionError, InputError
 
@@ -33,6 +37,26 @@ def number(name: str, convert=float):
         except (TypeError, ValueError):  # sympy.SympifyError is a ValueError
             raise argparse.ArgumentTypeError(f"{name} must be a number, got {text!r}") from None
     return parse
+
+
+class Terminated(KeyboardInterrupt):
+    """SIGTERM arrived: unwound like Ctrl-C, so every writer removes its temporaries."""
+
+
+def _on_sigterm(signum, frame):
+    raise Terminated()
+
+
+@contextlib.contextmanager
+def _sigterm_unwinds():
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = signal.signal(signal.SIGTERM, _on_sigterm)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
 
 
 class _Parser(argparse.ArgumentParser):
@@ -86,7 +110,8 @@ def main(argv: list[str] | None = None) -> int:
         return 0
     if args.command is None:
         parser.error(f"a command is required: {', '.join(_SUBCOMMANDS)}")
-    return run_parsed(args)
+    with _sigterm_unwinds():
+        return run_parsed(args)
 
 
 def run_parsed(args: argparse.Namespace) -> int:
@@ -106,6 +131,9 @@ def run_parsed(args: argparse.Namespace) -> int:
         print(f"dispersion {args.command}: error: {exc.strerror or exc}"
               + (f": {exc.filename}" if exc.filename else ""), file=sys.stderr)
         return 1
+    except Terminated:
+        print("dispersion: terminated", file=sys.stderr)
+        return 143
     except KeyboardInterrupt:
         print("dispersion: interrupted", file=sys.stderr)
         return 130

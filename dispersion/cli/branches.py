@@ -18,13 +18,14 @@ import argparse
 import csv
 import io
 import math
+import os
 import sys
 
 import numpy as np
 
 from dispersion import defaults
 from dispersion.errors import InputError
-from dispersion.io import check_output_file, save_figure, write_text
+from dispersion.io import check_output_file, unit_target, write_bytes, write_text, write_unit
 from dispersion.symbolic.mass import CONTACT_SETS, MASS_VARIANTS
 from dispersion.symbolic.plate import MODELS
 from dispersion.waves.exact_branches import check_samples
@@ -207,6 +208,11 @@ def _settings(args) -> dict:
                              f"{', '.join(FIGURE_SUFFIXES)}, got {args.figure!r}")
         check_output_file(args.figure, option="--figure", allow_stdout=False,
                           suffixes=FIGURE_SUFFIXES)
+        if args.csv not in (None, "-") and unit_target(args.csv) is not None and \
+                os.path.abspath(unit_target(args.csv)) == os.path.abspath(unit_target(args.figure)
+                                                                          or args.figure):
+            raise InputError(f"--csv and --figure must name two different files, got "
+                             f"{args.csv!r} and {args.figure!r}")
     r = float(defaults.FIGURE2_R) if args.r is None else args.r
     _check_scheme(args, masses)
     return {
@@ -401,7 +407,6 @@ def run(args) -> int:
             _emit("-", dumps(env))
     if args.figure and s["material"] is not None:
         fig = _physical_figure(kappa, exact, vel, s["material"], args.thickness, args.omega_max)
-        save_figure(fig, args.figure, dpi=150)
     elif args.figure:
         from dispersion.plotting.branches import figure2, plot_exact
 
@@ -419,11 +424,23 @@ def run(args) -> int:
             ax.set_title(f"Rayleigh-Lamb, nu = {nu:g}", fontsize="small")
             ax.legend(fontsize="small")
             fig = ax.figure
-        # Both files are written after all the work, CSV last, so an interruption while the
-        # figure is drawn leaves neither new.
-        save_figure(fig, args.figure, dpi=150)
-    if args.csv:
-        _emit(args.csv, _csv(rows, inputs))
+    if args.figure:
+        figure_bytes = io.BytesIO()
+        fig.savefig(figure_bytes, format=args.figure.rsplit(".", 1)[-1].lower(), dpi=150)
+    # the CSV and the figure are one unit (io.write_unit): both new, or both old; a stream
+    # ('-', a device) is written after the unit
+    outputs = ([(args.figure, figure_bytes.getvalue())] if args.figure else []) + (
+        [(args.csv, _csv(rows, inputs))] if args.csv else [])
+    unit = {unit_target(path): data for path, data in outputs if unit_target(path) is not None}
+    if unit:
+        write_unit(unit, option="--csv/--figure")
+    for path, data in outputs:
+        if unit_target(path) is not None:
+            continue
+        if isinstance(data, str):
+            _emit(path, data)
+        else:
+            write_bytes(path, data)
     return 0
 
 

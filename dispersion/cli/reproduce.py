@@ -31,14 +31,11 @@ from dispersion.io import write_text
 from dispersion.report import SECTIONS, section_module
 from dispersion.report.folder import check_target, open_report
 from dispersion.report.index import SectionResult, render_index
-from dispersion.sweep import default_jobs, process_pool
+from dispersion.sweep import MAX_JOBS_PER_CPU, default_jobs, process_pool
 from dispersion.cli import number
 
 __all__ = ["register", "measure_sections", "render_folder", "handler", "MAX_JOBS_PER_CPU"]
 
-#: More workers than this per usable CPU only queue for the cores while each holds its own
-#: copy of the toolkit in memory; the bound keeps ``--jobs`` a count a user means.
-MAX_JOBS_PER_CPU = 4
 
 
 def register(subparsers) -> None:
@@ -151,7 +148,7 @@ def handler(args: argparse.Namespace) -> int:
         raise InputError("--render renders every section present: --sections does not apply")
     jobs = (check_int_in_range("--jobs", args.jobs, 1, MAX_JOBS_PER_CPU * default_jobs())
             if args.jobs is not None else default_jobs())
-    out = check_target(Path(args.out))
+    out = check_target(args.out)
     readme = Path(args.readme) if args.readme is not None else None
     if readme is not None and not readme.is_file():
         raise InputError(f"--readme must name an existing Markdown file, got {args.readme!r}")

@@ -221,10 +221,21 @@ class Patch:
         return plate_patch(self)
 
     def K_dyn(self, kappa=None, Omega=None, nu=None) -> sympy.Matrix:
-        """:math:`K - \\Omega^2 M` (sympy); symbols ``kappa``, ``Omega``, ``nu`` by default."""
+        """:math:`K - \\Omega^2 M` (sympy); symbols ``kappa``, ``Omega``, ``nu`` by default.
+
+        Each value is a finite real number or a sympy expression with symbols; anything else
+        (NaN, infinity, a string, a complex number) is an :class:`~dispersion.errors.InputError`.
+
+        >>> Patch().K_dyn(kappa=float("nan"))
+        Traceback (most recent call last):
+        ...
+        dispersion.errors.InputError: kappa must be a finite real number or a sympy symbol, got nan
+        """
         from dispersion.symbolic.plate import dynamic_stiffness
 
-        return dynamic_stiffness(self.plate, kappa, Omega, self.nu if nu is None else nu)
+        return dynamic_stiffness(self.plate, _matrix_value("kappa", kappa),
+                                 _matrix_value("Omega", Omega),
+                                 _matrix_value("nu", self.nu if nu is None else nu))
 
     def K(self, kappa=None, nu=None) -> sympy.Matrix:
         """Stiffness :math:`K(\\kappa)` over the shear modulus (sympy)."""
@@ -267,6 +278,22 @@ class Patch:
                              f"{self.r}")
         nu = float(self.nu_value if nu is None else nu)
         return discrete_branches(self.plate, nu, kappa, group=group)
+
+
+def _matrix_value(name: str, value):
+    """``value`` of a patch matrix: None (the symbol), an expression with symbols, or a
+    finite real number; anything else raises :class:`InputError` naming ``name``."""
+    from dispersion.errors import as_real
+
+    if value is None or getattr(value, "free_symbols", None):
+        return value
+    try:
+        return as_real(name, value, "a finite real number or a sympy symbol")
+    except InputError:
+        raise
+    except Exception:  # an object whose comparison or conversion fails
+        raise InputError(f"{name} must be a finite real number or a sympy symbol, "
+                         f"got {type(value).__name__}") from None
 
 
 def as_patch(patch: Patch | None = None, **fields) -> Patch:

@@ -438,6 +438,8 @@ def trace_branches(
                 per_k[i] = np.concatenate([[w], cut[1:]])
                 if 0 < kappa[i] and w < np.finfo(float).tiny:
                     failures.append((kind, float(kappa[i]), f"{kind}0 underflows ({w:.3g})"))
+            if progress is not None and np.any(kappa[tiny] > 0):
+                progress(int(np.count_nonzero(kappa[tiny] > 0)))
         rest = np.flatnonzero(kappa > TINY_KAPPA)
         for lo in range(0, rest.size, chunk):
             idx = rest[lo:lo + chunk]

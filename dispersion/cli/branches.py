@@ -27,7 +27,7 @@ from dispersion import defaults
 from dispersion.errors import InputError
 from dispersion.io import check_output_file, unit_target, write_bytes, write_text, write_unit
 from dispersion.symbolic.mass import CONTACT_SETS, MASS_VARIANTS
-from dispersion.symbolic.plate import MODELS
+from dispersion.symbolic.plate import MODELS, N_MAX, P_MAX
 from dispersion.waves.exact_branches import check_samples
 from dispersion.cli import frequency as _frequency
 from dispersion.cli import number
@@ -40,8 +40,8 @@ MAX_OMEGA = 200.0
 #: Rule: the default run (two masses, 400 kappa points) at the largest n in about a minute and a
 #: half. Measured on this 2-core machine, 400 kappa points, consistent + singular: n = 10 in
 #: 3.4 s, n = 20 in 48 s, n = 30 in 180 s (grows like n^3); n = 3 with 200000 points: ~1e7.
-MAX_N = 24
-MAX_DISCRETE_WORK = 2 * 400 * MAX_N**3
+#: Work bound of the numeric branches: 400 kappa of two masses at n = 24 (about a minute).
+MAX_DISCRETE_WORK = 2 * 400 * 24**3
 FIGURE_SUFFIXES = (".png", ".pdf", ".svg")
 
 
@@ -70,17 +70,18 @@ def register(sub) -> None:
                    help=f"contact set of a singular mass (default: {defaults.CONTACT})")
     p.add_argument("--gamma-s", type=number("gamma_s"), default=None,
                    help="share of a contact shape function sent to the second neighbour, "
-                        "singular masses only (default: 0, Figure 2)")
+                        f"singular masses only (default: {defaults.GAMMA_S})")
     p.add_argument("--model", choices=MODELS, default=None,
                    help=f"patch model along x (default: {defaults.MODEL})")
     p.add_argument("--r", type=number("r"), default=None,
-                   help=f"aspect ratio b/h of the Bloch model, dimensionless "
-                        f"(default: {float(defaults.FIGURE2_R):g}, Figure 2's h/b = 2)")
-    p.add_argument("--p", type=integer("degree p", 1, MAX_N - 1), default=defaults.P,
-                   help=f"degree through the thickness, 1..{MAX_N - 1} "
+                   help=f"aspect ratio b/h of the Bloch model, dimensionless, in [1/1000, "
+                        f"1000] (default: {defaults.R}; Figure 2's caption is 1/2)")
+    p.add_argument("--p", type=integer("degree p", 1, P_MAX), default=defaults.P,
+                   help=f"degree through the thickness, 1..{P_MAX} "
                         f"(default: {defaults.P})")
-    p.add_argument("--n", type=integer("control points n", 2, MAX_N), default=defaults.N,
-                   help=f"control points through the thickness, p+1..{MAX_N} "
+    p.add_argument("--n", type=integer("control points n", 2, N_MAX), default=defaults.N,
+                   help=f"control points through the thickness, p+1..{N_MAX}, and "
+                        f"count * (mass variants) * n^3 <= {MAX_DISCRETE_WORK} "
                         f"(default: {defaults.N})")
     p.add_argument("--nu", type=number("nu"), default=None,
                    help=f"Poisson's ratio (default: {defaults.NU_FLOAT}, or the material's)")
@@ -181,12 +182,15 @@ def _settings(args) -> dict:
     args.model = args.model or defaults.MODEL
     if args.model != "bloch" and args.r is not None:
         raise InputError("--r applies to the bloch model only")
+    base = None
     if masses:
-        if not 1 <= args.p <= MAX_N - 1:
-            raise InputError(f"degree p must be an integer in [1, {MAX_N - 1}], got {args.p}")
-        if not args.p + 1 <= args.n <= MAX_N:
-            raise InputError(f"control points n must be an integer in [p + 1, {MAX_N}] = "
-                             f"[{args.p + 1}, {MAX_N}], got {args.n}")
+        from dispersion.symbolic.patch import Patch
+
+        # the one patch of this run (every field but the mass), checked before any work
+        base = Patch(args.p, args.n, args.model,
+                     defaults.R if args.r is None else args.r, "consistent",
+                     args.contact or defaults.CONTACT,
+                     defaults.GAMMA_S if args.gamma_s is None else args.gamma_s)
         work = args.count * len(masses) * args.n**3
         if work > MAX_DISCRETE_WORK:
             raise InputError(f"count * (mass variants) * n^3 must be <= {MAX_DISCRETE_WORK} "
@@ -213,12 +217,12 @@ def _settings(args) -> dict:
                                                                           or args.figure):
             raise InputError(f"--csv and --figure must name two different files, got "
                              f"{args.csv!r} and {args.figure!r}")
-    r = float(defaults.FIGURE2_R) if args.r is None else args.r
     _check_scheme(args, masses)
     return {
-        "nu": nu, "kappa": kappa, "masses": masses, "material": material, "r": r,
-        "contact": args.contact or defaults.CONTACT,
-        "gamma_s": 0.0 if args.gamma_s is None else args.gamma_s,
+        "nu": nu, "kappa": kappa, "masses": masses, "material": material, "patch": base,
+        "r": None if base is None or base.r is None else float(base.r),
+        "contact": None if base is None else base.contact,
+        "gamma_s": None if base is None else float(base.gamma_s),
     }
 
 
@@ -352,8 +356,7 @@ def run(args) -> int:
     vel = exact_velocities(exact)
     results, patches = [], {}
     for mass in masses:
-        patch = plate_patch(p=args.p, n=args.n, model=args.model, r=s["r"], mass=mass,
-                            contact=s["contact"], gamma_s=s["gamma_s"])
+        patch = plate_patch(s["patch"].replace(mass=mass))
         patches[_name(mass)] = patch
         d = discrete_branches(patch, nu, kappa, progress=tick, group=args.scheme is None)
         if args.scheme is not None:

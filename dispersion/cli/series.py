@@ -136,8 +136,9 @@ def register(sub) -> None:
     p.set_defaults(func=run)
 
 
-def _resolve(args) -> dict:
-    """The patch options with defaults filled in; options that do not apply are errors."""
+def _resolve(args):
+    """The run's :class:`~dispersion.symbolic.patch.Patch` (None for --exact/--paper), with the
+    toolkit's defaults filled in; options that do not apply are errors."""
     given = {k: getattr(args, k) for k in _PATCH_OPTIONS
              if not isinstance(getattr(args, k), _Default)}
     if args.exact or args.paper:
@@ -145,7 +146,7 @@ def _resolve(args) -> dict:
             name = next(iter(given)).replace("_", "-")
             mode = "--exact" if args.exact else "--paper"
             raise InputError(f"--{name} does not apply to {mode} (the exact plate has no patch)")
-        return {}
+        return None
     opts = {k: getattr(args, k).value() for k in _PATCH_OPTIONS
             if isinstance(getattr(args, k), _Default)}
     opts.update(given)
@@ -162,18 +163,21 @@ def _resolve(args) -> dict:
         opts["r"] = None  # plate_patch keeps r symbolic
     if opts["gamma_s"] is not None:
         opts["gamma_s"] = Fraction(str(opts["gamma_s"]))
-    return opts
+    from dispersion.symbolic.patch import Patch
+
+    return Patch(**opts)
 
 
-def series_records(args, branches: tuple[str, ...], opts: dict) -> list[dict]:
-    """Derive the branches (one determinant for both where the mass breaks the mirror)."""
+def series_records(args, branches: tuple[str, ...], patch) -> list[dict]:
+    """Derive the branches of ``patch`` (one determinant for both where the mass breaks the
+    mirror); ``patch`` is None with --exact."""
     from dispersion.symbolic.power_balance import discrete_series_raw
 
-    raws = None if args.exact else discrete_series_raw(branches, args.order, **opts)[0]
-    return [series_record(args, b, opts, None if raws is None else raws[b]) for b in branches]
+    raws = None if args.exact else discrete_series_raw(branches, args.order, patch)[0]
+    return [series_record(args, b, patch, None if raws is None else raws[b]) for b in branches]
 
 
-def series_record(args, branch: str, opts: dict, raw=None) -> dict:
+def series_record(args, branch: str, patch, raw=None) -> dict:
     """One branch as the JSON record {branch, mass, model, coefficients, ...}."""
     from dispersion.symbolic.power_balance import (discrete_series_raw, format_coefficient,
                                                    substitute_raw)
@@ -184,18 +188,17 @@ def series_record(args, branch: str, opts: dict, raw=None) -> dict:
         mass, model = "exact", "rayleigh-lamb"
     else:
         if raw is None:
-            raw = discrete_series_raw((branch,), args.order, **opts)[0][branch]
-        mass = opts["mass"]
-        model = opts["model"] if opts["model"] == "x-exact" else \
-            f"bloch r={'r' if opts['r'] is None else opts['r']}"
+            raw = discrete_series_raw((branch,), args.order, patch)[0][branch]
+        mass = patch.mass_name
+        model = patch.model if patch.model == "x-exact" else f"bloch r={patch.r}"
     if args.nu is not None:
         raw = substitute_raw(raw, "nu", args.nu)
     record = {"branch": branch, "mass": mass, "model": model,
               "coefficients": {str(k): format_coefficient(a, b) for k, a, b in raw}}
     if not args.exact:
-        record.update(p=opts["p"], n=opts["n"])
-        if mass.startswith("singular"):
-            record.update(contact=opts["contact"], gamma_s=str(opts["gamma_s"]))
+        record.update(p=patch.p, n=patch.n)
+        if patch.singular:
+            record.update(contact=patch.contact, gamma_s=str(patch.gamma_s))
     if args.nu is not None:
         record["nu"] = str(args.nu)
     return record
@@ -264,7 +267,7 @@ def _check_up_front(args) -> None:
 
 def run(args) -> int:
     _check_up_front(args)
-    opts = _resolve(args)
+    patch = _resolve(args)
     if args.paper:
         if args.format == "csv":
             raise InputError("--format csv does not apply to --paper (use text, latex or json)")
@@ -272,7 +275,7 @@ def run(args) -> int:
         records = None
     else:
         branches = ("S0", "A0") if args.branch == "both" else (args.branch,)
-        records = series_records(args, branches, opts)
+        records = series_records(args, branches, patch)
         if args.format == "json":
             text = json.dumps(records[0] if len(records) == 1 else records, indent=2)
         elif args.format == "csv":

@@ -103,9 +103,15 @@ class Patch:
             r = _aspect_ratio(r)
         gamma_s = None if self.gamma_s is None else _rational("gamma_s", self.gamma_s)
         weights = _freeze_weights(self.weights)
-        if not self.singular:  # contact set and weights do not apply
-            contact, gamma_s, weights = defaults.CONTACT, defaults.GAMMA_S, None
-            object.__setattr__(self, "contact", contact)
+        if gamma_s is not None:
+            from dispersion.errors import check_real_in_range
+
+            check_real_in_range("gamma_s", gamma_s, 0, 1)
+        from dispersion.symbolic.mass import CONTACT_SETS
+
+        if self.contact not in CONTACT_SETS:
+            raise InputError(f"contact must be one of {', '.join(CONTACT_SETS)}; "
+                             f"got {self.contact!r}")
         nu = self.nu
         if nu is not None:
             from dispersion.errors import check_nu

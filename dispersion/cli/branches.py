@@ -350,10 +350,11 @@ def run(args) -> int:
     tick = bar.update if bar else None
     exact = trace_branches(nu, kappa, args.omega_max, progress=tick)
     vel = exact_velocities(exact)
-    results = []
+    results, patches = [], {}
     for mass in masses:
         patch = plate_patch(p=args.p, n=args.n, model=args.model, r=s["r"], mass=mass,
                             contact=s["contact"], gamma_s=s["gamma_s"])
+        patches[_name(mass)] = patch
         d = discrete_branches(patch, nu, kappa, progress=tick, group=args.scheme is None)
         if args.scheme is not None:
             from dispersion.waves.fully_discrete import fully_discrete_branches
@@ -414,10 +415,8 @@ def run(args) -> int:
         if results:
             from dispersion.studies.branch_study import figure2_data
 
-            data, _ = figure2_data(nu, kappa, args.omega_max, {
-                _name(mass): plate_patch(p=args.p, n=args.n, model=args.model, r=s["r"],
-                                         mass=mass, contact=s["contact"], gamma_s=s["gamma_s"])
-                for mass in masses})
+            data, _ = figure2_data(nu, kappa, args.omega_max, patches, exact=exact,
+                                   velocities=vel, discrete=dict(results))
             fig = figure2(data, title=f"nu = {nu:g}, {model}, p = {args.p}, n = {args.n}")
         else:
             ax = plot_exact(kappa, exact.omega, args.omega_max)

@@ -35,7 +35,10 @@ def mp_pencil(patch, nu, kappa):
               "s": -2 / r * sum(_mpf(c["10"][L]) * mpmath.sin(L * th)
                                 for L in range(1, patch.p + 1)),
               "d": sum(_mpf(v) * mpmath.cos(L * th) for L, v in c["11"].items()) / r**2}
-    mx = mpmath.mpf(1) if patch.x_lumped else xf["m"]
+    if patch.model == "x-exact" or patch.x_lumped:
+        mx = mpmath.mpf(1)
+    else:  # the x-direction mass rule: m_x = sum_L c_L cos(L theta)
+        mx = sum(_mpf(v) * mpmath.cos(L * th) for L, v in patch.x_mass)
     n2 = 2 * patch.n
     K = mpmath.zeros(n2, n2)
     for m, f, B in stiffness_terms(patch):

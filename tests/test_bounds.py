@@ -120,3 +120,11 @@ def test_impact_before_the_first_contact_states_no_nan(capsys):
     assert main(["impact", "signorini-1d", "--t-end", "0.1"]) == 0
     out = capsys.readouterr().out
     assert "contact stress n/a (exact value 0)" in out and "nan" not in out
+
+
+def test_branches_at_the_smallest_kappa_prints_no_numpy_warning(capsys):
+    # a counterexample of the slow CLI fuzz: the complex step h = 1e-30 kappa underflows at
+    # kappa = 1e-300 (pytest turns the RuntimeWarning into an error, pyproject)
+    assert main(["branches", "--exact", "--count", "2", "--omega-max", "2",
+                 "--kappa-max", "1e-300"]) == 0
+    assert "RuntimeWarning" not in capsys.readouterr().err

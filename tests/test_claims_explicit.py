@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from dispersion.claims.claims import parse_claims, verify_claims
+from dispersion.claims import parse_claims, verify_claims
 from dispersion.cli import main
 from dispersion.errors import InputError
 

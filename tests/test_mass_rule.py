@@ -221,3 +221,17 @@ def test_large_float_masses_are_checked_sparse_like_small_ones():
         small = check_mass(rule, A[:50, :50].toarray(), A[:50, :50].toarray())
         assert big.measured == small.measured, name
         assert big.measured.psd == (name == "spd")
+
+
+@pytest.mark.parametrize("name", ["nodal-lobatto"] + [pytest.param(n, marks=pytest.mark.slow)
+                                                      for n in RULE_NAMES if n != "nodal-lobatto"])
+def test_float_pencil_equals_the_exact_dynamic_stiffness(name):
+    # the fast float pencil (discrete branches) and the exact K - Omega^2 M share the x-mass
+    from dispersion.symbolic.plate import dynamic_stiffness, numeric_pencil
+
+    k, nu = sympy.Rational(7, 10), sympy.Rational(3, 10)
+    patch = plate_patch(2, 3, "bloch", 1, name)
+    K, M = numeric_pencil(patch, 0.3, [0.7])
+    K0 = np.array(dynamic_stiffness(patch, k, 0, nu).evalf(), float)
+    K1 = np.array(dynamic_stiffness(patch, k, 1, nu).evalf(), float)
+    assert np.allclose(K[0], K0, atol=1e-13) and np.allclose(M[0], K0 - K1, atol=1e-13)

@@ -12,12 +12,16 @@ import sympy
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from dispersion.symbolic.mass import MASS_VARIANTS
 from dispersion.symbolic.plate import dynamic_stiffness, mirror_bases, plate_patch
 from dispersion.waves import discrete_branches as db
 from dispersion.waves import pencil_polynomial as pp
 from mp_pencil import mp_frequencies
 
-MASSES = ("consistent", "lumped", "singular", "singular-lumped")
+#: Every mass rule the toolkit has (the polynomial path must serve any of them).
+MASSES = MASS_VARIANTS
+#: The four masses of issue 17's 72 configurations.
+ISSUE_MASSES = ("consistent", "lumped", "singular", "singular-lumped")
 
 
 def _sorted_finite(br, i):
@@ -171,7 +175,7 @@ def test_failing_ball_solver_is_reported_not_raised(monkeypatch):
 
 CONFIGS = [(p, n, mass, nu, model)
            for p, n in ((1, 3), (2, 3), (3, 6))
-           for mass in MASSES
+           for mass in ISSUE_MASSES
            for nu in (-0.99, 0.3, 0.4999)
            for model in ("x-exact", "bloch")]
 
@@ -188,7 +192,7 @@ def _never_raises(p, n, mass, nu, model):
 
 
 @pytest.mark.parametrize("p, n, mass, nu, model",
-                         [c for c in CONFIGS if c[0] <= 2 and c[3] != 0.3][::3])
+                         [c for c in CONFIGS if c[0] <= 2 and c[3] != 0.3][::5])
 def test_never_raises_sample(p, n, mass, nu, model):
     _never_raises(p, n, mass, nu, model)
 

@@ -1,6 +1,6 @@
 """Claims about explicit dynamics: the critical time step and the fully discrete series.
 
-Two claim kinds join those of :mod:`dispersion.claims.claims` (same file, same keys for the
+Two claim kinds join those of :mod:`dispersion.claims` (same file, same keys for the
 model and the mass)::
 
     [[claim]]
@@ -46,17 +46,17 @@ __all__ = ["KINDS", "KEYS", "parse", "task", "run", "verdict"]
 
 KINDS = ("critical_step", "fully_discrete_series")
 KEYS = {"ratio", "omega_max", "scheme"}
-_KEY = re.compile(r"\s*kappa\^(\d+)\s*(?:\*\s*tau\^(\d+))?\s*")
+_KEY = re.compile(r"\s*kappa\^(\d{1,3})\s*(?:\*\s*tau\^(\d{1,3}))?\s*")
 _BAR = "bar"
 
 
-def parse(entry: dict, own: dict, common: dict, fail, model_of, parse_expr):
-    """The :class:`~dispersion.claims.claims.Claim` of an explicit-dynamics claim.
+def parse(entry: dict, own: dict, common: dict, fail, model_of, read_expr):
+    """The :class:`~dispersion.claims.schema.Claim` of an explicit-dynamics claim.
 
-    ``model_of(entry, own, fail)`` builds the patch model, ``parse_expr(text, key, syntax,
+    ``model_of(entry, own, fail)`` builds the patch model, ``read_expr(text, key, syntax,
     fail)`` reads an expression (the claims reader): one reader, one model builder.
     """
-    from dispersion.claims.claims import Claim, Model
+    from dispersion.claims.schema import Claim, Model
     from dispersion.symbolic.mass_rule import get_rule
 
     kind = common["kind"]
@@ -87,8 +87,8 @@ def parse(entry: dict, own: dict, common: dict, fail, model_of, parse_expr):
             fail("model", f"a {kind} claim needs a discretisation: a patch or 'bar'")
     common = dict(common, model=model)
     if kind == "critical_step":
-        return _step_claim(entry, common, fail, parse_expr, Claim)
-    return _series_claim(entry, common, fail, parse_expr, Claim)
+        return _step_claim(entry, common, fail, read_expr, Claim)
+    return _series_claim(entry, common, fail, read_expr, Claim)
 
 
 def _number(entry, key, fail, lo=0.0):
@@ -98,7 +98,7 @@ def _number(entry, key, fail, lo=0.0):
     return float(v)
 
 
-def _step_claim(entry, common, fail, parse_expr, Claim):
+def _step_claim(entry, common, fail, read_expr, Claim):
     given = [k for k in ("ratio", "omega_max") if k in entry]
     if len(given) != 1:
         fail("ratio", "a critical_step claim states exactly one of ratio, omega_max")
@@ -111,7 +111,7 @@ def _step_claim(entry, common, fail, parse_expr, Claim):
     elif "nu" in entry:
         fail("nu", "not a setting of the periodic bar")
     key = given[0]
-    value = parse_expr(entry[key], key, "sympy", fail) if key == "omega_max" else \
+    value = read_expr(entry[key], key, "sympy", fail) if key == "omega_max" else \
         sympy.Float(repr(_number(entry, key, fail)), 17)
     if not value.is_number or not value.is_positive:
         fail(key, f"must be a positive number, got {entry[key]!r}")
@@ -119,7 +119,7 @@ def _step_claim(entry, common, fail, parse_expr, Claim):
                  written=f"{key} = {entry[key]}")
 
 
-def _series_claim(entry, common, fail, parse_expr, Claim):
+def _series_claim(entry, common, fail, read_expr, Claim):
     from dispersion.waves.fully_discrete import SCHEMES
 
     scheme = entry.get("scheme", "central")
@@ -139,10 +139,10 @@ def _series_claim(entry, common, fail, parse_expr, Claim):
         i, j = int(m.group(1)), int(m.group(2) or 0)
         if i % 2 or j % 2:
             fail(str(key), "powers of kappa and tau are even in Omega^2")
-        printed.append(((i, j), parse_expr(text, str(key), syntax, fail)))
+        printed.append(((i, j), read_expr(text, str(key), syntax, fail)))
     nu = entry.get("nu")
     if nu is not None:
-        nu = parse_expr(nu, "nu", "sympy", fail)
+        nu = read_expr(nu, "nu", "sympy", fail)
         if not (nu.is_Rational and -1 < nu < sympy.Rational(1, 2)):
             fail("nu", f"must be a rational number in (-1, 0.5), got {entry['nu']!r}")
     written = " + ".join(f"({c})*kappa^{i}*tau^{j}" for (i, j), c in printed)
@@ -208,6 +208,6 @@ def verdict(claim, derived) -> tuple[bool, str, str, str]:
     for (i, j), c in claim.printed[1:]:
         d = derived.get((i, j), sympy.Integer(0))
         shown.append(f"({d})*kappa^{i}*tau^{j}")
-        if sympy.cancel(sympy.sympify(c) - d) != 0:
+        if sympy.cancel(sympy.sympify(c, strict=True) - d) != 0:
             wrong.append(f"kappa^{i}*tau^{j}: printed {c}, derived {d}")
     return not wrong, claim.written, " + ".join(shown), "; ".join(wrong)

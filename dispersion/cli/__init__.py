@@ -27,16 +27,11 @@ _SUBCOMMANDS = ("series", "branches", "ring", "impact", "verify", "reproduce", "
 
 
 def number(name: str, convert=float):
-    """argparse ``type`` that parses a number with ``convert`` and names ``name`` on failure.
+    """argparse ``type`` of a number option; see :mod:`dispersion.cli.options` (one grammar
+    for every command: ``0.3``, ``3/10``, ``1e-3``, bounded digits)."""
+    from dispersion.cli.options import number as typed
 
-    Range checks stay with the API (``InputError``), so the CLI and Python callers agree.
-    """
-    def parse(text):
-        try:
-            return convert(text)
-        except (TypeError, ValueError):  # sympy.SympifyError is a ValueError
-            raise argparse.ArgumentTypeError(f"{name} must be a number, got {text!r}") from None
-    return parse
+    return typed(name, convert)
 
 
 class Terminated(KeyboardInterrupt):
@@ -104,7 +99,12 @@ def main(argv: list[str] | None = None) -> int:
     words = sys.argv[1:] if argv is None else list(argv)
     chosen = next((w for w in words if not w.startswith("-")), None)
     parser = build_parser(chosen if chosen in _SUBCOMMANDS else None)
-    args = parser.parse_args(words)
+    try:
+        args = parser.parse_args(words)
+    except SystemExit as exc:  # argparse's one-line error: a status, like InputError's
+        if exc.code in (0, None):  # --help: argparse's own exit
+            raise
+        return exc.code if isinstance(exc.code, int) else 2
     if args.version:
         print(f"dispersion {version()}")
         return 0

@@ -27,10 +27,10 @@ from dispersion import defaults
 from dispersion.errors import InputError
 from dispersion.io import check_output_file, unit_target, write_bytes, write_text, write_unit
 from dispersion.symbolic.mass import CONTACT_SETS, MASS_VARIANTS
-from dispersion.symbolic.plate import MODELS, N_MAX, P_MAX
+from dispersion.symbolic.plate import MODELS, N_MAX, P_MAX, R_RANGE
 from dispersion.waves.exact_branches import check_samples
 from dispersion.cli import frequency as _frequency
-from dispersion.cli import number
+from dispersion.cli.options import integer, number, real
 
 #: Up-front bounds (issue 11); the exact tracer's scan is bounded by
 #: :data:`dispersion.waves.exact_branches.MAX_SAMPLES` (count * (omega-max / 0.05 + 1)).
@@ -45,17 +45,6 @@ MAX_DISCRETE_WORK = 2 * 400 * 24**3
 FIGURE_SUFFIXES = (".png", ".pdf", ".svg")
 
 
-def integer(name: str, lo: int, hi: int):
-    """argparse ``type``: an integer; on a parse failure the message states ``[lo, hi]``."""
-    def parse(text):
-        try:
-            return int(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(
-                f"{name} must be an integer in [{lo}, {hi}], got {text!r}") from None
-    return parse
-
-
 def register(sub) -> None:
     p = sub.add_parser(
         "branches", help="dispersion branches: discrete patch and Rayleigh-Lamb",
@@ -68,12 +57,12 @@ def register(sub) -> None:
                    help="a user mass rule: TOML table of redistribution weights (repeatable)")
     p.add_argument("--contact", choices=CONTACT_SETS, default=None,
                    help=f"contact set of a singular mass (default: {defaults.CONTACT})")
-    p.add_argument("--gamma-s", type=number("gamma_s"), default=None,
+    p.add_argument("--gamma-s", type=real("gamma_s", 0, 1), default=None,
                    help="share of a contact shape function sent to the second neighbour, "
                         f"singular masses only (default: {defaults.GAMMA_S})")
     p.add_argument("--model", choices=MODELS, default=None,
                    help=f"patch model along x (default: {defaults.MODEL})")
-    p.add_argument("--r", type=number("r"), default=None,
+    p.add_argument("--r", type=real("r", *R_RANGE), default=None,
                    help=f"aspect ratio b/h of the Bloch model, dimensionless, in [1/1000, "
                         f"1000] (default: {defaults.R}; Figure 2's caption is 1/2)")
     p.add_argument("--p", type=integer("degree p", 1, P_MAX), default=defaults.P,
@@ -83,22 +72,23 @@ def register(sub) -> None:
                    help=f"control points through the thickness, in [p + 1, {N_MAX}], and "
                         f"count * (mass variants) * n^3 <= {MAX_DISCRETE_WORK} "
                         f"(default: {defaults.N})")
-    p.add_argument("--nu", type=number("nu"), default=None,
+    p.add_argument("--nu", type=real("nu", -1, 0.5, lo_open=True, hi_open=True), default=None,
                    help=f"Poisson's ratio (default: {defaults.NU_FLOAT}, or the material's)")
-    p.add_argument("--kappa-min", type=number("kappa-min"), default=None,
+    p.add_argument("--kappa-min", type=real("kappa-min", 0), default=None,
                    help="smallest kappa = kh, dimensionless (default: 0)")
-    p.add_argument("--kappa-max", type=number("kappa-max"), default=None,
+    p.add_argument("--kappa-max", type=real("kappa-max", 0), default=None,
                    help="largest kappa = kh, dimensionless (default: 8)")
     p.add_argument("--count", type=integer("count", 2, MAX_COUNT), default=None,
                    help=f"number of kappa points, in [2, {MAX_COUNT}] (default: 400)")
-    p.add_argument("--omega-max", type=number("omega-max"), default=None,
+    p.add_argument("--omega-max", type=real("omega-max", 0, MAX_OMEGA, lo_open=True),
+                   default=None,
                    help=f"largest Omega = omega h / c_T, in (0, {MAX_OMEGA:g}] (default: 8)")
     p.add_argument("--material", choices=sorted(_materials()),
                    help="material for physical units (bulk speeds and density of the CRC "
                         "handbook row in dispersion.waves.materials)")
-    p.add_argument("--cl", type=number("cl"), help="longitudinal speed c_L in m/s")
-    p.add_argument("--ct", type=number("ct"), help="shear speed c_T in m/s")
-    p.add_argument("--thickness", type=number("thickness"),
+    p.add_argument("--cl", type=real("cl"), help="longitudinal speed c_L in m/s")
+    p.add_argument("--ct", type=real("ct"), help="shear speed c_T in m/s")
+    p.add_argument("--thickness", type=real("thickness"),
                    help="plate thickness d = 2h in mm (with a material: physical columns)")
     p.add_argument("--scheme", choices=_schemes(), default=None,
                    help="time integrator for fully discrete branches (default: none, "

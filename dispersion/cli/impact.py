@@ -12,7 +12,7 @@ import sys
 
 from dispersion.errors import InputError
 from dispersion.symbolic.mass import MASS_VARIANTS
-from dispersion.cli import number
+from dispersion.cli.options import number
 
 SCENES = ("signorini-1d",)
 FIGURE_SUFFIXES = (".png", ".pdf", ".svg")

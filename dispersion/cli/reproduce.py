@@ -22,7 +22,7 @@ import argparse
 import shlex
 from pathlib import Path
 
-from dispersion.cli import number
+from dispersion.cli.options import number
 from dispersion.report import SECTIONS
 from dispersion.report.run import (DEFAULT_OUT, DEFAULT_REFERENCE, MAX_JOBS_PER_CPU,
                                    measure_sections, render_folder, reproduce)

@@ -52,7 +52,7 @@ def register(sub) -> None:
 
 def _material(args):
     from dispersion.waves.timestep import MATERIALS
-    from dispersion.waves.units import Material
+    from dispersion.waves.materials import Material
 
     if args.material and (args.cl is not None or args.ct is not None):
         raise InputError("give --material or --cl/--ct, not both")

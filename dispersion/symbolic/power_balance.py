@@ -45,6 +45,7 @@ from dispersion.errors import DispersionError, InputError, check_nu, check_posit
 __all__ = [
     "BRANCHES", "MAX_ORDER", "MAX_WORK", "check_request", "discrete_series",
     "discrete_series_raw", "format_coefficient", "solve_branch", "substitute_raw",
+    "first_difference",
 ]
 
 BRANCHES = {"S0": ("S", 1), "A0": ("A", 2)}
@@ -415,3 +416,24 @@ def discrete_series(
     raw = raws[branch]
     symbols = (sympy.Symbol("nu"), sympy.Symbol("r", positive=True))[: len(params)]
     return _substitute_nu({k: _to_expr(a, b, symbols, factor) for k, a, b in raw}, nu)
+
+
+def first_difference(a: dict, b: dict, upto: int | None = None) -> int | None:
+    """Lowest power of kappa at which two series ``{power: coefficient}`` differ (None: none).
+
+    Exact: the difference of the coefficients is cancelled over QQ(nu[, r]). ``upto`` ignores
+    higher powers (a series derived further than asked).
+
+    >>> from dispersion.waves.exact_series import exact_series
+    >>> first_difference(discrete_series("S0", 8, model="bloch", r=2), exact_series("S0", 8))
+    6
+    """
+    import sympy
+
+    for k in sorted(set(a) | set(b)):
+        if upto is not None and k > upto:
+            break
+        if sympy.cancel(sympy.together(sympy.sympify(a.get(k, 0), strict=True)
+                                       - sympy.sympify(b.get(k, 0), strict=True))) != 0:
+            return k
+    return None

@@ -114,8 +114,9 @@ def _cheb(L: int, kind: str):
     return b
 
 
-def _x_polys(model: str, p: int, r: Fraction | None, lumped: bool):
-    """``m, d, s2, mx`` as flint fmpq_poly in u (see the module docstring)."""
+def _x_polys(model: str, p: int, r: Fraction | None, x_mass):
+    """``m, d, s2, mx`` as flint fmpq_poly in u (see the module docstring); ``x_mass`` is the
+    patch's ``((L, c_L), ...)`` with :math:`m_x = \\sum_L c_L \\cos L\\theta` (Bloch)."""
     import flint
 
     from dispersion.symbolic.plate import bloch_coefficients
@@ -127,16 +128,14 @@ def _x_polys(model: str, p: int, r: Fraction | None, lumped: bool):
     c = bloch_coefficients(p)
     q = flint.fmpq(r.numerator, r.denominator)
 
-    def fq(v):
-        return flint.fmpq(int(v.p), int(v.q))
-
-    m = sum((fq(v) * _cheb(abs(L), "T") for L, v in c["00"].items()), flint.fmpq_poly([0]))
-    d = sum((fq(v) * _cheb(abs(L), "T") for L, v in c["11"].items()), flint.fmpq_poly([0])) \
+    m = sum((_q(v) * _cheb(abs(L), "T") for L, v in c["00"].items()), flint.fmpq_poly([0]))
+    d = sum((_q(v) * _cheb(abs(L), "T") for L, v in c["11"].items()), flint.fmpq_poly([0])) \
         / (q * q)
-    sh = sum((fq(c["10"][L]) * _cheb(L - 1, "U") for L in range(1, p + 1)),
+    sh = sum((_q(c["10"][L]) * _cheb(L - 1, "U") for L in range(1, p + 1)),
              flint.fmpq_poly([0])) * (-2) / q
     s2 = u * (2 - u) * sh * sh
-    return {"m": m, "d": d, "s2": s2, "mx": one if lumped else m}
+    mx = sum((_q(v) * _cheb(abs(L), "T") for L, v in x_mass), flint.fmpq_poly([0]))
+    return {"m": m, "d": d, "s2": s2, "mx": mx}
 
 
 def _q(v):
@@ -154,7 +153,7 @@ def _fmpq_mat(rows):
 
 @functools.lru_cache(maxsize=64)
 def _build(key):
-    (p, n, model, r, my, lumped, nu, basis, parity) = key
+    (p, n, model, r, my, x_mass, nu, basis, parity) = key
     import flint
     import sympy
 
@@ -166,7 +165,7 @@ def _build(key):
     M0 = sympy.diag(My, My)
     nuq = sympy.Rational(nu.numerator, nu.denominator)
     mat = lame(nuq)
-    xp = _x_polys(model, p, r, lumped)
+    xp = _x_polys(model, p, r, x_mass)
     E = sympy.eye(n2) if basis is None else sympy.Matrix(len(basis), len(basis[0]),
                                                          [v for row in basis for v in row])
     nb = E.shape[1]
@@ -272,7 +271,8 @@ def pencil_polynomial(patch, nu: float, basis=None, parity: bool = False) -> Pen
     if nb > MAX_BLOCK:
         raise InputError(f"pencil block of {nb} rows is larger than MAX_BLOCK = {MAX_BLOCK}")
     r = None if patch.model != "bloch" else Fraction(str(patch.r))
-    key = (patch.p, patch.n, patch.model, r, tuple(patch.My), patch.x_lumped,
+    x_mass = ((0, 1),) if patch.model != "bloch" or patch.x_lumped else tuple(patch.x_mass)
+    key = (patch.p, patch.n, patch.model, r, tuple(patch.My), x_mass,
            Fraction(repr(float(nu))),
            None if basis is None else tuple(tuple(int(v) for v in basis.row(i))
                                             for i in range(basis.shape[0])), bool(parity))

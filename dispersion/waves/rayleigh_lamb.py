@@ -640,7 +640,7 @@ def scaled_slope(kind: str, kappa, Omega, nu: float):
     kappa, Omega = np.broadcast_arrays(np.asarray(kappa, dtype=float),
                                        np.asarray(Omega, dtype=float))
     hk, hw = 1e-30 * kappa, 1e-30 * Omega
-    Rk = scaled_frequency_function(kind, kappa + 1j * hk, Omega + 0j, nu).imag / hk
-    Rw = scaled_frequency_function(kind, kappa + 0j, Omega + 1j * hw, nu).imag / hw
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore"):  # h underflows at kappa ~ 1e-300
+        Rk = scaled_frequency_function(kind, kappa + 1j * hk, Omega + 0j, nu).imag / hk
+        Rw = scaled_frequency_function(kind, kappa + 0j, Omega + 1j * hw, nu).imag / hw
         return -Rk / Rw

@@ -49,16 +49,12 @@ import sympy
 
 from dispersion.errors import InputError, check_positive, check_positive_int
 from dispersion.symbolic.mass_rule import get_rule, x_mass_coefficients
-from dispersion.waves.units import MATERIALS as _UNIT_MATERIALS
-from dispersion.waves.units import Material, material_from_moduli
+from dispersion.waves.materials import MATERIALS, Material
 
-__all__ = ["STEEL", "MATERIALS", "MODELS", "EXACT_MAX_DOFS", "MAX_N", "certified_omega_max", "CriticalStep", "bar_omega_squared", "float_pencil",
+__all__ = ["MATERIALS", "MODELS", "EXACT_MAX_DOFS", "MAX_N", "certified_omega_max",
+           "CriticalStep", "bar_omega_squared", "float_pencil",
            "bar_omega_max", "patch_omega_max", "critical_step", "matrix_critical_step"]
 
-#: Structural steel: E = 210 GPa, nu = 0.3 (EN 1993-1-1, 3.2.6), rho = 7850 kg/m^3
-#: (EN 1991-1-1, table A.4). Kept here until the material table of ``waves`` has it.
-STEEL = material_from_moduli(210e9, 0.3, 7850.0, "steel")
-MATERIALS = {**{"steel": STEEL}, **_UNIT_MATERIALS}
 MODELS = ("plate", "bar")
 
 _z = sympy.Symbol("z")
@@ -165,8 +161,11 @@ class CriticalStep:
                        f"points through the thickness, element length h = {self.h:g} m, "
                        f"aspect ratio r = b/H = {self.r}, c_T = {self.wave_speed:g} m/s")
             unit = "omega_max H / c_T"
-        exact = "" if self.omega_max_exact is None or str(self.omega_max_exact) == \
-            f"{self.omega_max:.12g}" else f" = {self.omega_max_exact}"
+        shown = str(self.omega_max_exact)
+        # a closed form only where it reads better than the number (a float nu rationalises
+        # to long integers)
+        exact = "" if self.omega_max_exact is None or shown == f"{self.omega_max:.12g}" \
+            or len(shown) > 40 else f" = {shown}"
         mat = f", material {self.material}" if self.material else ""
         lines = [
             f"mass {self.mass}, p = {self.p}{mat}; {setting}",

@@ -43,7 +43,7 @@ _MODULES = {
     "exact_series": "waves.exact_series", "branch_study": "studies.branch_study",
     "paper_studies": "studies.paper_studies", "series_race": "studies.series_race",
     "plotting": "plotting", "report": "report", "branch_views": "waves.branch_views",
-    "table": "table",
+    "table": "table", "branch_set": "waves.branch_set",
     "materials": "waves.materials", "frequency": "waves.frequency", "sh": "waves.sh",
     "mode_table": "waves.mode_table",
     "mass_rule": "symbolic.mass_rule", "timestep": "waves.timestep",

@@ -63,7 +63,7 @@ def test_exact_only_csv_lists_only_what_applies(capsys):
                  "--omega-max", "2", "--no-progress"]) == 0
     header = [line for line in capsys.readouterr().out.splitlines() if line.startswith("#")]
     keys = {line[2:].split(":")[0] for line in header}
-    assert keys == {"nu", "kappa", "omega_max", "dispersion-iga"}, keys
+    assert keys == {"nu", "kappa", "omega_max", "dispersion-iga", "empty cell"}, keys
 
 
 # --------------------------------------------------------------------------- formats

@@ -459,7 +459,9 @@ def test_issue_reproduce_command_with_look_alikes(tmp_path, monkeypatch, capsys)
     (tmp_path / ".reports.tmp-mine").mkdir()
     (tmp_path / ".reports.old-file").write_text("a file")
     before = snapshot(tmp_path)
-    args = ["reproduce", "--quick", "--sections", "coefficients", "--out", "reports", "--jobs", "1"]
+    # writing reports/ itself is asked for with --update-reference (issue 19)
+    args = ["reproduce", "--quick", "--sections", "coefficients", "--update-reference", "--jobs",
+            "1"]
     assert main(args) == 0
     after = snapshot(tmp_path)
     assert {k: v for k, v in after.items() if not k.startswith("reports")} == before

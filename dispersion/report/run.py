@@ -199,6 +199,8 @@ def reproduce(
         if readme is None and (reference.absolute().parent / "README.md").is_file():
             readme = reference.absolute().parent / "README.md"
     else:
+        if out is not None and not os.fspath(out).strip():
+            check_target(os.fspath(out))  # '' names no folder (Path('') would be '.')
         out = Path(DEFAULT_OUT if out is None else out)
         if _same(out, reference):
             raise InputError(f"--out {out} is the reference folder; a run that replaces the "

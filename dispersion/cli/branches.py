@@ -404,13 +404,14 @@ def run(args) -> int:
     elif args.figure:
         from dispersion.plotting.branches import figure2, plot_exact
 
-        model = args.model + (f", r = {s['r']:g}" if args.model == "bloch" else "")
         if results:
             from dispersion.studies.branch_study import figure2_data
 
             data, _ = figure2_data(nu, kappa, args.omega_max, patches, exact=exact,
                                    velocities=vel, discrete=dict(results))
-            fig = figure2(data, title=f"nu = {nu:g}, {model}, p = {args.p}, n = {args.n}")
+            specs = [pt.spec for pt in patches.values()]
+            fig = figure2(data, title=f"nu = {nu:g}, {specs[0].geometry_title()}; "
+                                      + ", ".join(sp.mass_title() for sp in specs))
         else:
             ax = plot_exact(kappa, exact.omega, args.omega_max)
             ax.set_title(f"Rayleigh-Lamb, nu = {nu:g}", fontsize="small")

@@ -57,7 +57,7 @@ def register(sub) -> None:
                        description="Quarter ring (one quadratic NURBS patch) bouncing on a "
                                    "rigid frictionless plane; reconstructed scenario (see "
                                    "dispersion.contact.scenario). Every default below is the "
-                                   "default scene.")
+                                   "default scene. " + _stability_note())
     p.add_argument("--mass", choices=MASS_VARIANTS, default="singular",
                    help="mass variant (default: singular)")
     p.add_argument("--scheme", choices=("kane", "standard", "explicit"), default="kane",
@@ -92,6 +92,12 @@ def scenario_from(args) -> Scenario:
     return replace(DEFAULT, **changes).with_level(args.level)
 
 
+def _stability_note() -> str:
+    from dispersion.contact.energy_balance import STABILITY_NOTE
+
+    return STABILITY_NOTE
+
+
 def run(args) -> int:
     from dispersion.contact.simulate import simulate_ring
     from dispersion.io import check_output_dir
@@ -110,6 +116,9 @@ def run(args) -> int:
     finally:
         if bar is not None:
             bar.close()
+    if res.summary.get("energy_flag"):
+        print(f"warning: ring ({args.mass} mass, {args.scheme}): {res.summary['energy_flag']}; "
+              "the figures of this run are not a result", file=sys.stderr)
     if out is not None:
         import io
 

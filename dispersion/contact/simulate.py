@@ -22,6 +22,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from dispersion.errors import InputError
+from dispersion.contact.energy_balance import energy_balance
 from dispersion.contact.material import StVenantKirchhoff
 from dispersion.contact.newmark import ContactProblem, Newmark, integrate
 from dispersion.contact.nurbs import RingPatch, quarter_ring
@@ -117,7 +118,9 @@ def simulate_ring(sc: Scenario | None = None, mass: str = "singular", scheme: st
     force), ``contact_events`` (separate contact intervals), ``final_rotation_deg`` (rotation
     of the chord between the arc ends), ``in_contact_at_end``, ``newton_iterations_max``,
     ``free_flight_energy_spread_percent`` (max - min of the total energy after the last
-    contact; ``None`` when the run ends in contact).
+    contact; ``None`` when the run ends in contact), and the energy balance of
+    :func:`~.energy_balance.energy_balance` (``energy_growth_percent``,
+    ``energy_growth_bound_percent``, ``energy_flag``: None or why the run is flagged).
     """
     sc = sc or Scenario()
     if not (np.isfinite(contact_threshold) and 0 < contact_threshold < 1):
@@ -176,5 +179,6 @@ def simulate_ring(sc: Scenario | None = None, mass: str = "singular", scheme: st
         "free_flight_energy_spread_percent":
             float(100 * np.ptp(after) / E0) if len(after) else None,
         "perturbation": perturbation, "seed": seed,
+        **energy_balance(arr["total"], scheme, mass).fields(),
     }
     return RingResult(sc, mass, scheme, series, summary)

@@ -20,6 +20,9 @@ Two measurements, one result (:class:`SeriesSpeed`, stored as JSON by
   the residual is the rms of the log misfit).
 
 Maxima runs only if it is installed (``shutil.which("maxima")``); otherwise the result says so.
+A peer run counts only if it succeeded (:func:`peer_failure`): a run that exits non-zero,
+prints an error, returns no coefficients or coefficients that differ from ours is stored as
+failed with its message, and no time, memory or ratio is kept for it.
 
 >>> fit_growth([3, 4, 6, 8], [1.0, 8 / 3.375, 8.0, 8 / 0.421875])["exponent"]
 3.0
@@ -42,8 +45,8 @@ from dispersion.errors import InputError
 
 __all__ = [
     "TIMEOUT", "TIMEOUT_MAX", "RacePoint", "ScalingPoint", "GrowthFit", "SeriesSpeed",
-    "fit_growth", "maxima_program", "measure", "parse_maxima_output", "race", "run_child",
-    "scaling",
+    "fit_growth", "maxima_program", "measure", "parse_maxima_output", "peer_failure", "race",
+    "run_child", "scaling",
 ]
 
 #: Default and largest ceiling (seconds) for one child process of the race.
@@ -65,6 +68,8 @@ class RacePoint:
     maxima_compute_s: float | None = None
     maxima_peak_mib: float | None = None
     agree: bool | None = None  # every coefficient equal (None: Maxima not run)
+    maxima_status: str | None = None  # "ok", "failed" or None (not run)
+    maxima_error: str | None = None  # why a failed peer run does not count
 
 
 @dataclass(frozen=True)
@@ -124,7 +129,8 @@ def parse_maxima_output(text: str) -> tuple[dict[str, dict[int, str]], float | N
 
 
 def run_child(cmd: list[str], timeout: float, cwd: str | None = None):
-    """Run ``cmd``; return ``(wall seconds, peak RSS MiB, stdout, exit status)``, None on timeout.
+    """Run ``cmd``; return ``(wall seconds, peak RSS MiB, stdout, exit status, stderr)``, None
+    on timeout.
 
     The peak memory is the child's own, read by GNU ``time -f %M`` (a forked child's own
     ``ru_maxrss`` starts at the parent's size, so the parent cannot measure it directly);
@@ -138,7 +144,7 @@ def run_child(cmd: list[str], timeout: float, cwd: str | None = None):
         full = [gnu_time, "-f", "%M", "-o", str(rss_file), *cmd] if gnu_time else cmd
         start = time.perf_counter()
         try:
-            proc = subprocess.run(full, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
+            proc = subprocess.run(full, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                                   text=True, cwd=cwd, timeout=timeout, check=False)
         except subprocess.TimeoutExpired:
             return None
@@ -148,7 +154,7 @@ def run_child(cmd: list[str], timeout: float, cwd: str | None = None):
             text = rss_file.read_text().strip().splitlines()
             if text and text[-1].isdigit():
                 peak = int(text[-1]) / 1024.0
-    return wall, peak, proc.stdout, proc.returncode
+    return wall, peak, proc.stdout, proc.returncode, proc.stderr
 
 
 @functools.lru_cache(maxsize=1)
@@ -197,6 +203,42 @@ def _agree(ours: dict, theirs: dict) -> bool:
     return True
 
 
+#: Lines by which Maxima (or its Lisp) reports an error; its batch mode may still exit 0.
+_PEER_ERROR = re.compile(
+    r"(-- an error|error|failed to load|could not find|not found|undefined|unbound"
+    r"|Maxima encountered a Lisp)", re.IGNORECASE)
+
+
+def peer_failure(returncode: int, stdout: str, stderr: str, coeffs: dict,
+                 ours: dict) -> str | None:
+    """Why a peer run does not count (None: it succeeded).
+
+    It fails if it exited non-zero, printed an error line (on either stream), returned no
+    coefficient, or returned coefficients that differ from ``ours`` (compared exactly at two
+    rational values of nu).
+
+    >>> peer_failure(0, "COEF S0 2 -2/(nu-1)", "", {"S0": {2: "-2/(nu-1)"}},
+    ...              {"S0": {2: "-2/(nu - 1)"}}) is None
+    True
+    >>> peer_failure(0, "loadfile: failed to load stringproc", "", {}, {"S0": {2: "2"}})
+    'printed an error: loadfile: failed to load stringproc'
+    """
+    lines = [ln.strip() for ln in (stdout + "\n" + stderr).splitlines()
+             if ln.strip() and not _COEF.match(ln.strip())]
+    errors = [ln for ln in lines if _PEER_ERROR.search(ln)]
+    if returncode != 0:
+        return f"exit status {returncode}" + (f": {errors[0][:200]}" if errors else "")
+    if errors:
+        return f"printed an error: {errors[0][:200]}"
+    if not any(coeffs.values()):
+        return "returned no coefficients" + (f" (last line: {lines[-1][:200]})" if lines else "")
+    try:
+        same = _agree(ours, coeffs)
+    except (InputError, ZeroDivisionError, SyntaxError) as exc:
+        return f"returned an unreadable coefficient ({exc})"
+    return None if same else "its coefficients differ from ours"
+
+
 def _maxima_version(exe: str) -> str:
     try:
         out = subprocess.run([exe, "--version"], capture_output=True, text=True, timeout=30)
@@ -231,11 +273,16 @@ def race(orders, timeout: float = TIMEOUT, maxima: str | None = "maxima",
             with _batch_file(order, program) as (folder, name):
                 mrun = run_child([exe, "--very-quiet", "-b", name], timeout, cwd=folder)
             if mrun is None:
-                notes.append(f"Maxima at kappa^{order}: stopped after {timeout:g} s")
+                why = f"stopped after {timeout:g} s"
             else:
                 coeffs, seconds = parse_maxima_output(mrun[2])
+                why = peer_failure(mrun[3], mrun[2], mrun[4], coeffs, ours)
+            if why is None:
                 point.update(maxima_process_s=mrun[0], maxima_compute_s=seconds,
-                             maxima_peak_mib=mrun[1], agree=_agree(ours, coeffs))
+                             maxima_peak_mib=mrun[1], agree=True, maxima_status="ok")
+            else:  # a failed peer run is not timed: no time, memory or ratio is kept
+                notes.append(f"Maxima at kappa^{order} failed, not timed: {why}")
+                point.update(agree=False, maxima_status="failed", maxima_error=why)
         points.append(RacePoint(**point))
     return tuple(points)
 

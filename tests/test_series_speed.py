@@ -146,7 +146,7 @@ def test_a_failing_peer_is_reported_and_not_timed(tmp_path):
 
 def test_bench_with_a_failing_maxima_prints_no_ratio(tmp_path, monkeypatch, capsys):
     stub = _stub_maxima(tmp_path, _STRINGPROC_ERROR)
-    monkeypatch.setenv("PATH", f"{tmp_path}:{__import__('os').environ['PATH']}")
+    monkeypatch.setenv("PATH", f"{stub.parent}:{__import__('os').environ['PATH']}")
     # the scaling table is not what this test is about: keep it out (it costs seconds)
     monkeypatch.setattr(S, "scaling", lambda grid, **kw: ((), ()))
     assert main(["bench", "--quick", "--format", "text"]) == 0
@@ -161,6 +161,7 @@ def test_bench_with_a_failing_maxima_prints_no_ratio(tmp_path, monkeypatch, caps
     assert "Maxima/ours is" not in text and "x;" not in text
 
 
+@pytest.mark.slow  # one Maxima process (about 1 s); the default run races it at kappa^8
 @needs_maxima
 def test_peer_program_returns_the_closed_form_coefficients():
     # runs the shipped Maxima program once (kappa^4): eq 14's leading S0 term is the plate

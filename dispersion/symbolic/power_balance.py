@@ -44,7 +44,8 @@ from dispersion.errors import DispersionError, InputError, check_nu, check_posit
 
 __all__ = [
     "BRANCHES", "MAX_ORDER", "MAX_WORK", "check_request", "discrete_series",
-    "discrete_series_raw", "format_coefficient", "solve_branch", "substitute_raw",
+    "discrete_series_raw", "format_coefficient", "leading_difference", "solve_branch",
+    "substitute_raw",
 ]
 
 BRANCHES = {"S0": ("S", 1), "A0": ("A", 2)}
@@ -101,6 +102,31 @@ def check_request(branch: str, order, exact: bool, n: int | None = None) -> tupl
         raise InputError(f"control points n must satisfy (2n)^2 * order <= {MAX_WORK} "
                          f"(bounded time and memory), got n = {n}, order = {order}")
     return kind, sigma, order
+
+
+def leading_difference(a: dict, b: dict) -> int | None:
+    """The lowest power of kappa at which the series ``a`` and ``b`` differ (None: none).
+
+    ``a``, ``b`` map powers to coefficients: numbers (int, Fraction, flint, float) or sympy
+    expressions; compared exactly (sympy expressions by simplifying their difference). The
+    order of accuracy of a discrete branch is ``leading_difference(discrete, exact)``.
+
+    >>> leading_difference({2: 2, 4: Fraction(1, 3)}, {2: 2, 4: Fraction(1, 3), 6: 1})
+    6
+    >>> import sympy; nu = sympy.Symbol("nu")
+    >>> leading_difference({2: (1 - nu**2) / (1 + nu)}, {2: 1 - nu}) is None
+    True
+    """
+    for k in sorted(set(a) | set(b)):
+        x, y = a.get(k, 0), b.get(k, 0)
+        if hasattr(x, "free_symbols") or hasattr(y, "free_symbols"):
+            import sympy
+
+            if sympy.simplify(sympy.sympify(x) - sympy.sympify(y)) != 0:
+                return k
+        elif x != y:
+            return k
+    return None
 
 
 def _to_expr(num, den, symbols: tuple, factor: bool = True):

@@ -16,7 +16,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from dispersion.defaults import GAMMA_S, NU_FLOAT
+from dispersion.defaults import GAMMA_S_FLOAT, NU_FLOAT
 from dispersion.errors import InputError, check_memory, check_nu, check_positive, check_positive_int
 
 __all__ = ["MAX_ELEMENTS", "MAX_STEPS", "Scenario"]
@@ -99,7 +99,7 @@ class Scenario:
     t_end: float = 360.0
     n_xi_elements: int = 16
     n_eta_elements: int = 2
-    gamma_s: float = float(GAMMA_S)
+    gamma_s: float = GAMMA_S_FLOAT
 
     def __post_init__(self):
         for name in ("r_inner", "r_outer", "rho", "v0", "v0_over_cT", "dt", "t_end"):

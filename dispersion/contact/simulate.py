@@ -24,7 +24,7 @@ import scipy.sparse as sp
 from dispersion.errors import InputError
 from dispersion.contact.energy_balance import energy_balance
 from dispersion.contact.material import StVenantKirchhoff
-from dispersion.contact.newmark import ContactProblem, Newmark, integrate
+from dispersion.contact.newmark import RING_SCHEMES, ContactProblem, integrate, newmark_for
 from dispersion.contact.nurbs import RingPatch, quarter_ring
 from dispersion.contact.problem import Plane, patch_problem
 from dispersion.contact.scenario import Scenario
@@ -32,19 +32,7 @@ from dispersion.contact.scenario import Scenario
 __all__ = ["RING_SCHEMES", "RingResult", "Scenario", "newmark_for", "ring_patch", "ring_problem",
            "simulate_ring"]
 
-#: Time integrators by name: Kane's contact-modified Newmark, standard Newmark, explicit
-#: central differences (beta = 0, Kane's contact impulse).
-RING_SCHEMES = ("kane", "standard", "explicit")
 _SAMPLES_PER_ELEMENT = 8
-
-
-def newmark_for(scheme: str, **kwargs) -> Newmark:
-    """:class:`~.newmark.Newmark` of the scheme named ``scheme`` (see :data:`RING_SCHEMES`)."""
-    if scheme not in RING_SCHEMES:
-        raise InputError(f"scheme must be one of {', '.join(RING_SCHEMES)}; got {scheme!r}")
-    if scheme == "explicit":
-        return Newmark(beta=0.0, gamma=0.5, scheme="kane", **kwargs)
-    return Newmark(scheme=scheme, **kwargs)
 
 
 def ring_patch(sc: Scenario) -> RingPatch:

@@ -16,11 +16,14 @@ keep the translational mass; weights in [0, 1] keep the lumped form non-negative
 The paper's quadratic element (eqs 2-4) with contact at node 3 sends :math:`\\gamma_s` of
 :math:`N_3` to the far node 1 and :math:`1-\\gamma_s` to the neighbour node 2:
 
+>>> import sympy
 >>> R = redistribution_matrix(3, contact_weights(3, "top", sympy.Rational(1, 2)))
 >>> R.tolist()
 [[1, 0, 0], [0, 1, 0], [1/2, 1/2, 0]]
 
-Works on sympy matrices (exact) and on numpy / scipy.sparse arrays alike.
+Works on sympy matrices (exact) and on numpy / scipy.sparse arrays alike. sympy and numpy
+are imported where used: the numeric contact scenes read the variants and their weights
+without loading sympy.
 
 References
 ----------
@@ -29,14 +32,17 @@ finite element analysis of dynamic contact", eqs (1)-(4).
 """
 from __future__ import annotations
 
+import numbers
+import sys
 import warnings
 from collections.abc import Mapping
-
-import numpy as np
-import sympy
+from typing import TYPE_CHECKING
 
 from dispersion.errors import (IndefiniteMassWarning, InputError, as_real, check_choice,
                      check_positive_int, check_real_in_range)
+
+if TYPE_CHECKING:  # annotations only: sympy is imported where it is used
+    import sympy
 
 __all__ = [
     "MASS_VARIANTS",
@@ -95,7 +101,7 @@ def redistribution_matrix(
                                                    for ws in weights.values()):
         raise InputError("weights must be a mapping {contact index: {neighbour index: weight}}")
     indices = list(weights) + [j for ws in weights.values() for j in ws]
-    if any(isinstance(i, bool) or not isinstance(i, (int, np.integer)) for i in indices):
+    if any(isinstance(i, bool) or not isinstance(i, numbers.Integral) for i in indices):
         raise InputError(f"weight indices must be integers in [0, {n - 1}], got {indices}")
     for c, ws in weights.items():
         for j, w in ws.items():
@@ -107,6 +113,8 @@ def redistribution_matrix(
         raise InputError(f"contact indices must lie in [0, {n - 1}], got {sorted(contact)}")
     if len(contact) == n:
         raise InputError("at least one control point must stay out of the contact set")
+    import sympy
+
     R = sympy.eye(n)
     for c, ws in weights.items():
         if not ws:
@@ -133,10 +141,22 @@ def redistribution_matrix(
     return R
 
 
+def _is_sympy_matrix(M) -> bool:
+    """True for a sympy matrix; never imports sympy (a matrix of it means it is loaded)."""
+    sympy = sys.modules.get("sympy")
+    return sympy is not None and isinstance(M, sympy.MatrixBase)
+
+
 def row_sum_lump(M):
     """Diagonal matrix of row sums of ``M`` (sympy, numpy or scipy.sparse in, same kind out)."""
-    if isinstance(M, sympy.MatrixBase):
+    if _is_sympy_matrix(M):
+        import sympy
+
         return sympy.diag(*[sum(M.row(i)) for i in range(M.rows)])
+    import numpy as np
+
+    if "scipy.sparse" not in sys.modules:  # not loaded: M cannot be one of its matrices
+        return np.diag(np.asarray(M).sum(axis=1))
     import scipy.sparse as sp
 
     if sp.issparse(M):
@@ -150,6 +170,8 @@ def mass_variant(M, variant: str, R=None):
     ``"consistent"``: M; ``"lumped"``: row sums of M; ``"singular"``: R^T M R (eq 1 left);
     ``"singular-lumped"``: row sums of R^T M R (eq 1 right).
     """
+    import numpy as np
+
     check_choice("mass", variant, MASS_VARIANTS)
     shape = getattr(M, "shape", None)
     if shape is None or len(shape) != 2 or shape[0] != shape[1]:
@@ -163,13 +185,14 @@ def mass_variant(M, variant: str, R=None):
         return row_sum_lump(M)
     if R is None:
         raise InputError(f"mass variant {variant!r} needs a redistribution matrix R")
-    if isinstance(M, sympy.MatrixBase):
+    if _is_sympy_matrix(M):
+        import sympy
+
         R = sympy.Matrix(R)
         Mm = R.T * M * R
     else:
-        import scipy.sparse as sp
-
-        if not sp.issparse(R):
+        sp = sys.modules.get("scipy.sparse")
+        if sp is None or not sp.issparse(R):
             R = np.asarray(R, dtype=float)
         Mm = R.T @ M @ R
     return Mm if variant == "singular" else row_sum_lump(Mm)

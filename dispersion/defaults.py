@@ -23,11 +23,14 @@ reads a default does not import sympy.
 """
 from __future__ import annotations
 
-__all__ = ["P", "N", "MODEL", "R", "MASS", "CONTACT", "GAMMA_S", "GAMMA_S_FLOAT", "NU",  # noqa: F822
+__all__ = ["P", "N", "MODELS", "MODEL", "R", "MASS", "CONTACT", "GAMMA_S", "GAMMA_S_FLOAT", "NU",  # noqa: F822
            "NU_FLOAT", "FIGURE2_R"]  # GAMMA_S, NU, FIGURE2_R: module __getattr__
 
 P = 2
 N = 3
+#: The patch models along x (``MODEL`` is one of them); stated here so that the command line
+#: lists them without importing the symbolic patch.
+MODELS = ("x-exact", "bloch")
 MODEL = "bloch"
 R = 2
 MASS = "consistent"
@@ -37,6 +40,18 @@ CONTACT = "top"
 _RATIONAL = {"GAMMA_S": (1, 2), "NU": (3, 10), "FIGURE2_R": (1, 2)}
 GAMMA_S_FLOAT = _RATIONAL["GAMMA_S"][0] / _RATIONAL["GAMMA_S"][1]
 NU_FLOAT = _RATIONAL["NU"][0] / _RATIONAL["NU"][1]
+
+
+def text(name: str) -> str:
+    """The default ``name`` as text (``"1/2"`` for GAMMA_S), without importing sympy.
+
+    >>> text("GAMMA_S"), text("R")
+    ('1/2', '2')
+    """
+    if name in _RATIONAL:
+        p, q = _RATIONAL[name]
+        return str(p) if q == 1 else f"{p}/{q}"
+    return str(globals()[name])
 
 
 def __getattr__(name: str):

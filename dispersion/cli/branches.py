@@ -13,16 +13,16 @@ import csv
 import io
 import math
 import sys
-
-import numpy as np
+from typing import TYPE_CHECKING
 
 from dispersion import defaults
 from dispersion.errors import InputError
 from dispersion.io import check_output_file, save_figure, write_text
 from dispersion.symbolic.mass import CONTACT_SETS, MASS_VARIANTS
-from dispersion.symbolic.plate import MODELS
-from dispersion.waves.exact_branches import check_samples
 from dispersion.cli import number
+
+if TYPE_CHECKING:
+    import numpy as np
 
 #: Up-front bounds (issue 11); the exact tracer's scan is bounded by
 #: :data:`dispersion.waves.exact_branches.MAX_SAMPLES` (count * (omega-max / 0.05 + 1)).
@@ -61,11 +61,11 @@ def register(sub) -> None:
     p.add_argument("--gamma-s", type=number("gamma_s"), default=None,
                    help="share of a contact shape function sent to the second neighbour, "
                         "singular masses only (default: 0, Figure 2)")
-    p.add_argument("--model", choices=MODELS, default=None,
+    p.add_argument("--model", choices=defaults.MODELS, default=None,
                    help=f"patch model along x (default: {defaults.MODEL})")
     p.add_argument("--r", type=number("r"), default=None,
                    help=f"aspect ratio b/h of the Bloch model, dimensionless "
-                        f"(default: {float(defaults.FIGURE2_R):g}, Figure 2's h/b = 2)")
+                        f"(default: {defaults.text('FIGURE2_R')}, Figure 2's h/b = 2)")
     p.add_argument("--p", type=integer("degree p", 1, MAX_N - 1), default=defaults.P,
                    help=f"degree through the thickness, 1..{MAX_N - 1} "
                         f"(default: {defaults.P})")
@@ -114,6 +114,8 @@ def kappa_grid(kmin: float, kmax: float, count: int) -> np.ndarray:
                          f"[{kmin}, {kmax}]")
     if isinstance(count, bool) or not 2 <= count <= MAX_COUNT:
         raise InputError(f"count must be an integer in [2, {MAX_COUNT}], got {count}")
+    import numpy as np
+
     return np.linspace(kmin, kmax, count)
 
 
@@ -166,6 +168,8 @@ def _settings(args) -> dict:
     kappa = kappa_grid(args.kappa_min, args.kappa_max, args.count)
     if not (math.isfinite(args.omega_max) and 0 < args.omega_max <= MAX_OMEGA):
         raise InputError(f"omega-max must be in (0, {MAX_OMEGA:g}], got {args.omega_max}")
+    from dispersion.waves.exact_branches import check_samples
+
     check_samples(args.count, args.omega_max, what="count * (omega-max / 0.05 + 1)")
     if args.csv is not None:
         check_output_file(args.csv, option="--csv")
@@ -201,6 +205,8 @@ def _inputs(args, s) -> dict:
 
 
 def _rows(kappa, omega, group, symmetry, source, material, thickness, omega_max):
+    import numpy as np
+
     """Row dicts of one branch set (finite Omega <= omega_max)."""
     from dispersion.waves.units import physical_branches
     from dispersion.waves.velocities import phase_velocity
@@ -257,6 +263,8 @@ def _emit(path: str, text: str) -> None:
 
 
 def run(args) -> int:
+    import numpy as np
+
     from dispersion.waves.discrete_branches import discrete_branches
     from dispersion.symbolic.plate import plate_patch
     from dispersion.waves.exact_branches import trace_branches

@@ -12,9 +12,8 @@
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
-
-import numpy as np
 
 from dispersion.defaults import GAMMA_S_FLOAT, NU_FLOAT
 from dispersion.errors import InputError, check_memory, check_nu, check_positive, check_positive_int
@@ -105,11 +104,11 @@ class Scenario:
         for name in ("r_inner", "r_outer", "rho", "v0", "v0_over_cT", "dt", "t_end"):
             check_positive(name, getattr(self, name))
         check_nu(self.nu)
-        if not np.isfinite(self.theta0_deg):
+        if not math.isfinite(self.theta0_deg):
             raise InputError(f"theta0_deg must be finite, got {self.theta0_deg}")
-        if not np.isfinite(self.gap):
+        if not math.isfinite(self.gap):
             raise InputError(f"gap must be a finite number >= 0, got {self.gap}")
-        if not (self.dt**2 > 0 and 1 / self.dt**2 < np.inf):
+        if not (self.dt**2 > 0 and 1 / self.dt**2 < math.inf):
             raise InputError(f"dt must be >= 1e-150 s (1/dt^2 overflows), got {self.dt}")
         if self.t_end < self.dt:
             raise InputError(f"t_end must be >= dt = {self.dt:g} s (one step), got {self.t_end:g}")
@@ -143,7 +142,7 @@ class Scenario:
 
     @property
     def shear_wave_speed(self) -> float:
-        return float(np.sqrt(self.E / (2 * (1 + self.nu)) / self.rho))
+        return math.sqrt(self.E / (2 * (1 + self.nu)) / self.rho)
 
     @property
     def n_steps(self) -> int:

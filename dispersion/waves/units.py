@@ -27,10 +27,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
-import numpy as np
 
 from dispersion.errors import InputError, check_positive
+
+if TYPE_CHECKING:  # numpy is imported where used: the CLI lists the materials without it
+    import numpy as np
 
 __all__ = [
     "ALUMINIUM",
@@ -110,6 +113,8 @@ def rayleigh_speed(material: Material) -> float:
     >>> round(rayleigh_speed(ALUMINIUM), 1)
     2920.8
     """
+    import numpy as np
+
     eta = (material.c_T / material.c_L) ** 2
     roots = np.roots([1.0, -8.0, 8.0 * (3 - 2 * eta), -16.0 * (1 - eta)])
     real = [r.real for r in roots if abs(r.imag) < 1e-12 and 0 < r.real < 1]
@@ -118,6 +123,8 @@ def rayleigh_speed(material: Material) -> float:
 
 def fd_mhz_mm(Omega, material: Material):
     """Frequency-thickness :math:`f d = \\Omega c_T / \\pi` in MHz mm (Hz m is 1e-3 MHz mm)."""
+    import numpy as np
+
     return np.asarray(Omega, dtype=float) * material.c_T / math.pi * 1e-3
 
 
@@ -145,10 +152,13 @@ def physical_branches(kappa, omega: dict, group: dict | None, material: Material
     """Dimensionless branches (``omega[label]``, ``group[label]`` = dOmega/dkappa) in units.
 
     >>> import numpy as np
+    >>> import numpy as np
     >>> pb = physical_branches(np.array([1.0]), {"S0": np.array([1.6])}, None, ALUMINIUM, 1.0)
     >>> round(float(pb.fd["S0"][0]), 4), round(float(pb.wavelength[0]), 4)   # h = 0.5 mm
     (1.5941, 3.1416)
     """
+    import numpy as np
+
     check_positive("thickness", thickness_mm)
     kappa = np.asarray(kappa, dtype=float)
     h_m = thickness_mm * 1e-3 / 2

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from dispersion.errors import InputError
 from dispersion.symbolic.mass import contact_weights
 
 __all__ = ["float_redistribution"]
@@ -22,8 +23,14 @@ def float_redistribution(n: int, contact: str, gamma_s: float) -> np.ndarray:
     """
     # the paper's weights (contact_weights: sympy-free) placed as redistribution_matrix
     # places them, in floats: a numeric scene does not load sympy (tested equal)
+    weights = contact_weights(n, contact, gamma_s)
+    for c, ws in weights.items():  # the exact matrix's rule: targets are non-contact points
+        bad = [j for j in ws if j in weights or not (0 <= j < n)]
+        if bad:
+            raise InputError(f"weights of contact point {c} must target non-contact indices "
+                             f"in [0, {n - 1}], got {bad}")
     R = np.eye(n)
-    for c, ws in contact_weights(n, contact, gamma_s).items():
+    for c, ws in weights.items():
         R[c, c] = 0.0
         for j, w in ws.items():
             R[c, j] = float(w)

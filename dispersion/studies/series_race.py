@@ -248,9 +248,14 @@ def _maxima_version(exe: str) -> str:
 
 
 def race(orders, timeout: float = TIMEOUT, maxima: str | None = "maxima",
-         notes: list | None = None, maxima_max_order: int = 64) -> tuple[RacePoint, ...]:
+         notes: list | None = None, maxima_max_order: int = 64,
+         repeats: int = 1) -> tuple[RacePoint, ...]:
     """Race ours against Maxima at each order of ``orders`` (Maxima skipped if ``None`` and
-    above ``maxima_max_order``)."""
+    above ``maxima_max_order``). With ``repeats`` > 1 the two run in turn (ours, Maxima, ours,
+    ...) and each figure is the median over the runs, so that a shared machine's drift moves
+    both sides alike; a peer that fails once is failed."""
+    from statistics import median
+
     notes = [] if notes is None else notes
     exe = shutil.which(maxima) if maxima else None
     program = maxima_program()
@@ -258,31 +263,51 @@ def race(orders, timeout: float = TIMEOUT, maxima: str | None = "maxima",
     for order in orders:
         cmd = [sys.executable, "-m", "dispersion", "series", "--exact", "--branch", "both",
                "--order", str(order), "--format", "json"]
-        run = run_child(cmd, timeout)
-        if run is None or run[3] != 0:
-            notes.append(f"ours at kappa^{order}: " + ("timeout" if run is None else
-                                                       f"exit {run[3]}"))
+        mine, lean, theirs = [], [], []
+        why = None
+        for _ in range(max(1, repeats)):
+            run = run_child(cmd, timeout)
+            if run is None or run[3] != 0:
+                why = "timeout" if run is None else f"exit {run[3]}"
+                break
+            mine.append(run)
+            lrun = run_child([sys.executable, "-m", "dispersion.cli.series", *cmd[4:]], timeout)
+            if lrun is not None and lrun[3] == 0:
+                lean.append(lrun[0])
+            if exe is not None and order <= maxima_max_order:
+                with _batch_file(order, program) as (folder, name):
+                    theirs.append(run_child([exe, "--very-quiet", "-b", name], timeout,
+                                            cwd=folder))
+        if why is not None:
+            notes.append(f"ours at kappa^{order}: {why}")
             points.append(RacePoint(order, None, None, None))
             continue
-        lean = run_child([sys.executable, "-m", "dispersion.cli.series", *cmd[4:]], timeout)
         compute, ours = _ours_compute(order)
-        point = dict(order=order, ours_process_s=run[0], ours_compute_s=compute,
-                     ours_peak_mib=run[1],
-                     ours_lean_process_s=lean[0] if lean and lean[3] == 0 else None)
-        if exe is not None and order <= maxima_max_order:
-            with _batch_file(order, program) as (folder, name):
-                mrun = run_child([exe, "--very-quiet", "-b", name], timeout, cwd=folder)
-            if mrun is None:
-                why = f"stopped after {timeout:g} s"
-            else:
-                coeffs, seconds = parse_maxima_output(mrun[2])
-                why = peer_failure(mrun[3], mrun[2], mrun[4], coeffs, ours)
-            if why is None:
-                point.update(maxima_process_s=mrun[0], maxima_compute_s=seconds,
-                             maxima_peak_mib=mrun[1], agree=True, maxima_status="ok")
+        peaks = [r[1] for r in mine if r[1] is not None]
+        point = dict(order=order, ours_process_s=median(r[0] for r in mine),
+                     ours_compute_s=compute, ours_peak_mib=max(peaks) if peaks else None,
+                     ours_lean_process_s=median(lean) if lean else None)
+        if theirs:
+            fail = None
+            for mrun in theirs:
+                if mrun is None:
+                    fail = f"stopped after {timeout:g} s"
+                else:
+                    coeffs, _ = parse_maxima_output(mrun[2])
+                    fail = peer_failure(mrun[3], mrun[2], mrun[4], coeffs, ours)
+                if fail is not None:
+                    break
+            if fail is None:
+                m_peaks = [r[1] for r in theirs if r[1] is not None]
+                m_compute = [parse_maxima_output(r[2])[1] for r in theirs]
+                point.update(maxima_process_s=median(r[0] for r in theirs),
+                             maxima_compute_s=median(c for c in m_compute if c is not None)
+                             if any(c is not None for c in m_compute) else None,
+                             maxima_peak_mib=max(m_peaks) if m_peaks else None,
+                             agree=True, maxima_status="ok")
             else:  # a failed peer run is not timed: no time, memory or ratio is kept
-                notes.append(f"Maxima at kappa^{order} failed, not timed: {why}")
-                point.update(agree=False, maxima_status="failed", maxima_error=why)
+                notes.append(f"Maxima at kappa^{order} failed, not timed: {fail}")
+                point.update(agree=False, maxima_status="failed", maxima_error=fail)
         points.append(RacePoint(**point))
     return tuple(points)
 
@@ -350,14 +375,16 @@ def scaling(grid: dict[int, tuple[int, ...]], masses=("consistent", "lumped", "s
 
 
 def measure(quick: bool = False, executor=None, *, timeout: float = TIMEOUT,
-            maxima: str | None = "maxima", extended: bool = False) -> SeriesSpeed:
+            maxima: str | None = "maxima", extended: bool = False,
+            repeats: int = 1) -> SeriesSpeed:
     """The race and the scaling table (``quick``: fewer orders and sizes, for CI).
 
     Full: ours at kappa^8, 16, 32, 64 and Maxima to kappa^32; scaling at kappa^8 for p = 2
     (n = 3..10), 3 and 4 (four sizes each), about half a minute on a quiet 2-core machine as
     ``dispersion reproduce`` needs. ``extended`` (``dispersion bench``) adds Maxima at
     kappa^64 and n = 12. ``executor`` is not used: the timings run one after the other so
-    that they do not compete for the cores.
+    that they do not compete for the cores. ``repeats``: runs of each side of the race (in
+    turn; medians reported).
     """
     if not (isinstance(timeout, (int, float)) and 0 < timeout <= TIMEOUT_MAX):
         raise InputError(f"timeout (seconds per child process) must lie in (0, {TIMEOUT_MAX:g}], "
@@ -370,14 +397,14 @@ def measure(quick: bool = False, executor=None, *, timeout: float = TIMEOUT,
     exe = shutil.which(maxima) if maxima else None
     if exe is None:
         notes.append(f"Maxima not found ({maxima!r} on PATH): the race shows ours only "
-                     "(apt-get install -y maxima)")
+                     "(apt-get install -y maxima maxima-share)")
     if _gnu_time() is None:
         notes.append("GNU time not found: no peak memory (apt-get install -y time)")
-    race_points = race(orders, timeout, maxima, notes, maxima_max_order)
+    race_points = race(orders, timeout, maxima, notes, maxima_max_order, repeats)
     points, fits = scaling(grid)
     return SeriesSpeed(race_points, points, fits, _maxima_version(exe) if exe else None,
                        tuple(notes), {"quick": quick, "orders": list(orders),
                                       "grid": {str(k): list(v) for k, v in grid.items()},
                                       "scaling_order": 8, "timeout_s": timeout,
                                       "maxima_max_order": maxima_max_order,
-                                      "extended": extended})
+                                      "extended": extended, "repeats": repeats})

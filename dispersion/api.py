@@ -25,124 +25,28 @@ finite element analysis of dynamic contact", eqs (1)-(5), (14)-(20).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-from functools import cached_property
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from dispersion import defaults
 from dispersion.errors import InputError
+from dispersion.symbolic.patch import Patch
 
 if TYPE_CHECKING:  # pragma: no cover
     import sympy
 
-    from dispersion.symbolic.plate import PlatePatch
-
 __all__ = ["Patch", "patch", "series", "exact_branches", "simulate_ring", "simulate_bar"]
-
-
-@dataclass(frozen=True)
-class Patch:
-    """A plate patch of B-splines through the thickness with one mass variant.
-
-    Build it with :func:`patch`. Parameters are those of :func:`dispersion.symbolic.plate.plate_patch`;
-    ``plate`` is that exact object (built on first use).
-
-    Attributes
-    ----------
-    p, n : int
-        Degree and number of control points through the thickness.
-    model : str
-        ``"bloch"`` (one Bloch-periodic column, aspect ratio ``r = b/h``) or ``"x-exact"``.
-    r : number, sympy expression
-        Aspect ratio b/h of the Bloch model (``None`` for x-exact).
-    mass : str
-        ``"consistent"``, ``"lumped"``, ``"singular"`` or ``"singular-lumped"``.
-    contact, gamma_s :
-        Contact set and redistribution weight of the singular masses.
-    """
-
-    p: int = defaults.P
-    n: int = defaults.N
-    model: str = defaults.MODEL
-    r: Any = defaults.R
-    mass: str = defaults.MASS
-    contact: str = defaults.CONTACT
-    gamma_s: Any = defaults.GAMMA_S
-    weights: Any = field(default=None, compare=False, repr=False)
-
-    @cached_property
-    def plate(self) -> PlatePatch:
-        """The exact :class:`dispersion.symbolic.plate.PlatePatch` (validates every parameter)."""
-        from dispersion.symbolic.plate import plate_patch
-
-        return plate_patch(self.p, self.n, self.model, self.r, self.mass, self.contact,
-                           self.gamma_s, self.weights)
-
-    def K_dyn(self, kappa=None, Omega=None, nu=None) -> sympy.Matrix:
-        """:math:`K - \\Omega^2 M` (sympy); symbols ``kappa``, ``Omega``, ``nu`` by default."""
-        from dispersion.symbolic.plate import dynamic_stiffness
-
-        return dynamic_stiffness(self.plate, kappa, Omega, nu)
-
-    def K(self, kappa=None, nu=None) -> sympy.Matrix:
-        """Stiffness :math:`K(\\kappa)` over the shear modulus (sympy)."""
-        return self.K_dyn(kappa, 0, nu)
-
-    def M(self, kappa=None) -> sympy.Matrix:
-        """Mass :math:`M(\\kappa)` over the density (sympy): the variant of ``mass``.
-
-        Every variant keeps the translational mass (the sum of all entries):
-
-        >>> sum(patch(model="x-exact", mass="singular").M()) == sum(patch(model="x-exact").M())
-        True
-        """
-        import sympy
-
-        from dispersion.symbolic.plate import mass_block, x_functions
-
-        kappa = sympy.Symbol("kappa") if kappa is None else sympy.sympify(kappa)
-        return x_functions(self.plate, kappa)["mx"] * mass_block(self.plate)
-
-    def series(self, branch: str = "S0", order: int = 8, nu=None) -> dict[int, sympy.Expr]:
-        """Taylor coefficients of :math:`\\Omega^2` in :math:`\\kappa` (eqs 17-20)."""
-        from dispersion.symbolic.power_balance import discrete_series
-
-        return discrete_series(branch, order, p=self.p, n=self.n, model=self.model, r=self.r,
-                               mass=self.mass, contact=self.contact, gamma_s=self.gamma_s,
-                               weights=self.weights, nu=nu)
-
-    def branches(self, kappa, nu=defaults.NU_FLOAT):
-        """All discrete branches on the grid ``kappa`` (:func:`dispersion.waves.discrete_branches.discrete_branches`)."""
-        from dispersion.waves.discrete_branches import discrete_branches
-
-        r = self.plate.r
-        if r is not None and not getattr(r, "is_number", True):
-            raise InputError(f"r must be a number > 0 for numeric branches, got the symbol {r}")
-        return discrete_branches(self.plate, nu, kappa)
 
 
 def patch(p: int = defaults.P, n: int = defaults.N, model: str = defaults.MODEL,
           r=defaults.R, mass: str = defaults.MASS, contact: str = defaults.CONTACT,
-          gamma_s=defaults.GAMMA_S, weights=None) -> Patch:
-    """A :class:`Patch`, checked at once (bad parameters raise :class:`InputError` here).
-
-    ``r="r"`` keeps the aspect ratio symbolic. ``model="x-exact"`` ignores ``r``; giving
-    one anyway is an error.
+          gamma_s=defaults.GAMMA_S, weights=None, nu=None) -> Patch:
+    """A :class:`~dispersion.symbolic.patch.Patch`, checked at once (bad parameters raise
+    :class:`InputError` here). ``r="r"`` keeps the aspect ratio symbolic.
 
     >>> patch(mass="singular", gamma_s=0).plate.massless
     (2, 5)
     """
-    import sympy
-
-    if model == "x-exact" and r is not defaults.R and r is not None:
-        raise InputError(f"r applies to the Bloch model only; model x-exact got r={r!r}")
-    if model == "x-exact":
-        r = None
-    elif r == "r":
-        r = sympy.Symbol("r", positive=True)
-    pt = Patch(p, n, model, r, mass, contact, gamma_s, weights)
-    pt.plate  # noqa: B018 - validate now, not on first use
-    return pt
+    return Patch(p, n, model, r, mass, contact, gamma_s, weights, nu)
 
 
 def series(branch: str = "S0", order: int = 8, *, exact: bool = False, nu=None,

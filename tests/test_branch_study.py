@@ -24,7 +24,7 @@ def small_study() -> dict:
     kappa = np.linspace(0, 3, 12)
     fig2, exact = figure2_data(NU, kappa, 4.0, {
         "consistent": plate_patch(model="bloch", r=0.5),
-        "singular": plate_patch(model="bloch", r=0.5, mass="singular")})
+        "singular": plate_patch(model="bloch", r=0.5, mass="singular", gamma_s=0)})
     bd = bar_dispersion((1, 2), elements_per_wavelength=[4.0, 40.0])
     shape = {"label": "S0", "omega": 1.0, "omega_h": 1.01, "mac": 0.99,
              "exact": [[1.0, 1.0], [0.0, 0.0]], "discrete": [[1.0, 1.0], [0.0, 0.0]]}

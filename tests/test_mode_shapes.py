@@ -43,13 +43,13 @@ def test_exact_shapes_have_their_parity():
 
 def test_refined_patch_modes_match_exact_shapes():
     # n = 8 control points through the thickness: MAC of the first four branches -> 1
-    patch = plate_patch(n=8)
+    patch = plate_patch(n=8, model="x-exact")
     ex = trace_branches(NU, [0.05, 0.5, 1.5], 6.0)
     pb = pair_by_shape(patch, NU, ex)
     for label in ("S0", "A0", "S1", "A1"):
         assert np.all(pb.mac[label] > 0.999), label
     # coarse n = 3 shapes resemble the exact ones less than n = 8 shapes (convergence)
-    coarse = pair_by_shape(plate_patch(n=3), NU, ex)
+    coarse = pair_by_shape(plate_patch(n=3, model="x-exact"), NU, ex)
     assert np.all(coarse.mac["S1"] < pb.mac["S1"])
 
 
@@ -57,7 +57,7 @@ def test_pairing_does_not_pair_by_index():
     # issue 10: Figure 2's singular mass (Bloch r = 1/2): its second antisymmetric-like
     # discrete mode is not the exact A1 (index pairing gave ~100 % error as kappa -> 0);
     # by shape it is left unpaired (MAC < 1/2), and S0/A0 keep partners with MAC ~ 1
-    patch = plate_patch(model="bloch", r=0.5, mass="singular")
+    patch = plate_patch(model="bloch", r=0.5, mass="singular", gamma_s=0)
     ex = trace_branches(NU, [0.02, 0.1], 4.0)
     pb = pair_by_shape(patch, NU, ex)
     assert np.all(np.isnan(pb.omega["A1"])) and np.all(pb.mac["A1"] < 0.5)

@@ -52,9 +52,9 @@ class SectionResult:
 
 
 def _table(header: tuple[str, ...], rows) -> list[str]:
-    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
-    lines += ["| " + " | ".join(str(v) for v in row) + " |" for row in rows]
-    return lines
+    from dispersion.table import markdown_table
+
+    return markdown_table(header, rows).splitlines()
 
 
 def render_index(sections: Sequence[SectionResult], envelopes: Sequence[dict]) -> str:

@@ -51,7 +51,7 @@ import sympy
 
 from dispersion.symbolic import bspline
 from dispersion.errors import InputError, check_nu, check_positive_int
-from dispersion.symbolic.mass import MASS_VARIANTS, contact_weights, mass_variant, redistribution_matrix
+from dispersion.symbolic.mass import contact_weights, mass_variant, redistribution_matrix
 
 __all__ = [
     "MODELS",
@@ -191,6 +191,8 @@ class PlatePatch:
     Y: dict = field(repr=False)
     My: sympy.Matrix = field(repr=False)
     x_lumped: bool = False
+    #: The :class:`dispersion.symbolic.patch.Patch` value this patch was built from.
+    spec: object = field(default=None, compare=False)
 
     @property
     def massless(self) -> tuple[int, ...]:
@@ -206,59 +208,43 @@ class PlatePatch:
         return J * self.My * J == self.My
 
 
-def plate_patch(
-    p: int = 2,
-    n: int = 3,
-    model: str = "x-exact",
-    r=None,
-    mass: str = "consistent",
-    contact: str = "top",
-    gamma_s=0,
-    weights=None,
-    *,
-    allow_negative: bool = False,
-) -> PlatePatch:
-    """Build the plate patch for ``model`` and the ``mass`` variant.
+def plate_patch(*args, allow_negative: bool = False, **fields) -> PlatePatch:
+    """Build the plate patch of a :class:`dispersion.symbolic.patch.Patch` (or of its fields).
 
-    Parameters
-    ----------
-    p, n : int
-        Degree and number of control points through the thickness,
-        ``1 <= p <= P_MAX``, ``p + 1 <= n <= N_MAX`` (see :func:`check_size`).
-    model : ``"x-exact"`` or ``"bloch"``
-    r : number, sympy Rational or None
-        Aspect ratio b/h of the Bloch model, in ``R_RANGE`` = [1/1000, 1000] (None: kept as
-        the symbol ``r``). Checked but unused for x-exact (the CLI refuses it there).
-    mass : ``"consistent"``, ``"lumped"``, ``"singular"``, ``"singular-lumped"``
-    contact, gamma_s :
-        Contact set and the paper's weight (see :func:`dispersion.symbolic.mass.contact_weights`).
-    weights : mapping, optional
-        General redistribution weights ``{c: {j: w}}``; overrides ``contact``/``gamma_s``.
+    ``plate_patch(patch)`` takes a ``Patch`` value; ``plate_patch(p, n, model, ...)`` or
+    keywords build one first, with the toolkit's defaults (:mod:`dispersion.defaults`: Bloch
+    model, r = 2, p = 2, n = 3, gamma_s = 1/2). The fields and their limits are documented on
+    :class:`~dispersion.symbolic.patch.Patch`; ``allow_negative`` admits negative redistribution
+    weights (a study of indefinite masses).
+
+    >>> plate_patch(mass="lumped").spec.label()
+    'bloch p=2 n=3 r=2, lumped mass'
     """
-    p, n = check_size(p, n)
-    if model not in MODELS:
-        raise InputError(f"model must be one of {', '.join(MODELS)}; got {model!r}")
-    if mass not in MASS_VARIANTS:
-        raise InputError(f"mass must be one of {', '.join(MASS_VARIANTS)}; got {mass!r}")
-    if model == "bloch":
-        if r is None:
-            r = sympy.Symbol("r", positive=True)
-        elif not isinstance(r, sympy.Symbol):
-            r = _aspect_ratio(r)
+    from dispersion.symbolic.patch import Patch, as_patch
+
+    if args and isinstance(args[0], Patch):
+        spec = as_patch(args[0], **dict(zip(_PATCH_FIELDS, args[1:])), **fields)
     else:
-        if r is not None:  # checked, so that a bad value is never silently accepted
-            _aspect_ratio(r)
-        r = None
-    if gamma_s is not None:
-        gamma_s = _rational("gamma_s", gamma_s)
-    Y = thickness_matrices(p, n)
+        spec = Patch(*args, **fields)
+    return _build(spec, allow_negative)
+
+
+#: Positional order of the fields of :class:`dispersion.symbolic.patch.Patch`.
+_PATCH_FIELDS = ("p", "n", "model", "r", "mass", "contact", "gamma_s", "weights", "nu")
+
+
+@lru_cache(maxsize=64)
+def _build(spec, allow_negative: bool) -> PlatePatch:
+    Y = thickness_matrices(spec.p, spec.n)
     R = None
-    if mass.startswith("singular"):
+    if spec.singular:
+        weights = spec.weights_dict
         if weights is None:
-            weights = contact_weights(n, contact, gamma_s)
-        R = redistribution_matrix(n, weights, allow_negative=allow_negative)
-    My = mass_variant(Y["00"], mass, R)
-    return PlatePatch(p, n, model, r, mass, R, Y, My, x_lumped=mass.endswith("lumped"))
+            weights = contact_weights(spec.n, spec.contact, spec.gamma_s)
+        R = redistribution_matrix(spec.n, weights, allow_negative=allow_negative)
+    My = mass_variant(Y["00"], spec.mass, R)
+    return PlatePatch(spec.p, spec.n, spec.model, spec.r, spec.mass, R, Y, My,
+                      x_lumped=spec.mass.endswith("lumped"), spec=spec)
 
 
 #: Valid aspect ratios r = b/h of the Bloch model. Outside, the float pencil of the numeric

@@ -349,10 +349,8 @@ def _rational_rows(M) -> list[list]:
     return [[flint.fmpq(int(v.p), int(v.q)) if v else 0 for v in row] for row in M.tolist()]
 
 
-def discrete_series_raw(branches=("S0",), order: int = 8, *, p: int = 2, n: int = 3,
-                        model: str = "x-exact", r=None, mass: str = "consistent",
-                        contact: str = "top", gamma_s=0, weights=None,
-                        split: bool | None = None) -> tuple[dict[str, list[tuple]], tuple]:
+def discrete_series_raw(branches=("S0",), order: int = 8, patch=None, *,
+                        split: bool | None = None, **fields) -> tuple[dict[str, list[tuple]], tuple]:
     """``({branch: [(power of kappa, num, den)]}, params)``: the flint core of
     :func:`discrete_series`, for one or both branches.
 
@@ -364,11 +362,13 @@ def discrete_series_raw(branches=("S0",), order: int = 8, *, p: int = 2, n: int 
 
     from dispersion.symbolic import plate as _plate
 
+    from dispersion.symbolic.patch import as_patch
+
     if isinstance(branches, str):
         branches = (branches,)
-    p, n = _plate.check_size(p, n)  # the degree first: p = 100, n = 101 names p
-    checked = {b: check_request(b, order, exact=False, n=n) for b in branches}
-    patch = _plate.plate_patch(p, n, model, r, mass, contact, gamma_s, weights)
+    spec = as_patch(patch, **fields)  # checks the size first: p = 100, n = 101 names p
+    checked = {b: check_request(b, order, exact=False, n=spec.n) for b in branches}
+    patch = _plate.plate_patch(spec)
     if split is None:
         split = patch.symmetric
     elif split and not patch.symmetric:
@@ -414,22 +414,17 @@ def _w_times_t(F):
 def discrete_series(
     branch: str = "S0",
     order: int = 8,
+    patch=None,
     *,
-    p: int = 2,
-    n: int = 3,
-    model: str = "x-exact",
-    r=None,
-    mass: str = "consistent",
-    contact: str = "top",
-    gamma_s=0,
-    weights=None,
     nu=None,
     split: bool | None = None,
     factor: bool = True,
+    **fields,
 ) -> dict:
     """Series of the discrete S0 / A0 branch of the plate patch (paper eqs 17-20).
 
-    Parameters are those of :func:`dispersion.symbolic.plate.plate_patch`; ``order`` is the highest
+    ``patch`` is a :class:`dispersion.symbolic.patch.Patch` (default: the toolkit's default patch), its
+    fields may be given or replaced as keywords; ``order`` is the highest
     power of kappa; ``nu`` substitutes a number for the symbol nu at the end; ``split``
     (default: whenever the mass keeps the mirror symmetry) works on the symmetric (S0) or
     antisymmetric (A0) block instead of the full determinant (a speed-up only: both give
@@ -442,9 +437,7 @@ def discrete_series(
 
     if nu is not None:
         check_nu(nu)
-    raws, params = discrete_series_raw((branch,), order, p=p, n=n, model=model, r=r,
-                                       mass=mass, contact=contact, gamma_s=gamma_s,
-                                       weights=weights, split=split)
+    raws, params = discrete_series_raw((branch,), order, patch, split=split, **fields)
     raw = raws[branch]
     symbols = (sympy.Symbol("nu"), sympy.Symbol("r", positive=True))[: len(params)]
     return _substitute_nu({k: _to_expr(a, b, symbols, factor) for k, a, b in raw}, nu)

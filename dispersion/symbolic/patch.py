@@ -1,0 +1,277 @@
+"""The plate patch as one value: model, r, p, n, nu, mass, contact, gamma_s, weights.
+
+Every entry point (the API, the command line, a claims file, a report section) builds one
+:class:`Patch` at its boundary and passes it down whole; the defaults are those of
+:mod:`dispersion.defaults`, stated once, and the size limits are those of
+:func:`dispersion.symbolic.plate.check_size`. Results carry the ``Patch`` they were computed
+on, and every caption, title and CSV header is rendered from it (:meth:`Patch.label`,
+:meth:`Patch.title`, :meth:`Patch.header_lines`).
+
+>>> Patch()
+Patch(p=2, n=3, model='bloch', r=2, mass='consistent', contact='top', gamma_s=1/2, weights=None, nu=None)
+>>> Patch(mass="singular", gamma_s=0).label()
+'bloch p=2 n=3 r=2, singular mass (top, gamma_s=0)'
+>>> Patch(model="x-exact").r is None
+True
+>>> Patch().K_dyn().shape
+(6, 6)
+"""
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass, field, replace
+from functools import cached_property
+from typing import TYPE_CHECKING, Any
+
+from dispersion import defaults
+from dispersion.errors import InputError
+
+if TYPE_CHECKING:  # pragma: no cover
+    import sympy
+
+    from dispersion.symbolic.plate import PlatePatch
+
+__all__ = ["Patch", "as_patch"]
+
+
+def _freeze_weights(weights):
+    """``{contact: {neighbour: weight}}`` -> a hashable, sorted tuple form (or None)."""
+    if weights is None:
+        return None
+    if isinstance(weights, tuple):
+        return weights
+    try:
+        return tuple(sorted((int(c), tuple(sorted((int(j), w) for j, w in dict(ws).items())))
+                            for c, ws in dict(weights).items()))
+    except (TypeError, ValueError, AttributeError):
+        raise InputError("weights must map contact indices to {neighbour index: weight}, "
+                         f"got {weights!r}") from None
+
+
+@dataclass(frozen=True)
+class Patch:
+    """A plate patch of B-splines through the thickness with one mass variant.
+
+    Parameters
+    ----------
+    p, n : int
+        Degree and number of control points through the thickness (limits:
+        :func:`dispersion.symbolic.plate.check_size`).
+    model : str
+        ``"bloch"`` (one Bloch-periodic column, aspect ratio ``r = b/h``) or ``"x-exact"``.
+    r : number, ``"r"`` or None
+        Aspect ratio b/h of the Bloch model (``"r"``: kept as a symbol); None for x-exact.
+    mass : str
+        ``"consistent"``, ``"lumped"``, ``"singular"`` or ``"singular-lumped"``.
+    contact, gamma_s :
+        Contact set and redistribution weight of the singular masses (ignored otherwise).
+    weights : mapping, optional
+        General redistribution weights ``{c: {j: w}}``; override ``contact``/``gamma_s``.
+    nu : number or None
+        Poisson's ratio: None keeps it symbolic in the series, and numbers use
+        :data:`dispersion.defaults.NU` (see :attr:`nu_value`).
+    """
+
+    p: int = defaults.P
+    n: int = defaults.N
+    model: str = defaults.MODEL
+    r: Any = defaults.R
+    mass: str = defaults.MASS
+    contact: str = defaults.CONTACT
+    gamma_s: Any = defaults.GAMMA_S
+    weights: Any = field(default=None, hash=False)
+    nu: Any = None
+
+    def __post_init__(self):
+        import sympy
+
+        from dispersion.symbolic.mass import MASS_VARIANTS
+        from dispersion.symbolic.plate import MODELS, _aspect_ratio, _rational, check_size
+
+        p, n = check_size(self.p, self.n)
+        if self.model not in MODELS:
+            raise InputError(f"model must be one of {', '.join(MODELS)}; got {self.model!r}")
+        if self.mass not in MASS_VARIANTS:
+            raise InputError(f"mass must be one of {', '.join(MASS_VARIANTS)}; "
+                             f"got {self.mass!r}")
+        r = self.r
+        if self.model == "x-exact":
+            if r is not None and r != defaults.R:
+                raise InputError(f"r applies to the Bloch model only; model x-exact got r={r!r}")
+            r = None
+        elif r is None or r == "r" or isinstance(r, sympy.Symbol):
+            r = sympy.Symbol("r", positive=True)
+        else:
+            r = _aspect_ratio(r)
+        gamma_s = None if self.gamma_s is None else _rational("gamma_s", self.gamma_s)
+        weights = _freeze_weights(self.weights)
+        if not self.mass.startswith("singular"):  # contact set and weights do not apply
+            contact, gamma_s, weights = defaults.CONTACT, defaults.GAMMA_S, None
+            object.__setattr__(self, "contact", contact)
+        nu = self.nu
+        if nu is not None:
+            from dispersion.errors import check_nu
+
+            nu = check_nu(_rational("nu", nu))
+        for name, value in (("p", p), ("n", n), ("r", r), ("gamma_s", gamma_s), ("nu", nu),
+                            ("weights", weights)):
+            object.__setattr__(self, name, value)
+
+    # ------------------------------------------------------------------ derived values
+
+    @property
+    def singular(self) -> bool:
+        """True for the singular masses (contact set and weights apply)."""
+        return self.mass.startswith("singular")
+
+    @property
+    def symbolic_r(self) -> bool:
+        """True if the aspect ratio is kept as the symbol r."""
+        return self.r is not None and not getattr(self.r, "is_number", True)
+
+    @property
+    def nu_value(self):
+        """Poisson's ratio for numbers: ``nu``, or the default :data:`dispersion.defaults.NU`."""
+        return defaults.NU if self.nu is None else self.nu
+
+    @property
+    def weights_dict(self) -> dict | None:
+        """``weights`` as ``{contact: {neighbour: weight}}`` (None if not given)."""
+        return None if self.weights is None else {c: dict(ws) for c, ws in self.weights}
+
+    def replace(self, **changes) -> Patch:
+        """A copy with ``changes`` (checked like a new patch)."""
+        return replace(self, **changes)
+
+    def as_dict(self) -> dict:
+        """JSON-ready fields (numbers as strings where exact)."""
+        out = asdict(self)
+        for key in ("r", "gamma_s", "nu"):
+            out[key] = None if out[key] is None else str(out[key])
+        out["weights"] = self.weights_dict and {str(c): {str(j): str(w) for j, w in ws.items()}
+                                                for c, ws in self.weights_dict.items()}
+        return out
+
+    @classmethod
+    def from_dict(cls, data: dict) -> Patch:
+        """Inverse of :meth:`as_dict`.
+
+        >>> p = Patch(mass="singular", r="1/2"); Patch.from_dict(p.as_dict()) == p
+        True
+        """
+        data = dict(data)
+        if data.get("weights"):
+            data["weights"] = {int(c): {int(j): w for j, w in ws.items()}
+                               for c, ws in data["weights"].items()}
+        return cls(**data)
+
+    # ------------------------------------------------------------------ labels
+
+    def label(self) -> str:
+        """Short description, e.g. ``bloch p=2 n=3 r=2, singular mass (top, gamma_s=0)``."""
+        geom = f"{self.model} p={self.p} n={self.n}" + (f" r={self.r}" if self.r is not None
+                                                         else "")
+        mass = f"{self.mass} mass"
+        if self.singular:
+            mass += (f" (weights {self.weights_dict})" if self.weights is not None
+                     else f" ({self.contact}, gamma_s={self.gamma_s})")
+        if self.nu is not None:
+            mass += f", nu={self.nu}"
+        return f"{geom}, {mass}"
+
+    def title(self) -> str:
+        """Figure title: every field that applies, in words.
+
+        >>> Patch(mass="singular", r="1/2").title()
+        'Bloch r = b/h = 1/2, p = 2, n = 3, singular mass (contact top, gamma_s = 1/2)'
+        """
+        geom = ("Bloch r = b/h = " + str(self.r) if self.model == "bloch" else "x-exact")
+        text = f"{geom}, p = {self.p}, n = {self.n}, {self.mass} mass"
+        if self.singular:
+            text += (f" (weights {self.weights_dict})" if self.weights is not None
+                     else f" (contact {self.contact}, gamma_s = {self.gamma_s})")
+        if self.nu is not None:
+            text += f", nu = {self.nu}"
+        return text
+
+    def header_lines(self) -> list[str]:
+        """``key = value`` lines of the fields that apply (for CSV ``#`` headers)."""
+        out = [f"model = {self.model}"] + ([f"r = {self.r}"] if self.r is not None else [])
+        out += [f"p = {self.p}", f"n = {self.n}", f"mass = {self.mass}"]
+        if self.singular:
+            out += ([f"weights = {self.weights_dict}"] if self.weights is not None
+                    else [f"contact = {self.contact}", f"gamma_s = {self.gamma_s}"])
+        if self.nu is not None:
+            out.append(f"nu = {self.nu}")
+        return out
+
+    # ------------------------------------------------------------------ the matrices
+
+    @cached_property
+    def plate(self) -> PlatePatch:
+        """The exact :class:`dispersion.symbolic.plate.PlatePatch` (built on first use)."""
+        from dispersion.symbolic.plate import plate_patch
+
+        return plate_patch(self)
+
+    def K_dyn(self, kappa=None, Omega=None, nu=None) -> sympy.Matrix:
+        """:math:`K - \\Omega^2 M` (sympy); symbols ``kappa``, ``Omega``, ``nu`` by default."""
+        from dispersion.symbolic.plate import dynamic_stiffness
+
+        return dynamic_stiffness(self.plate, kappa, Omega, self.nu if nu is None else nu)
+
+    def K(self, kappa=None, nu=None) -> sympy.Matrix:
+        """Stiffness :math:`K(\\kappa)` over the shear modulus (sympy)."""
+        return self.K_dyn(kappa, 0, nu)
+
+    def M(self, kappa=None) -> sympy.Matrix:
+        """Mass :math:`M(\\kappa)` over the density (sympy): the variant of ``mass``.
+
+        Every variant keeps the translational mass (the sum of all entries):
+
+        >>> sum(Patch(model="x-exact", mass="singular").M()) == sum(Patch(model="x-exact").M())
+        True
+        """
+        import sympy
+
+        from dispersion.errors import check_finite
+        from dispersion.symbolic.plate import mass_block, x_functions
+
+        if kappa is None:
+            kappa = sympy.Symbol("kappa")
+        else:
+            check_finite("kappa", kappa)
+            kappa = sympy.sympify(kappa)
+        return x_functions(self.plate, kappa)["mx"] * mass_block(self.plate)
+
+    def series(self, branch: str = "S0", order: int = 8, nu=None) -> dict[int, sympy.Expr]:
+        """Taylor coefficients of :math:`\\Omega^2` in :math:`\\kappa` (eqs 17-20)."""
+        from dispersion.symbolic.power_balance import discrete_series
+
+        return discrete_series(branch, order, self, nu=self.nu if nu is None else nu)
+
+    def branches(self, kappa, nu=None, group: bool = False):
+        """All discrete branches on the grid ``kappa``
+        (:func:`dispersion.waves.discrete_branches.discrete_branches`); ``group=True`` adds the
+        group velocities (``DiscreteBranches.group``)."""
+        from dispersion.waves.discrete_branches import discrete_branches
+
+        if self.symbolic_r:
+            raise InputError(f"r must be a number > 0 for numeric branches, got the symbol "
+                             f"{self.r}")
+        nu = float(self.nu_value if nu is None else nu)
+        return discrete_branches(self.plate, nu, kappa, group=group)
+
+
+def as_patch(patch: Patch | None = None, **fields) -> Patch:
+    """``patch`` with ``fields`` replaced, or a new :class:`Patch` of ``fields``.
+
+    The one way functions that take a patch accept it: a ``Patch`` value, keywords, or both.
+
+    >>> as_patch(mass="lumped") == Patch(mass="lumped")
+    True
+    """
+    if patch is None:
+        return Patch(**fields)
+    if not isinstance(patch, Patch):
+        raise InputError(f"patch must be a dispersion.symbolic.patch.Patch, got {type(patch).__name__}")
+    return patch.replace(**fields) if fields else patch

@@ -84,9 +84,9 @@ def test_error_series_agrees_with_the_numeric_branches():
 def test_singular_a0_order_is_two_inside_its_window():
     # issue 18: fitted over kappa in [0.04, 0.16] the singular A0 order was 1.35 (predicted 2)
     from dispersion.studies.branch_study import _orders
+    from dispersion.symbolic.patch import Patch
 
-    fields = dict(SINGULAR_R2, r="2", gamma_s="0")
-    (s0, a0) = _orders(0.3, patches=[fields])
+    (s0, a0) = _orders(0.3, patches=[Patch(**SINGULAR_R2)])
     assert a0["verdict"] == "fitted" and a0["series_order"] == 2
     assert abs(a0["fitted"] - 2) < 0.05
     assert a0["window"][1] < 0.1 and a0["points"] == A.POINTS
@@ -101,4 +101,5 @@ def test_leading_power_of_the_error_matches_the_power_balance(mass, order):
 
     kw = dict(SINGULAR_R2, mass=mass)
     d, e = discrete_series("S0", 8, **kw), exact_series("S0", 8)
-    assert leading_difference(d, e) - 2 == order == min(A.relative_error_series("S0", NU, 8, **kw))
+    assert leading_difference(d, e) - 2 == order == min(A.relative_error_series("S0", NU, order=8,
+                                                                                **kw))

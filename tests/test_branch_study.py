@@ -133,7 +133,7 @@ def test_order_tables_are_headed_by_the_patch_the_result_carries(small_study):
     text = summary(small_study)
     # the fixture's patch has r = 7/3, a value no code path types: the heading must come
     # from the stored fields
-    assert "**Bloch r = b/h = 7/3, p = 2, n = 3, contact top, gamma_s = 0**" in text
+    assert "**Bloch r = b/h = 7/3, p = 2, n = 3; singular mass: contact top, gamma_s = 0**" in text
     assert "r = b/h = 1/2" not in text and "r = 2" not in text
     rows = [ln for ln in text.splitlines() if ln.startswith("| singular | A0")]
     assert len(rows) == 1 and "none: no window" in rows[0] and "| empty |" in rows[0]

@@ -20,9 +20,12 @@ def _fmt(x, spec=".3g") -> str:
 
 
 def _patch_heading(f: dict) -> str:
-    """The patch a fit was computed on, rendered from the fields the result carries."""
-    return (f"{f['model'].replace('bloch', 'Bloch')} r = b/h = {f['r']}, p = {f['p']}, "
-            f"n = {f['n']}, contact {f['contact']}, gamma_s = {f['gamma_s']}")
+    """The patch a fit was computed on, rendered from the fields the result carries
+    (:meth:`dispersion.symbolic.patch.Patch.as_dict`); the contact fields apply to the
+    singular mass."""
+    geom = f"Bloch r = b/h = {f['r']}" if f["model"] == "bloch" else "x-exact"
+    return (f"{geom}, p = {f['p']}, n = {f['n']}; singular mass: contact {f['contact']}, "
+            f"gamma_s = {f['gamma_s']}")
 
 
 def _window(o: dict) -> str:

@@ -56,16 +56,18 @@ def _fraction(x) -> Fraction:
     return Fraction(int(q.p), int(q.q))
 
 
-def relative_error_series(branch: str, nu, order: int = SERIES_ORDER,
+def relative_error_series(branch: str, nu, patch=None, order: int = SERIES_ORDER,
                           **patch_fields) -> dict[int, Fraction]:
     """Series of :math:`\\Omega_h / \\Omega - 1` of ``branch`` ("S0" or "A0") at a rational ``nu``.
 
-    ``patch_fields`` are those of :func:`dispersion.symbolic.plate.plate_patch`. Exact:
+    ``patch`` (a :class:`dispersion.symbolic.patch.Patch`) and ``patch_fields`` as in
+    :func:`dispersion.symbolic.power_balance.discrete_series`. Exact:
     :math:`R = \\Omega_h^2 / \\Omega^2` by series division, then :math:`\\sqrt R` by the
     recursion :math:`s_0 = 1`, :math:`2 s_k = R_k - \\sum_{0<i<k} s_i s_{k-i}`. Powers up to
     ``order`` minus the leading power of :math:`\\Omega^2`; zero terms are left out.
 
-    >>> s = relative_error_series("A0", Fraction(3, 10), 8, model="bloch", r=2, mass="consistent")
+    >>> s = relative_error_series("A0", Fraction(3, 10), order=8, model="bloch", r=2,
+    ...                           mass="consistent")
     >>> min(s)
     2
     """
@@ -75,7 +77,7 @@ def relative_error_series(branch: str, nu, order: int = SERIES_ORDER,
     from dispersion.waves.exact_series import exact_series
 
     nu_q = sympy.Rational(Fraction(nu).numerator, Fraction(nu).denominator)
-    d = {k: _fraction(v) for k, v in discrete_series(branch, order, nu=nu_q,
+    d = {k: _fraction(v) for k, v in discrete_series(branch, order, patch, nu=nu_q,
                                                      **patch_fields).items()}
     e = {k: _fraction(v) for k, v in exact_series(branch, order, nu=nu_q).items()}
     lead = min(k for k, v in e.items() if v != 0)

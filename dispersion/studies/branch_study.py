@@ -34,6 +34,7 @@ from dispersion.waves.bar_dispersion import bar_dispersion
 from dispersion.waves.discrete_branches import discrete_branches, fundamental_branches
 from dispersion.waves.mode_shapes import discrete_mode_shape, discrete_modes, exact_mode_shape, mac
 from dispersion.waves.mode_shapes import pair_by_shape
+from dispersion.symbolic.patch import Patch
 from dispersion.symbolic.plate import plate_patch
 from dispersion.waves.exact_branches import (
     ExactBranches,
@@ -83,17 +84,11 @@ def _arr(x) -> list:
 
 
 #: The patches whose error orders are fitted: every mass, at the studies' square elements
-#: (r = 2) and at Figure 2's aspect ratio (r = 1/2); p = 2, n = 3, contact on top, gamma_s = 0.
-#: Plain fields (the result carries them and every heading is rendered from them).
-FIT_PATCHES = tuple({"p": 2, "n": 3, "model": "bloch", "r": r, "mass": m, "contact": "top",
-                     "gamma_s": "0"}
+#: (r = 2) and at Figure 2's aspect ratio (r = 1/2); p = 2, n = 3, contact on top,
+#: gamma_s = 0. The result carries each as :meth:`Patch.as_dict`; every heading is rendered
+#: from that.
+FIT_PATCHES = tuple(Patch(model="bloch", r=r, mass=m, contact="top", gamma_s=0)
                     for r in ("2", "1/2") for m in ("consistent", "lumped", "singular"))
-
-
-def _patch_args(fields: dict) -> dict:
-    import sympy
-
-    return dict(fields, r=sympy.Rational(fields["r"]), gamma_s=sympy.Rational(fields["gamma_s"]))
 
 
 def _orders(nu: float, patches=FIT_PATCHES) -> list[dict]:
@@ -105,9 +100,9 @@ def _orders(nu: float, patches=FIT_PATCHES) -> list[dict]:
 
     nu_q = Fraction(str(nu))
     rows = []
-    for fields in patches:
-        args = _patch_args(fields)
-        patch = plate_patch(**args)
+    for spec in patches:
+        fields = spec.as_dict()
+        patch = plate_patch(spec)
 
         def measure(kappa, patch=patch):
             exact = trace_branches(nu, kappa, 4.0)
@@ -115,7 +110,7 @@ def _orders(nu: float, patches=FIT_PATCHES) -> list[dict]:
 
         cache = {}
         for branch in ("S0", "A0"):
-            series = relative_error_series(branch, nu_q, **args)
+            series = relative_error_series(branch, nu_q, spec)
 
             def one(kappa, branch=branch):
                 key = tuple(np.round(kappa, 15))
@@ -123,8 +118,8 @@ def _orders(nu: float, patches=FIT_PATCHES) -> list[dict]:
                     cache[key] = measure(np.asarray(kappa))
                 return cache[key][branch]
 
-            row = fit_in_window(series, one, kappa_max=math.pi / float(args["r"]))
-            rows.append({"patch": dict(fields), "mass": fields["mass"], "branch": branch,
+            row = fit_in_window(series, one, kappa_max=math.pi / float(spec.r))
+            rows.append({"patch": fields, "mass": spec.mass, "branch": branch,
                          "points": len(row["kappa"]),
                          "series_terms": {str(k): float(v) for k, v in series.items()}, **row})
     return rows

@@ -85,5 +85,6 @@ def run(args) -> int:
               f"{res.scheme}, dt {res.dt:g}): energy drift {s['energy_drift_percent']:.2g} % "
               f"of 1/8 (initial state {s['initial_energy_change_percent']:+.3g} %), "
               f"rel. L2 errors u(0) {s['u0_rel_l2']:.3g}, v(0) {s['v0_rel_l2']:.3g}, "
-              f"contact stress {s['stress_rel_l2']:.3g}; {s['seconds']:.2f} s")
+              f"contact stress {s['stress_rel_l2']:.3g}; {s['seconds']:.2f} s"
+              + (" [UNSTABLE: energy grows; not a result]" if s.get("energy_flag") else ""))
     return 0

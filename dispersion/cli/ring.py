@@ -141,5 +141,6 @@ def run(args) -> int:
               f"{s['energy_change_percent']:+.3f} %, max penetration "
               f"{s['max_penetration_greville']:.2e} m at the Greville points, "
               f"{s['max_penetration']:.2e} m between them, {s['contact_events']} contact "
-              f"events, rotation {s['final_rotation_deg']:.1f} deg")
+              f"events, rotation {s['final_rotation_deg']:.1f} deg"
+              + (" [UNSTABLE: energy grows; not a result]" if s.get("energy_flag") else ""))
     return 0

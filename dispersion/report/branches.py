@@ -20,12 +20,19 @@ def _fmt(x, spec=".3g") -> str:
 
 
 def _patch_heading(f: dict) -> str:
-    """The patch a fit was computed on, rendered from the fields the result carries
-    (:meth:`dispersion.symbolic.patch.Patch.as_dict`); the contact fields apply to the
-    singular mass."""
+    """The geometry a fit was computed on, rendered from the fields the result carries
+    (:meth:`dispersion.symbolic.patch.Patch.as_dict`)."""
     geom = f"Bloch r = b/h = {f['r']}" if f["model"] == "bloch" else "x-exact"
-    return (f"{geom}, p = {f['p']}, n = {f['n']}; singular mass: contact {f['contact']}, "
-            f"gamma_s = {f['gamma_s']}")
+    return f"{geom}, p = {f['p']}, n = {f['n']}"
+
+
+def _mass_cell(f: dict) -> str:
+    """The mass variant, with its contact set and weight where they apply (singular)."""
+    if not f["mass"].startswith("singular"):
+        return f["mass"]
+    if f.get("weights"):
+        return f"{f['mass']} (weights {f['weights']})"
+    return f"{f['mass']} (contact {f['contact']}, gamma_s = {f['gamma_s']})"
 
 
 def _window(o: dict) -> str:
@@ -57,16 +64,14 @@ def _order_tables(orders) -> list[str]:
         f"(1000x the solvers' accuracy); no order if the window is empty or the largest log "
         f"residual exceeds {RESIDUAL_MAX:g}. 'Series slope' is the least-squares slope of the "
         "truncated series itself on the same points.", ""]
-    patches = []
-    for o in orders:
-        if o["patch"] not in patches:
-            patches.append(o["patch"])
-    for f in patches:
-        lines += [f"**{_patch_heading(f)}**", "",
+    headings = list(dict.fromkeys(_patch_heading(o["patch"]) for o in orders))
+    for head in headings:
+        lines += [f"**{head}**", "",
                   "| mass | branch | series of the error | window (kappa) | points | fitted order "
                   "| max log residual | series slope |", "|---|---|---|---|---|---|---|---|"]
-        for o in (o for o in orders if o["patch"] == f):
-            lines.append(f"| {o['mass']} | {o['branch']} | {_series_cell(o)} | {_window(o)} | "
+        for o in (o for o in orders if _patch_heading(o["patch"]) == head):
+            lines.append(f"| {_mass_cell(o['patch'])} | {o['branch']} | {_series_cell(o)} | "
+                         f"{_window(o)} | "
                          f"{o['points']} | {_order_cell(o)} | "
                          f"{_fmt(o['max_log_residual'], '.2g')} | "
                          f"{_fmt(o['series_slope'], '.3f')} |")

@@ -79,6 +79,24 @@ def _order_tables(orders) -> list[str]:
     return lines
 
 
+def _legacy_order_table(orders) -> list[str]:
+    """A record from before the windowed fits (no ``patch`` per row) renders as it was stored;
+    ``dispersion reproduce`` replaces it."""
+    lines = ["| mass | branch | fitted order of the relative error | points | max log residual "
+             "| monotone | series predicts |", "|---|---|---|---|---|---|---|"]
+    for o in orders:
+        lines.append(f"| {o['mass']} | {o['branch']} | {_fmt(o['fitted'], '.2f')} | {o['points']} "
+                     f"| {_fmt(o['max_log_residual'], '.2g')} | {'yes' if o['monotone'] else 'no'} "
+                     f"| {o['series']} |")
+    return lines
+
+
+def _orders_block(orders) -> list[str]:
+    if any("patch" not in o for o in orders):
+        return _legacy_order_table(orders)
+    return _order_tables(orders)
+
+
 def render(data: dict, out: Path) -> str:
     """Figures and Markdown of the branches study from its stored JSON ``data``."""
     from dispersion.plotting import branches as plots
@@ -115,7 +133,7 @@ def render(data: dict, out: Path) -> str:
         f"relative error {data['mpmath_error']:.1e}; tracer failures reported: "
         f"{len(data['exact_failures'])}.", "",
     ]
-    lines += _order_tables(data["orders"])
+    lines += _orders_block(data["orders"])
     zgv = ", ".join(f"{z['label']} at kappa = {z['kappa']:.6f}, Omega = {z['omega']:.6f}"
                     for z in data["zgv"]) or "none"
     lines += [
@@ -171,5 +189,5 @@ def summary(data: dict) -> str:
             for z in data["zgv"]) + ".",
         "",
     ]
-    lines += _order_tables(data["orders"])
+    lines += _orders_block(data["orders"])
     return "\n".join(lines).rstrip("\n") + "\n"

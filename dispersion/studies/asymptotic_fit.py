@@ -45,6 +45,8 @@ ERROR_FLOOR = 1e-7
 MIN_SPAN = 2.0
 POINTS = 5
 RESIDUAL_MAX = 0.05
+#: Upper end of the search for the window when no ``kappa_max`` bounds it.
+_KAPPA_BIG = 1e6
 #: Highest power of kappa of the Omega^2 series behind the error series.
 SERIES_ORDER = 12
 
@@ -108,8 +110,10 @@ def asymptotic_window(series: dict, kappa_max: float = math.inf) -> tuple[float,
         return LEAD_OVER_REST * sum(c * k ** (j - m) for j, c in rest) > cm
 
     hi = kappa_max
+    if rest and math.isinf(hi) and not too_big(_KAPPA_BIG):
+        return None  # no bound from the known terms and none given: no window is claimed
     if rest and (math.isinf(hi) or too_big(hi)):
-        a, b = 1e-12, (1e6 if math.isinf(hi) else hi)  # bisection on log kappa
+        a, b = 1e-12, (_KAPPA_BIG if math.isinf(hi) else hi)  # bisection on log kappa
         for _ in range(200):
             mid = math.sqrt(a * b)
             a, b = (a, mid) if too_big(mid) else (mid, b)

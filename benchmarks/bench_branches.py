@@ -1,15 +1,20 @@
-"""Benchmark of the dispersion branches: batched vs per-point, tracer vs naive scan, and the
-cost of velocities and physical units against the plain branch computation (issue 10).
+"""Benchmark of the dispersion branches: the discrete race (this code against the previous
+release, today's main before the polynomial path, and the plain per-point eigh loop, with
+accuracy against extended precision on the same points), tracer vs naive scan, and the cost of
+velocities and physical units against the plain branch computation (issues 10 and 23).
 
-Run:  python benchmarks/bench_branches.py [--quick] [--out DIR]
+Run:  python benchmarks/bench_branches.py [--quick] [--discrete-only] [--out DIR]
 
 Prints tables with ratios and peak memory (tracemalloc, numpy allocations included);
-with ``--out`` also writes the speed-vs-accuracy chart and the rows as JSON.
+with ``--out`` also writes the speed-vs-accuracy chart, the rows as JSON, and the discrete
+race as ``bench_branches_discrete.json`` and ``bench_branches.md``.
 """
 from __future__ import annotations
 
 import argparse
 import json
+import os
+import sys
 import time
 import tracemalloc
 from pathlib import Path
@@ -46,17 +51,6 @@ def peak_mib(func, *args, **kwargs) -> float:
     return peak / 2**20
 
 
-def per_point_eig(patch, kappa):
-    """The plain baseline: one scipy.linalg.eig (QZ) per kappa, infinite roots dropped."""
-    K, M = numeric_pencil(patch, NU, kappa)
-    out = []
-    for Ki, Mi in zip(K, M):
-        a, b = scipy.linalg.eig(Ki, Mi, right=False, homogeneous_eigvals=True)
-        fin = np.abs(b) > 1e-12 * np.abs(a)
-        out.append(np.sort(np.sqrt(np.abs((a[fin] / b[fin]).real))))
-    return out
-
-
 def naive_scan(kappa, omega_max, step=0.01):
     """Bracket on a uniform Omega grid, bisect (brentq) each sign change of F, per kappa."""
     roots = {}
@@ -73,31 +67,249 @@ def naive_scan(kappa, omega_max, step=0.01):
     return roots
 
 
+#: The discrete race: Bloch patch (issue 23: Bloch r = 2, nu = 0.3), grids to the zone edge.
+RACE_R = 2
+RACE_MASSES = ("consistent", "lumped", "singular", "singular-lumped")
+#: The singular masses' weight, stated because the default changed between the commits raced
+#: (0 before the Patch value, 1/2 after): every code solves the same pencil.
+RACE_GAMMA_S = 0
+#: Code raced against, each imported from ``git archive`` of its commit in a subprocess.
+RACE_COMMITS = {"previous release": "1dc7ac6", "main before": "43845d3"}
+#: Targets of issue 23 (kappa/s on the whole grid with the accuracy guarantee on).
+RACE_TARGETS = {(2, 3): 1e6, (3, 6): 1e5}
+
+_RUNNER = r"""
+import json, sys, time
+import numpy as np
+sys.path.insert(0, sys.argv[1])
+spec = json.loads(sys.stdin.read())
+try:
+    from dispersion.waves.discrete_branches import discrete_branches
+    from dispersion.symbolic.plate import plate_patch
+except ImportError:
+    from dispersion.branches import discrete_branches
+    from dispersion.plate import plate_patch
+import dispersion
+out = {"where": dispersion.__file__, "cases": []}
+for case in spec["cases"]:
+    patch = plate_patch(p=case["p"], n=case["n"], model="bloch", r=spec["r"], mass=case["mass"],
+                        gamma_s=spec["gamma_s"])
+    lo, hi, n = case["grid"]
+    k = np.linspace(lo, hi, n) if case["kind"] == "linear" else np.geomspace(lo, hi, n)
+    discrete_branches(patch, spec["nu"], k[:50])
+    best = float("inf")
+    for _ in range(spec["repeat"]):
+        t0 = time.perf_counter()
+        br = discrete_branches(patch, spec["nu"], k)
+        best = min(best, time.perf_counter() - t0)
+    W = np.column_stack(list(br.omega.values()))
+    sample = [sorted(float(w) for w in W[i] if np.isfinite(w)) for i in case["sample"]]
+    out["cases"].append({"time_s": best, "points": int(n), "sample_omega": sample})
+print(json.dumps(out))
+"""
+
+
+def race_grid(kind: str, n: int) -> np.ndarray:
+    """The race grids: ``linear`` from kappa = 0, ``geometric`` from 1e-6, to the zone edge."""
+    edge = np.pi / RACE_R
+    return np.linspace(0.0, edge, n) if kind == "linear" else np.geomspace(1e-6, edge, n)
+
+
+def _grid_spec(kind, n):
+    edge = float(np.pi / RACE_R)
+    return [0.0, edge, n] if kind == "linear" else [1e-6, edge, n]
+
+
+def _sample(kind: str, n: int, count: int) -> list[int]:
+    """Indices of the accuracy sample: the first points (hard regime) and a spread."""
+    idx = set(range(min(5, n))) | set(np.linspace(0, n - 1, count).astype(int).tolist())
+    return sorted(idx)
+
+
+def _plain_eigh_loop(patch, kappa):
+    """The plain baseline: per kappa, massless DOFs condensed, one scipy.linalg.eigh."""
+    K, M = numeric_pencil(patch, NU, kappa)
+    m = np.array(patch.massless, dtype=int)
+    r = np.setdiff1d(np.arange(K.shape[1]), m)
+    out = []
+    for Ki, Mi in zip(K, M):
+        Kr = Ki[np.ix_(r, r)]
+        if m.size:
+            Kr = Kr - Ki[np.ix_(r, m)] @ np.linalg.solve(Ki[np.ix_(m, m)], Ki[np.ix_(m, r)])
+        lam = scipy.linalg.eigh(Kr, Mi[np.ix_(r, r)], eigvals_only=True)
+        out.append(np.sqrt(np.clip(lam, 0, None)))
+    return np.array(out)
+
+
+def _reference(patch, kappa: float) -> np.ndarray:
+    """Sorted Omega at 60 digits (ball arithmetic on the matrices, not on the polynomial);
+    at kappa = 0 (double zero eigenvalue, which ball eigen-solvers cannot isolate) the exact
+    characteristic polynomial of the condensed rational pencil, roots isolated by flint."""
+    from dispersion.waves.discrete_branches import extended_frequencies
+
+    if kappa > 0:
+        return np.sort(extended_frequencies(patch, NU, kappa, dps=60))
+    import flint
+    import sympy
+
+    from dispersion.symbolic.plate import dynamic_stiffness, mass_block
+
+    K = dynamic_stiffness(patch, kappa=0, Omega=0, nu=sympy.Rational(str(NU)))
+    M = mass_block(patch)
+    keep = [i for i in range(M.shape[0]) if any(M.row(i))]
+    zero = [i for i in range(M.shape[0]) if i not in keep]
+    Kr = K.extract(keep, keep)
+    if zero:
+        Kr -= K.extract(keep, zero) * K.extract(zero, zero).inv() * K.extract(zero, keep)
+    A = M.extract(keep, keep).inv() * Kr
+    F = flint.fmpq_mat([[flint.fmpq(int(v.p), int(v.q)) for v in row] for row in A.tolist()])
+    lam = sorted(max(float(z.real), 0.0) for z, mult in F.charpoly().complex_roots()
+                 for _ in range(mult))
+    return np.sqrt(np.array(lam))
+
+
+def _errors(samples, refs) -> float:
+    """Largest relative error (absolute where the reference is 0) over a sample."""
+    worst = 0.0
+    for got, ref in zip(samples, refs):
+        got = np.sort(np.asarray(got, dtype=float))
+        if got.size != ref.size:
+            return float("inf")
+        scale = np.where(ref > 0, ref, 1.0)
+        worst = max(worst, float(np.max(np.abs(got - ref) / scale)))
+    return worst
+
+
+def _run_commit(commit: str, cases: list[dict], repeat: int) -> dict:
+    """Time ``discrete_branches`` of ``commit`` in a subprocess (its tree from git archive)."""
+    import subprocess
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as tmp:
+        archive = subprocess.run(["git", "-C", str(_REPO), "archive", commit],
+                                 check=True, capture_output=True).stdout
+        subprocess.run(["tar", "-x", "-C", tmp], input=archive, check=True)
+        spec = {"r": RACE_R, "nu": NU, "gamma_s": RACE_GAMMA_S, "repeat": repeat, "cases": cases}
+        done = subprocess.run([sys.executable, "-c", _RUNNER, tmp], input=json.dumps(spec),
+                              capture_output=True, text=True, check=True)
+    return json.loads(done.stdout)
+
+
+_REPO = Path(__file__).resolve().parents[1]
+
+
+def discrete_race(quick: bool = False) -> dict:
+    """Points/s and accuracy of the discrete branches, four codes, same run (issue 23)."""
+    import platform
+
+    from dispersion.waves.discrete_branches import discrete_branches
+
+    n_fast = 20_000 if quick else 100_000
+    sizes = {"this code": n_fast, "previous release": n_fast,
+             "main before": 2_000 if quick else 10_000, "plain eigh loop": 1_000 if quick else 3_000}
+    repeat = 1 if quick else 3
+    configs = [(2, 3, m) for m in RACE_MASSES] + [(3, 6, m) for m in RACE_MASSES]
+    kinds = ("linear", "geometric")
+    rows = []
+    for p, n, mass in configs:
+        patch = plate_patch(p=p, n=n, model="bloch", r=RACE_R, mass=mass, gamma_s=RACE_GAMMA_S)
+        t0 = time.perf_counter()
+        discrete_branches(patch, NU, [0.5])  # builds and caches the exact polynomial
+        build = time.perf_counter() - t0
+        for kind in kinds:
+            row = {"p": p, "n": n, "mass": mass, "grid": kind, "build_s": build, "codes": {}}
+            for code, size in sizes.items():
+                sample = _sample(kind, size, 12 if quick else 30)
+                k = race_grid(kind, size)
+                if code == "this code":
+                    best = np.inf
+                    for _ in range(repeat):
+                        t = time.perf_counter()
+                        br = discrete_branches(patch, NU, k)
+                        best = min(best, time.perf_counter() - t)
+                    W = np.column_stack(list(br.omega.values()))
+                    got = [W[i][np.isfinite(W[i])] for i in sample]
+                    extra = {"failures": len(br.failures)}
+                elif code == "plain eigh loop":
+                    t = time.perf_counter()
+                    W = _plain_eigh_loop(patch, k)
+                    best = time.perf_counter() - t
+                    got = [W[i] for i in sample]
+                    extra = {}
+                else:
+                    case = {"p": p, "n": n, "mass": mass, "kind": kind,
+                            "grid": _grid_spec(kind, size), "sample": sample}
+                    res = _run_commit(RACE_COMMITS[code], [case], repeat)["cases"][0]
+                    best, got, extra = res["time_s"], res["sample_omega"], \
+                        {"commit": RACE_COMMITS[code]}
+                refs = [_reference(patch, float(k[i])) for i in sample]
+                row["codes"][code] = {"points": size, "time_s": best, "points_per_s": size / best,
+                                      "max_rel_error": _errors(got, refs),
+                                      "sample_points": len(sample), **extra}
+            rows.append(row)
+            print(f"  p={p} n={n} {mass:16s} {kind:9s} " + "  ".join(
+                f"{c}: {v['points_per_s']:.3g}/s err {v['max_rel_error']:.1e}"
+                for c, v in row["codes"].items()), flush=True)
+    return {"inputs": {"model": "bloch", "r": RACE_R, "nu": NU, "masses": list(RACE_MASSES),
+                       "gamma_s": RACE_GAMMA_S, "contact": "top",
+                       "grids": {"linear": "kappa = linspace(0, pi/r, N)",
+                                 "geometric": "kappa = geomspace(1e-6, pi/r, N)"},
+                       "sizes": sizes, "repeat": repeat, "quick": quick,
+                       "reference": "extended_frequencies at 60 digits (python-flint balls)"},
+            "versions": {"python": platform.python_version(), "numpy": np.__version__,
+                         "scipy": scipy.__version__, "machine": platform.machine(),
+                         "cpus": os.cpu_count()},
+            "targets": {f"p={p} n={n}": v for (p, n), v in RACE_TARGETS.items()},
+            "rows": rows}
+
+
+def race_markdown(race: dict) -> str:
+    """The race as a Markdown table, every label rendered from the result."""
+    inp = race["inputs"]
+    codes = list(race["rows"][0]["codes"])
+    lines = [f"# Discrete branches: points/s and accuracy (Bloch r = {inp['r']}, "
+             f"nu = {inp['nu']}; singular masses: contact {inp['contact']}, "
+             f"gamma_s = {inp['gamma_s']})", "",
+             "Grids: " + "; ".join(f"{k}: {v}" for k, v in inp["grids"].items())
+             + ". Points per code: " + ", ".join(f"{c} {inp['sizes'][c]}" for c in codes)
+             + f". Best of {inp['repeat']}. Accuracy: largest relative error over a sample of "
+             f"each grid against {inp['reference']}. Targets: "
+             + ", ".join(f"{k} >= {v:.0e} kappa/s" for k, v in race["targets"].items())
+             + ". Same run, shared machine: compare ratios.", "",
+             "| p | n | mass | grid | " + " | ".join(f"{c} kappa/s | {c} max rel err"
+                                                   for c in codes)
+             + " | this / previous | this / plain loop |",
+             "|" + "---|" * (4 + 2 * len(codes) + 2)]
+    for row in race["rows"]:
+        c = row["codes"]
+        cells = [str(row["p"]), str(row["n"]), row["mass"], row["grid"]]
+        for code in codes:
+            cells += [f"{c[code]['points_per_s']:.3g}", f"{c[code]['max_rel_error']:.1e}"]
+        cells += [f"{c['this code']['points_per_s'] / c['previous release']['points_per_s']:.2f}",
+                  f"{c['this code']['points_per_s'] / c['plain eigh loop']['points_per_s']:.1f}"]
+        lines.append("| " + " | ".join(cells) + " |")
+    return "\n".join(lines) + "\n"
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true")
     ap.add_argument("--out", type=Path)
+    ap.add_argument("--discrete-only", action="store_true",
+                    help="only the discrete race (previous release, main, eigh loop, this code)")
     args = ap.parse_args()
 
     n_batch = 20_000 if args.quick else 100_000
-    n_loop = 500 if args.quick else 2_000
-    print(f"## Discrete branches, paper patch p=2 n=3 (6x6 pencil), nu={NU}")
-    print(f"{'case':34s} {'points':>8s} {'time s':>8s} {'points/s':>10s} {'ratio':>7s} "
-          f"{'peak MiB':>9s}")
-    for model, mass in (("x-exact", "consistent"), ("bloch", "consistent"),
-                        ("bloch", "singular"), ("x-exact", "lumped")):
-        patch = plate_patch(model=model, r=0.5, mass=mass)
-        kb = np.linspace(0, 10, n_batch)
-        tb, _ = timed(discrete_branches, patch, NU, kb)
-        kl = np.linspace(0, 10, n_loop)
-        tl, _ = timed(per_point_eig, patch, kl, repeat=1)
-        rb, rl = n_batch / tb, n_loop / tl
-        mem = peak_mib(discrete_branches, patch, NU, kb)
-        print(f"{model + ' ' + mass + ' batched':34s} {n_batch:8d} {tb:8.3f} {rb:10.0f} "
-              f"{rb / rl:7.1f} {mem:9.1f}")
-        print(f"{model + ' ' + mass + ' scipy eig loop':34s} {n_loop:8d} {tl:8.3f} {rl:10.0f} "
-              f"{1.0:7.1f} {'':>9s}")
+    print("## Discrete race")
+    race = discrete_race(args.quick)
+    print(race_markdown(race))
+    if args.out:
+        from dispersion.io import write_text
 
+        write_text(args.out / "bench_branches_discrete.json", json.dumps(race, indent=2) + "\n")
+        write_text(args.out / "bench_branches.md", race_markdown(race))
+    if args.discrete_only:
+        return
     print("\n## Rayleigh-Lamb: all branches with Omega <= 6, kappa in [0, 10]")
     k = np.linspace(0, 10, 1000)
     tt, br = timed(trace_branches, NU, k, 6.0)
@@ -126,12 +338,12 @@ def main() -> None:
     print(f"{'case':44s} {'plain s':>8s} {'with s':>8s} {'ratio':>6s} {'peak MiB':>9s}")
     ke = np.linspace(0, 10, 1000)
 
-    def exact_with_units():
-        ex = trace_branches(NU, ke, 6.0)
+    def exact_with_units():  # at the material's nu: units refuse branches of another nu
+        ex = trace_branches(ALUMINIUM.nu, ke, 6.0)
         v = exact_velocities(ex)
         return physical_branches(ke, ex.omega, v.group, ALUMINIUM, 1.0)
 
-    t0, _ = timed(trace_branches, NU, ke, 6.0)
+    t0, _ = timed(trace_branches, ALUMINIUM.nu, ke, 6.0)
     t1, _ = timed(exact_with_units)
     print(f"{'exact, 1000 kappa, Omega <= 6':44s} {t0:8.3f} {t1:8.3f} {t1 / t0:6.2f} "
           f"{peak_mib(exact_with_units):9.1f}")

@@ -27,7 +27,8 @@ from dispersion.errors import ConvergenceError, DispersionError, IndefiniteMassW
 #: Distribution name on the package index (the import name is ``dispersion``).
 DISTRIBUTION = "dispersion-iga"
 
-_API = ("Patch", "patch", "series", "exact_branches", "simulate_ring", "simulate_bar")
+_API = ("Patch", "patch", "series", "exact_branches", "lamb_modes", "material", "simulate_ring",
+        "simulate_bar")
 #: Public modules by their short names (``dispersion.plate``), wherever they live in the wings.
 _MODULES = {
     "api": "api", "defaults": "defaults", "errors": "errors", "io": "io", "results": "results",
@@ -39,6 +40,10 @@ _MODULES = {
     "discrete_branches": "waves.discrete_branches", "velocities": "waves.velocities",
     "units": "waves.units", "mode_shapes": "waves.mode_shapes",
     "bar_dispersion": "waves.bar_dispersion", "errata": "claims.errata",
+    "materials": "waves.materials", "frequency": "waves.frequency", "sh": "waves.sh",
+    "mode_table": "waves.mode_table",
+    "mass_rule": "symbolic.mass_rule", "timestep": "waves.timestep",
+    "fully_discrete": "waves.fully_discrete", "cost_accuracy": "studies.cost_accuracy",
 }
 _SUBMODULES = tuple(_MODULES)
 

@@ -34,7 +34,8 @@ from dispersion.symbolic.patch import Patch
 if TYPE_CHECKING:  # pragma: no cover
     import sympy
 
-__all__ = ["Patch", "patch", "series", "exact_branches", "simulate_ring", "simulate_bar"]
+__all__ = ["Patch", "patch", "series", "exact_branches", "lamb_modes", "material", "simulate_ring",
+           "simulate_bar"]
 
 
 def patch(p: int = defaults.P, n: int = defaults.N, model: str = defaults.MODEL,
@@ -73,6 +74,31 @@ def exact_branches(kappa, nu=defaults.NU_FLOAT, omega_max: float = 8.0, **kwargs
     from dispersion.waves.exact_branches import trace_branches
 
     return trace_branches(nu, kappa, omega_max, **kwargs)
+
+
+def material(name: str):
+    """A material of the table (:data:`dispersion.waves.materials.MATERIALS`, with sources);
+    user materials: :func:`dispersion.waves.materials.user_material`."""
+    from dispersion.waves.materials import material as _material
+
+    return _material(name)
+
+
+def lamb_modes(material, thickness_mm: float, *, frequency_khz=None, fd_mhz_mm=None, **kwargs):
+    """Every propagating S, A and SH mode of the plate at the given frequencies (kHz) or
+    frequency-thickness products (MHz mm), in physical units
+    (:func:`dispersion.waves.mode_table.lamb_modes`; ``material`` may be a table name).
+
+    >>> t = lamb_modes("steel", 3.0, frequency_khz=200)
+    >>> [(r["mode"], round(r["c_p [m/s]"]), round(r["c_g [m/s]"])) for r in t.rows()]
+    [('S0', 5415, 5374), ('A0', 2023, 3059), ('SH0', 3235, 3235)]
+    """
+    from dispersion.waves.mode_table import lamb_modes as _lamb_modes
+
+    if isinstance(material, str):
+        material = globals()["material"](material)
+    return _lamb_modes(material, thickness_mm, frequency_khz=frequency_khz,
+                       fd_mhz_mm=fd_mhz_mm, **kwargs)
 
 
 def simulate_ring(mass: str = "singular", scheme: str = "kane", scenario=None, **changes):

@@ -4,9 +4,12 @@ Every file the toolkit writes goes through this module, with these guarantees:
 
 - **Atomic files.** :func:`atomic_write` writes a hidden temporary beside the target, flushes
   and ``fsync``\\ s it, then renames it onto the target: a reader sees the old file or the
-  new one, never a partial one. On any error the temporary is removed. A process killed with
-  SIGKILL can leave its temporary (``.NAME.PID.tmp``); :func:`stale_temporaries` finds those
-  whose writer is gone and :func:`remove_stale_temporaries` deletes them.
+  new one, never a partial one. On any error the temporary is removed. The temporary lives in
+  a stage folder ``.dispersion-stage.TOKEN`` (:mod:`dispersion.staging`) that records a
+  random token; a process killed with SIGKILL leaves it, and the next writer into that
+  folder removes it, acting only on stages whose name and token verify (never on a file we
+  did not write). :func:`stale_temporaries` lists them, :func:`remove_stale_temporaries`
+  removes them.
 - **Modes follow the umask.** A new file gets ``0o666 & ~umask`` (not ``mkstemp``'s 0600);
   a file that is replaced keeps its permission bits; new folders get ``0o777 & ~umask``.
 - **``-`` is standard output.** Devices, FIFOs and sockets (``/dev/stdout``, ``/dev/null``,
@@ -18,8 +21,9 @@ Every file the toolkit writes goes through this module, with these guarantees:
 - **Write errors are one line.** A full disk, a read-only file system or a permission error
   while writing raises :class:`OutputError` (a :class:`~dispersion.errors.DispersionError`)
   or :class:`~dispersion.errors.InputError` (the path is not writable), with no partial file.
-- **Several files as one unit.** :func:`write_files` stages every file first and renames
-  them only once all are staged, under a journal; see its docstring for the exact guarantee.
+- **Several files as one unit.** :func:`write_files` (one folder) and :func:`write_unit`
+  (any folders) stage every file first and rename them only once all are staged, under a
+  journal; see their docstrings for the exact guarantee.
 
 >>> import tempfile, pathlib
 >>> folder = pathlib.Path(tempfile.mkdtemp())
@@ -34,7 +38,6 @@ from __future__ import annotations
 
 import contextlib
 import errno
-import json
 import os
 import stat
 import sys
@@ -42,6 +45,7 @@ from collections.abc import Mapping
 from pathlib import Path
 
 from dispersion.errors import DispersionError, InputError
+from dispersion.staging import Stage, checkpoint, recover
 
 __all__ = [
     "OutputError",
@@ -55,20 +59,19 @@ __all__ = [
     "check_output_dir",
     "make_dir",
     "umask",
+    "write_unit",
+    "unit_target",
     "stale_temporaries",
     "remove_stale_temporaries",
-    "JOURNAL",
 ]
 
 #: The path that means standard output.
 STDOUT = "-"
-#: Journal :func:`write_files` keeps while it renames staged files (``.format(pid=...)``):
-#: one per writing process, so concurrent writers into one folder never share one.
-JOURNAL = ".dispersion-write.{pid}.json"
-_TMP_SUFFIX = ".tmp"
 # errno values that mean "this path cannot be written by you": the user's choice, exit 2.
 _PATH_ERRORS = {errno.EACCES, errno.EPERM, errno.EROFS, errno.ENOENT, errno.ENOTDIR,
-                errno.EISDIR, errno.ENAMETOOLONG, errno.ELOOP}
+                errno.EISDIR, errno.ENAMETOOLONG, errno.ELOOP, errno.EEXIST}
+# errno values of a full disk or quota, wherever they surface (a write, a flush, a close)
+_FULL_ERRORS = {errno.ENOSPC, errno.EDQUOT, errno.EFBIG}
 
 
 class OutputError(DispersionError):
@@ -147,6 +150,10 @@ def make_dir(path, option: str | None = None) -> Path:
 def atomic_write(path, mode: str = "w", *, option: str | None = None, **kwargs):
     """Open a temporary file beside ``path``; rename it onto ``path`` only on success.
 
+    The temporary lives in a stage folder ``.dispersion-stage.TOKEN`` beside ``path``
+    (:class:`dispersion.staging.Stage`); an error, Ctrl-C or SIGTERM removes it, and what a
+    SIGKILL leaves is removed by the next writer into that folder.
+
     ``path`` ``"-"`` yields standard output (text or binary by ``mode``); a device, FIFO or
     socket is opened and written through; a symbolic link to a regular file has its target
     replaced (the link stays). ``option`` names the CLI option in error messages.
@@ -187,38 +194,44 @@ def atomic_write(path, mode: str = "w", *, option: str | None = None, **kwargs):
     if st is not None and stat.S_ISDIR(st.st_mode):
         raise InputError(f"{option or 'output'} must name a file, but {path} is an existing folder")
     target = Path(os.path.realpath(path)) if path.is_symlink() else path
-    make_dir(target.parent, option)
     perms = stat.S_IMODE(st.st_mode) if st is not None else 0o666 & ~umask()
-    tmp = target.parent / f".{target.name}.{os.getpid()}{_TMP_SUFFIX}"
-    try:
-        fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
-    except FileExistsError:  # a re-entrant write to the same target in this process
-        import tempfile
-
-        fd, name = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.{os.getpid()}.x",
-                                    suffix=_TMP_SUFFIX)
-        tmp = Path(name)
-    except OSError as exc:
-        raise _error(exc, target, option) from None
-    try:
-        with os.fdopen(fd, mode, **kwargs) as fh:
-            yield fh
-            try:
-                fh.flush()
-                os.fsync(fh.fileno())
-            except OSError as exc:
-                raise _error(exc, target, option) from None
+    with Stage() as unit:
         try:
-            os.chmod(tmp, perms)
-            os.replace(tmp, target)
+            tmp = unit.file(target)
+            fh = open(tmp, mode, **kwargs)
         except OSError as exc:
             raise _error(exc, target, option) from None
-    except BaseException as exc:
-        with contextlib.suppress(FileNotFoundError):
-            os.unlink(tmp)
-        if isinstance(exc, OSError) and exc.errno in (errno.ENOSPC, errno.EDQUOT, errno.EFBIG):
-            raise _error(exc, target, option) from None  # full disk on close of the file
-        raise
+        try:
+            with fh:
+                yield fh
+                fh.flush()
+                os.fsync(fh.fileno())
+        except OSError as exc:
+            if exc.errno in _FULL_ERRORS:  # a full disk while writing; other errors are the body's
+                raise _error(exc, target, option) from None
+            raise
+        checkpoint()
+        try:
+            os.chmod(tmp, perms)
+            unit.commit()
+        except OSError as exc:
+            raise _error(exc, target, option) from None
+
+
+def unit_target(path) -> Path | None:
+    """Where a unit writes ``path``: the file a link points to; None for a stream (``-``,
+    a device, a FIFO, a path through ``/dev``), which is written through, not staged.
+
+    >>> unit_target("-") is None, unit_target("/dev/null") is None
+    (True, True)
+    """
+    if str(path) == STDOUT or os.path.abspath(path) in _STREAM_PATHS:
+        return None
+    path = Path(path)
+    st = _stat(path)
+    if st is not None and (_is_stream(st) or _through_dev(path)):
+        return None
+    return Path(os.path.realpath(path)) if path.is_symlink() else path
 
 
 def write_text(path, text: str, *, option: str | None = None) -> Path:
@@ -360,68 +373,29 @@ def check_output_dir(path, option: str = "--out") -> Path:
     return path
 
 
-def _pid_alive(pid: int) -> bool:
-    try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
-        return False
-    except PermissionError:
-        return True
-    return True
-
-
 def stale_temporaries(folder) -> list[Path]:
-    """Temporaries ``.NAME.PID[.x].tmp`` in ``folder`` whose writing process is gone."""
-    stale = []
-    folder = Path(folder)
-    if not folder.is_dir():
-        return stale
-    for entry in folder.iterdir():
-        name = entry.name
-        if not (name.startswith(".") and name.endswith(_TMP_SUFFIX)) or not entry.is_file():
-            continue
-        parts = name[1:-len(_TMP_SUFFIX)].split(".")
-        if parts and (parts[-1] == "w" or parts[-1].startswith("x")):
-            parts = parts[:-1]  # write_files / re-entrant atomic_write temporaries
-        if len(parts) >= 2 and parts[-1].isdigit() and not _pid_alive(int(parts[-1])):
-            stale.append(entry)
-    return sorted(stale)
+    """Stages of killed writers in ``folder`` that verify as ours (see :mod:`dispersion.staging`).
+
+    A stage whose writer is alive, or a look-alike that does not verify, is not listed.
+    """
+    from dispersion.staging import stale_stages
+
+    return stale_stages(folder)
 
 
-def remove_stale_temporaries(folder) -> list[Path]:
-    """Delete :func:`stale_temporaries` of ``folder`` (after finishing a left journal)."""
-    _recover(Path(folder))
-    removed = []
-    for path in stale_temporaries(folder):
-        with contextlib.suppress(FileNotFoundError):
-            path.unlink()
-            removed.append(path)
-    return removed
+def remove_stale_temporaries(folder, *, notice=None) -> list[Path]:
+    """Finish or undo what killed writers left in ``folder`` (only what verifies as ours).
 
-
-def _recover(folder: Path) -> None:
-    """Finish the renames of journals left by killed :func:`write_files` calls."""
-    for journal in sorted(folder.glob(JOURNAL.format(pid="*"))):
-        pid = journal.name.split(".")[2]
-        if not pid.isdigit() or _pid_alive(int(pid)):
-            continue  # not ours, or its writer is still at work
-        try:
-            entries = json.loads(journal.read_text())["renames"]
-        except FileNotFoundError:
-            continue
-        except (OSError, ValueError, KeyError, TypeError):
-            raise OutputError(f"{journal} is unreadable; remove it after checking the folder") \
-                from None
-        for tmp, name in entries:
-            if (folder / tmp).exists():
-                os.replace(folder / tmp, folder / name)
-        journal.unlink()
+    A unit whose journal was written is completed (all new); one without is removed (all
+    old). Returns the stage folders that went. See :func:`dispersion.staging.recover`.
+    """
+    return recover(folder, notice=notice)
 
 
 def _check_name(name: str) -> str:
-    parts = Path(name).parts
-    if not name or Path(name).is_absolute() or ".." in parts \
-            or Path(name).name.startswith(".dispersion-write."):
+    parts = Path(name).parts if isinstance(name, str) else ()
+    if not parts or Path(name).is_absolute() or ".." in parts or "\0" in name \
+            or any(part.startswith(".dispersion-") for part in parts):
         raise InputError(f"file names in write_files must be relative paths inside the folder "
                          f"without '..', got {name!r}")
     return name
@@ -431,18 +405,16 @@ def write_files(folder, files: Mapping[str, str | bytes], *, option: str | None 
                 ) -> list[Path]:
     """Write several files into ``folder`` as one unit: all new, or all old.
 
-    Every file is first staged as a hidden temporary beside its target (``fsync``\\ ed).
-    If anything fails or the process is interrupted while staging, the temporaries are
-    removed and every target keeps its old content (a SIGKILL leaves temporaries that
-    :func:`remove_stale_temporaries` deletes). Once all are staged, a journal
-    (``.dispersion-write.json``, listing each rename) is written atomically, the files are
-    renamed onto their targets one by one, and the journal is removed. A kill during that
-    last short phase leaves the journal (``.dispersion-write.PID.json``); the next
-    :func:`write_files` or :func:`remove_stale_temporaries` on the folder completes the
-    renames, so the folder ends all new. Until then a reader can see a mix: the guarantee
-    is "all old or all new once recovered", not a single atomic switch. Files not named in
-    ``files`` are never touched. Concurrent calls on one folder do not corrupt each other's
-    files (each has its own temporaries and journal); the last rename of a name wins.
+    Every file is staged (``fsync``\\ ed) in a hidden stage folder beside its target, under
+    a random token (:class:`dispersion.staging.Stage`). If anything fails or the process is
+    interrupted while staging, the stages are removed, every target keeps its old content and
+    a folder this call created is removed again (no empty new folder on a full disk). Once
+    all are staged, a journal is written and the files are renamed onto their targets. A kill
+    in that last short phase leaves the journal; the next writer into the folder (or
+    :func:`remove_stale_temporaries`) completes the renames, so the folder ends all new. Until
+    then a reader can see a mix: the guarantee is "all old or all new once recovered", not a
+    single atomic switch. Files not named in ``files`` are never touched. Concurrent calls on
+    one folder do not corrupt each other's files; the last rename of a name wins.
 
     Parameters
     ----------
@@ -464,38 +436,41 @@ def write_files(folder, files: Mapping[str, str | bytes], *, option: str | None 
     """
     folder = check_output_dir(folder, option or "folder")
     names = [_check_name(n) for n in files]
-    make_dir(folder, option)
-    _recover(folder)
-    staged: list[tuple[Path, Path]] = []
-    try:
-        for name in names:
-            data = files[name]
-            target = folder / name
+    return write_unit({folder / name: files[name] for name in names}, option=option)
+
+
+def write_unit(files: Mapping[Path, str | bytes], *, option: str | None = None) -> list[Path]:
+    """Write files that may lie in different folders as one unit (see :func:`write_files`).
+
+    Each target must be a regular file or absent (a link or a device is refused: pass
+    :func:`unit_target` of a user's path, which resolves links and says which paths are
+    streams to write through instead).
+
+    >>> import tempfile, pathlib
+    >>> root = pathlib.Path(tempfile.mkdtemp())
+    >>> [p.name for p in write_unit({root / "a" / "x.csv": "1\\n", root / "y.png": b""})]
+    ['x.csv', 'y.png']
+    """
+    targets = [Path(t) for t in files]
+    with Stage() as unit:
+        for target, data in zip(targets, files.values()):
             st = _stat(target)
             if target.is_symlink() or (st is not None and not stat.S_ISREG(st.st_mode)):
-                raise InputError(f"{option or 'folder'}: {target} is not a regular file; "
+                raise InputError(f"{option or 'output'}: {target} is not a regular file; "
                                  "refusing to replace it")
-            make_dir(target.parent, option)
-            tmp = target.parent / f".{target.name}.{os.getpid()}.w{_TMP_SUFFIX}"
             perms = stat.S_IMODE(st.st_mode) if st is not None else 0o666 & ~umask()
-            staged.append((tmp, target))
             try:
-                with open(tmp, "wb") as fh:
+                tmp = unit.file(target)
+                with open(tmp, "xb") as fh:
                     fh.write(data.encode() if isinstance(data, str) else bytes(data))
                     fh.flush()
                     os.fsync(fh.fileno())
                 os.chmod(tmp, perms)
             except OSError as exc:
                 raise _error(exc, target, option) from None
-        renames = [[os.path.relpath(t, folder), os.path.relpath(g, folder)] for t, g in staged]
-        journal = folder / JOURNAL.format(pid=os.getpid())
-        write_text(journal, json.dumps({"pid": os.getpid(), "renames": renames}))
-    except BaseException:
-        for tmp, _ in staged:
-            with contextlib.suppress(FileNotFoundError):
-                tmp.unlink()
-        raise
-    for tmp, target in staged:
-        os.replace(tmp, target)
-    journal.unlink()
-    return [target for _, target in staged]
+            checkpoint()
+        try:
+            unit.commit()
+        except OSError as exc:
+            raise _error(exc, targets[0].parent, option) from None
+    return targets

@@ -30,12 +30,20 @@ from typing import Any, TypeVar
 
 from dispersion.errors import check_positive_int
 
-__all__ = ["parallel_map", "default_jobs", "process_pool", "die_with_parent"]
+__all__ = ["parallel_map", "default_jobs", "process_pool", "die_with_parent",
+           "MAX_JOBS_PER_CPU"]
 
 _PR_SET_PDEATHSIG = 1  # <linux/prctl.h>
 
 T = TypeVar("T")
 R = TypeVar("R")
+
+
+#: Most workers of :func:`process_pool` per usable CPU. More only queue for the cores while
+#: each holds its own copy of the toolkit in memory (about 150 MB); 4 leaves room for
+#: workers that wait on I/O. :func:`parallel_map` starts at most one per usable CPU: its
+#: calls are CPU-bound sweeps.
+MAX_JOBS_PER_CPU = 4
 
 
 def default_jobs() -> int:
@@ -131,7 +139,7 @@ def process_pool(max_workers: int | None = None, mp_context=None) -> cf.ProcessP
     2
     """
     workers = default_jobs() if max_workers is None else check_positive_int(
-        "max_workers", max_workers)
+        "max_workers", max_workers, maximum=MAX_JOBS_PER_CPU * default_jobs())
     return _Pool(workers, mp_context)
 
 
@@ -164,8 +172,11 @@ def parallel_map(
         :class:`~concurrent.futures.ProcessPoolExecutor` with ``jobs`` workers, created
         and shut down here.
     jobs : int, optional
-        Worker count of the default pool (default: the usable CPU count). ``jobs=1``
-        without an executor runs the calls in this process, one after the other.
+        Largest worker count of the default pool (default: the usable CPU count). The pool
+        has at most as many workers as usable CPUs (``os.sched_getaffinity``) and as items,
+        whatever ``jobs`` says: its calls are CPU-bound, so more would only queue for the
+        cores (``jobs=10**6`` starts two workers on two CPUs). ``jobs=1`` without an
+        executor runs the calls in this process, one after the other.
     progress : bool
         Show a tqdm progress bar on stderr as calls complete.
     desc : str, optional
@@ -178,6 +189,8 @@ def parallel_map(
 
     Raises
     ------
+    InputError
+        ``jobs`` is not an integer >= 1.
     Exception
         The first exception raised by a call (in completion order) is re-raised here
         unchanged; calls not yet started are cancelled.
@@ -189,9 +202,9 @@ def parallel_map(
     ...     parallel_map(str.upper, ["s0", "a0"], executor=pool, progress=False)
     ['S0', 'A0']
     """
-    items = list(items)
-    if jobs is not None:
+    if jobs is not None:  # checked before the items are drawn or a worker starts
         jobs = check_positive_int("jobs", jobs)
+    items = list(items)
     bar = _progress(len(items), progress, desc)
     try:
         if executor is None and (jobs == 1 or len(items) <= 1):
@@ -201,7 +214,7 @@ def parallel_map(
                 bar.update(1)
             return results
         if executor is None:
-            workers = min(jobs or default_jobs(), len(items))
+            workers = min(jobs or default_jobs(), default_jobs(), len(items))
             with process_pool(workers) as pool:
                 return _run(pool, func, items, bar)
         return _run(executor, func, items, bar)

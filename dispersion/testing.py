@@ -13,13 +13,17 @@ claim 'typo' (<string>:1) differs
 """
 from __future__ import annotations
 
-from dispersion.claims import Claim, ClaimResult, check_claim, load_claims, parse_claims
+import json
+
+from dispersion.claims import (Claim, ClaimResult, check_claim, load_claims, parse_claims,
+                               plain)
 
 __all__ = ["assert_claim", "assert_series", "assert_claims_file", "claims_in", "failure_message"]
 
 
 def failure_message(result: ClaimResult) -> str:
-    """Printed vs derived, term by term, for an assertion message."""
+    """Printed vs derived, term by term, for an assertion message (control sequences from
+    the claims file escaped, see :func:`dispersion.claims.report.plain`)."""
     lines = [f"claim {result.name!r} ({result.file}:{result.line}) {result.status}",
              f"  source:     {result.source or '-'}", f"  model:      {result.model}"]
     if result.terms:
@@ -31,7 +35,7 @@ def failure_message(result: ClaimResult) -> str:
         lines += [f"  printed:    {result.printed}", f"  derived:    {result.derived}"]
     if result.difference:
         lines.append(f"  difference: {result.difference}")
-    return "\n".join(lines)
+    return plain("\n".join(lines), newlines=True)
 
 
 def assert_claim(claim: Claim) -> ClaimResult:
@@ -43,13 +47,16 @@ def assert_claim(claim: Claim) -> ClaimResult:
 
 
 def _toml(value) -> str:
+    """``value`` as TOML: a JSON string is a TOML basic string (every character escaped that
+    must be), so no text given here can change the structure of the claim."""
     if isinstance(value, dict):
-        return "{" + ", ".join(f'"{k}" = {_toml(v)}' for k, v in value.items()) + "}"
+        return "{" + ", ".join(f"{json.dumps(str(k))} = {_toml(v)}"
+                               for k, v in value.items()) + "}"
     if isinstance(value, bool):
         return "true" if value else "false"
     if isinstance(value, (int, float)):
         return repr(value)
-    return '"' + str(value).replace("\\", "\\\\").replace('"', '\\"') + '"'
+    return json.dumps(str(value))
 
 
 def assert_series(branch: str, coefficients, *, name: str = "series", **fields) -> ClaimResult:
@@ -59,7 +66,8 @@ def assert_series(branch: str, coefficients, *, name: str = "series", **fields) 
     key = "coefficients" if isinstance(coefficients, dict) else "series"
     body[key] = ({str(k): str(v) for k, v in coefficients.items()} if key == "coefficients"
                  else coefficients)
-    text = "[[claim]]\n" + "\n".join(f"{k} = {_toml(v)}" for k, v in body.items()) + "\n"
+    text = "[[claim]]\n" + "\n".join(f"{json.dumps(str(k))} = {_toml(v)}"
+                                     for k, v in body.items()) + "\n"
     return assert_claim(parse_claims(text)[0])
 
 

@@ -200,6 +200,49 @@ BRANCHES = [
     Cli("branches", f"{CSV} --figure {{missing}}.png", r"--figure"),
     Cli("branches", [*CSV.split(), "--figure", ""], r"--figure"),
 ]
+# issue 20: the frequency axis, materials and mode shapes of ``branches``
+_F = f"{CSV} --exact --material steel --thickness 3"
+BRANCHES += [
+    Cli("branches", f"{_F} --frequency abc", r"--frequency"),
+    Cli("branches", f"{_F} --frequency 200GHz", r"--frequency"),
+    Cli("branches", f"{_F} --frequency -5", r"--frequency"),
+    Cli("branches", f"{_F} --frequency 0", r"--frequency"),
+    Cli("branches", f"{_F} --frequency nan", r"--frequency"),
+    Cli("branches", f"{_F} --frequency inf", r"--frequency"),
+    Cli("branches", f"{_F} --frequency 1e9", r"frequency"),
+    Cli("branches", f"{_F} --frequency 1e-9", r"frequency"),
+    Cli("branches", f"{_F} --frequency 5:1:3", r"--frequency"),
+    Cli("branches", f"{_F} --frequency 1:5:0", r"--frequency"),
+    Cli("branches", f"{_F} --frequency 1:5:1000000", r"--frequency"),
+    Cli("branches", f"{_F} --frequency 1:5:x", r"--frequency"),
+    Cli("branches", f"{_F} --frequency 1:2", r"--frequency"),
+    Cli("branches", [*_F.split(), "--frequency", ""], r"--frequency"),
+    Cli("branches", f"{_F} --frequency 10:100MHz:100000", r"kappa samples|frequenc"),
+    Cli("branches", f"{_F} --fd 1e6", r"fd"),
+    Cli("branches", f"{_F} --fd -1", r"--fd"),
+    Cli("branches", f"{_F} --fd 1MHz", r"--fd"),
+    Cli("branches", f"{_F} --fd 1 --frequency 200", r"--fd|--frequency"),
+    Cli("branches", f"{_F} --frequency 200,300 --mode-shape S0", r"--mode-shape"),
+    Cli("branches", f"{_F} --frequency 200 --mode-shape S9", r"--mode-shape"),
+    Cli("branches", f"{_F} --frequency 200 --kappa-max 3", r"--kappa-max"),
+    Cli("branches", f"{_F} --frequency 200 --json {{dir}}", r"--json"),
+    Cli("branches", f"{CSV} --frequency 200", r"--exact"),
+    Cli("branches", f"{CSV} --exact --frequency 200", r"material"),
+    Cli("branches", f"{CSV} --exact --material steel --frequency 200", r"thickness"),
+    Cli("branches", f"{CSV} --exact --material unobtainium", r"material"),
+    Cli("branches", f"{CSV} --exact --mode-shape S0", r"--mode-shape"),
+    Cli("branches", f"{CSV} --exact --json out.json", r"--json"),
+    Cli("branches", f"{CSV} --exact --cl 6000 --ct 3000 --rho -1 --thickness 1", r"rho"),
+    Cli("branches", f"{CSV} --exact --cl 3000 --ct 3000 --thickness 1", r"--cl"),
+    Cli("branches", f"{CSV} --exact --cl 6000 --thickness 1", r"--cl"),
+    Cli("branches", f"{CSV} --exact --youngs-modulus nan --nu 0.3 --rho 7800 --thickness 1",
+        r"--youngs-modulus"),
+    Cli("branches", f"{CSV} --exact --youngs-modulus 200 --nu 0.6 --rho 7800 --thickness 1",
+        r"\bnu\b"),
+    Cli("branches", f"{CSV} --exact --youngs-modulus 200 --rho 7800 --thickness 1",
+        r"--youngs-modulus"),
+    Cli("branches", f"{CSV} --exact --material steel --cl 6000 --thickness 1", r"--material"),
+]
 
 # -------------------------------------------------------------------------------- ring
 DT, T_END = r"\bdt\b", r"t[-_]end"
@@ -303,7 +346,29 @@ IMPACT = [
     Cli("impact", f"{SCENE} --scheme euler", r"scheme"),
 ]
 
-CLI_CASES = SERIES + BRANCHES + RING + REPRODUCE + BENCH + VERIFY + IMPACT
+# ---------------------------------------------------------------------------- timestep
+TIMESTEP = [
+    Cli("timestep", "--p 0", r"\bp\b|degree"),
+    Cli("timestep", "--p 100", r"\bp\b|degree"),
+    Cli("timestep", "--p 1.5", r"\bp\b|degree"),
+    Cli("timestep", "--h 0", r"\bh\b"),
+    Cli("timestep", "--h nan", r"\bh\b"),
+    Cli("timestep", "--h -1", r"\bh\b"),
+    Cli("timestep", "--mass heavy", r"mass"),
+    Cli("timestep", "--material unobtainium", r"material"),
+    Cli("timestep", "--cl 6000", r"--cl"),
+    Cli("timestep", "--cl 100 --ct 5000", r"c_L"),
+    Cli("timestep", "--model bar --mass singular", r"singular|contact"),
+    Cli("timestep", "--n 2", r"\bn\b|control points"),
+    Cli("timestep", "--p 24 --n 200", r"\bn\b|control points"),
+    Cli("timestep", "--c 5", r"--c\b"),
+    Cli("timestep", "--model bar --c -3 --mass lumped", r"wave_speed|--c"),
+    Cli("timestep", "--mass-rule nosuch.toml", r"nosuch\.toml"),
+    Cli("timestep", "--mass singular --gamma-s 2", r"gamma_s"),
+    Cli("timestep", "--format xml", r"format"),
+]
+
+CLI_CASES = SERIES + BRANCHES + RING + REPRODUCE + BENCH + VERIFY + IMPACT + TIMESTEP
 
 
 # ----------------------------------------------------------------------------- the API
@@ -315,7 +380,33 @@ def _kappa(*values):
     return np.array(values, dtype=float)
 
 
+def _lamb(**kw):
+    from dispersion.waves.materials import material
+    from dispersion.waves.mode_table import lamb_modes
+
+    return lamb_modes(material("aluminium"), kw.pop("d", 1.0), **kw)
+
+
+def _mixed_nu():
+    from dispersion.waves.units import ALUMINIUM, physical_branches
+
+    ex = exact_branches_mod.trace_branches(0.3, [0.5], 2.0)
+    return physical_branches(ex.kappa, ex.omega, None, ALUMINIUM, 3.0)
+
+
 API_CASES = [
+    Api("lamb_modes(frequency_khz=nan)", lambda: _lamb(frequency_khz=math.nan), r"frequency"),
+    Api("lamb_modes(frequency_khz=1e12)", lambda: _lamb(frequency_khz=1e12), r"frequency"),
+    Api("lamb_modes(fd_mhz_mm=0)", lambda: _lamb(fd_mhz_mm=0.0), r"fd"),
+    Api("lamb_modes(both)", lambda: _lamb(frequency_khz=1.0, fd_mhz_mm=1.0), r"frequency"),
+    Api("lamb_modes(d=0)", lambda: _lamb(frequency_khz=100.0, d=0.0), r"thickness"),
+    Api("lamb_modes(many)", lambda: _lamb(frequency_khz=np.full(10**6, 6e3)), r"kappa samples"),
+    Api("modes_at_frequency(nu=0.5)", lambda: __import__(
+        "dispersion.waves.frequency", fromlist=["x"]).modes_at_frequency(0.5, [1.0]), NU),
+    Api("user_material(c_L, c_T, nu)", lambda: __import__(
+        "dispersion.waves.materials", fromlist=["x"]).user_material(
+        c_L=6000.0, c_T=3000.0, nu=0.3), r"material inputs"),
+    Api("physical_branches(nu 0.3, aluminium)", _mixed_nu, r"nu = 0\.3"),
     Api("plate_patch(r=10**400)", lambda: _patch(model="bloch", r=10**400), R),
     Api("plate_patch(r=1e-200)", lambda: _patch(model="bloch", r=1e-200), R),
     Api("plate_patch(r=nan)", lambda: _patch(model="bloch", r=math.nan), R),

@@ -163,7 +163,7 @@ def test_kappa_symbol_is_not_allowed_in_a_coefficient():
 
 
 def test_a_derivation_that_fails_marks_its_claim_as_error(monkeypatch):
-    import dispersion.claims.claims as claims_mod
+    import dispersion.claims.verify as claims_mod
     from dispersion.errors import DispersionError
 
     def broken(*args):
@@ -181,7 +181,7 @@ def test_a_derivation_that_fails_marks_its_claim_as_error(monkeypatch):
 
 @pytest.mark.parametrize("jobs", [0, MAX_JOBS + 1, 2.5, "2", True])
 def test_jobs_out_of_range_is_refused_before_any_derivation(monkeypatch, jobs):
-    import dispersion.claims.claims as claims_mod
+    import dispersion.claims.verify as claims_mod
 
     def must_not_run(*args):
         raise AssertionError("derivation started")

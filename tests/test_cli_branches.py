@@ -117,12 +117,17 @@ def test_discrete_rows_have_group_velocity(tmp_path):
 
 @pytest.mark.slow
 def test_largest_discrete_patch_is_accepted(tmp_path, capsys):
-    # n at its bound passes validation; n one past MAX_N is refused naming the range
-    from dispersion.cli.branches import MAX_N
+    # the size limits are the patch's own (plate.check_size), the same as for the series;
+    # the numeric work bound count * masses * n^3 is the branches' own
+    from dispersion.cli.branches import MAX_DISCRETE_WORK
+    from dispersion.symbolic.plate import N_MAX
 
     out = tmp_path / "o.csv"
     argv = ["branches", "--mass", "consistent", "--kappa-min", "0.5", "--kappa-max", "1",
-            "--count", "2", "--omega-max", "2", "--csv", str(out)]
-    assert main([*argv, "--n", str(MAX_N)]) == 0
-    assert main([*argv, "--n", str(MAX_N + 1)]) == 2
-    assert f"[p + 1, {MAX_N}]" in capsys.readouterr().err
+            "--count", "400", "--omega-max", "2", "--csv", str(out)]
+    n_work = int(round((MAX_DISCRETE_WORK / 400) ** (1 / 3), 9))
+    assert main([*argv, "--n", str(n_work)]) == 0
+    assert main([*argv, "--n", str(n_work + 1)]) == 2
+    assert f"<= {MAX_DISCRETE_WORK}" in capsys.readouterr().err
+    assert main([*argv, "--n", str(N_MAX + 1)]) == 2
+    assert str(N_MAX) in capsys.readouterr().err

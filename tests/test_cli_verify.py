@@ -5,6 +5,8 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 import dispersion.cli as cli
 from dispersion.testing import assert_claims_file
@@ -29,6 +31,18 @@ coefficients = {{4 = "2/(3*(1 - nu))", 6 = "2*(7*nu - {a0})/(45*(1 - nu)^2)"}}
 """
 
 
+def _blocks(out: str) -> dict[str, list[str]]:
+    """The text output of verify as {claim name: its lines} (a block starts unindented)."""
+    blocks, name = {}, None
+    for line in out.splitlines():
+        if line and not line.startswith(" ") and ":" in line and " claims hold" not in line:
+            name = line.split(" [")[0].split(":")[0]
+            blocks[name] = []
+        if name is not None and line:
+            blocks[name].append(line)
+    return blocks
+
+
 @pytest.fixture
 def main(monkeypatch):
     """``dispersion`` with the verify subcommand registered (until the lead registers it)."""
@@ -42,12 +56,12 @@ def test_stranger_mistypes_one_coefficient_then_fixes_it(main, tmp_path, capsys)
     path.write_text(CLAIMS.format(a0=71))  # eq (15) has 17: digits swapped
     assert main(["verify", str(path)]) == 1
     out = capsys.readouterr().out
-    bad = [line for line in out.splitlines() if line.startswith("A0 flexural")]
-    assert len(bad) == 1 and "differs" in bad[0]
+    blocks = _blocks(out)
+    assert blocks["A0 flexural"][0].endswith(": differs")
     # 2 (7 nu - 17) = 14 nu - 34 over the same denominator 45 (1 - nu)^2: one term changed
-    assert "kappa^6: numerator term -34 -> -142 (same denominator 45*(nu - 1)**2)" in bad[0]
-    assert "S0 bar speed" in out and "holds" in next(
-        line for line in out.splitlines() if line.startswith("S0 bar speed"))
+    assert ("difference: kappa^6: numerator term -34 -> -142 (same denominator 45*(nu - 1)**2)"
+            in " ".join(" ".join(blocks["A0 flexural"]).split()))
+    assert blocks["S0 bar speed"][0].endswith(": holds")
     assert "not 'A0 flexural'" in out
     with pytest.raises(AssertionError, match="(?s)A0 flexural.*printed.*derived"):
         assert_claims_file(path)
@@ -116,3 +130,52 @@ def test_jobs_states_its_range(main, capsys, jobs, shown):
     assert status == 2
     err = capsys.readouterr().err.strip()
     assert err.endswith(f"--jobs must be an integer in [1, {MAX_JOBS}], got {shown}"), err
+
+
+def _flags(jobs):
+    return st.lists(st.one_of(
+        st.just(["--paper"]), st.just(["--format", "markdown"]), st.just(["--format", "text"]),
+        st.tuples(st.just("--format"), st.text(max_size=5)).map(list),
+        st.tuples(st.just("--jobs"), st.sampled_from(jobs)).map(list),
+        st.tuples(st.just("--junit"), st.sampled_from(["-", "j.xml", "", "sub/j.xml", "good.toml",
+                                                        "/dev/null/x", "\x1b[2J.xml"])).map(list),
+        st.sampled_from([["good.toml"], ["bad.toml"], ["missing.toml"], ["."], ["--"], ["-x"]]),
+    ), max_size=4).map(lambda groups: [w for g in groups for w in g])
+
+
+# a process pool (--jobs 2) costs a second or two to start: in the slow run only
+JOBS = ["1", "0", "-1", "65", "x", "1e3", "", "9" * 30]
+
+
+@settings(max_examples=8, deadline=None, derandomize=True,
+          suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(_flags(JOBS))
+def test_random_verify_flags_exit_0_1_or_2_in_one_line(tmp_path, monkeypatch, capsys, argv):
+    _check_flags(tmp_path, monkeypatch, capsys, argv)
+
+
+@pytest.mark.slow
+@settings(max_examples=300, deadline=None,
+          suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(_flags(JOBS + ["2"]))
+def test_random_verify_flags_long(tmp_path, monkeypatch, capsys, argv):
+    _check_flags(tmp_path, monkeypatch, capsys, argv)
+
+
+def _check_flags(tmp_path, monkeypatch, capsys, argv):
+    # issue 17.6: any flag combination ends with a status and at most one error line, and
+    # writes nothing but the JUnit file it was asked for, inside the working directory
+    import dispersion.claims
+
+    monkeypatch.chdir(tmp_path)  # --paper: a one-claim file, so that each example is quick
+    monkeypatch.setattr(dispersion.claims, "paper_claims_path", lambda: tmp_path / "good.toml")
+    (tmp_path / "good.toml").write_text(CLAIMS.format(a0=17).split("\n\n[[claim]]")[0] + "\n")
+    (tmp_path / "bad.toml").write_text("[[claim]]\nname = 5\n")
+    before = {p.name for p in tmp_path.iterdir()}
+    status = cli.main(["verify", *argv])
+    err = capsys.readouterr().err
+    assert status in (0, 1, 2), status
+    assert "Traceback" not in err and len(err.strip().splitlines()) <= 1 and "\x1b" not in err
+    made = {p.name for p in tmp_path.iterdir()} - before
+    asked = {argv[i + 1] for i, w in enumerate(argv[:-1]) if w == "--junit"}
+    assert made <= asked, (made, argv)

@@ -51,7 +51,7 @@ def test_formats_render_every_row(rows):
     for row, line in zip(rows, md[2:]):
         assert line.startswith(f"| ({row.equation}) | kappa^{row.power} | {row.printed} |")
     text = format_table(rows, "text").splitlines()
-    assert len(text) == len(rows) + 1 and all(r.status in t for r, t in zip(rows, text[1:]))
+    assert len(text) == len(rows) + 2 and all(r.status in t for r, t in zip(rows, text[2:]))
     tex = format_table(rows, "latex").splitlines()
     assert len(tex) == len(rows) + 3 and tex[0].startswith(r"\begin{tabular}")
 

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from dispersion import io
+from dispersion import io, staging
 from dispersion.errors import DispersionError, InputError
 
 
@@ -248,15 +248,22 @@ def test_write_files_all_or_old_on_failure(tmp_path, monkeypatch):
 
 
 def test_write_files_finishes_a_journal_left_by_a_kill(tmp_path):
-    # the state a SIGKILL between the renames leaves: a.csv renamed, b.csv still staged
-    (tmp_path / "a.csv").write_text("new a")
+    # a writer killed after its journal (the commit point): the next writer finishes the unit
+    (tmp_path / "a.csv").write_text("old a")
     (tmp_path / "b.csv").write_text("old b")
-    (tmp_path / ".b.csv.1.w.tmp").write_text("new b")
-    (tmp_path / io.JOURNAL.format(pid=_dead_pid())).write_text(
-        '{"renames": [[".a.csv.1.w.tmp", "a.csv"], [".b.csv.1.w.tmp", "b.csv"]]}')
-    io.remove_stale_temporaries(tmp_path)
+    code = (f"import os, signal; os.environ['{staging.FAULT_ENV}'] = '6:SIGKILL'\n"
+            "import dispersion.io as io\n"
+            f"io.write_files({str(tmp_path)!r}, {{'a.csv': 'new a', 'b.csv': 'new b'}})\n")
+    # checkpoints: stage made, a staged, b staged, before journal, journal written,
+    # journal renamed (6: the kill), first rename
+    proc = subprocess.Popen([sys.executable, "-c", code])
+    assert proc.wait(60) == -9
+    assert (tmp_path / "a.csv").read_text() == "old a"
+    assert len(io.stale_temporaries(tmp_path)) == 1
+    io.write_files(tmp_path, {"c.csv": "c"})
+    assert (tmp_path / "a.csv").read_text() == "new a"
     assert (tmp_path / "b.csv").read_text() == "new b"
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.csv", "b.csv"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.csv", "b.csv", "c.csv"]
 
 
 def test_write_files_kill_during_staging_keeps_old(tmp_path):
@@ -271,18 +278,24 @@ def test_write_files_kill_during_staging_keeps_old(tmp_path):
     proc = subprocess.Popen([sys.executable, "-c", code])
     assert proc.wait(60) == -9
     assert (tmp_path / "a.bin").read_text() == "old" and not (tmp_path / "b.bin").exists()
-    assert [p.name for p in io.remove_stale_temporaries(tmp_path)] == [f".a.bin.{proc.pid}.w.tmp"]
+    stale = io.stale_temporaries(tmp_path)
+    assert len(stale) == 1 and staging.is_stage_name(stale[0].name)
+    assert io.remove_stale_temporaries(tmp_path) == stale
     assert sorted(p.name for p in tmp_path.iterdir()) == ["a.bin"]
 
 
-def test_journal_of_a_live_writer_is_left_alone(tmp_path):
-    journal = tmp_path / io.JOURNAL.format(pid=os.getppid())  # a live process
-    journal.write_text('{"renames": []}')
-    io.write_files(tmp_path, {"a.csv": "x"})
-    assert journal.exists()
+def test_stage_of_a_live_writer_is_left_alone(tmp_path):
+    with staging.Stage() as unit:
+        unit.file(tmp_path / "a.csv").write_text("x")
+        io.write_files(tmp_path, {"b.csv": "y"})  # recovers the folder: must skip the live one
+        assert io.stale_temporaries(tmp_path) == []
+        assert (tmp_path / f"{staging.STAGE_PREFIX}{unit.token}").is_dir()
+        unit.commit()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.csv", "b.csv"]
 
 
-@pytest.mark.parametrize("name", ["", "/abs.csv", "../up.csv", io.JOURNAL.format(pid=7)])
+@pytest.mark.parametrize("name", ["", "/abs.csv", "../up.csv", ".dispersion-stage.x/a",
+                                  "a/../../b"])
 def test_write_files_refuses_names_outside(tmp_path, name):
     with pytest.raises(InputError, match="relative paths"):
         io.write_files(tmp_path, {name: "x"})
@@ -294,9 +307,28 @@ def test_write_files_refuses_to_replace_a_link(tmp_path):
         io.write_files(tmp_path, {"l.csv": "x"})
 
 
-def test_stale_temporaries_only_of_dead_writers(tmp_path):
+def test_old_style_temporaries_are_not_ours_to_remove(tmp_path):
+    # names of older writers carry no token: nothing proves they are ours, so they stay
     dead = _dead_pid()
-    (tmp_path / f".a.csv.{dead}.tmp").write_text("")
-    (tmp_path / f".b.csv.{os.getpid()}.tmp").write_text("")
-    (tmp_path / ".hidden.tmp").write_text("")  # not ours: no pid
-    assert [p.name for p in io.stale_temporaries(tmp_path)] == [f".a.csv.{dead}.tmp"]
+    names = [f".a.csv.{dead}.tmp", f".a.csv.{dead}.w.tmp", ".hidden.tmp"]
+    for name in names:
+        (tmp_path / name).write_text("")
+    assert io.stale_temporaries(tmp_path) == []
+    io.write_files(tmp_path, {"b.csv": "y"})
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(names + ["b.csv"])
+
+
+def test_failed_unit_leaves_no_new_folder(tmp_path, monkeypatch):
+    def full(fd):
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    monkeypatch.setattr(io.os, "fsync", full)
+    with pytest.raises(DispersionError, match="nothing was written"):
+        io.write_files(tmp_path / "new" / "out", {"a.csv": "x", "b.csv": "y"})
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_write_unit_spans_folders(tmp_path):
+    got = io.write_unit({tmp_path / "a" / "x.csv": "1", tmp_path / "b" / "y.png": b"2"})
+    assert [p.read_bytes() for p in got] == [b"1", b"2"]
+    assert sorted(p.name for p in tmp_path.rglob("*")) == ["a", "b", "x.csv", "y.png"]

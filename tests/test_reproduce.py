@@ -192,11 +192,11 @@ def test_killed_run_keeps_old_report_and_next_run_cleans_up(stubs, tmp_path, cap
         proc.kill()
     assert {p.name: p.read_bytes() for p in out.iterdir()} == before
     stale = _leftovers(tmp_path)
-    assert len(stale) == 1 and stale[0].startswith(".rep.tmp-")
+    assert len(stale) == 1 and stale[0].startswith(".dispersion-stage.")
     capsys.readouterr()
     assert main(["reproduce", "--out", str(out), "--jobs", "1", "--sections", "ring"]) == 0
     err = capsys.readouterr().err
-    assert "removed 1 temporary folder(s) left by an interrupted run" in err and stale[0] in err
+    assert "removed the temporaries of an interrupted run" in err and stale[0] in err
     assert _leftovers(tmp_path) == []
 
 

@@ -159,9 +159,23 @@ def test_process_pool_restores_the_sigterm_handler():
 def test_process_pool_rejects_bad_worker_count():
     from dispersion.sweep import process_pool
 
-    for bad in (0, -1, 1.5, "2"):
-        with pytest.raises(InputError, match="max_workers must be an integer >= 1"):
+    for bad in (0, -1, 1.5, "2", 10**6):
+        with pytest.raises(InputError, match=r"max_workers must be an integer in \[1, \d+\]"):
             process_pool(bad)
+
+
+def test_parallel_map_starts_at_most_one_worker_per_usable_cpu(monkeypatch):
+    # the bound is read from os.sched_getaffinity: with one usable CPU, jobs=10**6 runs the
+    # calls through a pool of one worker (recorded here), never 10**6 processes
+    from dispersion import sweep
+
+    sizes = []
+    real = sweep.process_pool
+    monkeypatch.setattr(sweep, "default_jobs", lambda: 1)
+    monkeypatch.setattr(sweep, "process_pool",
+                        lambda n, *a: sizes.append(n) or real(1, *a))
+    assert parallel_map(_square, [1, 2, 3], jobs=10**6, progress=False) == [1, 4, 9]
+    assert sizes == [1]
 
 
 # --- dask.distributed --------------------------------------------------------------------

@@ -1,7 +1,7 @@
 """Errata of the paper's eqs (13)-(20): the printed terms against the derivation.
 
 The printed formulas are data, the claims file ``dispersion/data/paper_claims.toml``
-(:func:`dispersion.claims.claims.paper_claims_path`), never results. Each row of :func:`errata_table`
+(:func:`dispersion.claims.paper_claims_path`), never results. Each row of :func:`errata_table`
 holds one printed term of a series claim of that file (eqs 14-20), the derived coefficient
 under the claim's model, the status, and which discrete models reproduce the printed term
 (Bloch with square elements b = 2h, r = 2; x-exact; Bloch with h/b = 2, r = 1/2, the aspect
@@ -25,8 +25,8 @@ from dataclasses import dataclass
 import sympy
 
 from dispersion import defaults
-from dispersion.claims.claims import (Claim, ClaimResult, _same, _series, load_claims, paper_claims_path,
-                     verify_claims)
+from dispersion.claims.schema import Claim, load_claims, paper_claims_path
+from dispersion.claims.verify import ClaimResult, _same, _series, verify_claims
 from dispersion.errors import InputError
 from dispersion.waves.exact_series import exact_leading_balance
 
@@ -152,7 +152,7 @@ def paper_errata(quick: bool = False, executor=None) -> PaperErrata:
     """Verify the paper's claims file and build its errata rows (the coefficients section).
 
     ``quick`` is accepted for the report protocol (the work is the same); ``executor`` runs
-    independent derivations (see :func:`dispersion.claims.claims.verify_claims`).
+    independent derivations (see :func:`dispersion.claims.verify_claims`).
     """
     claims = load_claims(paper_claims_path())
     verified = verify_claims(claims, executor=executor, jobs=None if executor else 1)
@@ -175,6 +175,13 @@ def _tex(text: str) -> str:
     return "".join(_TEX_SPECIAL.get(ch, ch) for ch in str(text))
 
 
+def _expr(value, names: tuple[str, ...] = ()):
+    """An expression of a row: text (from JSON) read by the whitelist reader, never sympified."""
+    from dispersion.claims.reader import read
+
+    return read(value, names=names) if isinstance(value, str) else value
+
+
 def format_table(rows, fmt: str = "text") -> str:
     """Render errata rows (objects or their JSON dictionaries) as ``text``, ``markdown``, ``latex``.
 
@@ -185,8 +192,8 @@ def format_table(rows, fmt: str = "text") -> str:
 
     def cells(r):
         if fmt == "latex":
-            printed = _get(r, "printed_latex") or sympy.latex(sympy.sympify(_get(r, "printed")))
-            derived = _get(r, "derived_latex") or sympy.latex(sympy.sympify(_get(r, "derived")))
+            printed = _get(r, "printed_latex") or sympy.latex(_expr(_get(r, "printed")))
+            derived = _get(r, "derived_latex") or sympy.latex(_expr(_get(r, "derived")))
         else:
             printed, derived = str(_get(r, "printed")), str(_get(r, "derived"))
         return (f"({_get(r, 'equation')})", f"kappa^{_get(r, 'power')}", printed, derived,
@@ -194,9 +201,9 @@ def format_table(rows, fmt: str = "text") -> str:
 
     body = [cells(r) for r in rows]
     if fmt == "markdown":
-        lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
-        lines += ["| " + " | ".join(c.replace("|", "\\|") for c in row) + " |" for row in body]
-        return "\n".join(lines)
+        from dispersion.table import markdown_table
+
+        return markdown_table(head, body)
     if fmt == "latex":
         lines = [r"\begin{tabular}{llllll}", " & ".join(head) + r" \\ \hline"]
         for row in body:
@@ -204,9 +211,9 @@ def format_table(rows, fmt: str = "text") -> str:
             tex[1] = rf"$\kappa^{{{row[1].split('^')[1]}}}$"
             lines.append(" & ".join(tex) + r" \\")
         return "\n".join(lines + [r"\end{tabular}"])
-    widths = [max(len(x) for x in col) for col in zip(head, *body)]
-    return "\n".join("  ".join(c.ljust(w) for c, w in zip(row, widths)).rstrip()
-                     for row in [head, *body])
+    from dispersion.table import text_table
+
+    return text_table(head, body)
 
 
 def errata_document(rows, eq13=None, title: str = "Errata of eqs (13)-(20)") -> str:
@@ -226,7 +233,7 @@ def errata_document(rows, eq13=None, title: str = "Errata of eqs (13)-(20)") -> 
                   r"$\Omega^2 = w\,\kappa^{2\sigma}$}", r"\begin{itemize}"]
         for branch, standard, printed in eq13:
             parts.append(rf"\item {_tex(branch)}: standard "
-                         rf"${sympy.latex(sympy.sympify(standard))}$; printed "
-                         rf"${sympy.latex(sympy.sympify(printed))}$")
+                         rf"${sympy.latex(_expr(standard, ('w',)))}$; printed "
+                         rf"${sympy.latex(_expr(printed, ('w',)))}$")
         parts.append(r"\end{itemize}")
     return "\n".join(parts + [r"\end{document}"]) + "\n"

@@ -1,10 +1,11 @@
-"""Command line: ``dispersion series | branches | ring | impact | verify | reproduce | bench``.
+"""Command line: ``dispersion series | branches | ring | impact | verify | reproduce | bench | timestep``.
 
 A thin layer over the API. Each subcommand lives in its own module exposing
 ``register(subparsers)``, which adds the parser and sets ``func(args) -> int``.
 Errors print one line to stderr, never a traceback: exit status 2 for bad input
 (:class:`~dispersion.errors.InputError`, and argparse's own errors), 1 for other toolkit
-errors and for failures of the file system (a full disk, a vanished folder).
+errors and for failures of the file system (a full disk, a vanished folder). SIGTERM is
+handled like Ctrl-C: the command unwinds (removing its temporaries) and exits 143.
 
 >>> main(["--version"])  # doctest: +ELLIPSIS
 dispersion ...
@@ -13,25 +14,44 @@ dispersion ...
 from __future__ import annotations
 
 import argparse
+import contextlib
 import importlib
+import signal
 import sys
+import threading
 
 from dispersion.errors import DispersionError, InputError
 
-_SUBCOMMANDS = ("series", "branches", "ring", "impact", "verify", "reproduce", "bench")
+_SUBCOMMANDS = ("series", "branches", "ring", "impact", "verify", "reproduce", "bench",
+               "timestep")
 
 
 def number(name: str, convert=float):
-    """argparse ``type`` that parses a number with ``convert`` and names ``name`` on failure.
+    """argparse ``type`` of a number option; see :mod:`dispersion.cli.options` (one grammar
+    for every command: ``0.3``, ``3/10``, ``1e-3``, bounded digits)."""
+    from dispersion.cli.options import number as typed
 
-    Range checks stay with the API (``InputError``), so the CLI and Python callers agree.
-    """
-    def parse(text):
-        try:
-            return convert(text)
-        except (TypeError, ValueError):  # sympy.SympifyError is a ValueError
-            raise argparse.ArgumentTypeError(f"{name} must be a number, got {text!r}") from None
-    return parse
+    return typed(name, convert)
+
+
+class Terminated(KeyboardInterrupt):
+    """SIGTERM arrived: unwound like Ctrl-C, so every writer removes its temporaries."""
+
+
+def _on_sigterm(signum, frame):
+    raise Terminated()
+
+
+@contextlib.contextmanager
+def _sigterm_unwinds():
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = signal.signal(signal.SIGTERM, _on_sigterm)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
 
 
 class _Parser(argparse.ArgumentParser):
@@ -79,13 +99,19 @@ def main(argv: list[str] | None = None) -> int:
     words = sys.argv[1:] if argv is None else list(argv)
     chosen = next((w for w in words if not w.startswith("-")), None)
     parser = build_parser(chosen if chosen in _SUBCOMMANDS else None)
-    args = parser.parse_args(words)
+    try:
+        args = parser.parse_args(words)
+    except SystemExit as exc:  # argparse's one-line error: a status, like InputError's
+        if exc.code in (0, None):  # --help: argparse's own exit
+            raise
+        return exc.code if isinstance(exc.code, int) else 2
     if args.version:
         print(f"dispersion {version()}")
         return 0
     if args.command is None:
         parser.error(f"a command is required: {', '.join(_SUBCOMMANDS)}")
-    return run_parsed(args)
+    with _sigterm_unwinds():
+        return run_parsed(args)
 
 
 def run_parsed(args: argparse.Namespace) -> int:
@@ -105,6 +131,9 @@ def run_parsed(args: argparse.Namespace) -> int:
         print(f"dispersion {args.command}: error: {exc.strerror or exc}"
               + (f": {exc.filename}" if exc.filename else ""), file=sys.stderr)
         return 1
+    except Terminated:
+        print("dispersion: terminated", file=sys.stderr)
+        return 143
     except KeyboardInterrupt:
         print("dispersion: interrupted", file=sys.stderr)
         return 130

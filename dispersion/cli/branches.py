@@ -1,8 +1,14 @@
 """``dispersion branches``: discrete and exact Rayleigh-Lamb branches with velocities and units.
 
+With ``--frequency``/``--fd`` the frequency is the input axis instead of kappa: every
+propagating S, A and SH mode at each frequency (:mod:`dispersion.cli.frequency`).
+
 Rows ``kappa, Omega, branch, symmetry, source, c_p/c_T, c_g/c_T`` (dimensionless: kappa = kh,
 Omega = omega h / c_T) and, with a material and a thickness, ``f [kHz], fd [MHz mm],
-c_p [m/s], c_g [m/s], wavelength [mm]``. ``--csv FILE`` / ``--figure FILE`` write files
+c_p [m/s], c_g [m/s], wavelength [mm]``. ``--scheme central --courant 0.9`` gives the fully
+discrete branches of the discrete patch (:mod:`dispersion.waves.fully_discrete`: each mass
+integrated in time at ``courant`` times its own central-difference critical step; group
+velocities are then left empty). ``--csv FILE`` / ``--figure FILE`` write files
 (``-``: stdout); without them the rows go to stdout as ``--format`` says. Every CSV starts
 with ``#`` lines naming its inputs and the package version; JSON carries them as ``inputs``.
 """
@@ -12,17 +18,19 @@ import argparse
 import csv
 import io
 import math
+import os
 import sys
-from typing import TYPE_CHECKING
+
+import numpy as np
 
 from dispersion import defaults
 from dispersion.errors import InputError
-from dispersion.io import check_output_file, save_figure, write_text
+from dispersion.io import check_output_file, unit_target, write_bytes, write_text, write_unit
 from dispersion.symbolic.mass import CONTACT_SETS, MASS_VARIANTS
-from dispersion.cli import number
-
-if TYPE_CHECKING:
-    import numpy as np
+from dispersion.symbolic.plate import MODELS, N_MAX, P_MAX, R_RANGE
+from dispersion.waves.exact_branches import check_samples
+from dispersion.cli import frequency as _frequency
+from dispersion.cli.options import integer, number, real
 
 #: Up-front bounds (issue 11); the exact tracer's scan is bounded by
 #: :data:`dispersion.waves.exact_branches.MAX_SAMPLES` (count * (omega-max / 0.05 + 1)).
@@ -32,20 +40,9 @@ MAX_OMEGA = 200.0
 #: Rule: the default run (two masses, 400 kappa points) at the largest n in about a minute and a
 #: half. Measured on this 2-core machine, 400 kappa points, consistent + singular: n = 10 in
 #: 3.4 s, n = 20 in 48 s, n = 30 in 180 s (grows like n^3); n = 3 with 200000 points: ~1e7.
-MAX_N = 24
-MAX_DISCRETE_WORK = 2 * 400 * MAX_N**3
+#: Work bound of the numeric branches: 400 kappa of two masses at n = 24 (about a minute).
+MAX_DISCRETE_WORK = 2 * 400 * 24**3
 FIGURE_SUFFIXES = (".png", ".pdf", ".svg")
-
-
-def integer(name: str, lo: int, hi: int):
-    """argparse ``type``: an integer; on a parse failure the message states ``[lo, hi]``."""
-    def parse(text):
-        try:
-            return int(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(
-                f"{name} must be an integer in [{lo}, {hi}], got {text!r}") from None
-    return parse
 
 
 def register(sub) -> None:
@@ -56,38 +53,49 @@ def register(sub) -> None:
                     "and group velocity, optionally in physical units.")
     p.add_argument("--mass", choices=MASS_VARIANTS, action="append",
                    help="mass variant (repeat for several; default: consistent and singular)")
+    p.add_argument("--mass-rule", action="append", default=[], metavar="FILE",
+                   help="a user mass rule: TOML table of redistribution weights (repeatable)")
     p.add_argument("--contact", choices=CONTACT_SETS, default=None,
                    help=f"contact set of a singular mass (default: {defaults.CONTACT})")
-    p.add_argument("--gamma-s", type=number("gamma_s"), default=None,
+    p.add_argument("--gamma-s", type=real("gamma_s", 0, 1), default=None,
                    help="share of a contact shape function sent to the second neighbour, "
-                        "singular masses only (default: 0, Figure 2)")
-    p.add_argument("--model", choices=defaults.MODELS, default=None,
+                        f"singular masses only (default: {defaults.GAMMA_S})")
+    p.add_argument("--model", choices=MODELS, default=None,
                    help=f"patch model along x (default: {defaults.MODEL})")
-    p.add_argument("--r", type=number("r"), default=None,
-                   help=f"aspect ratio b/h of the Bloch model, dimensionless "
-                        f"(default: {defaults.text('FIGURE2_R')}, Figure 2's h/b = 2)")
-    p.add_argument("--p", type=integer("degree p", 1, MAX_N - 1), default=defaults.P,
-                   help=f"degree through the thickness, 1..{MAX_N - 1} "
+    p.add_argument("--r", type=real("r", *R_RANGE), default=None,
+                   help=f"aspect ratio b/h of the Bloch model, dimensionless, in [1/1000, "
+                        f"1000] (default: {defaults.R}; Figure 2's caption is 1/2)")
+    p.add_argument("--p", type=integer("degree p", 1, P_MAX), default=defaults.P,
+                   help=f"degree through the thickness, 1..{P_MAX} "
                         f"(default: {defaults.P})")
-    p.add_argument("--n", type=integer("control points n", 2, MAX_N), default=defaults.N,
-                   help=f"control points through the thickness, p+1..{MAX_N} "
+    p.add_argument("--n", type=integer("control points n", 2, N_MAX), default=defaults.N,
+                   help=f"control points through the thickness, p+1..{N_MAX}, and "
+                        f"count * (mass variants) * n^3 <= {MAX_DISCRETE_WORK} "
                         f"(default: {defaults.N})")
-    p.add_argument("--nu", type=number("nu"), default=None,
+    p.add_argument("--nu", type=real("nu", -1, 0.5, lo_open=True, hi_open=True), default=None,
                    help=f"Poisson's ratio (default: {defaults.NU_FLOAT}, or the material's)")
-    p.add_argument("--kappa-min", type=number("kappa-min"), default=0.0,
+    p.add_argument("--kappa-min", type=real("kappa-min", 0), default=None,
                    help="smallest kappa = kh, dimensionless (default: 0)")
-    p.add_argument("--kappa-max", type=number("kappa-max"), default=8.0,
+    p.add_argument("--kappa-max", type=real("kappa-max", 0), default=None,
                    help="largest kappa = kh, dimensionless (default: 8)")
-    p.add_argument("--count", type=integer("count", 2, MAX_COUNT), default=400,
+    p.add_argument("--count", type=integer("count", 2, MAX_COUNT), default=None,
                    help=f"number of kappa points, 2..{MAX_COUNT} (default: 400)")
-    p.add_argument("--omega-max", type=number("omega-max"), default=8.0,
+    p.add_argument("--omega-max", type=real("omega-max", 0, MAX_OMEGA, lo_open=True),
+                   default=None,
                    help=f"largest Omega = omega h / c_T, in (0, {MAX_OMEGA:g}] (default: 8)")
     p.add_argument("--material", choices=sorted(_materials()),
-                   help="material for physical units (aluminium: c_L = 6320, c_T = 3130 m/s)")
-    p.add_argument("--cl", type=number("cl"), help="longitudinal speed c_L in m/s")
-    p.add_argument("--ct", type=number("ct"), help="shear speed c_T in m/s")
-    p.add_argument("--thickness", type=number("thickness"),
+                   help="material for physical units (bulk speeds and density of the CRC "
+                        "handbook row in dispersion.waves.materials)")
+    p.add_argument("--cl", type=real("cl"), help="longitudinal speed c_L in m/s")
+    p.add_argument("--ct", type=real("ct"), help="shear speed c_T in m/s")
+    p.add_argument("--thickness", type=real("thickness"),
                    help="plate thickness d = 2h in mm (with a material: physical columns)")
+    p.add_argument("--scheme", choices=_schemes(), default=None,
+                   help="time integrator for fully discrete branches (default: none, "
+                        "semi-discrete); Bloch model only")
+    p.add_argument("--courant", type=number("courant"), default=None,
+                   help="time step as a fraction of each mass's central-difference critical "
+                        "step, in (0, 10] (with --scheme; explicit schemes need <= 1)")
     p.add_argument("--exact", action="store_true", help="Rayleigh-Lamb branches only")
     p.add_argument("--exact-only", dest="exact", action="store_true", help=argparse.SUPPRESS)
     p.add_argument("--format", choices=("text", "csv", "json"), default="csv",
@@ -96,7 +104,14 @@ def register(sub) -> None:
     p.add_argument("--figure", help="write the figure to FILE (.png, .pdf or .svg)")
     p.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
                    help="tqdm progress bar on stderr (default: on a terminal)")
+    _frequency.add_arguments(p)
     p.set_defaults(func=run)
+
+
+def _schemes():
+    from dispersion.waves.fully_discrete import SCHEMES
+
+    return tuple(SCHEMES)
 
 
 def _materials():
@@ -114,20 +129,11 @@ def kappa_grid(kmin: float, kmax: float, count: int) -> np.ndarray:
                          f"[{kmin}, {kmax}]")
     if isinstance(count, bool) or not 2 <= count <= MAX_COUNT:
         raise InputError(f"count must be an integer in [2, {MAX_COUNT}], got {count}")
-    import numpy as np
-
     return np.linspace(kmin, kmax, count)
 
 
 def _material(args):
-    from dispersion.waves.units import MATERIALS, Material
-
-    if args.material and (args.cl is not None or args.ct is not None):
-        raise InputError("give --material or --cl/--ct, not both")
-    if (args.cl is None) != (args.ct is None):
-        raise InputError("--cl and --ct go together (bulk speeds in m/s)")
-    mat = MATERIALS[args.material] if args.material else (
-        Material(args.cl, args.ct) if args.cl is not None else None)
+    mat = _frequency.material_from_args(args)
     if mat is not None and args.thickness is None:
         raise InputError("a material needs --thickness (plate thickness d = 2h in mm)")
     if mat is None and args.thickness is not None:
@@ -137,39 +143,56 @@ def _material(args):
 
 def _settings(args) -> dict:
     """Validate every option before any work; return the resolved inputs."""
+    for opt, val in (("--mode-shape", args.mode_shape), ("--json", args.json)):
+        if val is not None:
+            raise InputError(f"{opt} applies with --frequency/--fd only")
+    args.kappa_min = 0.0 if args.kappa_min is None else args.kappa_min
+    args.kappa_max = 8.0 if args.kappa_max is None else args.kappa_max
+    args.count = 400 if args.count is None else args.count
+    args.omega_max = 8.0 if args.omega_max is None else args.omega_max
     if args.exact:
         for opt, val in (("--mass", args.mass), ("--contact", args.contact),
                          ("--gamma-s", args.gamma_s), ("--r", args.r), ("--model", args.model)):
             if val is not None:
                 raise InputError(f"{opt} does not apply with --exact (no discrete patch)")
-    masses = [] if args.exact else (args.mass or ["consistent", "singular"])
-    if masses and not any(m.startswith("singular") for m in masses):
+    if args.exact and args.mass_rule:
+        raise InputError("--mass-rule does not apply with --exact (no discrete patch)")
+    if args.mass_rule:
+        from dispersion.symbolic.mass_rule import rule_from_toml
+
+        rules = [rule_from_toml(path) for path in args.mass_rule]
+    else:
+        rules = []
+    masses = [] if args.exact else (args.mass or ([] if rules else ["consistent", "singular"]))
+    masses = masses + rules
+    if masses and not any(_redistributes(m) for m in masses):
         for opt, val in (("--contact", args.contact), ("--gamma-s", args.gamma_s)):
             if val is not None:
                 raise InputError(f"{opt} applies to singular masses only")
     args.model = args.model or defaults.MODEL
     if args.model != "bloch" and args.r is not None:
         raise InputError("--r applies to the bloch model only")
+    base = None
     if masses:
-        if not 1 <= args.p <= MAX_N - 1:
-            raise InputError(f"degree p must be an integer in [1, {MAX_N - 1}], got {args.p}")
-        if not args.p + 1 <= args.n <= MAX_N:
-            raise InputError(f"control points n must be an integer in [p + 1, {MAX_N}] = "
-                             f"[{args.p + 1}, {MAX_N}], got {args.n}")
+        from dispersion.symbolic.patch import Patch
+
+        # the one patch of this run (every field but the mass), checked before any work
+        base = Patch(args.p, args.n, args.model,
+                     defaults.R if args.r is None else args.r, "consistent",
+                     args.contact or defaults.CONTACT,
+                     defaults.GAMMA_S if args.gamma_s is None else args.gamma_s)
         work = args.count * len(masses) * args.n**3
         if work > MAX_DISCRETE_WORK:
             raise InputError(f"count * (mass variants) * n^3 must be <= {MAX_DISCRETE_WORK} "
                              f"(about a minute and a half), got {work}")
     material = _material(args)
-    if args.nu is not None and material is not None:
+    if args.nu is not None and material is not None and args.youngs_modulus is None:
         raise InputError("--nu does not apply with a material (nu follows from c_L and c_T)")
     nu = material.nu if material is not None else (
         defaults.NU_FLOAT if args.nu is None else args.nu)
     kappa = kappa_grid(args.kappa_min, args.kappa_max, args.count)
     if not (math.isfinite(args.omega_max) and 0 < args.omega_max <= MAX_OMEGA):
         raise InputError(f"omega-max must be in (0, {MAX_OMEGA:g}], got {args.omega_max}")
-    from dispersion.waves.exact_branches import check_samples
-
     check_samples(args.count, args.omega_max, what="count * (omega-max / 0.05 + 1)")
     if args.csv is not None:
         check_output_file(args.csv, option="--csv")
@@ -179,39 +202,77 @@ def _settings(args) -> dict:
                              f"{', '.join(FIGURE_SUFFIXES)}, got {args.figure!r}")
         check_output_file(args.figure, option="--figure", allow_stdout=False,
                           suffixes=FIGURE_SUFFIXES)
-    r = float(defaults.FIGURE2_R) if args.r is None else args.r
+        if args.csv not in (None, "-") and unit_target(args.csv) is not None and \
+                os.path.abspath(unit_target(args.csv)) == os.path.abspath(unit_target(args.figure)
+                                                                          or args.figure):
+            raise InputError(f"--csv and --figure must name two different files, got "
+                             f"{args.csv!r} and {args.figure!r}")
+    _check_scheme(args, masses)
     return {
-        "nu": nu, "kappa": kappa, "masses": masses, "material": material, "r": r,
-        "contact": args.contact or defaults.CONTACT,
-        "gamma_s": 0.0 if args.gamma_s is None else args.gamma_s,
+        "nu": nu, "kappa": kappa, "masses": masses, "material": material, "patch": base,
+        "r": None if base is None or base.r is None else float(base.r),
+        "contact": None if base is None else base.contact,
+        "gamma_s": None if base is None else float(base.gamma_s),
     }
+
+
+def _redistributes(mass) -> bool:
+    """True for rules that take the contact set (the singular ones)."""
+    from dispersion.symbolic.mass_rule import get_rule
+
+    return get_rule(mass).redistributes
+
+
+def _name(mass) -> str:
+    return getattr(mass, "name", mass)
+
+
+def _check_scheme(args, masses) -> None:
+    if args.scheme is None:
+        if args.courant is not None:
+            raise InputError("--courant applies with --scheme only")
+        return
+    if not masses:
+        raise InputError("--scheme applies to the discrete branches (not with --exact)")
+    if args.model != "bloch":
+        raise InputError("--scheme needs --model bloch (the x-exact model has no largest "
+                         "frequency, hence no critical step)")
+    if args.figure is not None:
+        raise InputError("--figure does not draw fully discrete branches yet; use --csv")
+    if args.courant is None:
+        raise InputError("--scheme needs --courant (the step over the critical step)")
+    limit = 1.0 if args.scheme == "central" else 10.0
+    if not (math.isfinite(args.courant) and 0 < args.courant <= limit):
+        raise InputError(f"courant must be in (0, {limit:g}] for scheme {args.scheme}, "
+                         f"got {args.courant}")
 
 
 def _inputs(args, s) -> dict:
     from dispersion.results import package_versions
 
     out = {"nu": s["nu"], "model": args.model, "p": args.p, "n": args.n,
-           "masses": s["masses"], "kappa": [args.kappa_min, args.kappa_max, args.count],
+           "masses": [_name(m) for m in s["masses"]], "kappa": [args.kappa_min, args.kappa_max, args.count],
            "omega_max": args.omega_max,
            "dispersion-iga": package_versions(("dispersion-iga",))["dispersion-iga"]}
     if args.model == "bloch" and s["masses"]:
         out["r"] = s["r"]
-    if any(m.startswith("singular") for m in s["masses"]):
+    if any(_redistributes(m) for m in s["masses"]):
         out["contact"], out["gamma_s"] = s["contact"], s["gamma_s"]
+    if args.scheme is not None:
+        out["scheme"], out["courant"] = args.scheme, args.courant
+        out["tau"] = s["tau"]
     if s["material"] is not None:
         out["material"] = s["material"].as_dict()
         out["thickness [mm]"] = args.thickness
     return out
 
 
-def _rows(kappa, omega, group, symmetry, source, material, thickness, omega_max):
-    import numpy as np
-
-    """Row dicts of one branch set (finite Omega <= omega_max)."""
+def _rows(kappa, omega, group, symmetry, source, material, thickness, omega_max, nu):
+    """Row dicts of one branch set (finite Omega <= omega_max) computed at ``nu``."""
     from dispersion.waves.units import physical_branches
     from dispersion.waves.velocities import phase_velocity
 
-    phys = (physical_branches(kappa, omega, group, material, thickness)
+    phys = (physical_branches(kappa, omega, group, material, thickness, nu=nu)
             if material is not None else None)
     rows = []
     for label, om in omega.items():
@@ -235,12 +296,13 @@ def _csv(rows, inputs) -> str:
     buf = io.StringIO()
     for key, val in inputs.items():
         buf.write(f"# {key}: {val}\n")
+    buf.write(f"# {_frequency.EMPTY_NOTE}\n")
     if not rows:
         return buf.getvalue()
     w = csv.DictWriter(buf, fieldnames=list(rows[0]), lineterminator="\n")
     w.writeheader()
     for row in rows:
-        w.writerow({k: (repr(v) if isinstance(v, float) else v) for k, v in row.items()})
+        w.writerow({k: _frequency._cell(v) for k, v in row.items()})
     return buf.getvalue()
 
 
@@ -263,13 +325,13 @@ def _emit(path: str, text: str) -> None:
 
 
 def run(args) -> int:
-    import numpy as np
-
     from dispersion.waves.discrete_branches import discrete_branches
     from dispersion.symbolic.plate import plate_patch
     from dispersion.waves.exact_branches import trace_branches
     from dispersion.waves.velocities import exact_velocities
 
+    if _frequency.requested(args):
+        return _frequency.run(args)
     s = _settings(args)
     kappa, masses, nu = s["kappa"], s["masses"], s["nu"]
     show = sys.stderr.isatty() if args.progress is None else args.progress
@@ -282,21 +344,48 @@ def run(args) -> int:
     tick = bar.update if bar else None
     exact = trace_branches(nu, kappa, args.omega_max, progress=tick)
     vel = exact_velocities(exact)
-    results = []
+    results, patches = [], {}
     for mass in masses:
-        patch = plate_patch(p=args.p, n=args.n, model=args.model, r=s["r"], mass=mass,
-                            contact=s["contact"], gamma_s=s["gamma_s"])
-        results.append((mass, discrete_branches(patch, nu, kappa, progress=tick, group=True)))
+        patch = plate_patch(s["patch"].replace(mass=mass))
+        patches[_name(mass)] = patch
+        d = discrete_branches(patch, nu, kappa, progress=tick, group=args.scheme is None)
+        if args.scheme is not None:
+            from dispersion.waves.fully_discrete import fully_discrete_branches
+            from dispersion.waves.timestep import patch_omega_max
+
+            tau = args.courant * 2 / patch_omega_max(patch, nu)[0]
+            s.setdefault("tau", {})[_name(mass)] = tau
+            d = fully_discrete_branches(d, tau, args.scheme)
+            results.append((f"{_name(mass)} {args.scheme} C={args.courant:g}", d))
+        else:
+            results.append((_name(mass), d))
     if bar:
         bar.close()
     for kind, k, why in exact.failures:
         print(f"warning: exact {kind} branches at kappa={k:.6g}: {why}", file=sys.stderr)
-    inputs = _inputs(args, s)
-    rows = _rows(kappa, exact.omega, vel.group, lambda lab: lab[0], "exact", s["material"],
-                 args.thickness, args.omega_max)
+    for label, k, why in vel.uncertain:
+        print(f"warning: exact {label} group velocity at kappa={k:.6g}: {why}", file=sys.stderr)
     for mass, d in results:
-        rows += _rows(kappa, d.omega, d.group, d.symmetry.get, mass, s["material"],
-                      args.thickness, args.omega_max)
+        for what, k, why in d.failures[:5]:
+            print(f"warning: discrete {mass} {what} at kappa={k:.6g}: {why}", file=sys.stderr)
+        if len(d.failures) > 5:
+            print(f"warning: discrete {mass}: {len(d.failures) - 5} more kappa not certified",
+                  file=sys.stderr)
+    inputs = _inputs(args, s)
+    if s["material"] is not None:  # the practitioner's path: ZGV points in the output
+        from dispersion.waves.frequency import zgv_points
+        from dispersion.waves.units import zgv_in_units
+
+        points = zgv_in_units(zgv_points(nu, args.omega_max), s["material"], args.thickness)
+        for p in points:
+            inputs[f"ZGV {p['mode']}"] = (f"f = {p['f [kHz]']:.10g} kHz, fd = "
+                                          f"{p['fd [MHz mm]']:.10g} MHz mm, c_p = "
+                                          f"{p['c_p [m/s]']:.10g} m/s")
+    rows = _rows(kappa, exact.omega, vel.group, lambda lab: lab[0], "exact", s["material"],
+                 args.thickness, args.omega_max, nu)
+    for mass, d in results:
+        rows += _rows(kappa, d.omega, d.group or {}, d.symmetry.get, mass, s["material"],
+                      args.thickness, args.omega_max, nu)
     if not args.csv and not args.figure:
         if args.format == "csv":
             _emit("-", _csv(rows, inputs))
@@ -306,29 +395,61 @@ def run(args) -> int:
             from dispersion.results import dumps, envelope
 
             env = envelope("branches", {"rows": rows,
-                                        "failures": [list(f) for f in exact.failures]},
+                                        "failures": [list(f) for f in exact.failures],
+                                        "velocity_uncertain": [list(u) for u in vel.uncertain]},
                            inputs=inputs)
             _emit("-", dumps(env))
-    if args.figure:
+    if args.figure and s["material"] is not None:
+        fig = _physical_figure(kappa, exact, vel, s["material"], args.thickness, args.omega_max)
+    elif args.figure:
         from dispersion.plotting.branches import figure2, plot_exact
 
         model = args.model + (f", r = {s['r']:g}" if args.model == "bloch" else "")
         if results:
             from dispersion.studies.branch_study import figure2_data
 
-            data, _ = figure2_data(nu, kappa, args.omega_max, {
-                mass: plate_patch(p=args.p, n=args.n, model=args.model, r=s["r"], mass=mass,
-                                  contact=s["contact"], gamma_s=s["gamma_s"])
-                for mass in masses})
+            data, _ = figure2_data(nu, kappa, args.omega_max, patches, exact=exact,
+                                   velocities=vel, discrete=dict(results))
             fig = figure2(data, title=f"nu = {nu:g}, {model}, p = {args.p}, n = {args.n}")
         else:
             ax = plot_exact(kappa, exact.omega, args.omega_max)
             ax.set_title(f"Rayleigh-Lamb, nu = {nu:g}", fontsize="small")
             ax.legend(fontsize="small")
             fig = ax.figure
-        # Both files are written after all the work, CSV last, so an interruption while the
-        # figure is drawn leaves neither new.
-        save_figure(fig, args.figure, dpi=150)
-    if args.csv:
-        _emit(args.csv, _csv(rows, inputs))
+    if args.figure:
+        figure_bytes = io.BytesIO()
+        fig.savefig(figure_bytes, format=args.figure.rsplit(".", 1)[-1].lower(), dpi=150)
+    # the CSV and the figure are one unit (io.write_unit): both new, or both old; a stream
+    # ('-', a device) is written after the unit
+    outputs = ([(args.figure, figure_bytes.getvalue())] if args.figure else []) + (
+        [(args.csv, _csv(rows, inputs))] if args.csv else [])
+    unit = {unit_target(path): data for path, data in outputs if unit_target(path) is not None}
+    if unit:
+        write_unit(unit, option="--csv/--figure")
+    for path, data in outputs:
+        if unit_target(path) is not None:
+            continue
+        if isinstance(data, str):
+            _emit(path, data)
+        else:
+            write_bytes(path, data)
     return 0
+
+
+def _physical_figure(kappa, exact, vel, material, thickness, omega_max):
+    """The exact branches in the practitioner's units (c_p, c_g against fd; k against f),
+    ZGV points and cut-offs marked, titled from the result."""
+    from dispersion.plotting.lamb import figure_dispersion
+    from dispersion.waves.rayleigh_lamb import cutoff_frequencies
+    from dispersion.waves.units import frequency_khz, physical_branches, zgv_in_units
+    from dispersion.waves.frequency import zgv_points
+
+    phys = physical_branches(kappa, exact.omega, vel.group, material, thickness)
+    zgv = [p for p in zgv_points(exact.nu, omega_max) if p.kappa <= kappa.max()]
+    cut = {}
+    for kind in ("S", "A"):
+        for j, (w, _) in enumerate(cutoff_frequencies(kind, exact.nu, omega_max)):
+            if w > 0:
+                cut[f"{kind}{j}"] = float(frequency_khz(w, material, thickness))
+    return figure_dispersion(phys.curves(), phys.title(), zgv_in_units(zgv, material, thickness),
+                             cut)

@@ -12,7 +12,7 @@ import sys
 
 from dispersion.errors import InputError
 from dispersion.symbolic.mass import MASS_VARIANTS
-from dispersion.cli import number
+from dispersion.cli.options import number
 
 SCENES = ("signorini-1d",)
 
@@ -57,6 +57,11 @@ def summary(res) -> dict:
             **res.errors}
 
 
+def _rel(value) -> str:
+    """A relative error for the one-line summary; None (exact value 0 throughout): n/a."""
+    return "n/a (exact value 0)" if value is None else f"{value:.3g}"
+
+
 def run(args) -> int:
     from dispersion.contact.signorini import signorini_1d
     from dispersion.io import check_output_dir, write_files
@@ -84,7 +89,7 @@ def run(args) -> int:
         print(f"signorini-1d (P{res.p}, {res.n_elements} elements, {res.mass} mass, "
               f"{res.scheme}, dt {res.dt:g}): energy drift {s['energy_drift_percent']:.2g} % "
               f"of 1/8 (initial state {s['initial_energy_change_percent']:+.3g} %), "
-              f"rel. L2 errors u(0) {s['u0_rel_l2']:.3g}, v(0) {s['v0_rel_l2']:.3g}, "
-              f"contact stress {s['stress_rel_l2']:.3g}; {s['seconds']:.2f} s"
+              f"rel. L2 errors u(0) {_rel(s['u0_rel_l2'])}, v(0) {_rel(s['v0_rel_l2'])}, "
+              f"contact stress {_rel(s['stress_rel_l2'])}; {s['seconds']:.2f} s"
               + (" [UNSTABLE: energy grows; not a result]" if s.get("energy_flag") else ""))
     return 0

@@ -18,28 +18,24 @@ refused, never overwritten.
 from __future__ import annotations
 
 import argparse
+import concurrent.futures as cf
 import shlex
 import sys
 import time
 from collections.abc import Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING
 
+from dispersion import results
 from dispersion.errors import InputError, check_int_in_range
 from dispersion.io import write_text
 from dispersion.report import SECTIONS, section_module
-from dispersion.cli import number
-
-if TYPE_CHECKING:  # the rest is imported where used: `dispersion --help` stays light
-    import concurrent.futures as cf
-
-    from dispersion.report.index import SectionResult
+from dispersion.report.folder import check_target, open_report
+from dispersion.report.index import SectionResult, render_index
+from dispersion.sweep import MAX_JOBS_PER_CPU, default_jobs, process_pool
+from dispersion.cli.options import number
 
 __all__ = ["register", "measure_sections", "render_folder", "handler", "MAX_JOBS_PER_CPU"]
 
-#: More workers than this per usable CPU only queue for the cores while each holds its own
-#: copy of the toolkit in memory; the bound keeps ``--jobs`` a count a user means.
-MAX_JOBS_PER_CPU = 4
 
 
 def register(subparsers) -> None:
@@ -89,8 +85,6 @@ def measure_sections(
     """Measure each section and save ``folder/<name>.json``; return the seconds per section."""
     from tqdm.auto import tqdm
 
-    from dispersion import results
-
     seconds = {}
     bar = tqdm(names, desc="reproduce", unit="section", disable=not progress, file=sys.stderr)
     for name in bar:
@@ -111,9 +105,6 @@ def measure_sections(
 
 def render_folder(folder: Path) -> list[SectionResult]:
     """Render every section whose JSON is in ``folder`` and write ``index.md``; measure nothing."""
-    from dispersion import results
-    from dispersion.report.index import SectionResult, render_index
-
     folder = Path(folder)
     parts, envelopes = [], []
     for name in SECTIONS:
@@ -144,19 +135,12 @@ def _command(args: argparse.Namespace) -> str:
 
 
 def _pool(jobs: int) -> cf.Executor:
-    import concurrent.futures as cf
-
-    from dispersion.sweep import process_pool
-
     if jobs == 1:
         return cf.ThreadPoolExecutor(max_workers=1)  # in-process, one call at a time
     return process_pool(jobs)  # workers die with this process
 
 
 def handler(args: argparse.Namespace) -> int:
-    from dispersion.report.folder import check_target, open_report
-    from dispersion.sweep import default_jobs
-
     names = _names(args.sections)
     if args.render and (args.quick or args.jobs is not None):
         raise InputError("--render measures nothing: --quick and --jobs do not apply")
@@ -164,7 +148,7 @@ def handler(args: argparse.Namespace) -> int:
         raise InputError("--render renders every section present: --sections does not apply")
     jobs = (check_int_in_range("--jobs", args.jobs, 1, MAX_JOBS_PER_CPU * default_jobs())
             if args.jobs is not None else default_jobs())
-    out = check_target(Path(args.out))
+    out = check_target(args.out)
     readme = Path(args.readme) if args.readme is not None else None
     if readme is not None and not readme.is_file():
         raise InputError(f"--readme must name an existing Markdown file, got {args.readme!r}")

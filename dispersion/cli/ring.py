@@ -14,7 +14,7 @@ from dataclasses import replace
 from dispersion.contact.scenario import MAX_STEPS, Scenario
 from dispersion.errors import InputError
 from dispersion.symbolic.mass import MASS_VARIANTS
-from dispersion.cli import number
+from dispersion.cli.options import integer, number
 
 DEFAULT = Scenario()
 
@@ -41,11 +41,7 @@ def level(text: str) -> int:
     ...
     argparse.ArgumentTypeError: level must be an integer in [0, 4], got 'abc'
     """
-    try:
-        return int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"level must be an integer in [{LEVELS[0]}, "
-                                         f"{LEVELS[1]}], got {text!r}") from None
+    return integer("level", *LEVELS)(text)
 
 
 def progress_default(flag) -> bool:

@@ -11,6 +11,7 @@ import json
 import sys
 from fractions import Fraction
 
+from dispersion.cli.options import integer, rational
 from dispersion.errors import InputError
 
 #: Options of the discrete patch, with their defaults (None: not given on the command line).
@@ -47,25 +48,9 @@ class _Default:
         return defaults.text(self.name)  # the help text: no sympy
 
 
-def _fraction(name):
-    def parse(text):
-        try:
-            return Fraction(text)
-        except (TypeError, ValueError, ZeroDivisionError):
-            raise argparse.ArgumentTypeError(f"{name} must be a rational number such as 0.3 "
-                                             f"or 3/10, got {text!r}") from None
-    return parse
-
-
 def _integer(name: str, valid):
     """argparse ``type``: an integer; on failure the message states ``valid()`` (the range)."""
-    def parse(text):
-        try:
-            return int(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"{name} must be an integer {valid()}, "
-                                             f"got {text!r}") from None
-    return parse
+    return integer(name, valid=valid)
 
 
 def _order_range() -> str:
@@ -88,7 +73,7 @@ def _points_range() -> str:
 
 
 def _aspect(text):
-    return "r" if text == "r" else _fraction("r")(text)
+    return rational("r", symbol="r")(text)
 
 
 def register(sub) -> None:
@@ -103,12 +88,13 @@ def register(sub) -> None:
     p.add_argument("--exact", action="store_true",
                    help="exact Rayleigh-Lamb series (eqs 14-15); takes none of the patch options")
     p.add_argument("--mass", default=_Default("MASS"),
-                   help="mass variant: consistent, lumped, singular, singular-lumped "
+                   help="mass rule: consistent, lumped, hrz, nodal-greville, nodal-lobatto, "
+                        "singular, singular-lumped "
                         "(default %(default)s)")
     p.add_argument("--contact", default=_Default("CONTACT"),
                    help="contact set of a singular mass: top, bottom, both "
                         "(default %(default)s)")
-    p.add_argument("--gamma-s", type=_fraction("gamma_s"), default=_Default("GAMMA_S"),
+    p.add_argument("--gamma-s", type=rational("gamma_s", 0, 1), default=_Default("GAMMA_S"),
                    help="singular mass: share of a contact shape function sent to the second "
                         "neighbour (paper's gamma_s), in [0, 1] (default %(default)s)")
     p.add_argument("--model", default=_Default("MODEL"),
@@ -127,7 +113,7 @@ def register(sub) -> None:
                    default=_Default("order", ORDER),
                    help="highest power of kappa, even, at most power_balance.MAX_ORDER "
                         "(default %(default)s)")
-    p.add_argument("--nu", type=_fraction("nu"), default=None,
+    p.add_argument("--nu", type=rational("nu", -1, 0.5, lo_open=True, hi_open=True), default=None,
                    help="substitute a value for Poisson's ratio nu, in (-1, 0.5); "
                         "None: symbolic")
     p.add_argument("--format", choices=("text", "latex", "json", "csv"), default="text",
@@ -139,8 +125,9 @@ def register(sub) -> None:
     p.set_defaults(func=run)
 
 
-def _resolve(args) -> dict:
-    """The patch options with defaults filled in; options that do not apply are errors."""
+def _resolve(args):
+    """The run's :class:`~dispersion.symbolic.patch.Patch` (None for --exact/--paper), with the
+    toolkit's defaults filled in; options that do not apply are errors."""
     given = {k: getattr(args, k) for k in _PATCH_OPTIONS
              if not isinstance(getattr(args, k), _Default)}
     if args.exact or args.paper:
@@ -148,7 +135,7 @@ def _resolve(args) -> dict:
             name = next(iter(given)).replace("_", "-")
             mode = "--exact" if args.exact else "--paper"
             raise InputError(f"--{name} does not apply to {mode} (the exact plate has no patch)")
-        return {}
+        return None
     opts = {k: getattr(args, k).value() for k in _PATCH_OPTIONS
             if isinstance(getattr(args, k), _Default)}
     opts.update(given)
@@ -165,18 +152,21 @@ def _resolve(args) -> dict:
         opts["r"] = None  # plate_patch keeps r symbolic
     if opts["gamma_s"] is not None:
         opts["gamma_s"] = Fraction(str(opts["gamma_s"]))
-    return opts
+    from dispersion.symbolic.patch import Patch
+
+    return Patch(**opts)
 
 
-def series_records(args, branches: tuple[str, ...], opts: dict) -> list[dict]:
-    """Derive the branches (one determinant for both where the mass breaks the mirror)."""
+def series_records(args, branches: tuple[str, ...], patch) -> list[dict]:
+    """Derive the branches of ``patch`` (one determinant for both where the mass breaks the
+    mirror); ``patch`` is None with --exact."""
     from dispersion.symbolic.power_balance import discrete_series_raw
 
-    raws = None if args.exact else discrete_series_raw(branches, args.order, **opts)[0]
-    return [series_record(args, b, opts, None if raws is None else raws[b]) for b in branches]
+    raws = None if args.exact else discrete_series_raw(branches, args.order, patch)[0]
+    return [series_record(args, b, patch, None if raws is None else raws[b]) for b in branches]
 
 
-def series_record(args, branch: str, opts: dict, raw=None) -> dict:
+def series_record(args, branch: str, patch, raw=None) -> dict:
     """One branch as the JSON record {branch, mass, model, coefficients, ...}."""
     from dispersion.symbolic.power_balance import (discrete_series_raw, format_coefficient,
                                                    substitute_raw)
@@ -187,18 +177,17 @@ def series_record(args, branch: str, opts: dict, raw=None) -> dict:
         mass, model = "exact", "rayleigh-lamb"
     else:
         if raw is None:
-            raw = discrete_series_raw((branch,), args.order, **opts)[0][branch]
-        mass = opts["mass"]
-        model = opts["model"] if opts["model"] == "x-exact" else \
-            f"bloch r={'r' if opts['r'] is None else opts['r']}"
+            raw = discrete_series_raw((branch,), args.order, patch)[0][branch]
+        mass = patch.mass_name
+        model = patch.model if patch.model == "x-exact" else f"bloch r={patch.r}"
     if args.nu is not None:
         raw = substitute_raw(raw, "nu", args.nu)
     record = {"branch": branch, "mass": mass, "model": model,
               "coefficients": {str(k): format_coefficient(a, b) for k, a, b in raw}}
     if not args.exact:
-        record.update(p=opts["p"], n=opts["n"])
-        if mass.startswith("singular"):
-            record.update(contact=opts["contact"], gamma_s=str(opts["gamma_s"]))
+        record.update(p=patch.p, n=patch.n)
+        if patch.singular:
+            record.update(contact=patch.contact, gamma_s=str(patch.gamma_s))
     if args.nu is not None:
         record["nu"] = str(args.nu)
     return record
@@ -267,7 +256,7 @@ def _check_up_front(args) -> None:
 
 def run(args) -> int:
     _check_up_front(args)
-    opts = _resolve(args)
+    patch = _resolve(args)
     if args.paper:
         if args.format == "csv":
             raise InputError("--format csv does not apply to --paper (use text, latex or json)")
@@ -275,7 +264,7 @@ def run(args) -> int:
         records = None
     else:
         branches = ("S0", "A0") if args.branch == "both" else (args.branch,)
-        records = series_records(args, branches, opts)
+        records = series_records(args, branches, patch)
         if args.format == "json":
             text = json.dumps(records[0] if len(records) == 1 else records, indent=2)
         elif args.format == "csv":

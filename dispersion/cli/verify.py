@@ -3,30 +3,22 @@
 Exit status 0 if every claim holds as recorded, 1 if any does not, 2 for a malformed file
 (one line naming the file, line, entry and field). ``--junit FILE`` (``-``: stdout) writes a
 JUnit XML report, one test case per claim. The file format is described in
-:mod:`dispersion.claims`; the paper's eqs 14-20 are ``--paper``.
+:mod:`dispersion.claims`; the paper's eqs 14-20 are ``--paper``. Claims files may come from
+strangers: their text is read by a whitelist and never run, and nothing from them reaches
+the terminal as a control sequence.
 """
 from __future__ import annotations
 
-import argparse
 import sys
 from pathlib import Path
 
-from dispersion.errors import InputError, check_int_in_range
+from dispersion.cli.options import integer
+from dispersion.errors import InputError
 from dispersion.io import check_output_file, write_text
 
-
-def _jobs(text: str) -> int:
-    """argparse ``type`` of ``--jobs``: an integer, its range stated on failure."""
-    from dispersion.claims import MAX_JOBS
-
-    try:
-        return int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(
-            f"--jobs must be an integer in [1, {MAX_JOBS}], got {text!r}") from None
-
-
 def register(sub) -> None:
+    from dispersion.claims.verify import MAX_JOBS  # the command needs sympy anyway
+
     p = sub.add_parser("verify", help="check claimed series/values against the derivation",
                        description="Derive every claim of the claims files (TOML, see "
                                    "dispersion.claims) and compare exactly; exit 1 if any "
@@ -35,17 +27,30 @@ def register(sub) -> None:
     p.add_argument("--paper", action="store_true",
                    help="also verify the paper's eqs 14-20 (the claims file shipped with the package)")
     p.add_argument("--junit", metavar="FILE", help="write a JUnit XML report ('-' for stdout)")
-    p.add_argument("--format", choices=("text", "markdown"), default="text")
-    p.add_argument("--jobs", type=_jobs, default=None,
-                   help="worker processes for independent derivations, at most "
-                        "dispersion.claims.MAX_JOBS (default: in-process for series to "
-                        "kappa^8 or less, else the CPU count)")
+    p.add_argument("--format", choices=("text", "markdown"), default="text",
+                   help="how the results are printed: text (one block per claim, wrapped to "
+                        "the terminal) or a Markdown table (default: text)")
+    p.add_argument("--jobs", type=integer("--jobs", 1, MAX_JOBS), default=None,
+                   help=f"worker processes for independent derivations, 1 to {MAX_JOBS} "
+                        "(default: in-process for series to kappa^8 or less, else the CPU "
+                        "count)")
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
-    from dispersion.claims import (MAX_JOBS, format_results, junit_xml, load_claims, paper_claims_path,
-                          verify_claims)
+    from dispersion.claims.report import plain
+
+    try:
+        return _run(args)
+    except InputError as exc:  # the message may quote a file name or claim: make it inert
+        raise InputError(plain(str(exc))) from None
+
+
+def _run(args) -> int:
+    from dispersion.claims import (MAX_JOBS, format_results, junit_xml, load_claims,
+                                   paper_claims_path, verify_claims)
+    from dispersion.claims.report import plain
+    from dispersion.errors import check_int_in_range
 
     # every option is checked before a claims file is read or a derivation starts
     paths = list(args.files) + ([paper_claims_path()] if args.paper else [])
@@ -67,7 +72,7 @@ def run(args) -> int:
         summary = (f"{len(result.results) - len(failed)} of {len(result.results)} claims hold "
                    "as recorded" + (": not " + ", ".join(repr(r.name) for r in failed)
                                     if failed else ""))
-        print(summary)
+        print(plain(summary))
         if args.junit:
             write_text(args.junit, junit_xml(result))
     return 0 if result.passed else 1
@@ -76,5 +81,5 @@ def run(args) -> int:
 def _same_file(a, b) -> bool:
     try:
         return Path(a).resolve() == Path(b).resolve()
-    except (OSError, RuntimeError):  # unresolvable: load_claims reports the input
+    except (OSError, RuntimeError, ValueError):  # unresolvable: load_claims reports the input
         return False

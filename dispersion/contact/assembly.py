@@ -283,9 +283,13 @@ def patch_mass(disc: Discretization, rho: float, variant: str = "consistent",
                side: str = "eta1", gamma_s: float = 0.5) -> sp.csr_matrix:
     """Mass matrix on the interleaved DOFs for ``variant`` (see
     :func:`dispersion.symbolic.mass.mass_variant`); singular variants redistribute ``side``."""
+    from dispersion.symbolic.mass_rule import get_rule
+
+    rule = get_rule(variant)
     M = consistent_mass(disc, rho)
-    R = patch_redistribution(disc.patch, side, gamma_s) if variant.startswith("singular") else None
-    Mv = sp.csr_matrix(mass_variant(M, variant, R))
+    R = patch_redistribution(disc.patch, side, gamma_s) if rule.redistributes else None
+    Me = rho * np.einsum("eg,ega,egb->eab", disc.wdet, disc.R, disc.R)
+    Mv = sp.csr_matrix(mass_variant(M, rule, R, elements=(disc.conn, Me)))
     Mv.eliminate_zeros()
     return sp.kron(Mv, sp.eye(2)).tocsr()
 

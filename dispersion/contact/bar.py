@@ -11,7 +11,8 @@ displacement and velocity fields and a body force :math:`b(x)`:
     \\rho u_{tt} = E u_{xx} + b, \\qquad g = \\mathrm{gap} \\pm u(x_c) \\ge 0, \\quad
     \\lambda \\ge 0, \\quad \\lambda g = 0 .
 
-The mass variants are :data:`dispersion.symbolic.mass.MASS_VARIANTS`; the singular ones redistribute
+The mass is any rule of :mod:`dispersion.symbolic.mass_rule` (a name or a
+:class:`~dispersion.symbolic.mass_rule.MassRule`); the singular ones redistribute
 the contact end's function onto its two neighbours (paper eqs 2-4).
 
 Validation case (:func:`simulate_bar`): a free bar moving with velocity :math:`-v_0` touches
@@ -34,13 +35,16 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
+import scipy.sparse as sp
 
-from dispersion.defaults import GAMMA_S_FLOAT
+from dispersion.symbolic.bspline import open_knot_vector
+from dispersion.defaults import GAMMA_S
 from dispersion.errors import InputError, check_positive, check_positive_int, check_real_in_range
-from dispersion.symbolic.mass import MASS_VARIANTS, mass_variant
-from dispersion.contact.newmark import DENSE_MAX, ContactProblem, History, Newmark, integrate
+from dispersion.symbolic.mass import mass_variant
+from dispersion.symbolic.mass_rule import get_rule
+from dispersion.contact.assembly import float_redistribution
+from dispersion.contact.newmark import ContactProblem, History, Newmark, integrate
 from dispersion.contact.nurbs import SplineBasis1D
-from dispersion.contact.redistribution import float_redistribution
 
 __all__ = ["ENDS", "MAX_STEPS", "Bar", "BarModel", "BarResult", "bar_model", "bar_problem",
            "check_steps", "simulate_bar"]
@@ -85,7 +89,7 @@ class Bar:
     clamped: tuple = ()
     contact: str = "left"
     gap: float = 0.0
-    gamma_s: float = GAMMA_S_FLOAT
+    gamma_s: float = float(GAMMA_S)
     body_force: float | Callable | None = field(default=None, compare=False)
 
     def __post_init__(self):
@@ -93,8 +97,7 @@ class Bar:
         check_positive_int("p", self.p)
         for name in ("L", "E", "rho"):
             check_positive(name, getattr(self, name))
-        if self.mass not in MASS_VARIANTS:
-            raise InputError(f"mass must be one of {', '.join(MASS_VARIANTS)}; got {self.mass!r}")
+        rule = get_rule(self.mass)
         if self.contact not in ENDS:
             raise InputError(f"contact must be one of {', '.join(ENDS)}; got {self.contact!r}")
         bad = [e for e in self.clamped if e not in ENDS]
@@ -104,7 +107,7 @@ class Bar:
             raise InputError(f"clamped: the contact end {self.contact!r} cannot be clamped")
         if not (np.isfinite(self.gap) and self.gap >= 0):
             raise InputError(f"gap must be a finite number >= 0, got {self.gap!r}")
-        if self.mass.startswith("singular") and self.n_elements + self.p < 3:
+        if rule.redistributes and self.n_elements + self.p < 3:
             raise InputError("n_elements: a singular mass needs >= 3 functions "
                              f"(n_elements + p >= 3), got {self.n_elements} + {self.p}")
 
@@ -147,7 +150,7 @@ class BarModel:
 def bar_model(bar: Bar) -> BarModel:
     """Assemble the bar: stiffness, mass variant, wall constraint, body force, clamped ends."""
     p, L = bar.p, bar.L
-    basis = SplineBasis1D.uniform(p, bar.n_elements)  # floats: no sympy for a bar
+    basis = SplineBasis1D.from_knots(open_knot_vector(p, bar.n_elements, 0, 1))
     xg, wg = np.polynomial.legendre.leggauss(p + 1)
     a, b = basis.spans[:, :1] * L, basis.spans[:, 1:] * L
     x = (a + (b - a) * (xg + 1) / 2).ravel()
@@ -156,12 +159,17 @@ def bar_model(bar: Bar) -> BarModel:
     _, dN = basis.evaluate(x / L, 1)
     dN = dN / L
     n = basis.kv.n
-    ke = bar.E * w[:, None, None] * dN[:, :, None] * dN[:, None, :]
-    me = bar.rho * w[:, None, None] * N[:, :, None] * N[:, None, :]
     rows = np.repeat(act, p + 1, axis=1).ravel()
     cols = np.tile(act, (1, p + 1)).ravel()
+    K = sp.csr_matrix(((bar.E * w[:, None, None] * dN[:, :, None] * dN[:, None, :]).ravel(),
+                       (rows, cols)), shape=(n, n))
+    M = sp.csr_matrix(((bar.rho * w[:, None, None] * N[:, :, None] * N[:, None, :]).ravel(),
+                       (rows, cols)), shape=(n, n))
     side = "bottom" if bar.contact == "left" else "top"
-    R = float_redistribution(n, side, bar.gamma_s) if bar.mass.startswith("singular") else None
+    rule = get_rule(bar.mass)
+    R = float_redistribution(n, side, bar.gamma_s) if rule.redistributes else None
+    Mv = sp.csr_matrix(mass_variant(M, rule, R, kv=basis.kv))
+    Mv.eliminate_zeros()
     f_ext = None
     if bar.body_force is not None:
         bx = bar.body_force(x) if callable(bar.body_force) else np.full(len(x), bar.body_force)
@@ -171,31 +179,11 @@ def bar_model(bar: Bar) -> BarModel:
     sign = 1.0 if bar.contact == "left" else -1.0
     fixed = {"left": 0, "right": n - 1}
     free = np.setdiff1d(np.arange(n), [fixed[e] for e in bar.clamped])
-    k = int(np.flatnonzero(free == dof)[0])
-    if len(free) <= DENSE_MAX:
-        # a small bar runs on numpy arrays alone: the newmark solver's dense path, no scipy
-        K = np.zeros((n, n))
-        np.add.at(K, (rows, cols), ke.ravel())
-        M = np.zeros((n, n))
-        np.add.at(M, (rows, cols), me.ravel())
-        Mv = mass_variant(M, bar.mass, R)
-        Kf = K[np.ix_(free, free)]
-        G = np.zeros((1, len(free)))
-        G[0, k] = sign
-        Mf, Kp = Mv[np.ix_(free, free)], Kf
-    else:
-        import scipy.sparse as sp
-
-        K = sp.csr_matrix((ke.ravel(), (rows, cols)), shape=(n, n))
-        M = sp.csr_matrix((me.ravel(), (rows, cols)), shape=(n, n))
-        Mv = sp.csr_matrix(mass_variant(M, bar.mass, R))
-        Mv.eliminate_zeros()
-        Kf = K[free][:, free].tocsr()
-        # dense products below a few hundred DOFs: scipy.sparse's per-call overhead dominates
-        Kp = Kf.toarray() if len(free) <= 400 else Kf
-        G = sp.csr_matrix(([sign], ([0], [k])), shape=(1, len(free)))
-        Mf = Mv[free][:, free].tocsr()
-    prob = ContactProblem(Mf, lambda u: (Kp @ u, Kf), G,
+    Kf = K[free][:, free].tocsr()
+    # dense products below a few hundred DOFs: scipy.sparse's per-call overhead dominates
+    Kp = Kf.toarray() if len(free) <= 400 else Kf
+    G = sp.csr_matrix(([sign], ([0], [int(np.flatnonzero(free == dof)[0])])), shape=(1, len(free)))
+    prob = ContactProblem(Mv[free][:, free].tocsr(), lambda u: (Kp @ u, Kf), G,
                           np.array([bar.gap]), lambda u: 0.5 * float(u @ (Kp @ u)),
                           None if f_ext is None else f_ext[free], None, Kf,
                           lambda u: Kp @ u)
@@ -203,7 +191,7 @@ def bar_model(bar: Bar) -> BarModel:
 
 
 def bar_problem(n_elements: int, p: int = 2, mass: str = "lumped", L: float = 1.0,
-                E: float = 1.0, rho: float = 1.0, gamma_s: float = GAMMA_S_FLOAT
+                E: float = 1.0, rho: float = 1.0, gamma_s: float = float(GAMMA_S)
                 ) -> ContactProblem:
     """Free bar on ``[0, L]`` (unit area) with the wall constraint ``g = u_0 >= 0``."""
     return bar_model(Bar(n_elements, p, L, E, rho, mass, gamma_s=gamma_s)).problem
@@ -221,7 +209,7 @@ class BarResult:
 def simulate_bar(n_elements: int = 40, p: int = 2, mass: str = "lumped", *,
                  courant: float = 0.5, dt: float | None = None, scheme: str = "kane",
                  L: float = 1.0, E: float = 1.0, rho: float = 1.0, v0: float = 1.0,
-                 t_end_factor: float = 3.0, gamma_s: float = GAMMA_S_FLOAT,
+                 t_end_factor: float = 3.0, gamma_s: float = float(GAMMA_S),
                  contact_threshold: float = 1e-12) -> BarResult:
     """Bar impact up to ``t_end_factor * L / c``; ``dt = courant * h / c`` unless given.
 

@@ -225,20 +225,28 @@ class _Solver:
         return sp.csc_matrix(A)
 
     def solve(self, A, b):
-        if self.dense:
-            return np.linalg.solve(A, b)
-        import scipy.sparse.linalg as spla
+        try:
+            if self.dense:
+                return np.linalg.solve(A, b)
+            import scipy.sparse.linalg as spla
 
-        return spla.spsolve(A, b)
+            return spla.spsolve(A, b)
+        except (RuntimeError, np.linalg.LinAlgError, ValueError) as exc:  # SuperLU, LAPACK
+            raise ConvergenceError(f"singular or non-finite step matrix ({exc}); the scene's "
+                                   "scale is beyond double precision") from None
 
     def factor(self, A):
-        if self.dense:
-            # a few dozen unknowns: one product with the inverse beats any solve call
-            inv = np.linalg.inv(_dense(A))
-            return lambda b: inv @ b
-        import scipy.sparse.linalg as spla
+        try:
+            if self.dense:
+                # a few dozen unknowns: one product with the inverse beats any solve call
+                inv = np.linalg.inv(_dense(A))
+                return lambda b: inv @ b
+            import scipy.sparse.linalg as spla
 
-        return spla.splu(A).solve
+            return spla.splu(A).solve
+        except (RuntimeError, np.linalg.LinAlgError, ValueError) as exc:  # SuperLU, LAPACK
+            raise ConvergenceError(f"singular or non-finite step matrix ({exc}); the scene's "
+                                   "scale is beyond double precision") from None
 
 
 class _Split:
@@ -598,8 +606,19 @@ def integrate(prob: ContactProblem, u0: np.ndarray, v0: np.ndarray, dt: float, n
     An initial gap below ``-penetration_tol * max(1, |g0|)`` is refused, as is an explicit
     step above :func:`critical_step`. ``progress(k)`` is called after each step.
     """
+    # overflow and invalid values surface as ConvergenceError (a non-finite state, a singular
+    # matrix), not as numpy warnings printed before the one-line error
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        return _integrate(prob, u0, v0, dt, n_steps, newmark, progress, keep_states,
+                          consistent, penetration_tol)
+
+
+def _integrate(prob, u0, v0, dt, n_steps, newmark, progress, keep_states, consistent,
+               penetration_tol) -> History:
     nm = newmark or Newmark()
     check_positive("dt", dt)
+    if not (float(dt) ** 2 > 0 and 1.0 / float(dt) ** 2 < np.inf):  # matrices ~ 1 / dt^2
+        raise InputError(f"dt must be >= 1e-150 (1/dt^2 overflows), got {dt!r}")
     check_positive_int("n_steps", n_steps)
     u0 = np.asarray(u0, float)
     v0 = np.asarray(v0, float)
@@ -636,6 +655,9 @@ def integrate(prob: ContactProblem, u0: np.ndarray, v0: np.ndarray, dt: float, n
         linear = _Linear(prob, split, nm, 2.0 / dt**2 if nm.explicit else 1 / (nm.beta * dt**2))
     for _ in range(n_steps):
         s = step(prob, nm, s, dt, split, linear, tangent)
+        if not (np.all(np.isfinite(s.u)) and np.all(np.isfinite(s.v))):
+            raise ConvergenceError(f"the state became non-finite at t = {s.t:.6g}; the "
+                                   "scene's scale (speeds, sizes, dt) is beyond double precision")
         _record(hist, prob, split, s, keep_states)
         if progress is not None:
             progress(1)

@@ -2,7 +2,7 @@
 
 A 2D problem is a NURBS patch (knots, control points, weights: :class:`~.nurbs.RingPatch`
 holds any such patch), a St.Venant-Kirchhoff material (plane stress or plane strain), a
-density, a mass variant from :data:`dispersion.symbolic.mass.MASS_VARIANTS`, the patch side that may
+density, a mass rule of :mod:`dispersion.symbolic.mass_rule`, the patch side that may
 touch a rigid plane and the plane itself, and the sides held fixed. :func:`patch_problem`
 turns it into a :class:`~.newmark.ContactProblem` on the free DOFs. The gap of the plane
 :math:`\\mathbf n \\cdot (\\mathbf x - \\mathbf p) \\ge 0` is imposed at the Greville abscissae
@@ -27,7 +27,7 @@ import scipy.sparse as sp
 
 from dispersion.symbolic.bspline import open_knot_vector
 from dispersion.errors import InputError, check_positive, check_positive_int
-from dispersion.symbolic.mass import MASS_VARIANTS
+from dispersion.symbolic.mass_rule import get_rule
 from dispersion.contact.assembly import discretize, internal_force, patch_mass, strain_energy
 from dispersion.contact.material import StVenantKirchhoff
 from dispersion.contact.newmark import DENSE_MAX, ContactProblem
@@ -162,7 +162,7 @@ def patch_problem(patch: RingPatch, material: StVenantKirchhoff, rho: float,
     rho : float
         Density (kg/m^3); unit thickness.
     mass : str
-        One of :data:`dispersion.symbolic.mass.MASS_VARIANTS`; the singular variants redistribute the
+        A rule of :mod:`dispersion.symbolic.mass_rule` (name or object); the singular ones redistribute the
         functions of ``contact_side`` inward with weight ``gamma_s`` (paper eqs 1-4).
     contact_side : str
         One of :data:`SIDES`: the side that may touch the obstacle.
@@ -171,8 +171,7 @@ def patch_problem(patch: RingPatch, material: StVenantKirchhoff, rho: float,
     dirichlet : sequence of ``(side, component)``
         Components (0 = x, 1 = y) held at zero on whole sides.
     """
-    if mass not in MASS_VARIANTS:
-        raise InputError(f"mass must be one of {', '.join(MASS_VARIANTS)}; got {mass!r}")
+    get_rule(mass)
     if contact_side not in SIDES:
         raise InputError(f"contact_side must be one of {', '.join(SIDES)}; got {contact_side!r}")
     if not (np.isfinite(rho) and rho > 0):

@@ -18,7 +18,7 @@ from dataclasses import dataclass, replace
 from dispersion.defaults import GAMMA_S_FLOAT, NU_FLOAT
 from dispersion.errors import InputError, check_memory, check_nu, check_positive, check_positive_int
 
-__all__ = ["MAX_ELEMENTS", "MAX_STEPS", "Scenario"]
+__all__ = ["MAX_ELEMENTS", "MAX_STEPS", "MAX_SECONDS", "Scenario"]
 
 #: Most time steps one run may take (every state is kept for the penetration record).
 MAX_STEPS = 200_000
@@ -28,6 +28,12 @@ MAX_STEPS = 200_000
 #: already take 18 s here (measured), and the cost per step grows faster than the DOF count,
 #: so a finer mesh cannot run even a short scene in that time.
 MAX_ELEMENTS = 16 * 2 * 4**4
+#: Longest run :func:`~dispersion.contact.simulate.simulate_ring` accepts, by the estimate
+#: :attr:`Scenario.work_seconds`: half an hour of this 2-core machine. The default scene
+#: (level 0, 7200 steps) is estimated at about 18 s; level 3 at its default t_end at about
+#: 14 min; level 4 fits up to t_end of about 140 s. Past the bound a coarser mesh or a
+#: shorter run serves better (``--level 4 --t-end 900`` was about 1.5 h).
+MAX_SECONDS = 1800.0
 #: Floats kept per DOF and time step: the state's u, v, a_int, a_c and the displacement
 #: array of the penetration record (used by :attr:`Scenario.memory_bytes`).
 _FLOATS_PER_DOF_STEP = 5
@@ -108,8 +114,18 @@ class Scenario:
             raise InputError(f"theta0_deg must be finite, got {self.theta0_deg}")
         if not math.isfinite(self.gap):
             raise InputError(f"gap must be a finite number >= 0, got {self.gap}")
-        if not (self.dt**2 > 0 and 1 / self.dt**2 < math.inf):
-            raise InputError(f"dt must be >= 1e-150 s (1/dt^2 overflows), got {self.dt}")
+        if not 1e-150 <= self.dt <= 1e150:  # the step matrices scale like 1 / dt^2
+            raise InputError(f"dt must lie in [1e-150, 1e150] s (dt^2 and 1/dt^2 must stay "
+                             f"finite), got {self.dt}")
+        # E = 2 (1 + nu) rho (v0 / v0_over_cT)^2 must be a positive double, or K is 0 or inf
+        try:
+            youngs = self.E  # Python floats: an overflow raises, an underflow gives 0
+        except OverflowError:
+            youngs = float("inf")
+        if not 1e-300 < youngs < 1e300:
+            raise InputError(f"v0, v0_over_cT and rho give E = 2 (1 + nu) rho (v0 / v0_over_cT)"
+                             f"^2 = {youngs:g} Pa, outside double precision; choose values "
+                             f"whose E lies in (1e-300, 1e300)")
         if self.t_end < self.dt:
             raise InputError(f"t_end must be >= dt = {self.dt:g} s (one step), got {self.t_end:g}")
         steps = self.t_end / self.dt
@@ -157,6 +173,29 @@ class Scenario:
     def memory_bytes(self) -> int:
         """Estimated bytes of the states one run keeps (all ``n_steps + 1`` of them)."""
         return 8 * _FLOATS_PER_DOF_STEP * self.n_dofs * (self.n_steps + 1)
+
+    @property
+    def work_seconds(self) -> float:
+        """Estimated wall time (s) of one run: set-up plus steps, on this 2-core machine.
+
+        A step costs about ``1 ms + 3e-6 s * dofs^1.25`` (measured through the first impact,
+        singular mass: 2.2, 24, 74, 615 ms at 144, 1320, 4680, 17544 DOFs, levels 0, 2, 3, 4;
+        the fit runs through levels 2 and 4 and lies above level 3); the set-up about
+        ``2e-3 s * dofs`` (0.2 s, 1.5 s, 6 s, 36 s at the same levels).
+
+        >>> round(Scenario().work_seconds)
+        18
+        """
+        return 2e-3 * self.n_dofs + self.n_steps * (1e-3 + 3e-6 * self.n_dofs**1.25)
+
+    def check_work(self) -> None:
+        """Refuse, before any work, a run estimated above :data:`MAX_SECONDS`."""
+        if self.work_seconds > MAX_SECONDS:
+            raise InputError(
+                f"n_xi_elements x n_eta_elements = {self.n_xi_elements} x {self.n_eta_elements} "
+                f"({self.n_dofs} DOFs) over t_end / dt = {self.n_steps} steps would take about "
+                f"{self.work_seconds / 60:.0f} min, more than the bound of "
+                f"{MAX_SECONDS / 60:.0f} min (a lower level, fewer elements or a shorter t_end)")
 
     def scaled(self, factor: float) -> Scenario:
         """The same scene ``factor`` times larger (radii, gap and end time), same dt.

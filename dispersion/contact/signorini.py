@@ -31,6 +31,7 @@ contact problems in elastodynamics", Eur. J. Mech. A/Solids 27 (2008) 918-932.
 """
 from __future__ import annotations
 
+import bisect
 import time
 from dataclasses import dataclass
 
@@ -41,11 +42,39 @@ from dispersion.contact.bar import Bar, bar_model, check_steps
 from dispersion.contact.energy_balance import energy_balance
 from dispersion.contact.newmark import integrate, newmark_for
 
-__all__ = ["ExactSignorini", "SignoriniResult", "exact_solution", "signorini_1d"]
+__all__ = ["ExactSignorini", "SignoriniResult", "exact_solution", "signorini_1d",
+           "MAX_T_EXACT", "MAX_SECONDS", "work_seconds"]
 
 #: Bytes kept per time step besides the DOF arrays: the State object, its ``lam`` and ``mu``
 #: arrays and the history's scalars (Python objects of about 100 bytes each).
 _BYTES_PER_STEP = 1024
+#: Latest time of :func:`exact_solution`. Rule: the recursion makes about one constant piece
+#: per unit of time (period 3, three pieces each: 304 pieces at t_max = 300, 3004 at 3000,
+#: measured), and it stops at 100000 pieces; 99000 stays below that, and the recursion is
+#: linear in the pieces (about 0.3 s at the bound here).
+MAX_T_EXACT = 99_000.0
+_MAX_PIECES = 100_000
+#: Longest run :func:`signorini_1d` accepts, by the estimate :func:`work_seconds`: half an
+#: hour of this 2-core machine. Past it a coarser mesh or a shorter run serves better.
+MAX_SECONDS = 1800.0
+
+
+def work_seconds(p: int, n_elements: int, steps: int) -> float:
+    """Estimated wall time (s) of :func:`signorini_1d`: set-up plus time steps.
+
+    The set-up (the exact B-spline extraction operators) grows like ``n^2`` and steeply with
+    ``p``; a step like ``n (p + 1)``. Fitted to runs on this 2-core machine, rounded up
+    (measured set-up: p = 1: 2.7 s at n = 400, 18 s at n = 1000; p = 4, n = 400: 61 s;
+    p = 6, n = 200: 47 s; a step: 0.11 ms at n = 20, 0.35 ms at p = 1, n = 1000, 0.8 ms at
+    p = 4, n = 400):
+
+    .. math:: t \\approx 3\\cdot 10^{-6} (p+1)^{3.3} n^2
+              + \\text{steps}\\,(1.5\\cdot 10^{-4} + 5\\cdot 10^{-7} n (p+1)) .
+
+    >>> round(work_seconds(1, 1000, 1000))   # measured here: 18.4 s
+    31
+    """
+    return 3e-6 * (p + 1) ** 3.3 * n_elements**2 + steps * (1.5e-4 + 5e-7 * n_elements * (p + 1))
 
 
 @dataclass(frozen=True)
@@ -110,6 +139,10 @@ def exact_solution(t_max: float, amplitude: float = 0.5) -> ExactSignorini:
     """Exact solution for ``u(x, 0) = amplitude (1 - x)``, ``u_t = 0``, up to ``t_max``."""
     check_positive("t_max", t_max)
     check_positive("amplitude", amplitude)
+    if not t_max <= MAX_T_EXACT:
+        raise InputError(f"t_max must be <= {MAX_T_EXACT:g} (the exact solution keeps one "
+                         f"piece per unit of time, at most {_MAX_PIECES}), got {t_max:g}")
+    t_max, amplitude = float(t_max), float(amplitude)
     s_max = t_max + 2.0
     # initial invariants (u_t = 0, u_x = -amplitude): A = amplitude on [-1, 0),
     # B = -amplitude on [0, 1)
@@ -119,7 +152,7 @@ def exact_solution(t_max: float, amplitude: float = 0.5) -> ExactSignorini:
         """B at s and the end of its constant piece (B(s) = -A(s - 2) beyond s = 1)."""
         if s < 1.0:
             return -amplitude, 1.0
-        k = int(np.searchsorted(a_k, s - 2.0, side="right")) - 1
+        k = bisect.bisect_right(a_k, s - 2.0) - 1
         end = a_k[k + 1] + 2.0 if k + 1 < len(a_k) else tau + 2.0
         return -a_v[k], end
 
@@ -141,7 +174,7 @@ def exact_solution(t_max: float, amplitude: float = 0.5) -> ExactSignorini:
         if hits:
             contact, u0 = True, 0.0
         tau = end
-        if len(a_k) > 100_000:
+        if len(a_k) > _MAX_PIECES:
             raise InputError("t_max: too many contact events in the exact solution")
     a_k.append(s_max)
     b_knots = np.concatenate([[0.0], np.asarray(a_k) + 2.0])
@@ -154,7 +187,8 @@ class SignoriniResult:
     """One run of the 1D Signorini scene: inputs, histories at ``x = 0`` and errors.
 
     ``errors``: relative L2-in-time errors of ``u(0, t)``, ``u_t(0, t)`` and the contact
-    stress against :func:`exact_solution`; ``energy_drift_percent`` (max over the run of
+    stress against :func:`exact_solution` (None where the exact history is 0 throughout, as
+    the stress before the first contact at t = 1); ``energy_drift_percent`` (max over the run of
     the total energy minus its value at t = 0, in % of 1/8), ``first_step_change_percent``,
     ``initial_energy_change_percent`` (what the consistent initial state changed, % of 1/8),
     ``energy_error_percent`` (final energy vs the exact 1/8), ``min_gap``; the energy balance
@@ -188,8 +222,10 @@ class SignoriniResult:
 
 
 def _rel_l2(num, ref, dt):
+    """Relative L2-in-time error; None where the exact history is 0 throughout (no contact
+    before ``t_end``: a relative error is undefined, and a NaN would pass silently)."""
     den = np.sqrt(np.sum(ref**2) * dt)
-    return float(np.sqrt(np.sum((num - ref) ** 2) * dt) / den) if den > 0 else float("nan")
+    return float(np.sqrt(np.sum((num - ref) ** 2) * dt) / den) if den > 0 else None
 
 
 def signorini_1d(p: int = 1, n_elements: int = 20, mass: str = "singular",
@@ -208,9 +244,18 @@ def signorini_1d(p: int = 1, n_elements: int = 20, mass: str = "singular",
     steps = t_end / dt
     if abs(steps - round(steps)) > 1e-9 * steps:
         raise InputError(f"t_end must be a whole multiple of dt = {dt:g}, got {t_end:g}")
+    if not t_end <= MAX_T_EXACT:
+        raise InputError(f"t_end must be <= {MAX_T_EXACT:g} (the exact solution it is "
+                         f"compared with), got {t_end:g}")
     # every state is kept (u, v, a_int, a_c) and the array of all u: 5 floats per DOF
     check_memory(f"n_elements = {n_elements} over t_end / dt = {round(steps)} steps",
                  (round(steps) + 1) * (40 * (n_elements + p) + _BYTES_PER_STEP))
+    seconds = work_seconds(p, n_elements, round(steps))
+    if seconds > MAX_SECONDS:
+        raise InputError(f"p = {p}, n_elements = {n_elements} over t_end / dt = {round(steps)} "
+                         f"steps would take about {seconds / 60:.0f} min, more than the bound "
+                         f"of {MAX_SECONDS / 60:.0f} min (fewer elements, a lower p or fewer "
+                         "steps)")
     model = bar_model(Bar(n_elements, p, 1.0, 1.0, 1.0, mass, clamped=("right",),
                           contact="left"))
     prob = model.problem

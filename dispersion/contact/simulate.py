@@ -111,11 +111,33 @@ def simulate_ring(sc: Scenario | None = None, mass: str = "singular", scheme: st
     ``energy_growth_bound_percent``, ``energy_flag``: None or why the run is flagged).
     """
     sc = sc or Scenario()
+    sc.check_work()
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):  # errors, not warnings
+        return _simulate(sc, mass, scheme, progress, tol, solver, contact_threshold,
+                         perturbation, seed, consistent, reuse_tangent)
+
+
+def _check_representable(sc: Scenario, prob: ContactProblem) -> None:
+    """Refuse a scene whose matrices leave double precision (sizes like r_outer = 1e300 m:
+    the mass grows like rho r^2, the stiffness like E), before any step is taken."""
+    f0, K0 = prob.internal(np.zeros(prob.n))
+    data = [np.asarray(prob.M.data), np.asarray(f0)] + (
+        [np.asarray(K0.data if hasattr(K0, "data") else K0)] if K0 is not None else [])
+    if not all(np.all(np.isfinite(d)) for d in data) or not np.abs(prob.M.data).max() > 0:
+        raise InputError(
+            f"the ring's matrices leave double precision (r_inner = {sc.r_inner:g} m, "
+            f"r_outer = {sc.r_outer:g} m, rho = {sc.rho:g} kg/m^3, E = {sc.E:g} Pa); choose "
+            "sizes and material nearer 1")
+
+
+def _simulate(sc, mass, scheme, progress, tol, solver, contact_threshold, perturbation, seed,
+              consistent, reuse_tangent) -> RingResult:
     if not (np.isfinite(contact_threshold) and 0 < contact_threshold < 1):
         raise InputError(f"contact_threshold must lie in (0, 1), got {contact_threshold!r}")
     if not (np.isfinite(perturbation) and perturbation >= 0):
         raise InputError(f"perturbation must be a finite number >= 0, got {perturbation!r}")
     prob, patch = ring_problem(sc, mass)
+    _check_representable(sc, prob)
     n = prob.n
     v0 = np.zeros(n)
     v0[1::2] = -sc.v0

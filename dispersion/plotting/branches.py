@@ -317,11 +317,11 @@ def figure_speed_accuracy(tracer: Mapping, discrete_rows: Sequence[Mapping]):
     fig = Figure(figsize=(11, 4.2), layout="constrained")
     a1, a2 = fig.subplots(1, 2)
     ref = tracer["reference"]
-    plot_speed_accuracy(tracer["rows"], a1, label=lambda r: f"scan step {r['step']:g}",
+    plot_speed_accuracy(tracer["rows"], a1, label=lambda r: "exact tracer",
                         floor=tracer["reference_mpmath_error"], order=lambda r: -r["rtol"])
     a1.set_title(f"Rayleigh-Lamb tracer, {tracer['kappa_count']} kappa, Omega <= "
-                 f"{tracer['omega_max']:g}; points: rtol\nerror vs reference (step {ref[0]:g}, "
-                 f"rtol {ref[1]:g}; rtol falls along each line), itself vs 40-digit mpmath: "
+                 f"{tracer['omega_max']:g}; points: rtol\nerror vs reference (rtol {ref[1]:g}; "
+                 f"rtol falls along the line), itself vs 40-digit mpmath: "
                  f"{tracer['reference_mpmath_error']:.1e}", fontsize="small")
     a1.set_ylabel("max relative error of the roots")
     plot_speed_accuracy(discrete_rows, a2, label=lambda r: f"p = {r['p']}, {r['mass']}",

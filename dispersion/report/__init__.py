@@ -30,7 +30,8 @@ from dispersion.errors import DispersionError, InputError
 __all__ = ["SECTIONS", "section_module"]
 
 #: Report sections in the order they run (module names in :mod:`dispersion.report`).
-SECTIONS = ("coefficients", "branches", "ring", "series_speed", "studies")
+SECTIONS = ("coefficients", "branches", "ring", "series_speed", "studies", "peers",
+            "cost_accuracy")
 
 
 def section_module(name: str) -> ModuleType:

@@ -179,26 +179,35 @@ def discrete_speed(nu: float, kappa, configs, repeat: int = 3) -> list[dict]:
     return rows
 
 
-def figure2_data(nu: float, kappa, omega_max: float, patches: dict):
+def figure2_data(nu: float, kappa, omega_max: float, patches: dict, *, exact=None,
+                 velocities=None, discrete: dict | None = None):
     """Exact branches with velocities and, per named patch, its branches, group velocities and
     signed errors of each exact branch against its shape partner; plain data for
     :func:`dispersion.plotting.branches.figure2`. Returns ``(data, ExactBranches)``.
+
+    Branches computed already are passed in and not computed again: ``exact`` (an
+    :class:`ExactBranches` on ``kappa``), ``velocities`` (its :class:`Velocities`) and
+    ``discrete`` (``{name: DiscreteBranches}`` with group velocities, on ``kappa``).
     """
     kappa = np.asarray(kappa, dtype=float)
-    exact = trace_branches(nu, kappa, omega_max)
-    vel = exact_velocities(exact)
+    if exact is None:
+        exact = trace_branches(nu, kappa, omega_max)
+    vel = exact_velocities(exact) if velocities is None else velocities
     ex_data = {lab: {"omega": _arr(w), "phase": _arr(vel.phase[lab]), "group": _arr(vel.group[lab])}
                for lab, w in exact.omega.items()}
-    discrete = {}
+    discrete_data = {}
     for name, patch in patches.items():
-        d = discrete_branches(patch, nu, kappa, group=True)
+        d = (discrete or {}).get(name)
+        if d is None or d.group is None:
+            d = discrete_branches(patch, nu, kappa, group=True)
         # exact partners of a Bloch branch exist in the first zone only
         inside = kappa <= (d.zone_edge if d.zone_edge is not None else np.inf)
         sub = ExactBranches(kappa[inside], {lab: w[inside] for lab, w in exact.omega.items()},
                             exact.nu, exact.omega_max)
         pb = pair_by_shape(patch, nu, sub)
         pad = int(np.count_nonzero(~inside))
-        discrete[name] = {
+        discrete_data[name] = {
+            "patch": patch.spec.as_dict() if getattr(patch, "spec", None) else None,
             "omega": {lab: _arr(w) for lab, w in d.omega.items()},
             "group": {lab: _arr(g) for lab, g in d.group.items()},
             "symmetry": dict(d.symmetry),
@@ -209,7 +218,7 @@ def figure2_data(nu: float, kappa, omega_max: float, patches: dict):
                     for lab, m in pb.mac.items()},
         }
     data = {"nu": nu, "kappa": _arr(kappa), "omega_max": omega_max, "exact": ex_data,
-            "discrete": discrete}
+            "discrete": discrete_data}
     return data, exact
 
 

@@ -104,10 +104,10 @@ def series_frequency(coefficients: dict, kappa, order: int | None = None) -> np.
 
 def order_of_accuracy(discrete: dict, exact: dict) -> int | None:
     """Lowest power of kappa at which the two :math:`\\Omega^2` series differ (None: none):
-    :func:`dispersion.symbolic.power_balance.leading_difference`."""
-    from dispersion.symbolic.power_balance import leading_difference
+    :func:`dispersion.symbolic.power_balance.first_difference`."""
+    from dispersion.symbolic.power_balance import first_difference
 
-    return leading_difference(discrete, exact)
+    return first_difference(discrete, exact)
 
 
 def departure_kappa(kappa, reference, approx, tol: float) -> float | None:

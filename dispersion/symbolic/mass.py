@@ -16,14 +16,11 @@ keep the translational mass; weights in [0, 1] keep the lumped form non-negative
 The paper's quadratic element (eqs 2-4) with contact at node 3 sends :math:`\\gamma_s` of
 :math:`N_3` to the far node 1 and :math:`1-\\gamma_s` to the neighbour node 2:
 
->>> import sympy
 >>> R = redistribution_matrix(3, contact_weights(3, "top", sympy.Rational(1, 2)))
 >>> R.tolist()
 [[1, 0, 0], [0, 1, 0], [1/2, 1/2, 0]]
 
-Works on sympy matrices (exact) and on numpy / scipy.sparse arrays alike. sympy and numpy
-are imported where used: the numeric contact scenes read the variants and their weights
-without loading sympy.
+Works on sympy matrices (exact) and on numpy / scipy.sparse arrays alike.
 
 References
 ----------
@@ -32,17 +29,15 @@ finite element analysis of dynamic contact", eqs (1)-(4).
 """
 from __future__ import annotations
 
-import numbers
-import sys
 import warnings
 from collections.abc import Mapping
-from typing import TYPE_CHECKING
+
+import numpy as np
+import sympy
 
 from dispersion.errors import (IndefiniteMassWarning, InputError, as_real, check_choice,
                      check_positive_int, check_real_in_range)
-
-if TYPE_CHECKING:  # annotations only: sympy is imported where it is used
-    import sympy
+from dispersion.symbolic.mass_rule import RULE_NAMES
 
 __all__ = [
     "MASS_VARIANTS",
@@ -50,10 +45,12 @@ __all__ = [
     "contact_weights",
     "redistribution_matrix",
     "mass_variant",
+    "redistributed_mass",
     "row_sum_lump",
 ]
 
-MASS_VARIANTS = ("consistent", "lumped", "singular", "singular-lumped")
+#: Names of the registered mass rules (:mod:`dispersion.symbolic.mass_rule`).
+MASS_VARIANTS = RULE_NAMES
 CONTACT_SETS = ("top", "bottom", "both")
 
 
@@ -101,7 +98,7 @@ def redistribution_matrix(
                                                    for ws in weights.values()):
         raise InputError("weights must be a mapping {contact index: {neighbour index: weight}}")
     indices = list(weights) + [j for ws in weights.values() for j in ws]
-    if any(isinstance(i, bool) or not isinstance(i, numbers.Integral) for i in indices):
+    if any(isinstance(i, bool) or not isinstance(i, (int, np.integer)) for i in indices):
         raise InputError(f"weight indices must be integers in [0, {n - 1}], got {indices}")
     for c, ws in weights.items():
         for j, w in ws.items():
@@ -113,8 +110,6 @@ def redistribution_matrix(
         raise InputError(f"contact indices must lie in [0, {n - 1}], got {sorted(contact)}")
     if len(contact) == n:
         raise InputError("at least one control point must stay out of the contact set")
-    import sympy
-
     R = sympy.eye(n)
     for c, ws in weights.items():
         if not ws:
@@ -141,22 +136,10 @@ def redistribution_matrix(
     return R
 
 
-def _is_sympy_matrix(M) -> bool:
-    """True for a sympy matrix; never imports sympy (a matrix of it means it is loaded)."""
-    sympy = sys.modules.get("sympy")
-    return sympy is not None and isinstance(M, sympy.MatrixBase)
-
-
 def row_sum_lump(M):
     """Diagonal matrix of row sums of ``M`` (sympy, numpy or scipy.sparse in, same kind out)."""
-    if _is_sympy_matrix(M):
-        import sympy
-
+    if isinstance(M, sympy.MatrixBase):
         return sympy.diag(*[sum(M.row(i)) for i in range(M.rows)])
-    import numpy as np
-
-    if "scipy.sparse" not in sys.modules:  # not loaded: M cannot be one of its matrices
-        return np.diag(np.asarray(M).sum(axis=1))
     import scipy.sparse as sp
 
     if sp.issparse(M):
@@ -164,35 +147,39 @@ def row_sum_lump(M):
     return np.diag(np.asarray(M).sum(axis=1))
 
 
-def mass_variant(M, variant: str, R=None):
-    """Mass matrix of ``variant`` from the consistent mass ``M`` and redistribution ``R``.
+def redistributed_mass(M, R, lumped: bool = False):
+    """:math:`R^T M R` (eq 1 left), or its row sums with ``lumped=True`` (eq 1 right)."""
+    if isinstance(M, sympy.MatrixBase):
+        R = sympy.Matrix(R)
+        Mm = R.T * M * R
+    else:
+        import scipy.sparse as sp
 
-    ``"consistent"``: M; ``"lumped"``: row sums of M; ``"singular"``: R^T M R (eq 1 left);
-    ``"singular-lumped"``: row sums of R^T M R (eq 1 right).
+        if not sp.issparse(R):
+            R = np.asarray(R, dtype=float)
+        Mm = R.T @ M @ R
+    return row_sum_lump(Mm) if lumped else Mm
+
+
+def mass_variant(M, variant, R=None, *, kv=None, elements=None, check: bool = True):
+    """Mass matrix of rule ``variant`` from the consistent mass ``M`` and redistribution ``R``.
+
+    ``variant`` is a name of :data:`MASS_VARIANTS` or a
+    :class:`dispersion.symbolic.mass_rule.MassRule`. ``"consistent"``: M; ``"lumped"``: row
+    sums of M; ``"singular"``: R^T M R (eq 1 left); ``"singular-lumped"``: row sums of
+    R^T M R (eq 1 right); ``"hrz"`` and the nodal quadratures need the knot vector ``kv``
+    (or, HRZ, the float element matrices ``elements``). The result is checked against the
+    rule's stated properties (:func:`dispersion.symbolic.mass_rule.mass_matrix`).
     """
-    import numpy as np
+    from dispersion.symbolic.mass_rule import MassSpace, get_rule, mass_matrix
 
-    check_choice("mass", variant, MASS_VARIANTS)
+    rule = get_rule(variant)
     shape = getattr(M, "shape", None)
     if shape is None or len(shape) != 2 or shape[0] != shape[1]:
         raise InputError(f"M must be a square matrix, got shape {shape}")
     if R is not None and tuple(getattr(R, "shape", np.shape(R))) != tuple(shape):
         raise InputError(f"R must have the shape of M {tuple(shape)}, got "
                          f"{tuple(getattr(R, 'shape', np.shape(R)))}")
-    if variant == "consistent":
-        return M
-    if variant == "lumped":
-        return row_sum_lump(M)
-    if R is None:
-        raise InputError(f"mass variant {variant!r} needs a redistribution matrix R")
-    if _is_sympy_matrix(M):
-        import sympy
-
-        R = sympy.Matrix(R)
-        Mm = R.T * M * R
-    else:
-        sp = sys.modules.get("scipy.sparse")
-        if sp is None or not sp.issparse(R):
-            R = np.asarray(R, dtype=float)
-        Mm = R.T @ M @ R
-    return Mm if variant == "singular" else row_sum_lump(Mm)
+    if rule.redistributes and R is None:
+        raise InputError(f"mass variant {rule.name!r} needs a redistribution matrix R")
+    return mass_matrix(rule, MassSpace(M, kv, elements, R), check=check)

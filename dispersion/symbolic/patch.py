@@ -60,7 +60,8 @@ class Patch:
         ``"bloch"`` (one Bloch-periodic column, aspect ratio ``r = b/h``) or ``"x-exact"``.
     r : number, ``"r"`` or None
         Aspect ratio b/h of the Bloch model (``"r"``: kept as a symbol); None for x-exact.
-    mass : str
+    mass : str or MassRule
+        A rule of :mod:`dispersion.symbolic.mass_rule` (name or a user rule object).
         ``"consistent"``, ``"lumped"``, ``"singular"`` or ``"singular-lumped"``.
     contact, gamma_s :
         Contact set and redistribution weight of the singular masses (ignored otherwise).
@@ -84,15 +85,13 @@ class Patch:
     def __post_init__(self):
         import sympy
 
-        from dispersion.symbolic.mass import MASS_VARIANTS
+        from dispersion.symbolic.mass_rule import get_rule
         from dispersion.symbolic.plate import MODELS, _aspect_ratio, _rational, check_size
 
         p, n = check_size(self.p, self.n)
         if self.model not in MODELS:
             raise InputError(f"model must be one of {', '.join(MODELS)}; got {self.model!r}")
-        if self.mass not in MASS_VARIANTS:
-            raise InputError(f"mass must be one of {', '.join(MASS_VARIANTS)}; "
-                             f"got {self.mass!r}")
+        get_rule(self.mass)  # a registered name or a MassRule, else InputError
         r = self.r
         if self.model == "x-exact":
             if r is not None and r != defaults.R:
@@ -104,9 +103,15 @@ class Patch:
             r = _aspect_ratio(r)
         gamma_s = None if self.gamma_s is None else _rational("gamma_s", self.gamma_s)
         weights = _freeze_weights(self.weights)
-        if not self.mass.startswith("singular"):  # contact set and weights do not apply
-            contact, gamma_s, weights = defaults.CONTACT, defaults.GAMMA_S, None
-            object.__setattr__(self, "contact", contact)
+        if gamma_s is not None:
+            from dispersion.errors import check_real_in_range
+
+            check_real_in_range("gamma_s", gamma_s, 0, 1)
+        from dispersion.symbolic.mass import CONTACT_SETS
+
+        if self.contact not in CONTACT_SETS:
+            raise InputError(f"contact must be one of {', '.join(CONTACT_SETS)}; "
+                             f"got {self.contact!r}")
         nu = self.nu
         if nu is not None:
             from dispersion.errors import check_nu
@@ -121,7 +126,14 @@ class Patch:
     @property
     def singular(self) -> bool:
         """True for the singular masses (contact set and weights apply)."""
-        return self.mass.startswith("singular")
+        from dispersion.symbolic.mass_rule import get_rule
+
+        return get_rule(self.mass).redistributes
+
+    @property
+    def mass_name(self) -> str:
+        """The mass rule's name (``mass`` may be a rule object)."""
+        return getattr(self.mass, "name", self.mass)
 
     @property
     def symbolic_r(self) -> bool:
@@ -145,6 +157,7 @@ class Patch:
     def as_dict(self) -> dict:
         """JSON-ready fields (numbers as strings where exact)."""
         out = asdict(self)
+        out["mass"] = self.mass_name
         for key in ("r", "gamma_s", "nu"):
             out[key] = None if out[key] is None else str(out[key])
         out["weights"] = self.weights_dict and {str(c): {str(j): str(w) for j, w in ws.items()}
@@ -170,7 +183,7 @@ class Patch:
         """Short description, e.g. ``bloch p=2 n=3 r=2, singular mass (top, gamma_s=0)``."""
         geom = f"{self.model} p={self.p} n={self.n}" + (f" r={self.r}" if self.r is not None
                                                          else "")
-        mass = f"{self.mass} mass"
+        mass = f"{self.mass_name} mass"
         if self.singular:
             mass += (f" (weights {self.weights_dict})" if self.weights is not None
                      else f" ({self.contact}, gamma_s={self.gamma_s})")
@@ -185,7 +198,7 @@ class Patch:
         'Bloch r = b/h = 1/2, p = 2, n = 3, singular mass (contact top, gamma_s = 1/2)'
         """
         geom = ("Bloch r = b/h = " + str(self.r) if self.model == "bloch" else "x-exact")
-        text = f"{geom}, p = {self.p}, n = {self.n}, {self.mass} mass"
+        text = f"{geom}, p = {self.p}, n = {self.n}, {self.mass_name} mass"
         if self.singular:
             text += (f" (weights {self.weights_dict})" if self.weights is not None
                      else f" (contact {self.contact}, gamma_s = {self.gamma_s})")
@@ -196,7 +209,7 @@ class Patch:
     def header_lines(self) -> list[str]:
         """``key = value`` lines of the fields that apply (for CSV ``#`` headers)."""
         out = [f"model = {self.model}"] + ([f"r = {self.r}"] if self.r is not None else [])
-        out += [f"p = {self.p}", f"n = {self.n}", f"mass = {self.mass}"]
+        out += [f"p = {self.p}", f"n = {self.n}", f"mass = {self.mass_name}"]
         if self.singular:
             out += ([f"weights = {self.weights_dict}"] if self.weights is not None
                     else [f"contact = {self.contact}", f"gamma_s = {self.gamma_s}"])
@@ -214,10 +227,21 @@ class Patch:
         return plate_patch(self)
 
     def K_dyn(self, kappa=None, Omega=None, nu=None) -> sympy.Matrix:
-        """:math:`K - \\Omega^2 M` (sympy); symbols ``kappa``, ``Omega``, ``nu`` by default."""
+        """:math:`K - \\Omega^2 M` (sympy); symbols ``kappa``, ``Omega``, ``nu`` by default.
+
+        Each value is a finite real number or a sympy expression with symbols; anything else
+        (NaN, infinity, a string, a complex number) is an :class:`~dispersion.errors.InputError`.
+
+        >>> Patch().K_dyn(kappa=float("nan"))
+        Traceback (most recent call last):
+        ...
+        dispersion.errors.InputError: kappa must be a finite real number or a sympy symbol, got nan
+        """
         from dispersion.symbolic.plate import dynamic_stiffness
 
-        return dynamic_stiffness(self.plate, kappa, Omega, self.nu if nu is None else nu)
+        return dynamic_stiffness(self.plate, _matrix_value("kappa", kappa),
+                                 _matrix_value("Omega", Omega),
+                                 _matrix_value("nu", self.nu if nu is None else nu))
 
     def K(self, kappa=None, nu=None) -> sympy.Matrix:
         """Stiffness :math:`K(\\kappa)` over the shear modulus (sympy)."""
@@ -260,6 +284,22 @@ class Patch:
                              f"{self.r}")
         nu = float(self.nu_value if nu is None else nu)
         return discrete_branches(self.plate, nu, kappa, group=group)
+
+
+def _matrix_value(name: str, value):
+    """``value`` of a patch matrix: None (the symbol), an expression with symbols, or a
+    finite real number; anything else raises :class:`InputError` naming ``name``."""
+    from dispersion.errors import as_real
+
+    if value is None or getattr(value, "free_symbols", None):
+        return value
+    try:
+        return as_real(name, value, "a finite real number or a sympy symbol")
+    except InputError:
+        raise
+    except Exception:  # an object whose comparison or conversion fails
+        raise InputError(f"{name} must be a finite real number or a sympy symbol, "
+                         f"got {type(value).__name__}") from None
 
 
 def as_patch(patch: Patch | None = None, **fields) -> Patch:

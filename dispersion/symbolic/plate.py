@@ -28,8 +28,10 @@ pencil is real symmetric,
         \\cdot & (\\lambda + 2\\mu) m Y_{11} + \\mu d Y_{00} \\end{bmatrix}, \\qquad
     M = m_x \\begin{bmatrix} M_y & 0 \\\\ 0 & M_y \\end{bmatrix},
 
-with :math:`M_y` the thickness mass of the chosen variant (:mod:`dispersion.symbolic.mass`) and
-:math:`m_x = m` (consistent in x) or 1 (lumped variants).
+with :math:`M_y` the thickness mass of the chosen rule (:mod:`dispersion.symbolic.mass_rule`) and
+:math:`m_x = \\sum_L a_L \\cos L\\theta` the Bloch sum of the rule's x-mass
+(:func:`dispersion.symbolic.mass_rule.x_mass_coefficients`: :math:`m_x = m` consistent, 1
+row-sum lumped or HRZ; 1 in the x-exact model).
 
 >>> patch = plate_patch()
 >>> patch.Y["00"].tolist()
@@ -52,6 +54,7 @@ import sympy
 from dispersion.symbolic import bspline
 from dispersion.errors import InputError, check_nu, check_positive_int
 from dispersion.symbolic.mass import contact_weights, mass_variant, redistribution_matrix
+from dispersion.symbolic.mass_rule import get_rule, x_mass_coefficients
 
 __all__ = [
     "MODELS",
@@ -67,6 +70,7 @@ __all__ = [
     "stiffness_terms",
     "dynamic_stiffness",
     "numeric_pencil",
+    "numeric_terms",
     "mirror_bases",
     "x_taylor",
 ]
@@ -180,7 +184,11 @@ def lame(nu, scaled: bool = False) -> dict[str, object]:
 
 @dataclass(frozen=True)
 class PlatePatch:
-    """The representative patch: basis data, mass variant and derived matrices (exact)."""
+    """The representative patch: basis data, mass rule and derived matrices (exact).
+
+    ``mass`` is the rule's name, ``rule`` the :class:`~dispersion.symbolic.mass_rule.MassRule`
+    itself, ``x_mass`` the Bloch coefficients ``((L, a_L), ...)`` of its mass along x.
+    """
 
     p: int
     n: int
@@ -193,6 +201,8 @@ class PlatePatch:
     x_lumped: bool = False
     #: The :class:`dispersion.symbolic.patch.Patch` value this patch was built from.
     spec: object = field(default=None, compare=False)
+    x_mass: tuple = ()
+    rule: object = field(default=None, repr=False, compare=False)
 
     @property
     def massless(self) -> tuple[int, ...]:
@@ -237,14 +247,18 @@ _PATCH_FIELDS = ("p", "n", "model", "r", "mass", "contact", "gamma_s", "weights"
 def _build(spec, allow_negative: bool) -> PlatePatch:
     Y = thickness_matrices(spec.p, spec.n)
     R = None
-    if spec.singular:
+    rule = get_rule(spec.mass)
+    if rule.redistributes:
         weights = spec.weights_dict
         if weights is None:
             weights = contact_weights(spec.n, spec.contact, spec.gamma_s)
         R = redistribution_matrix(spec.n, weights, allow_negative=allow_negative)
-    My = mass_variant(Y["00"], spec.mass, R)
-    return PlatePatch(spec.p, spec.n, spec.model, spec.r, spec.mass, R, Y, My,
-                      x_lumped=spec.mass.endswith("lumped"), spec=spec)
+    kv = bspline.open_knot_vector(spec.p, spec.n - spec.p, -1, 1)
+    My = mass_variant(Y["00"], rule, R, kv=kv)
+    x_mass = x_mass_coefficients(rule.x_rule, spec.p)
+    return PlatePatch(spec.p, spec.n, spec.model, spec.r, rule.name, R, Y, My,
+                      x_lumped=x_mass == ((0, sympy.Integer(1)),), spec=spec, x_mass=x_mass,
+                      rule=rule)
 
 
 #: Valid aspect ratios r = b/h of the Bloch model. Outside, the float pencil of the numeric
@@ -298,8 +312,12 @@ def x_functions(patch: PlatePatch, kappa) -> dict[str, object]:
             "s": -2 / r * sum(conv(c["10"][L]) * sin(L * th) for L in range(1, patch.p + 1)),
             "d": sum(conv(v) * cos(L * th) for L, v in c["11"].items()) / r**2,
         }
-    out["mx"] = (np.ones_like(out["m"]) if numeric else sympy.Integer(1)) if patch.x_lumped \
-        else out["m"]
+    if patch.model == "x-exact" or patch.x_lumped:
+        out["mx"] = np.ones_like(out["m"]) if numeric else sympy.Integer(1)
+    else:
+        th = kappa * (float(patch.r) if numeric else patch.r)
+        conv = float if numeric else (lambda v: v)
+        out["mx"] = sum(conv(v) * cos(L * th) for L, v in patch.x_mass)
     return out
 
 
@@ -332,8 +350,11 @@ def x_taylor(patch: PlatePatch, D: int) -> dict[str, list[tuple[sympy.Rational, 
                              / sympy.factorial(2 * k + 1), 2 * k))
             out["d"].append((sign * sum(v * L ** (2 * k) for L, v in c["11"].items())
                              / sympy.factorial(2 * k), 2 * k - 2))
-    out["mx"] = [(sympy.Integer(1), 0)] + [(sympy.Integer(0), 0)] * D if patch.x_lumped \
-        else out["m"]
+    if patch.model == "x-exact" or patch.x_lumped:
+        out["mx"] = [(sympy.Integer(1), 0)] + [(sympy.Integer(0), 0)] * D
+    else:
+        out["mx"] = [((-1) ** k * sum(v * L ** (2 * k) for L, v in patch.x_mass)
+                      / sympy.factorial(2 * k), 2 * k) for k in range(D + 1)]
     return out
 
 
@@ -394,11 +415,39 @@ def numeric_pencil(patch: PlatePatch, nu: float, kappa) -> tuple[np.ndarray, np.
     if patch.model == "bloch" and isinstance(patch.r, sympy.Symbol):
         raise InputError("aspect ratio r must be a number for numeric evaluation")
     mat, xf = lame(nu), x_functions(patch, kappa)
-    K = np.zeros((kappa.size, 2 * patch.n, 2 * patch.n))
-    for m, f, B in stiffness_terms(patch):
-        K += mat[m] * xf[f][:, None, None] * np.array(B, dtype=float)
-    M = xf["mx"][:, None, None] * np.array(mass_block(patch), dtype=float)
+    terms, M0 = numeric_terms(patch)
+    n2 = 2 * patch.n
+    # one matrix product: coefficients (points x terms) times the flattened term matrices
+    C = np.column_stack([np.broadcast_to(mat[m] * xf[f], kappa.shape) for m, f, _ in terms])
+    K = (C @ np.stack([B.ravel() for _, _, B in terms])).reshape(kappa.size, n2, n2)
+    M = xf["mx"][:, None, None] * M0
     return K, M
+
+
+def numeric_terms(patch: PlatePatch) -> tuple[tuple[tuple[str, str, np.ndarray], ...], np.ndarray]:
+    """:func:`stiffness_terms` and :func:`mass_block` as float arrays, built once per patch data.
+
+    >>> terms, M0 = numeric_terms(plate_patch())
+    >>> len(terms), M0.shape
+    (6, (6, 6))
+    """
+    return _numeric_terms(patch.p, patch.n, tuple(patch.My))
+
+
+@lru_cache(maxsize=64)
+def _numeric_terms(p: int, n: int, my: tuple):
+    from types import SimpleNamespace
+
+    terms = stiffness_terms(SimpleNamespace(Y=thickness_matrices(p, n), n=n))
+    out = []
+    for m, f, B in terms:
+        arr = np.array(B, dtype=float)
+        arr.setflags(write=False)  # cached and shared
+        out.append((m, f, arr))
+    My = sympy.Matrix(n, n, list(my))
+    M0 = np.array(sympy.diag(My, My), dtype=float)
+    M0.setflags(write=False)
+    return tuple(out), M0
 
 
 def mirror_bases(patch_or_n, exact: bool = False):

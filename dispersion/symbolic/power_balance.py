@@ -44,8 +44,8 @@ from dispersion.errors import DispersionError, InputError, check_nu, check_posit
 
 __all__ = [
     "BRANCHES", "MAX_ORDER", "MAX_WORK", "check_request", "discrete_series",
-    "discrete_series_raw", "format_coefficient", "leading_difference", "solve_branch",
-    "substitute_raw",
+    "discrete_series_raw", "format_coefficient", "solve_branch", "substitute_raw",
+    "first_difference",
 ]
 
 BRANCHES = {"S0": ("S", 1), "A0": ("A", 2)}
@@ -102,31 +102,6 @@ def check_request(branch: str, order, exact: bool, n: int | None = None) -> tupl
         raise InputError(f"control points n must satisfy (2n)^2 * order <= {MAX_WORK} "
                          f"(bounded time and memory), got n = {n}, order = {order}")
     return kind, sigma, order
-
-
-def leading_difference(a: dict, b: dict) -> int | None:
-    """The lowest power of kappa at which the series ``a`` and ``b`` differ (None: none).
-
-    ``a``, ``b`` map powers to coefficients: numbers (int, Fraction, flint, float) or sympy
-    expressions; compared exactly (sympy expressions by simplifying their difference). The
-    order of accuracy of a discrete branch is ``leading_difference(discrete, exact)``.
-
-    >>> leading_difference({2: 2, 4: Fraction(1, 3)}, {2: 2, 4: Fraction(1, 3), 6: 1})
-    6
-    >>> import sympy; nu = sympy.Symbol("nu")
-    >>> leading_difference({2: (1 - nu**2) / (1 + nu)}, {2: 1 - nu}) is None
-    True
-    """
-    for k in sorted(set(a) | set(b)):
-        x, y = a.get(k, 0), b.get(k, 0)
-        if hasattr(x, "free_symbols") or hasattr(y, "free_symbols"):
-            import sympy
-
-            if sympy.simplify(sympy.sympify(x) - sympy.sympify(y)) != 0:
-                return k
-        elif x != y:
-            return k
-    return None
 
 
 def _to_expr(num, den, symbols: tuple, factor: bool = True):
@@ -441,3 +416,24 @@ def discrete_series(
     raw = raws[branch]
     symbols = (sympy.Symbol("nu"), sympy.Symbol("r", positive=True))[: len(params)]
     return _substitute_nu({k: _to_expr(a, b, symbols, factor) for k, a, b in raw}, nu)
+
+
+def first_difference(a: dict, b: dict, upto: int | None = None) -> int | None:
+    """Lowest power of kappa at which two series ``{power: coefficient}`` differ (None: none).
+
+    Exact: the difference of the coefficients is cancelled over QQ(nu[, r]). ``upto`` ignores
+    higher powers (a series derived further than asked).
+
+    >>> from dispersion.waves.exact_series import exact_series
+    >>> first_difference(discrete_series("S0", 8, model="bloch", r=2), exact_series("S0", 8))
+    6
+    """
+    import sympy
+
+    for k in sorted(set(a) | set(b)):
+        if upto is not None and k > upto:
+            break
+        if sympy.cancel(sympy.together(sympy.sympify(a.get(k, 0), strict=True)
+                                       - sympy.sympify(b.get(k, 0), strict=True))) != 0:
+            return k
+    return None

@@ -10,11 +10,15 @@ For maximally smooth B-splines on a uniform mesh of element length h, a Bloch wa
     m(\\theta) = \\sum_L c^{00}_L \\cos L\\theta \\;\\; \\text{(consistent)}, \\quad
     m = \\sum_L c^{00}_L = 1 \\;\\; \\text{(row-sum lumped)},
 
+and in general :math:`m = \\sum_L a_L \\cos L\\theta` with the Bloch coefficients of any mass
+rule without a contact set (:func:`dispersion.symbolic.mass_rule.x_mass_coefficients`: HRZ,
+nodal quadrature, user rules),
+
 with the Gram coefficients :math:`c^{ab}_L` of the cardinal B-spline
 (:func:`dispersion.symbolic.plate.bloch_coefficients`, the same numbers the plate's Bloch model uses
 along x). For p = 1 this is the textbook :math:`6(1-\\cos\\theta)/(2+\\cos\\theta)` (consistent)
 and :math:`2(1-\\cos\\theta)` (lumped). A singular mass acts only at a contact boundary, which a
-periodic bar does not have, so only the two interior variants exist here. The relative
+periodic bar does not have, so only the rules without one apply here. The relative
 frequency error equals the relative phase-velocity error at the same wavenumber and is
 presented against elements per wavelength :math:`2\\pi/\\theta` (Cottrell, Reali, Bazilevs,
 Hughes 2006).
@@ -40,30 +44,33 @@ from dispersion.symbolic.plate import bloch_coefficients
 
 __all__ = ["BAR_MASSES", "BarDispersion", "bar_dispersion", "bar_frequency"]
 
-#: Mass variants of the periodic bar (no contact boundary, hence no singular mass).
+#: Mass variants of the periodic bar shown by default (the registry's rules without a contact
+#: set also apply: hrz, nodal-greville, nodal-lobatto, user rules).
 BAR_MASSES = ("consistent", "lumped")
 
 
-def _check_mass(mass: str) -> str:
-    if mass not in BAR_MASSES:
-        raise InputError(f"mass must be one of {', '.join(BAR_MASSES)} for the periodic bar "
-                         f"(a singular mass acts at a contact boundary only), got {mass!r}")
-    return mass
+def _check_mass(mass):
+    from dispersion.symbolic.mass_rule import get_rule
+
+    rule = get_rule(mass)
+    if rule.redistributes or rule.states.zero_rows:
+        raise InputError(f"mass {rule.name!r} does not apply to the periodic bar (a singular "
+                         "mass acts at a contact boundary only)")
+    return rule
 
 
 def bar_frequency(p: int, mass: str, theta) -> np.ndarray:
     """Discrete :math:`\\omega h / c` at :math:`\\theta = kh` (module docstring), float array."""
     p = check_positive_int("degree p", p)
-    _check_mass(mass)
+    rule = _check_mass(mass)
+    from dispersion.symbolic.mass_rule import x_mass_coefficients
+
     theta = np.asarray(theta, dtype=float)
     c = bloch_coefficients(p)
     # sum_L c11_L = 0 (derivatives of a partition of unity), so d = -2 sum c11_L sin^2(L theta/2)
     # without the cancellation that 1 - cos costs at small theta
     d = -2 * sum(float(v) * np.sin(L * theta / 2) ** 2 for L, v in c["11"].items())
-    if mass == "consistent":
-        m = sum(float(v) * np.cos(L * theta) for L, v in c["00"].items())
-    else:
-        m = float(sum(c["00"].values()))
+    m = sum(float(v) * np.cos(L * theta) for L, v in x_mass_coefficients(rule, p))
     return np.sqrt(np.clip(d, 0, None) / m)
 
 
@@ -88,5 +95,6 @@ def bar_dispersion(degrees=(1, 2, 3, 4), masses=BAR_MASSES, elements_per_wavelen
     if np.any(epw < 2) or not np.all(np.isfinite(epw)):
         raise InputError("elements per wavelength must be finite and >= 2 (Nyquist)")
     theta = 2 * math.pi / epw
-    err = {f"p={p} {m}": bar_frequency(p, m, theta) / theta - 1 for p in degrees for m in masses}
+    err = {f"p={p} {getattr(m, 'name', m)}": bar_frequency(p, m, theta) / theta - 1
+           for p in degrees for m in masses}
     return BarDispersion(epw, err)

@@ -1,20 +1,27 @@
 """Discrete dispersion branches of the plate patch: all finite roots of det(K - Omega^2 M) = 0.
 
 For each :math:`\\kappa` of a grid the pencil :math:`(K, M)` of
-:func:`dispersion.symbolic.plate.numeric_pencil` is solved in one batched call: massless DOFs
-(singular masses, :attr:`PlatePatch.massless`) are condensed out by the Schur complement
-of K, *by construction* (their eigenvalues are infinite), then
-:math:`M_{rr} = L L^T` and :math:`\\Omega^2 = \\operatorname{eig}(L^{-1} \\hat K L^{-T})`,
+:func:`dispersion.symbolic.plate.numeric_pencil` is solved in batches. Massless DOFs
+(singular masses, :attr:`PlatePatch.massless`) carry infinite eigenvalues and are never formed:
 
 .. math::
 
     \\hat K = K_{rr} - K_{rm} K_{mm}^{-1} K_{mr}, \\qquad
     \\det(\\hat K - \\Omega^2 M_{rr}) = 0.
 
-Accuracy at every kappa: a float eigenvalue is trusted to relative :data:`RTOL` only where
-the backward-error bound :math:`m\\epsilon\\lambda_{max}/\\lambda` says so; elsewhere (A0 and S0
-at small kappa, where :math:`\\Omega^2 \\sim \\kappa^4` or :math:`\\kappa^2` sits beside eigenvalues
-of order one) that kappa is solved again in ball arithmetic (:func:`extended_frequencies`).
+Accuracy at every kappa, at full speed (issue 23). Where a block of the pencil is small
+(:data:`dispersion.waves.pencil_polynomial.MAX_BLOCK`), its characteristic polynomial
+:math:`P(u, \\mu)` is known exactly (:mod:`dispersion.waves.pencil_polynomial`: the rigid-body
+cancellation at small kappa done once, in rational arithmetic). Its roots are Newton-polished
+from guesses interpolated between anchors (every :data:`ANCHOR_STRIDE`-th kappa solved by the
+float eigen-solver) and *certified* by an inclusion radius from a running error bound:
+:math:`\\Omega` to :data:`CERTIFIED_RTOL` relative, A0 (:math:`\\Omega^2 \\sim \\kappa^4`) and S0
+(:math:`\\kappa^2`) included. Where the polynomial cannot certify a root, the float eigenvalue
+is used if its backward-error bound :math:`m\\epsilon\\lambda_{max}/\\lambda` is small enough,
+else that kappa is solved in ball arithmetic (:func:`extended_frequencies`), and where that
+fails too the kappa is listed in ``DiscreteBranches.failures`` with the reason: nothing
+raises from an eigen-solver. Below :data:`KAPPA_TINY` every branch follows its leading power
+law exactly to the precision of floats; a frequency that underflows is listed, not guessed.
 
 Where the mass keeps the mirror symmetry y -> -y (:func:`dispersion.symbolic.plate.mirror_bases`),
 the pencil splits into a symmetric and an antisymmetric block and the branches are labelled
@@ -36,9 +43,9 @@ computations*, 4th ed., section 8.7 (symmetric-definite pencils).
 """
 from __future__ import annotations
 
-import functools
 import math
-from dataclasses import dataclass, replace
+import os
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import sympy
@@ -47,12 +54,12 @@ from dispersion.errors import InputError, check_nu, check_positive_int, check_wa
 from dispersion.symbolic.plate import (
     PlatePatch,
     lame,
-    mass_block,
     mirror_bases,
     numeric_pencil,
-    stiffness_terms,
+    numeric_terms,
     x_functions,
 )
+from dispersion.waves.extended_pencil import extended_frequencies
 
 __all__ = [
     "DiscreteBranches",
@@ -84,6 +91,10 @@ class DiscreteBranches:
     zone_edge: float | None = None
     #: ``label -> dOmega/dkappa`` (group velocity over c_T) when asked for, else None.
     group: dict[str, np.ndarray] | None = None
+    #: ``(quantity, kappa, reason)`` for every kappa where a frequency (``"omega"``, then NaN
+    #: in ``omega``) or a group velocity (``"group"``, value kept) is not certified to
+    #: :data:`RTOL` (frequencies) or :data:`GROUP_RTOL` (slopes). Never silently dropped.
+    failures: list[tuple[str, float, str]] = field(default_factory=list)
 
 
 def _condense(K, M, massless):
@@ -92,10 +103,10 @@ def _condense(K, M, massless):
     r = np.setdiff1d(np.arange(n), m)
     if m.size == 0:
         return K, M, r, m
-    Krr, Krm = K[:, r][:, :, r], K[:, r][:, :, m]
-    Kmm = K[:, m][:, :, m]
+    Krr, Krm = K[:, r[:, None], r], K[:, r[:, None], m]
+    Kmm = K[:, m[:, None], m]
     Khat = Krr - Krm @ np.linalg.solve(Kmm, np.swapaxes(Krm, 1, 2))
-    return Khat, M[:, r][:, :, r], r, m
+    return Khat, M[:, r[:, None], r], r, m
 
 
 def pencil_frequencies(K, M, massless=(), vectors: bool = False):
@@ -181,184 +192,42 @@ def _float_error(lam: np.ndarray) -> np.ndarray:
         return np.where(lam > 0, m * np.finfo(float).eps * top / lam, np.inf)
 
 
-class _Key:
-    """A patch as a cache key (its sympy matrices are not hashable)."""
-
-    def __init__(self, patch: PlatePatch):
-        self.patch = patch
-        self.key = (patch.p, patch.n, patch.model, str(patch.r), str(patch.My), patch.x_lumped)
-
-    def __hash__(self):
-        return hash(self.key)
-
-    def __eq__(self, other):
-        return isinstance(other, _Key) and self.key == other.key
+def _extended_safe(patch, nu, k, basis, dps, slopes):
+    """:func:`extended_frequencies`, retried at twice the digits; ``(None, reason)`` if both fail."""
+    why = ""
+    for digits in (dps, 2 * dps):
+        try:
+            return extended_frequencies(patch, nu, k, basis, dps=digits, slopes=slopes), ""
+        except (ValueError, ZeroDivisionError, ArithmeticError) as exc:  # flint: eig failed
+            why = f"extended-precision eigen-solver failed at {digits} digits ({exc})"
+    return None, why
 
 
-def _arb_compile(expr):
-    """A sympy expression in kappa (sums, products, integer powers, rationals, cos, sin) as a
-    function ``k -> arb ball``: the exact formulas of :func:`x_functions`, evaluated without
-    rounding the rational coefficients to floats."""
-    import flint
-
-    if expr.is_Symbol:
-        return lambda k: k
-    if expr.is_Rational:
-        p, q = int(expr.p), int(expr.q)
-        return lambda k: flint.arb(p) / q
-    parts = [_arb_compile(a) for a in expr.args]
-    if expr.is_Add:
-        return lambda k: sum((f(k) for f in parts), flint.arb(0))
-    if expr.is_Mul:
-        def mul(k):
-            out = flint.arb(1)
-            for f in parts:
-                out = out * f(k)
-            return out
-        return mul
-    if expr.is_Pow and expr.exp.is_Integer:
-        e = int(expr.exp)
-        return lambda k: parts[0](k) ** e
-    if isinstance(expr, sympy.cos):
-        return lambda k: parts[0](k).cos()
-    if isinstance(expr, sympy.sin):
-        return lambda k: parts[0](k).sin()
-    raise InputError(f"cannot evaluate {expr} in interval arithmetic")
-
-
-@functools.lru_cache(maxsize=16)
-def _exact_terms(key: _Key, nu: float):
-    """``[(coefficient expr, B)]`` for K, dK/dkappa, M, dM/dkappa (exact sympy data)."""
-    patch = key.patch
-    k = sympy.Symbol("kappa")
-    nu_q = sympy.nsimplify(nu, rational=True)
-    mat, xf = lame(nu_q), x_functions(patch, k)
-    K = [(sympy.sympify(mat[m] * xf[f]), B) for m, f, B in stiffness_terms(patch)]
-    M = [(sympy.sympify(xf["mx"]), mass_block(patch))]
-    return {"K": K, "dK": [(c.diff(k), B) for c, B in K], "M": M,
-            "dM": [(c.diff(k), B) for c, B in M]}
-
-
-def _arb_rational_matrix(B):
-    import flint
-
-    return flint.arb_mat([[flint.arb(int(v.p)) / int(v.q) for v in row] for row in B.tolist()])
-
-
-@functools.lru_cache(maxsize=64)
-def _projected_terms(key: _Key, nu: float, which: str, basis: bytes | None, shape, prec: int):
-    """``[(coefficient expr, E^T B E as arb_mat)]`` at working precision ``prec`` (cached)."""
-    import flint
-
-    n2 = 2 * key.patch.n
-    Ef = np.eye(n2) if basis is None else np.frombuffer(basis).reshape(shape)
-    E = flint.arb_mat(Ef.tolist())
-    Et = E.transpose()
-    return [(_arb_compile(c), Et * _arb_rational_matrix(B) * E)
-            for c, B in _exact_terms(key, nu)[which] if c != 0]
-
-
-def _arb_matrix(key, nu, which, basis, k):
-    import flint
-
-    raw = None if basis is None else np.ascontiguousarray(basis, dtype=float)
-    terms = _projected_terms(key, nu, which, None if raw is None else raw.tobytes(),
-                             None if raw is None else raw.shape, flint.ctx.prec)
-    n = (2 * key.patch.n) if basis is None else np.shape(basis)[1]
-    out = flint.arb_mat(n, n)
-    for f, PB in terms:
-        out += f(k) * PB
-    return out
-
-
-def extended_frequencies(patch: PlatePatch, nu: float, kappa, basis=None,
-                         dps: int = 40, slopes: bool = False):
-    """Finite :math:`\\Omega` of the pencil at one ``kappa`` in ``dps``-digit ball arithmetic.
-
-    The reference (and the fallback) where float eigenvalues lose their relative accuracy:
-    :math:`\\Omega^2` of A0 is about :math:`\\kappa^4`, so at :math:`\\kappa = 10^{-6}` it is
-    1e-24 beside eigenvalues of order one. K and M are formed from the exact matrices of
-    :func:`dispersion.symbolic.plate.stiffness_terms` and the exact x-functions (nu rationalised) in
-    arb ball arithmetic (python-flint), projected on ``basis`` (columns spanning a mirror
-    block, or None), massless DOFs condensed, and the eigenvalues of :math:`M^{-1}K` enclosed
-    by :meth:`flint.acb_mat.eig`. With ``slopes=True`` also :math:`d\\Omega/d\\kappa` of every
-    mode by the eigenvector formula in the same precision (returns ``(Omega, slopes)``).
-
-    >>> from dispersion.symbolic.plate import plate_patch
-    >>> w = extended_frequencies(plate_patch(), 0.3, 1e-6)
-    >>> float(w[0] / 1e-12)  # A0: Omega ~ sqrt(2 / (3 (1 - nu))) kappa^2 (eq 16)
-    0.9759000729...
-    """
-    import flint
-
-    key, nu = _Key(patch), float(nu)
-    old = flint.ctx.prec
-    flint.ctx.prec = 64 * math.ceil((dps * 3.33 + 20) / 64)  # few precisions: cached terms
-    try:
-        k = flint.arb(float(kappa)) if not isinstance(kappa, flint.arb) else kappa
-        K, M = _arb_matrix(key, nu, "K", basis, k), _arb_matrix(key, nu, "M", basis, k)
-        n = K.nrows()
-        zero = [i for i in range(n) if all(M[i, j] == 0 for j in range(n))]
-        keep = [i for i in range(n) if i not in zero]
-        Krr, Mrr = _arb_sub(K, keep, keep), _arb_sub(M, keep, keep)
-        if zero:
-            Krm = _arb_sub(K, keep, zero)
-            Kmm = _arb_sub(K, zero, zero)
-            Krr = Krr - Krm * Kmm.solve(Krm.transpose())
-        A = flint.acb_mat(Mrr.solve(Krr))
-        if slopes:
-            lam, R = A.eig(right=True)
-        else:
-            lam = A.eig()
-        order = sorted(range(len(lam)), key=lambda j: float(lam[j].real.mid()))
-        roots = [max(lam[j].real.mid(), flint.arb(0)).sqrt() for j in order]
-        W = np.array([float(v) for v in roots])
-        if not slopes:
-            return W
-        dK, dM = _arb_matrix(key, nu, "dK", basis, k), _arb_matrix(key, nu, "dM", basis, k)
-        G = []
-        for j, w in zip(order, roots):
-            x = flint.acb_mat(n, 1)
-            xr = flint.acb_mat([[R[a, j]] for a in range(len(keep))])
-            for a, i in enumerate(keep):
-                x[i, 0] = xr[a, 0]
-            if zero:
-                xm = flint.acb_mat(Kmm).solve(-flint.acb_mat(_arb_sub(K, zero, keep)) * xr)
-                for a, i in enumerate(zero):
-                    x[i, 0] = xm[a, 0]
-            w_ = flint.acb(w)
-            num = (x.transpose() * flint.acb_mat(dK - w * w * dM) * x)[0, 0]
-            den = 2 * w_ * (x.transpose() * flint.acb_mat(M) * x)[0, 0]
-            G.append(float((num / den).real.mid()) if float(w) > 0 else float("nan"))
-        return W, np.array(G)
-    finally:
-        flint.ctx.prec = old
-
-
-def _arb_sub(A, rows, cols):
-    import flint
-
-    return flint.arb_mat([[A[i, j] for j in cols] for i in rows])
-
-
-def _refine_small(patch, nu, kappa, W, basis, G=None):
+def _refine_small(patch, nu, kappa, W, basis, G=None, failures=None):
     """Recompute in extended precision the kappas where some float eigenvalue of W is inaccurate.
 
     Digits: 30 beyond the ratio of the largest eigenvalue to the smallest (guessed as
     kappa^4 where the float value is lost in round-off). With ``G`` (slopes) given, the
-    slopes there come from the eigenvector formula in the same precision.
+    slopes there come from the eigenvector formula in the same precision. Never raises
+    from the eigen-solver: a kappa where the ball solve fails twice gets NaN and an entry
+    ``("omega", kappa, reason)`` in ``failures`` (a list, if given).
     """
     lam = W**2
     bad = np.flatnonzero(np.any(_float_error(lam) > RTOL, axis=1) & (kappa > 0))
     for i in bad:
         top = float(np.max(lam[i]))
-        small = max(float(np.min(lam[i])), 0.1 * kappa[i] ** 4, 1e-300)
+        small = max(min(float(np.min(lam[i])), 0.1 * kappa[i] ** 4), 1e-300)
         dps = 30 + int(math.ceil(math.log10(max(top / small, 1.0))))
+        out, why = _extended_safe(patch, nu, float(kappa[i]), basis, dps, G is not None)
+        if out is None:
+            W[i] = np.nan
+            if failures is not None:
+                failures.append(("omega", float(kappa[i]), why))
+            continue
         if G is None:
-            W[i] = extended_frequencies(patch, nu, float(kappa[i]), basis, dps=dps)
+            W[i] = out
         else:
-            W[i], G[i] = extended_frequencies(patch, nu, float(kappa[i]), basis, dps=dps,
-                                              slopes=True)
+            W[i], G[i] = out
     return W
 
 
@@ -379,12 +248,12 @@ def pencil_derivative(patch: PlatePatch, nu: float, kappa) -> tuple[np.ndarray, 
     kappa = np.atleast_1d(np.asarray(kappa, dtype=float)) + 1j * h
     mat, xf = lame(nu), x_functions(patch, kappa)
     n2 = 2 * patch.n
+    terms, M0 = numeric_terms(patch)
     dK = np.zeros((kappa.size, n2, n2))
-    for m, f, B in stiffness_terms(patch):
-        dK += mat[m] * (np.imag(np.asarray(xf[f], dtype=complex)) / h)[:, None, None] \
-            * np.array(B, dtype=float)
+    for m, f, B in terms:
+        dK += (mat[m] * np.imag(np.asarray(xf[f], dtype=complex)) / h)[:, None, None] * B
     dmx = np.imag(np.broadcast_to(np.asarray(xf["mx"], dtype=complex), kappa.shape)) / h
-    dM = dmx[:, None, None] * np.array(mass_block(patch), dtype=float)
+    dM = dmx[:, None, None] * M0
     return dK, dM
 
 
@@ -415,6 +284,9 @@ def discrete_branches(patch: PlatePatch, nu: float, kappa, chunk: int = 20000,
     group : bool
         Also the group velocity :math:`d\\Omega/d\\kappa` of every branch (eigenvector
         formula, :mod:`dispersion.waves.velocities`), in ``DiscreteBranches.group``.
+
+    Never raises from an eigen-solver: what cannot be certified is listed in
+    ``DiscreteBranches.failures``.
     """
     if patch.model == "bloch" and isinstance(patch.r, sympy.Symbol):
         raise InputError("aspect ratio r must be a number for discrete branches, got the symbol r")
@@ -422,11 +294,30 @@ def discrete_branches(patch: PlatePatch, nu: float, kappa, chunk: int = 20000,
     kappa = check_wavenumbers(kappa)
     chunk = check_positive_int("chunk", chunk)
     zone = math.pi / float(patch.r) if patch.model == "bloch" else None
-    parts = []
-    for lo in range(0, kappa.size, chunk):
-        parts.append(_branches_block(patch, nu, kappa[lo:lo + chunk], group))
-        if progress is not None:
-            progress(min(chunk, kappa.size - lo))
+    plan = _plan(patch, nu)
+    failures = []
+    starts = range(0, kappa.size, chunk)
+
+    def work(lo):
+        return _branches_block(patch, nu, kappa[lo:lo + chunk], group, plan, failures)
+
+    workers = min(THREADS, len(starts), os.cpu_count() or 1)
+    if workers > 1:  # numpy releases the GIL in its loops: chunks run on both cores
+        from concurrent.futures import ThreadPoolExecutor
+
+        with ThreadPoolExecutor(workers) as pool:
+            parts = []
+            for lo, part in zip(starts, pool.map(work, starts)):
+                parts.append(part)
+                if progress is not None:
+                    progress(min(chunk, kappa.size - lo))
+    else:
+        parts = []
+        for lo in starts:
+            parts.append(work(lo))
+            if progress is not None:
+                progress(min(chunk, kappa.size - lo))
+    failures.sort(key=lambda f: (f[1], f[0], f[2]))
     symmetry = {}
     for _, sym, _ in parts:
         symmetry.update(sym)
@@ -436,56 +327,279 @@ def discrete_branches(patch: PlatePatch, nu: float, kappa, chunk: int = 20000,
         return {lab: np.concatenate([part[i].get(lab, np.full(m, np.nan))
                                      for part, m in zip(parts, sizes)]) for lab in symmetry}
 
-    return DiscreteBranches(kappa, join(0), symmetry, zone, join(2) if group else None)
+    return DiscreteBranches(kappa, join(0), symmetry, zone, join(2) if group else None,
+                            failures)
 
 
-def _branches_block(patch: PlatePatch, nu: float, kappa: np.ndarray, group: bool = False):
-    K, M = numeric_pencil(patch, nu, kappa)
-    dK, dM = pencil_derivative(patch, nu, kappa) if group else (None, None)
+#: Below this kappa every branch is its leading power law: :math:`\\Omega = a\\kappa^e (1 +
+#: O(\\kappa^2))`, e in {0, 1, 2}, so :math:`\\Omega(\\kappa) = \\Omega(\\kappa_0)
+#: (\\kappa/\\kappa_0)^e` with :math:`\\kappa_0` = KAPPA_TINY is exact to a relative
+#: O(1e-40) (the x-functions are analytic and even or odd in kappa). It keeps u = kappa^2
+#: and its powers clear of underflow.
+KAPPA_TINY = 1e-20
+#: Relative accuracy of Omega certified on the polynomial path (the inclusion radius is a
+#: worst-case bound, twice the standard rounding constants; the actual error is ~1e-15).
+CERTIFIED_RTOL = 1e-10
+#: Relative accuracy certified for the group velocities (:func:`pencil_polynomial.slopes`).
+GROUP_RTOL = 1e-12
+#: Worker threads over the kappa chunks (the machine this was tuned on has two cores).
+THREADS = 2
+#: Anchors of the root guesses: every ANCHOR_STRIDE-th kappa (sorted) is solved by the float
+#: eigen-solver; guesses between anchors are interpolated, then polished and certified.
+ANCHOR_STRIDE = 16
+
+
+@dataclass(frozen=True)
+class _Block:
+    kind: str | None            # "S", "A" or None (the whole pencil, mixed labels)
+    E: np.ndarray | None        # orthonormal float basis (None: all DOFs)
+    massless: tuple[int, ...]   # massless DOFs within the block
+    poly: object                # PencilPolynomial or None (eigen-solver path)
+
+
+def _plan(patch: PlatePatch, nu: float) -> list[_Block]:
+    """The blocks of the pencil and, where small enough, their exact characteristic polynomial."""
+    from dispersion.waves import pencil_polynomial as pp
+
     massless = set(patch.massless)
-    omega, symmetry, slopes = {}, {}, {}
     bases = mirror_bases(patch)
-    if bases is not None:
+    blocks = []
+    if bases is None:
+        groups = [(None, None, tuple(sorted(massless)), None)]
+    else:
+        exact = mirror_bases(patch.n, exact=True)
+        groups = []
         for kind in ("S", "A"):
             E = bases[kind]
             support = [set(np.flatnonzero(np.abs(E[:, j]) > 0)) for j in range(E.shape[1])]
-            ml = tuple(j for j, s in enumerate(support) if s <= massless)
             if any(s & massless and not s <= massless for s in support):
                 raise InputError("mirror basis mixes massless and massive DOFs")
-            Kb, Mb = congruence(E.T, K), congruence(E.T, M)
-            G = None
-            if group:
-                W, X = pencil_frequencies(Kb, Mb, ml, vectors=True)
-                G = _slopes(W, X, congruence(E.T, dK), congruence(E.T, dM), Mb)
-            else:
-                W = pencil_frequencies(Kb, Mb, ml)
-            W = _refine_small(patch, nu, kappa, W, E, G)
-            for j in range(W.shape[1]):
-                omega[f"{kind}{j}"], symmetry[f"{kind}{j}"] = W[:, j], kind
-                if group:
-                    slopes[f"{kind}{j}"] = G[:, j]
-        return omega, symmetry, slopes
-    W, X = pencil_frequencies(K, M, tuple(massless), vectors=True)
-    G = _slopes(W, X, dK, dM, M) if group else None
-    W = _refine_small(patch, nu, kappa, W, None, G)
-    # parity of each mode shape: its share in the symmetric mirror subspace of the patch
+            ml = tuple(j for j, s in enumerate(support) if s <= massless)
+            groups.append((kind, E, ml, exact[kind]))
+    for kind, E, ml, Eq in groups:
+        poly = None
+        try:
+            poly = pp.pencil_polynomial(patch, nu, Eq, parity=kind is None)
+            if poly.degree != (2 * patch.n if E is None else E.shape[1]) - len(ml):
+                poly = None
+        except InputError:
+            poly = None  # too large, or a singular interpolation node: eigen-solver path
+        blocks.append(_Block(kind, E, ml, poly))
+    return blocks
+
+
+def _eigen_block(patch, nu, kappa, block: _Block, vectors: bool):
+    """Float eigen-solve of one block at ``kappa``: (W, X or None, dK/dM-ready pencil)."""
+    K, M = numeric_pencil(patch, nu, kappa)
+    if block.E is not None:
+        K, M = congruence(block.E.T, K), congruence(block.E.T, M)
+    if vectors:
+        W, X = pencil_frequencies(K, M, block.massless, vectors=True)
+        return W, X, M
+    return pencil_frequencies(K, M, block.massless), None, M
+
+
+def _parity_from_vectors(patch, X):
     S = mirror_bases(replace(patch, My=patch.Y["00"]))["S"]
-    frac = np.sum((S.T @ X) ** 2, axis=1) / np.sum(X**2, axis=1)
-    is_s = frac >= 0.5
-    rank_s = np.cumsum(is_s, axis=1) - 1
-    rank_a = np.cumsum(~is_s, axis=1) - 1
-    for kind, mask, rank in (("S", is_s, rank_s), ("A", ~is_s, rank_a)):
-        for j in range(int(mask.sum(axis=1).max(initial=0))):
-            sel = mask & (rank == j)
-            has = sel.any(axis=1)
-            label = f"{kind}{j}"
-            vals = np.full(kappa.size, np.nan)
-            vals[has] = W[has][sel[has]]
-            omega[label], symmetry[label] = vals, "mixed"
+    return np.sum((S.T @ X) ** 2, axis=1) / np.sum(X**2, axis=1)
+
+
+def _solve_block(patch, nu, kappa, block: _Block, group: bool, failures: list):
+    """``(W, G, share)`` of one block at kappa (no tiny kappa here): W ascending per row."""
+    from dispersion.waves import pencil_polynomial as pp
+
+    n = kappa.size
+    mixed = block.kind is None
+    W = G = share = None
+    todo = np.arange(n)
+    poly = block.poly
+    if poly is not None:
+        r = None if patch.model != "bloch" else float(patch.r)
+        u, v, dudk = pp.u_of_kappa(patch.model, r, kappa)
+        # the roots are functions of u (S0 ~ u, A0 ~ u^2, cut-offs ~ const + u): guesses are
+        # interpolated in u between anchors solved by the float eigen-solver
+        order = np.argsort(u, kind="stable")
+        anchors = order if n <= 4 * ANCHOR_STRIDE else \
+            np.concatenate([order[::ANCHOR_STRIDE], order[-1:]])
+        Wa = _eigen_block(patch, nu, kappa[anchors], block, False)[0]
+        mx = pp.mass_factor(poly, u, v)
+        mua = Wa**2 * mx[anchors]
+        ua = u[anchors]
+        guess = np.column_stack([np.interp(u, ua, mua[:, j]) for j in range(mua.shape[1])])
+        mu, rad = pp.certified_roots(poly, u, v, guess, 2 * CERTIFIED_RTOL)
+        with np.errstate(all="ignore"):
+            ok = np.all((mu > 0) & (rad <= 2 * CERTIFIED_RTOL * mu), axis=1)
+        redo = np.flatnonzero(~ok)
+        if redo.size:
+            # guesses that fell to the wrong root (close roots) or radii too wide: guesses
+            # from the float eigen-solver at those kappa, the same polishing and certificate;
+            # a root whose radius stays too wide may still be certified by the eigen-solver's
+            # own bound (large roots, where float eigenvalues are accurate)
+            if anchors.size == n:  # every kappa is an anchor: its eigenvalues are at hand
+                Wr = np.empty_like(Wa)
+                Wr[anchors] = Wa
+                Wr = Wr[redo]
+            else:
+                Wr = _eigen_block(patch, nu, kappa[redo], block, False)[0]
+            m2, r2 = pp.certified_roots(poly, u[redo], None if v is None else v[redo],
+                                        Wr**2 * mx[redo], 2 * CERTIFIED_RTOL)
+            with np.errstate(all="ignore"):
+                by_poly = (m2 > 0) & (r2 <= 2 * CERTIFIED_RTOL * m2)
+                by_eig = _float_error(Wr**2) <= 2 * CERTIFIED_RTOL
+            m2 = np.where(by_poly, m2, Wr**2 * mx[redo])
+            mu[redo], rad[redo] = m2, np.where(by_poly, r2, 0.0)
+            ok[redo] = np.all(by_poly | by_eig, axis=1)
+        with np.errstate(all="ignore"):
+            W = np.sqrt(mu / mx)
+        if group:
+            G, Gerr = pp.slopes(poly, u, v, dudk, mu)
+            loose = ok & np.any(~(Gerr <= GROUP_RTOL * np.abs(G)), axis=1)
+            for i in np.flatnonzero(loose):
+                j = int(np.argmax(Gerr[i] / np.maximum(np.abs(G[i]), 1e-300)))
+                rel = Gerr[i, j] / abs(G[i, j]) if G[i, j] != 0 else np.inf
+                failures.append(("group", float(kappa[i]),
+                                 f"group velocity of root {j} ({block.kind or 'mixed'} block) "
+                                 f"certified to {rel:.1e} relative = {Gerr[i, j]:.1e} absolute, "
+                                 f"not {GROUP_RTOL:.0e} (rounding bound of P_u / P_mu; "
+                                 f"c_g = {G[i, j]:.3e})"))
+        if mixed:
+            share = pp.parity_share(poly, u, v, mu)
+        todo = np.flatnonzero(~ok)
+    if todo.size:
+        W, G, share = _eigen_fallback(patch, nu, kappa, block, group, todo, W, G, share,
+                                      failures)
+    return W, G, share
+
+
+def _eigen_fallback(patch, nu, kappa, block, group, idx, W, G, share, failures):
+    """The float eigen-solver (and extended precision where it is not accurate) at ``idx``."""
+    mixed = block.kind is None
+    k = kappa[idx]
+    try:
+        Wf, X, M = _eigen_block(patch, nu, k, block, group or mixed)
+    except (np.linalg.LinAlgError, InputError) as exc:
+        for kk in k:
+            failures.append(("omega", float(kk), f"float eigen-solver failed ({exc})"))
+        if W is None:
+            W = np.full((kappa.size, 2 * patch.n - len(block.massless)
+                         if block.E is None else block.E.shape[1] - len(block.massless)), np.nan)
+        W[idx] = np.nan
+        return W, G, share
+    Gf = None
+    if group:
+        dK, dM = pencil_derivative(patch, nu, k)
+        if block.E is not None:
+            dK, dM = congruence(block.E.T, dK), congruence(block.E.T, dM)
+        Gf = _slopes(Wf, X, dK, dM, M)
+    basis = block.E
+    Wf = _refine_small(patch, nu, k, Wf, basis, Gf, failures)
+    if W is None:
+        W = np.empty((kappa.size, Wf.shape[1]))
+        G = np.empty_like(W) if group else None
+        share = np.empty_like(W) if mixed else None
+    W[idx] = Wf
+    if group:
+        G[idx] = Gf
+    if mixed:
+        share[idx] = _parity_from_vectors(patch, X)
+    return W, G, share
+
+
+def _tiny(kappa, W0, W1, G0, G1, failures):
+    """Branches at kappa < KAPPA_TINY from their values at KAPPA_TINY and 2 KAPPA_TINY."""
+    with np.errstate(all="ignore"):
+        e = np.log2(W1 / W0)
+    e = np.where(np.isfinite(e), e, np.nan)
+    ei = np.rint(e)
+    bad = ~(np.abs(e - ei) < 1e-6)
+    t = (kappa / KAPPA_TINY)[:, None]
+    with np.errstate(all="ignore"):
+        W = W0 * t**ei
+        G = None
+        if G0 is not None:
+            G = G0 * t ** np.where(ei >= 1, ei - 1, 1)
+    for i, kk in enumerate(kappa):
+        under = (W[i] < np.finfo(float).tiny) & (ei > 0) & (kk > 0)
+        if np.any(bad) or np.any(under):
+            why = "leading power law not found" if np.any(bad) else \
+                f"Omega ~ kappa^{int(np.max(ei[under]))} underflows float64 at this kappa"
+            failures.append(("omega", float(kk), why))
+            W[i, bad | under] = np.nan
+    return W, G
+
+
+def _branches_block(patch: PlatePatch, nu: float, kappa: np.ndarray, group: bool = False,
+                    plan=None, failures=None):
+    plan = _plan(patch, nu) if plan is None else plan
+    failures = [] if failures is None else failures
+    tiny = kappa < KAPPA_TINY
+    main = np.flatnonzero(~tiny)
+    ref = np.array([KAPPA_TINY, 2 * KAPPA_TINY])
+    omega, symmetry, slopes = {}, {}, {}
+    results = []
+    for block in plan:
+        parts = {}
+        if main.size:
+            parts["main"] = _solve_block(patch, nu, kappa[main], block, group, failures)
+        if np.any(tiny):
+            # the power laws below KAPPA_TINY are read at two reference kappa; what cannot be
+            # certified there is reported at the kappa asked for
+            ref_fail = []
+            parts["ref"] = _solve_block(patch, nu, ref, block, group, ref_fail)
+            seen = set()
+            for what, k_ref, why in ref_fail:
+                if what not in seen:  # one entry per quantity and kappa
+                    seen.add(what)
+                    failures.extend((what, float(k), f"{why} (at the power-law reference "
+                                     f"kappa {k_ref:.0e})") for k in kappa[tiny])
+        cols = next(iter(parts.values()))[0].shape[1]
+        Wf = np.empty((kappa.size, cols))
+        Gf = np.empty_like(Wf) if group else None
+        Sf = np.empty_like(Wf) if block.kind is None else None
+        if main.size:
+            W, G, share = parts["main"]
+            Wf[main] = W
             if group:
-                g = np.full(kappa.size, np.nan)
-                g[has] = G[has][sel[has]]
-                slopes[label] = g
+                Gf[main] = G
+            if Sf is not None:
+                Sf[main] = share
+        if np.any(tiny):
+            W, G, share = parts["ref"]
+            Wt, Gt = _tiny(kappa[tiny], W[0], W[1], None if G is None else G[0],
+                           None if G is None else G[1], failures)
+            Wf[tiny] = Wt
+            if group:
+                Gf[tiny] = Gt
+            if Sf is not None:
+                Sf[tiny] = share[0]
+        results.append((block, Wf, Gf, Sf))
+    for block, W, G, share in results:
+        if block.kind is not None:
+            for j in range(W.shape[1]):
+                label = f"{block.kind}{j}"
+                omega[label], symmetry[label] = W[:, j], block.kind
+                if group:
+                    slopes[label] = G[:, j]
+            continue
+        # parity of each mode shape: its share in the symmetric mirror subspace of the patch
+        is_s = share >= 0.5
+        rank_s = np.cumsum(is_s, axis=1) - 1
+        rank_a = np.cumsum(~is_s, axis=1) - 1
+        # the column of the j-th root of each parity in every row (an index past the end,
+        # then NaN, where a row has fewer)
+        R = W.shape[1]
+        Wn = np.concatenate([W, np.full((W.shape[0], 1), np.nan)], axis=1)
+        Gn = np.concatenate([G, np.full((G.shape[0], 1), np.nan)], axis=1) if group else None
+        rows = np.arange(W.shape[0])
+        for kind, mask, rank in (("S", is_s, rank_s), ("A", ~is_s, rank_a)):
+            count = mask.sum(axis=1)
+            for j in range(int(count.max(initial=0))):
+                col = np.argmax(mask & (rank == j), axis=1)
+                col[count <= j] = R
+                label = f"{kind}{j}"
+                omega[label], symmetry[label] = Wn[rows, col], "mixed"
+                if group:
+                    slopes[label] = Gn[rows, col]
     return omega, symmetry, slopes
 
 
@@ -526,14 +640,14 @@ def predicted_error(branch: str, nu: float, order: int = 10, **patch_kwargs) -> 
     ``exact_series``) and :math:`\\Omega^2 = c \\kappa^l + \\dots`, the relative error of
     :math:`\\Omega` is :math:`\\tfrac{\\delta}{2c} \\kappa^{m-l}`. Returns ``(m - l, delta / 2c)``.
     """
-    from dispersion.symbolic.power_balance import discrete_series, leading_difference
+    from dispersion.symbolic.power_balance import discrete_series, first_difference
     from dispersion.waves.exact_series import exact_series
 
     nu = sympy.nsimplify(nu) if isinstance(nu, float) else nu  # exact comparison below
     d = discrete_series(branch, order, nu=nu, **patch_kwargs)
     e = exact_series(branch, order, nu=nu)
     lead = min(k for k, v in e.items() if v != 0)
-    m = leading_difference(d, e)
+    m = first_difference(d, e)
     if m is None:
         raise InputError(f"no error term up to kappa^{order}; raise order")
     return m - lead, float(d.get(m, 0) - e.get(m, 0)) / (2 * float(e[lead]))

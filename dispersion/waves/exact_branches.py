@@ -1,18 +1,30 @@
-"""Root tracer of the exact Rayleigh-Lamb branches: every root of the frequency equation.
+"""Root tracer of the exact Rayleigh-Lamb branches: every root, counted exactly.
 
 For real :math:`\\kappa` each symmetry class is a self-adjoint eigenproblem in
 :math:`\\Omega^2`: its branches never cross (they veer), so the j-th root in increasing
-:math:`\\Omega` *is* branch :math:`S_j` (or :math:`A_j`) at every :math:`\\kappa` once no root is
-skipped and none is counted twice. The tracer samples the deflated, pole-free function
-:func:`dispersion.waves.rayleigh_lamb.deflated_with_noise` together with a bound on its rounding
-error, and counts a root only where two samples whose signs are *certain* (above the bound)
-differ. Where the function stays within round-off of zero between two samples of the same
-sign, two roots may hide closer than floating point can separate: that kappa is listed in
-``failures``, never guessed. At :math:`\\kappa \\le` ``SERIES_KAPPA`` the fundamental branches
-S0 and A0 come from their power series (:func:`dispersion.waves.exact_series.exact_series`,
-truncated after :math:`\\kappa^8`, relative remainder :math:`\\le \\kappa^6`), where the root of
-the function would lose digits to round-off (and :math:`\\Omega^2` of A0 underflows below
-:math:`\\kappa \\approx 10^{-77}`).
+:math:`\\Omega` *is* branch :math:`S_j` (or :math:`A_j`) once no root is skipped and none is
+counted twice. The count is exact, not scanned: the scaled function
+:func:`dispersion.waves.rayleigh_lamb.scaled_frequency_function` decreases strictly between
+consecutive *Mindlin bounds* (:func:`dispersion.waves.rayleigh_lamb.mindlin_bounds`, the
+closed-form frequencies of the plate with mixed faces) from :math:`+\\infty` to
+:math:`-\\infty`, so for :math:`\\kappa > 0` exactly one root lies in each interval between
+bounds (in the first, between 0 and the first bound). The tracer solves one bracketed,
+monotone problem per interval (Illinois on :math:`\\arctan R`, which is bounded and smooth
+across the poles) and then *certifies* each root: at :math:`\\Omega (1 \\pm 5\\cdot10^{-13})`
+(or at the bounding pole itself, whose sign is known) the function must have the expected sign
+above its rounding bound (:func:`dispersion.waves.rayleigh_lamb.scaled_with_noise`). A root that
+cannot be certified to ``CERTIFY_RTOL`` is still returned (the best float answer) and its kappa
+is listed in ``failures`` with the reason; nothing is dropped silently. Near-double roots
+(veering pairs, coincident cut-offs) are separated by a bound between them, so they are
+resolved to round-off rather than guessed.
+
+At :math:`\\kappa = 0` the closed-form cut-offs are used (:func:`cutoff_frequencies`); for
+:math:`0 < \\kappa \\le` ``TINY_KAPPA`` the non-fundamental roots are their cut-offs (they
+move by :math:`O(\\kappa) < 10^{-28}` relative); S0 and A0 come from their power series
+(:func:`dispersion.waves.exact_series.exact_series`) below the kappa where the series' own error
+estimate (its first omitted term, doubled) falls below ``SERIES_RTOL`` (:func:`series_switch`),
+where the root of the function would lose digits and :math:`\\Omega^2` of A0 underflows below
+:math:`\\kappa \\approx 10^{-77}`.
 
 >>> import math
 >>> br = trace_branches(0.3, [0.0, 1.0], 3.5)
@@ -24,11 +36,14 @@ the function would lose digits to round-off (and :math:`\\Omega^2` of A0 underfl
 References
 ----------
 J. L. Rose, *Ultrasonic waves in solid media*, Cambridge University Press 2004, ch. 8;
+R. D. Mindlin, Waves and vibrations in isotropic, elastic plates, in *Structural Mechanics*
+(J. N. Goodier, N. J. Hoff eds.), Pergamon 1960, pp. 199-232;
 F. A. Amirkulova, PhD thesis, Rutgers 2011 (ref [1] of the paper).
 """
 from __future__ import annotations
 
 import functools
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -44,32 +59,44 @@ from dispersion.errors import (
 from dispersion.waves.rayleigh_lamb import (
     OMEGA_MAX,
     cutoff_frequencies,
-    deflated_with_noise,
-    evanescent_frequency_function,
+    scaled_with_noise,
     speed_ratio_squared,
 )
 
 __all__ = [
-    "MAX_SAMPLES", "SERIES_KAPPA", "check_samples",
+    "CERTIFY_RTOL", "KAPPA_MAX", "MAX_SAMPLES", "SERIES_RTOL", "TINY_KAPPA", "check_samples",
     "ExactBranches", "TracerAccuracy", "exact_fundamental",
-    "fundamental_series", "mpmath_error",
+    "fundamental_series", "mpmath_error", "series_region", "series_switch",
     "trace_branches", "tracer_accuracy",
 ]
 
-#: Below this kappa S0 and A0 come from their series truncated after kappa^8.
-SERIES_KAPPA = 1e-3
-_SERIES_ORDER = 8
+#: Relative width to which every returned root is certified (else it is a listed failure).
+CERTIFY_RTOL = 1e-12
+#: Relative error the S0/A0 series must reach (its own estimate) where it replaces the solve.
+SERIES_RTOL = 1e-14
+#: Largest kappa where a series replaces the solve: far below the first place where S0 or A0
+#: meets another branch (kappa ~ 1), so within the series' radius of convergence.
+SERIES_KAPPA_MAX = 0.2
+#: The series of Omega^2 is computed through kappa^14; the kappa^14 term is its error estimate.
+_SERIES_ORDER = 14
+#: Below this kappa (> 0) the non-fundamental roots are their cut-offs: a branch leaves its
+#: cut-off like kappa^2, or like kappa where two cut-offs coincide, so by < 1e-28 relative.
+TINY_KAPPA = 1e-30
+#: Largest kappa of the tracer: the range its tests cover (counts against collocation up to
+#: 200, property tests up to 300). The scaled function has no overflow at any kappa.
+KAPPA_MAX = 300.0
 
-#: Largest scan of one call: kappa points times Omega samples (omega_max / step + 1). Rule:
-#: about a minute of work. Measured on this 2-core machine: ~3 us and ~250 B of peak memory
-#: per (kappa, Omega) sample for both symmetry classes (2000 kappa x Omega <= 200, and one
-#: kappa x Omega <= 1e5), so 2e7 samples take ~60 s and at most ~5 GB of the 24 GiB.
+#: Largest work of one call, in budget units: kappa points times omega_max / step + 1 (the
+#: number of roots per kappa grows like omega_max). Rule: about a minute of work. Measured on
+#: this 2-core machine while it was shared and loaded: 2.5 us and 12 B of peak memory per unit
+#: for both symmetry classes at 2000 kappa x Omega <= 200, 12 us and 15 B for one kappa x
+#: Omega <= 1e5 (5e4 roots per class), so 2e7 units take 1 to 4 minutes at most, and < 1 GB.
 MAX_SAMPLES = 20_000_000
 
 
 def check_samples(kappa_count: int, omega_max: float, step: float = 0.05,
                   what: str = "len(kappa) * (omega_max / step + 1)") -> float:
-    """Refuse, up front, a scan of more than :data:`MAX_SAMPLES` (kappa, Omega) samples.
+    """Refuse, up front, a trace of more than :data:`MAX_SAMPLES` budget units.
 
     ``what`` names the inputs in the message (the CLI passes its option names).
 
@@ -106,6 +133,13 @@ class ExactBranches:
     omega_max: float
     failures: list[tuple[str, float, str]] = field(default_factory=list)
 
+    def __post_init__(self):
+        # the branches carry their nu, so they cannot be put in units of another material
+        from dispersion.waves.branch_set import BranchSet
+
+        if not isinstance(self.omega, BranchSet) or self.omega.nu != self.nu:
+            self.omega = BranchSet(self.omega, nu=self.nu)
+
     def symmetry(self, label: str) -> str:
         """``"S"`` or ``"A"``."""
         return label[0]
@@ -118,13 +152,56 @@ def _series_coefficients(label: str, nu: float) -> tuple[tuple[int, float], ...]
     return tuple((k, float(c)) for k, c in sorted(exact_series(label, _SERIES_ORDER, nu=nu).items()))
 
 
+def series_switch(label: str, nu: float, rtol: float = SERIES_RTOL) -> float:
+    """Largest kappa where the S0/A0 series of :func:`fundamental_series` is trusted to ``rtol``.
+
+    The series of :math:`\\Omega^2` is summed through :math:`\\kappa^{12}`; its error estimate is
+    twice the first omitted term :math:`c_{14}\\kappa^{14}` relative to the leading term
+    :math:`c_l \\kappa^l`, and that of the slope is 14/l times more. The switch is where the
+    slope's estimate equals ``rtol`` (the value's is then smaller), at most
+    ``SERIES_KAPPA_MAX``: beyond the series' radius its terms say nothing (near nu = 0 they
+    stay tiny while S0 veers sharply away from the line the series follows).
+
+    >>> round(series_switch("A0", 0.3), 4), round(series_switch("S0", 0.3), 3)
+    (0.0245, 0.111)
+    """
+    if label not in ("S0", "A0"):
+        raise InputError(f"label must be 'S0' or 'A0', got {label!r}")
+    coef = _series_coefficients(label, float(check_nu(nu)))
+    (lead, c_lead), (last, c_last) = coef[0], coef[-1]
+    if c_last == 0:   # S0 at nu = 0: Omega^2 = 2 kappa^2 exactly, the series terminates
+        return SERIES_KAPPA_MAX
+    switch = (rtol * abs(c_lead) * lead / (2 * abs(c_last) * last)) ** (1 / (last - lead))
+    return min(switch, SERIES_KAPPA_MAX)
+
+
+def series_region(label: str, nu: float, kappa) -> np.ndarray:
+    """``kappa <= series_switch(label, nu)``, without building the series (and importing the
+    symbolic engine) when no kappa is below ``SERIES_KAPPA_MAX``.
+
+    >>> series_region("A0", 0.3, [1e-3, 0.5]).tolist()
+    [True, False]
+    """
+    kappa = np.asarray(kappa, dtype=float)
+    if not np.any(kappa <= SERIES_KAPPA_MAX):
+        return np.zeros(kappa.shape, bool)
+    return kappa <= series_switch(label, nu)
+
+
+def _series_error(label: str, nu: float, kappa) -> np.ndarray:
+    """The estimate of :func:`series_switch`: relative error of the series' Omega^2."""
+    coef = _series_coefficients(label, float(nu))
+    (lead, c_lead), (last, c_last) = coef[0], coef[-1]
+    return 2 * abs(c_last / c_lead) * np.asarray(kappa, dtype=float) ** (last - lead)
+
+
 def fundamental_series(label: str, nu: float, kappa) -> tuple[np.ndarray, np.ndarray]:
     """:math:`\\Omega` and :math:`d\\Omega/d\\kappa` of S0 or A0 from the series of
     :math:`\\Omega^2` (eqs 14 and 16, derived by :mod:`dispersion.symbolic.power_balance`).
 
-    Valid for small kappa only (relative remainder about :math:`\\kappa^6` after
-    :math:`\\kappa^8`); :math:`\\Omega` is formed as :math:`\\kappa^l \\sqrt{\\sum c_k \\kappa^{k-2l}}`
-    so it never underflows before :math:`\\kappa` does.
+    Summed through :math:`\\kappa^{12}`; valid below :func:`series_switch` only.
+    :math:`\\Omega` is formed as :math:`\\kappa^l \\sqrt{\\sum c_k \\kappa^{k-2l}}` so it never
+    underflows before :math:`\\kappa` does.
 
     >>> import math
     >>> w, cg = fundamental_series("S0", 0.3, [1e-200])
@@ -134,7 +211,7 @@ def fundamental_series(label: str, nu: float, kappa) -> tuple[np.ndarray, np.nda
     if label not in ("S0", "A0"):
         raise InputError(f"label must be 'S0' or 'A0', got {label!r}")
     kappa = np.asarray(kappa, dtype=float)
-    coef = _series_coefficients(label, float(nu))
+    coef = _series_coefficients(label, float(nu))[:-1]  # the last term is the error estimate
     lead = coef[0][0]  # 2 for S0, 4 for A0
     half = lead // 2
     u = sum(c * kappa ** (k - lead) for k, c in coef)          # Omega^2 / kappa^lead
@@ -148,214 +225,143 @@ def fundamental_series(label: str, nu: float, kappa) -> tuple[np.ndarray, np.nda
 
 def _check_grid(kappa) -> np.ndarray:
     kappa = check_wavenumbers(kappa)
-    if kappa.max() > 300:
-        raise InputError(f"kappa must be <= 300 (cosh overflow), got {kappa.max()}")
+    if kappa.max() > KAPPA_MAX:
+        raise InputError(f"kappa must be <= {KAPPA_MAX:g} (the range the tracer is tested on), "
+                         f"got {kappa.max()}")
     return kappa
 
 
-def _illinois(f, a, b, fa, fb, rtol: float, max_iter: int = 100):
-    """Vectorised Illinois (modified regula falsi) on brackets with ``fa * fb < 0``."""
+def _illinois(f, a, b, fa, fb, rtol: float, max_iter: int):
+    """Vectorised Illinois (modified regula falsi) on brackets with ``fa > 0 > fb``.
+
+    Returns the midpoints of the final brackets, the brackets, and the rows still open.
+    """
     a, b, fa, fb = a.copy(), b.copy(), fa.copy(), fb.copy()
     side = np.zeros(a.shape, dtype=int)
-    active = np.ones(a.shape, dtype=bool)
+    active = b > np.nextafter(a, np.inf)
     for _ in range(max_iter):
         idx = np.flatnonzero(active)
         if idx.size == 0:
             break
         A, B, FA, FB = a[idx], b[idx], fa[idx], fb[idx]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            c = (A * FB - B * FA) / (FB - FA)
-        bad = ~((c > np.minimum(A, B)) & (c < np.maximum(A, B)))
+        c = (A * FB - B * FA) / (FB - FA)
+        bad = ~((c > A) & (c < B))
         c = np.where(bad, 0.5 * (A + B), c)
         fc = f(idx, c)
-        left = np.sign(fc) == np.sign(FA)
-        # c replaces a where f(c) has the sign of f(a), else b; halve the stale end (Illinois)
+        left = fc > 0          # the root lies right of c
+        zero = fc == 0
         new_a, new_fa = np.where(left, c, A), np.where(left, fc, FA)
         new_b, new_fb = np.where(left, B, c), np.where(left, FB, fc)
         sd = side[idx]
+        # Illinois: the end kept twice in a row has its value halved
         new_fb = np.where(left & (sd == 1), 0.5 * new_fb, new_fb)
         new_fa = np.where(~left & (sd == -1), 0.5 * new_fa, new_fa)
         side[idx] = np.where(left, 1, -1)
+        new_a, new_b = np.where(zero, c, new_a), np.where(zero, c, new_b)
         a[idx], b[idx], fa[idx], fb[idx] = new_a, new_b, new_fa, new_fb
-        done = (np.abs(new_b - new_a) <= rtol * np.abs(c)) | (fc == 0)
-        # no floating-point number lies strictly between the ends: the bracket is closed
-        done |= np.nextafter(np.minimum(new_a, new_b), np.inf) >= np.maximum(new_a, new_b)
-        a[idx[done]] = b[idx[done]] = c[done]
+        done = (new_b - new_a <= rtol * c) | zero
+        done |= np.nextafter(new_a, np.inf) >= new_b   # no float strictly inside
         active[idx[done]] = False
-    return 0.5 * (a + b), active
+    return 0.5 * (a + b), a, b, active
 
 
-class _Samples:
-    """Samples (kappa index, Omega, G, rounding bound of G), sorted by (index, Omega)."""
-
-    def __init__(self, kind, kappa, nu, ki, w, floor):
-        self.kind, self.kappa, self.nu, self.floor = kind, kappa, nu, floor
-        keep = w >= floor[ki]
-        self.ki, self.w = ki[keep], w[keep]
-        self.g, self.e = deflated_with_noise(kind, kappa[ki], w, nu)
-        self._sort()
-
-    def _sort(self):
-        order = np.lexsort((self.w, self.ki))
-        ki, w, g, e = self.ki[order], self.w[order], self.g[order], self.e[order]
-        keep = np.concatenate([[True], (np.diff(w) != 0) | (np.diff(ki) != 0)])
-        self.ki, self.w, self.g, self.e = ki[keep], w[keep], g[keep], e[keep]
-
-    def add(self, ki, w):
-        keep = w >= self.floor[ki]
-        ki, w = ki[keep], w[keep]
-        if ki.size == 0:
-            return
-        g, e = deflated_with_noise(self.kind, self.kappa[ki], w, self.nu)
-        self.ki = np.concatenate([self.ki, ki])
-        self.w = np.concatenate([self.w, w])
-        self.g = np.concatenate([self.g, g])
-        self.e = np.concatenate([self.e, e])
-        self._sort()
-
-    def certain(self):
-        """Indices of the samples whose sign is above round-off."""
-        return np.flatnonzero(np.abs(self.g) > self.e)
+def _bounds(kind: str, kappa: np.ndarray, nu: float, top: float, first_p: int = 0) -> np.ndarray:
+    """Mindlin bounds (poles of the scaled function) per kappa, sorted, shape (m, n): at least
+    one above ``top`` in every row (:func:`dispersion.waves.rayleigh_lamb.mindlin_bounds`)."""
+    s = speed_ratio_squared(nu)
+    off = 0.0 if kind == "S" else 0.5
+    k2 = kappa[:, None] ** 2
+    nP = int(math.sqrt(s) * top / math.pi + off) + 2
+    nQ = int(top / math.pi + off) + 2
+    jP = np.arange(first_p, nP + first_p) + off           # P = (j pi)^2, j >= 0 (+ 1/2 for A)
+    jQ = np.arange(1 if kind == "S" else 0, nQ + 1) + off  # Q = (j pi)^2, j >= 1 for S
+    wP = np.sqrt((k2 + (jP * math.pi) ** 2) / s)
+    wQ = np.sqrt(k2 + (jQ * math.pi) ** 2)
+    return np.sort(np.concatenate([wP, wQ], axis=1), axis=1)
 
 
-def _scan_roots(kind, kappa, nu, omega_top, step, rtol, max_depth, floor, max_passes=6):
-    """All roots of G in (floor, omega_top] for every kappa: list of arrays, and failures.
+def _scaled(kind, kappa, omega, nu):
+    return scaled_with_noise(kind, kappa, omega, nu)
 
-    Continuation safeguard: the roots found at each kappa's neighbours (and the midpoints
-    between them) are added as samples, until no pass finds a new root.
+
+def _certify(kind, kk, roots, lo, hi, nu):
+    """True where the root is bracketed to CERTIFY_RTOL by signs above round-off.
+
+    Each side needs one point within CERTIFY_RTOL / 2 of the root whose sign is the expected
+    one above the rounding bound: the bound (or 0) itself if that near, else the function at
+    5e-13 or, should that point sit next to a pole where round-off swamps the value, at 5e-14.
     """
-    grid = np.arange(0.0, omega_top + step, step)
-    ki = np.repeat(np.arange(kappa.size), grid.size)
-    w = np.maximum(np.tile(grid, kappa.size), floor[ki])
-    smp = _Samples(kind, kappa, nu, ki, w, floor)
-    count = None
-    for _ in range(max_passes):
-        per_k, failures = _refine_and_solve(smp, rtol, max_depth)
-        new_count = np.array([r.size for r in per_k])
-        if count is not None and np.array_equal(new_count, count):
-            break
-        changed = np.ones(kappa.size, bool) if count is None else new_count != count
-        count = new_count
-        seeds_k, seeds_w = [], []
-        for i in range(kappa.size):
-            for nb in (i - 1, i + 1):
-                if 0 <= nb < kappa.size and per_k[nb].size and (changed[nb] or changed[i]):
-                    r = per_k[nb]
-                    extra = np.concatenate([r, 0.5 * (r[1:] + r[:-1])])
-                    seeds_w.append(extra[extra <= omega_top])
-                    seeds_k.append(np.full(seeds_w[-1].size, i))
-        if not seeds_k:
-            break
-        smp.add(np.concatenate(seeds_k), np.concatenate(seeds_w))
-    else:
-        failures += [(kind, float(kappa[i]), "continuation passes did not settle")
-                     for i in np.flatnonzero(changed)]
-    return per_k, failures
+    ok_l, ok_h = roots - lo <= 0.5 * CERTIFY_RTOL * roots, hi - roots <= 0.5 * CERTIFY_RTOL * roots
+    for frac in (0.5 * CERTIFY_RTOL, 0.05 * CERTIFY_RTOL):
+        i = np.flatnonzero(~ok_l)
+        if i.size:
+            r, e = _scaled(kind, kk[i], roots[i] * (1 - frac), nu)
+            ok_l[i] = r > e
+        i = np.flatnonzero(~ok_h)
+        if i.size:
+            r, e = _scaled(kind, kk[i], roots[i] * (1 + frac), nu)
+            ok_h[i] = r < -e
+    return ok_l & ok_h
 
 
-def _refine_and_solve(smp: _Samples, rtol, max_depth):
-    kind, kappa = smp.kind, smp.kappa
+def _trace_class(kind, kappa, nu, omega_max, rtol, max_iter):
+    """Roots of one symmetry class at kappa > TINY_KAPPA: (m, n) array (NaN padded), failures."""
+    m = kappa.size
+    # nu = 0 (any nu whose (c_T/c_L)^2 rounds to 1/2): the bound P = 0 (Omega^2 = 2 kappa^2) is itself the root S0 (u_x uniform,
+    # sigma_yy = lambda div u = 0): a removable pole, so S0 is that bound and the function is
+    # continuous across it, with one root (S1) between 0 and the next bound.
+    removable = kind == "S" and speed_ratio_squared(nu) == 0.5   # nu = 0 in floating point
+    poles = _bounds(kind, kappa, nu, omega_max, first_p=1 if removable else 0)
+    s0 = kappa * math.sqrt(2.0)
+    count = np.sum(poles < omega_max, axis=1)         # intervals 0..count hold roots <= top
+    n_int = int(count.max()) + 1
+    lo = np.concatenate([np.zeros((m, 1)), poles[:, :n_int - 1]], axis=1)
+    hi = poles[:, :n_int]
+    use = np.arange(n_int)[None, :] <= count[:, None]
+    label = f"{kind}0"
+    series = (np.arange(n_int)[None, :] == 0) & series_region(label, nu, kappa)[:, None]
+    series &= not removable
+    roots = np.full((m, n_int), np.nan)
     failures = []
-    for depth in range(max_depth + 1):
-        c = smp.certain()
-        ki, w, g = smp.ki[c], smp.w[c], smp.g[c]
-        same_k = (ki[1:-1] == ki[:-2]) & (ki[1:-1] == ki[2:])
-        g0, g1, g2 = g[:-2], g[1:-1], g[2:]
-        dip = same_k & (np.sign(g0) == np.sign(g1)) & (np.sign(g2) == np.sign(g1))
-        dip &= (np.abs(g1) <= np.abs(g0)) & (np.abs(g1) <= np.abs(g2))
-        j = np.flatnonzero(dip) + 1
-        if j.size:
-            # vertex of the parabola through the three samples: a hidden pair of roots
-            # (a near crossing, a veering) shows as a vertex across or close to zero
-            w0, w1, w2 = w[j - 1], w[j], w[j + 1]
-            d01 = (g[j] - g[j - 1]) / (w1 - w0)
-            d12 = (g[j + 1] - g[j]) / (w2 - w1)
-            c2 = (d12 - d01) / (w2 - w0)
-            with np.errstate(divide="ignore", invalid="ignore"):
-                wv = 0.5 * (w0 + w1) - d01 / (2 * c2)
-                vertex = g[j - 1] + (wv - w0) * d01 + c2 * (wv - w0) * (wv - w1)
-            suspect = ~np.isfinite(vertex) | (np.sign(vertex) != np.sign(g[j]))
-            suspect |= np.abs(vertex) < 0.5 * np.abs(g[j])
-            j = j[suspect]
-            # cells already at the spacing of floating point cannot be refined further
-            j = j[np.minimum(w[j] - w[j - 1], w[j + 1] - w[j]) > 64 * np.spacing(w[j])]
-        if j.size == 0:
-            break
-        if depth == max_depth:
-            for jj in j:
-                failures.append((kind, float(kappa[ki[jj]]),
-                                 f"unresolved near-double root near Omega={w[jj]:.6g}"))
-            break
-        frac = np.linspace(0, 1, 9)[1:-1]
-        new_w = np.concatenate([
-            (w[j - 1][:, None] + frac * (w[j] - w[j - 1])[:, None]).ravel(),
-            (w[j][:, None] + frac * (w[j + 1] - w[j])[:, None]).ravel(),
-        ])
-        smp.add(np.tile(np.repeat(ki[j], frac.size), 2), new_w)
-    c = smp.certain()
-    ki, w, g = smp.ki[c], smp.w[c], smp.g[c]
-    same = ki[1:] == ki[:-1]
-    change = same & (np.sign(g[1:]) != np.sign(g[:-1]))
-    # two certain samples of one sign with round-off-level samples between them: G touches
-    # zero there, and for real kappa (a self-adjoint problem, all roots real) that is a pair
-    # of roots closer than floating point separates. The best float answer is a double root
-    # at the centre of the stretch; the kappa is listed as a failure all the same.
-    between = np.diff(c) > 1
-    doubles = []
-    for jj in np.flatnonzero(same & ~change & between):
-        centre = 0.5 * (smp.w[c[jj] + 1] + smp.w[c[jj + 1] - 1])
-        doubles.append((ki[jj], centre))
-        failures.append((kind, float(kappa[ki[jj]]), "two roots closer than round-off, "
-                         f"given as a double root at Omega={centre:.6g}"))
-    j = np.flatnonzero(change)
-    a, b, fa, fb, kk = w[j], w[j + 1], g[j], g[j + 1], ki[j]
+    if np.any(series[:, 0]):
+        si = np.flatnonzero(series[:, 0])
+        w0 = fundamental_series(label, nu, kappa[si])[0]
+        # the series root is certified like any other; where it is not, it is solved for
+        good = (w0 > 0) & (w0 < hi[si, 0])
+        good[good] = _certify(kind, kappa[si[good]], w0[good], lo[si[good], 0], hi[si[good], 0], nu)
+        roots[si[good], 0] = w0[good]
+        series[si[~good], 0] = False
+    ki, ji = np.nonzero(use & ~series)
+    kk, a, b = kappa[ki], lo[ki, ji], hi[ki, ji]
+    fa, fb = np.full(a.shape, np.pi / 2), np.full(a.shape, -np.pi / 2)
+    # the fundamental branch: a tight first bracket from its series where that is close
+    first = np.flatnonzero((ji == 0) & (kk <= SERIES_KAPPA_MAX)) if not removable else []
+    if len(first):
+        w0 = fundamental_series(label, nu, kk[first])[0]
+        width = np.minimum(10 * _series_error(label, nu, kk[first]), 1e-3)
+        ga, gb = w0 * (1 - width), w0 * (1 + width)
+        ra = _scaled(kind, kk[first], ga, nu)[0]
+        rb = _scaled(kind, kk[first], gb, nu)[0]
+        good = (ra > 0) & (rb < 0) & (ga > a[first]) & (gb < b[first])
+        sel = first[good]
+        a[sel], b[sel] = ga[good], gb[good]
+        fa[sel], fb[sel] = np.arctan(ra[good]), np.arctan(rb[good])
 
-    def f(idx, x):
-        return deflated_with_noise(kind, kappa[kk[idx]], x, smp.nu)[0]
+    def g(idx, x):
+        return np.arctan(_scaled(kind, kk[idx], x, nu)[0])
 
-    roots, unconverged = _illinois(f, a, b, fa, fb, rtol)
-    for i in np.flatnonzero(unconverged):
-        failures.append((kind, float(kappa[kk[i]]), "root refinement did not converge"))
-    roots = _polish_evanescent(kind, kappa[kk], roots, smp.nu, unconverged)
-    if doubles:
-        dk, dw = np.array(doubles).T
-        kk = np.concatenate([kk, dk.astype(int), dk.astype(int)])
-        roots = np.concatenate([roots, dw, dw])
-        order = np.lexsort((roots, kk))
-        roots, kk = roots[order], kk[order]
-    per_k = np.split(roots, np.searchsorted(kk, np.arange(1, kappa.size)))
-    return per_k, failures
-
-
-def _polish_evanescent(kind, kappa, roots, nu, skip, width: float = 1e-9):
-    """Roots with P < 0 closed again on :func:`evanescent_frequency_function`.
-
-    At large kappa the deflated function carries cosh-sized terms whose cancellation costs
-    digits (2e-14 on A0 at kappa = 10); the scaled form does not. A root whose scaled
-    function has no sign change within ``width`` (relative) keeps its first value.
-    """
-    # only where cosh(sqrt(-P)) > 10: there the deflated function has lost a digit
-    ev = (kappa**2 - speed_ratio_squared(nu) * roots**2 > 9.0) & ~skip & (roots > 0)
-    if not np.any(ev):
-        return roots
-    k, r = kappa[ev], roots[ev]
-    a, b = r * (1 - width), r * (1 + width)
-    fa = evanescent_frequency_function(kind, k, a, nu)
-    fb = evanescent_frequency_function(kind, k, b, nu)
-    ok = np.isfinite(fa) & np.isfinite(fb) & (np.sign(fa) * np.sign(fb) < 0)
-    if not np.any(ok):
-        return roots
-    ko = k[ok]
-
-    def f(idx, x):
-        return evanescent_frequency_function(kind, ko[idx], x, nu)
-
-    polished, active = _illinois(f, a[ok], b[ok], fa[ok], fb[ok], 1e-17)
-    out = roots.copy()
-    sub = r.copy()
-    sub[ok] = np.where(active, sub[ok], polished)
-    out[ev] = sub
-    return out
+    w, A, B, open_ = _illinois(g, a, b, fa, fb, rtol, max_iter)
+    ok = _certify(kind, kk, w, lo[ki, ji], hi[ki, ji], nu)
+    roots[ki, ji] = w
+    for r in np.flatnonzero(open_ | ~ok):
+        why = (f"root solver still open after max_depth={max_iter} iterations" if open_[r] else
+               f"not certified to {CERTIFY_RTOL:g}: the function is within its rounding bound "
+               f"at Omega*(1 +- {CERTIFY_RTOL / 2:g}) (near-double root)")
+        failures.append((kind, float(kk[r]), f"{kind}{ji[r]} near Omega={w[r]:.10g} {why}"))
+    if removable:
+        roots = np.sort(np.concatenate([s0[:, None], roots], axis=1), axis=1)
+    roots[roots > omega_max] = np.nan
+    return roots, failures
 
 
 def trace_branches(
@@ -366,34 +372,36 @@ def trace_branches(
     kinds: tuple[str, ...] = ("S", "A"),
     step: float = 0.05,
     rtol: float = 1e-15,
-    max_depth: int = 12,
+    max_depth: int = 100,
     chunk: int = 2000,
     progress=None,
 ) -> ExactBranches:
     """Every exact Rayleigh-Lamb branch with :math:`\\Omega \\le \\Omega_{max}` on a kappa grid.
 
-    Roots are bracketed on a grid of spacing ``step`` of the deflated function; wherever
-    three samples of the same sign dip towards zero (the signature of two close roots, e.g.
-    a veering pair or the split of a double cut-off) the cells are refined eight-fold, up to
-    ``max_depth`` times, and whatever stays unresolved is listed in ``failures`` with its
-    kappa. Continuation along kappa: the roots found at each grid neighbour, and the
-    midpoints between them, are added as samples and the scan is repeated until the root
-    counts settle; a branch that still vanishes between two neighbours that have it is
-    reported. Brackets are closed by the Illinois method to relative width ``rtol``. At
-    :math:`\\kappa = 0` the closed-form cut-offs (:func:`cutoff_frequencies`) are used; at
-    :math:`0 < \\kappa \\le` ``SERIES_KAPPA`` S0 and A0 come from :func:`fundamental_series`.
+    One root per interval between consecutive Mindlin bounds (see the module docstring): the
+    count is exact, each root is closed by the Illinois method on :math:`\\arctan R` to
+    relative width ``rtol`` and then certified to ``CERTIFY_RTOL`` by two signs above
+    round-off; a root that is not certified is returned all the same and its kappa listed in
+    ``failures`` with the reason. At :math:`\\kappa = 0` the closed-form cut-offs
+    (:func:`cutoff_frequencies`) are used, at :math:`0 < \\kappa \\le` ``TINY_KAPPA`` the
+    cut-offs for all but S0 and A0, and S0, A0 come from :func:`fundamental_series` below
+    :func:`series_switch`.
 
     Parameters
     ----------
     nu : float
         Poisson's ratio, in (-1, 0.5).
     kappa : array_like
-        Dimensionless wavenumbers :math:`\\kappa = kh \\ge 0`.
+        Dimensionless wavenumbers :math:`0 \\le \\kappa = kh \\le` ``KAPPA_MAX``.
     omega_max : float
         Largest :math:`\\Omega = \\omega h / c_T` of interest, in (0, :data:`OMEGA_MAX`], with
         ``len(kappa) * (omega_max / step + 1) <= MAX_SAMPLES`` (:func:`check_samples`).
-    step, rtol, max_depth :
-        Scan spacing, root tolerance and refinement depth (the accuracy/speed settings).
+    step : float
+        Unit of the work budget of :func:`check_samples` only (the count needs no scan).
+    rtol : float
+        Relative width at which a root's bracket is closed.
+    max_depth : int
+        Most solver iterations per root (>= 1); a root still open after them is a failure.
     chunk : int
         Kappa points per vectorised block (bounds the memory).
     progress : callable, optional
@@ -412,57 +420,40 @@ def trace_branches(
     check_real_in_range("omega_max", omega_max, 0, OMEGA_MAX, lo_open=True)
     check_positive("step", step)
     check_positive("rtol", rtol)
+    max_iter = check_positive_int("max_depth", max_depth)
     chunk = check_positive_int("chunk", chunk)
+    for kind in kinds:
+        if kind not in ("S", "A"):
+            raise InputError(f"kinds must hold 'S' and/or 'A', got {kind!r}")
     check_samples(kappa.size, omega_max, step)
     omega = {}
     failures = []
-    top = omega_max * (1 + 1e-9) + 2 * step
     for kind in kinds:
         per_k = [None] * kappa.size
-        zero = np.flatnonzero(kappa == 0)
-        positive = np.flatnonzero(kappa > 0)
-        cut = cutoff_frequencies(kind, nu, omega_max)
-        for i in zero:
-            per_k[i] = np.array([w for w, _ in cut])
-        if positive.size:
-            kp, roots = kappa[positive], []
-            # the fundamental branch from its series where round-off would blur its root;
-            # the next root of either family lies near a cut-off >= pi/2
-            below = min(w for w, fam in cut if fam != "0") / 2 if len(cut) > 1 else top
-            small = kp <= SERIES_KAPPA
-            floor = np.where(small, below, 0.0)
-            for lo in range(0, kp.size, chunk):
-                hi = min(lo + chunk, kp.size)
-                # one neighbour either side keeps the continuation check across chunk seams
-                a, b = max(lo - 1, 0), min(hi + 1, kp.size)
-                r, fails = _scan_roots(kind, kp[a:b], nu, top, step, rtol, max_depth,
-                                       floor[a:b])
-                roots += r[lo - a:hi - a]
-                failures += [f for f in fails if kp[lo] <= f[1] <= kp[hi - 1]]
-                if progress is not None:
-                    progress(hi - lo)
-            if np.any(small):
-                w0, _ = fundamental_series(f"{kind}0", nu, kp[small])
-                for i, w in zip(np.flatnonzero(small), w0):
-                    roots[i] = np.concatenate([[w], roots[i]])
-                    if w < np.finfo(float).tiny:
-                        failures.append((kind, float(kp[i]), f"{kind}0 underflows ({w:.3g})"))
-            for i, r in zip(positive, roots):
-                per_k[i] = r[r <= omega_max]
+        cut = np.array([w for w, _ in cutoff_frequencies(kind, nu, omega_max)])
+        tiny = np.flatnonzero(kappa <= TINY_KAPPA)
+        if tiny.size:
+            w0, _ = fundamental_series(f"{kind}0", nu, kappa[tiny])
+            for i, w in zip(tiny, w0):
+                per_k[i] = np.concatenate([[w], cut[1:]])
+                if 0 < kappa[i] and w < np.finfo(float).tiny:
+                    failures.append((kind, float(kappa[i]), f"{kind}0 underflows ({w:.3g})"))
+            if progress is not None and np.any(kappa[tiny] > 0):
+                progress(int(np.count_nonzero(kappa[tiny] > 0)))
+        rest = np.flatnonzero(kappa > TINY_KAPPA)
+        for lo in range(0, rest.size, chunk):
+            idx = rest[lo:lo + chunk]
+            roots, fails = _trace_class(kind, kappa[idx], nu, omega_max, rtol, max_iter)
+            failures += fails
+            for i, r in zip(idx, roots):
+                per_k[i] = r[np.isfinite(r)]
+            if progress is not None:
+                progress(idx.size)
         n_br = max(len(r) for r in per_k)
         for j in range(n_br):
             omega[f"{kind}{j}"] = np.array(
                 [r[j] if j < len(r) else np.nan for r in per_k], dtype=float)
-        # a branch that vanishes and reappears in the window away from omega_max is a skip
-        for j in range(n_br):
-            y = omega[f"{kind}{j}"]
-            gone = np.isnan(y)
-            inner = np.flatnonzero(gone[1:-1] & ~gone[:-2] & ~gone[2:]) + 1
-            for i in inner:
-                if max(y[i - 1], y[i + 1]) < omega_max - 4 * step:
-                    failures.append((kind, float(kappa[i]), f"{kind}{j} lost between neighbours"))
     return ExactBranches(kappa, omega, nu, omega_max, list(dict.fromkeys(failures)))
-
 
 def mpmath_error(exact: ExactBranches, count: int = 20, dps: int = 40, seed: int = 0) -> float:
     """Largest relative error of ``count`` random traced roots (kappa > 0) against roots of the
@@ -533,7 +524,8 @@ def tracer_accuracy(nu: float, kappa, omega_max: float = 6.0, settings=None, rep
     """Time and error of :func:`trace_branches` per (step, rtol); see :class:`TracerAccuracy`."""
     import time
 
-    settings = settings or [(s, t) for s in (0.05, 0.2) for t in (1e-4, 1e-6, 1e-9, 1e-12, 1e-15)]
+    # the step only sets the work budget of check_samples since the count needs no scan
+    settings = settings or [(0.05, t) for t in (1e-4, 1e-6, 1e-9, 1e-12, 1e-15)]
     reference = (0.02, 1e-16)
     ref = trace_branches(nu, kappa, omega_max, step=reference[0], rtol=reference[1])
     ref_err = mpmath_error(ref, count=mpmath_points)

@@ -51,6 +51,7 @@ __all__ = [
     "PairedBranches",
     "discrete_mode_shape",
     "discrete_modes",
+    "exact_mode_fields",
     "exact_mode_shape",
     "mac",
     "pair_by_shape",
@@ -60,6 +61,8 @@ __all__ = [
 SAMPLES = np.linspace(-1.0, 1.0, 21)
 #: Below this MAC a pair is not trusted and the error is not reported (NaN).
 MAC_MIN = 0.5
+#: How :func:`exact_mode_fields` scales its fields (headers and captions quote it).
+FIELD_NORMALISATION = "max |u| = 1; stresses in mu max|u| / h; y from the mid-plane"
 
 
 def _profiles(kind: str, P: float, Q: float, y: np.ndarray):
@@ -76,14 +79,8 @@ def _profiles(kind: str, P: float, Q: float, y: np.ndarray):
     return Phi, dPhi, Psi, dPsi
 
 
-def exact_mode_shape(kind: str, kappa: float, Omega: float, nu: float, y=SAMPLES):
-    """:math:`(U_x, U_y)` of the exact mode at a root :math:`(\\kappa, \\Omega)`, unit norm.
-
-    ``y`` in units of h (-1 bottom, 1 top). :math:`u_x = i U_x`: the in-plane displacement
-    lags the transverse one by a quarter period.
-    """
-    nu = float(check_nu(nu))
-    y = np.asarray(y, dtype=float)
+def _amplitudes(kind: str, kappa: float, Omega: float, nu: float):
+    """(A, B), the potentials' amplitudes: a null vector of the traction-free conditions."""
     s = speed_ratio_squared(nu)
     k2, W2 = kappa**2, Omega**2
     P, Q = s * W2 - k2, W2 - k2
@@ -94,6 +91,18 @@ def exact_mode_shape(kind: str, kappa: float, Omega: float, nu: float, y=SAMPLES
     A, B = (b, -a) if a * a + b * b >= c * c + d * d else (d, -c)
     if A == 0 and B == 0:
         A, B = 1.0, 0.0  # kappa = 0 and both rows vanish: a pure longitudinal/shear cut-off
+    return A, B, P, Q
+
+
+def exact_mode_shape(kind: str, kappa: float, Omega: float, nu: float, y=SAMPLES):
+    """:math:`(U_x, U_y)` of the exact mode at a root :math:`(\\kappa, \\Omega)`, unit norm.
+
+    ``y`` in units of h (-1 bottom, 1 top). :math:`u_x = i U_x`: the in-plane displacement
+    lags the transverse one by a quarter period.
+    """
+    nu = float(check_nu(nu))
+    y = np.asarray(y, dtype=float)
+    A, B, P, Q = _amplitudes(kind, kappa, Omega, nu)
     Phi, dPhi, Psi, dPsi = _profiles(kind, P, Q, y)
     ux, uy = kappa * Phi * A + dPsi * B, dPhi * A + kappa * Psi * B
     norm = np.sqrt(np.sum(ux**2 + uy**2))
@@ -103,6 +112,45 @@ def exact_mode_shape(kind: str, kappa: float, Omega: float, nu: float, y=SAMPLES
             (np.zeros_like(y), np.ones_like(y))
         norm = np.sqrt(np.sum(ux**2 + uy**2))
     return ux / norm, uy / norm
+
+
+def exact_mode_fields(kind: str, kappa: float, Omega: float, nu: float, y=SAMPLES) -> dict:
+    """Displacements and stresses of the exact mode through the thickness.
+
+    With :math:`u_x = i U_x e^{i(kx-\\omega t)}`, :math:`u_y = U_y e^{i(kx-\\omega t)}`
+    (y and :math:`U` in units of h), :math:`\\Phi'' = -P\\Phi`, :math:`\\Psi'' = -Q\\Psi` and
+    :math:`\\lambda/\\mu = c_L^2/c_T^2 - 2`:
+
+    .. math::
+
+        \\frac{\\sigma_{xx}}{\\mu} = \\frac{\\lambda}{\\mu}(U_y' - \\kappa U_x)
+            - 2\\kappa U_x, \\quad
+        \\frac{\\sigma_{yy}}{\\mu} = \\frac{\\lambda}{\\mu}(U_y' - \\kappa U_x) + 2 U_y',
+        \\quad \\frac{\\sigma_{xy}}{i\\mu} = U_x' + \\kappa U_y .
+
+    Normalised to :math:`\\max(|U_x|, |U_y|) = 1`; the faces are traction free
+    (:math:`\\sigma_{yy} = \\sigma_{xy} = 0` at :math:`y = \\pm 1`).
+
+    >>> f = exact_mode_fields("A", 1.0, 0.6503451591550, 0.3, [-1.0, 1.0])
+    >>> bool(abs(f["sigma_yy"]).max() < 1e-10 and abs(f["sigma_xy"]).max() < 1e-10)
+    True
+    """
+    nu = float(check_nu(nu))
+    y = np.asarray(y, dtype=float)
+    A, B, P, Q = _amplitudes(kind, kappa, Omega, nu)
+    Phi, dPhi, Psi, dPsi = _profiles(kind, P, Q, y)
+    ddPhi, ddPsi = -P * Phi, -Q * Psi
+    ux, uy = kappa * Phi * A + dPsi * B, dPhi * A + kappa * Psi * B
+    dux, duy = kappa * dPhi * A + ddPsi * B, ddPhi * A + kappa * dPsi * B
+    lam = 1 / speed_ratio_squared(nu) - 2
+    div = duy - kappa * ux
+    scale = max(float(np.max(np.abs(ux))), float(np.max(np.abs(uy))))
+    if not scale > 0:
+        raise InputError(f"no mode shape at kappa={kappa}, Omega={Omega} (zero field)")
+    return {"y": y, "u_x": ux / scale, "u_y": uy / scale,
+            "sigma_xx": (lam * div - 2 * kappa * ux) / scale,
+            "sigma_yy": (lam * div + 2 * duy) / scale,
+            "sigma_xy": (dux + kappa * uy) / scale}
 
 
 def discrete_mode_shape(patch: PlatePatch, x: np.ndarray, y=SAMPLES):

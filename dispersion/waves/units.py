@@ -31,6 +31,7 @@ from typing import TYPE_CHECKING
 
 
 from dispersion.errors import InputError, check_positive
+from dispersion.waves.materials import ALUMINIUM, MATERIALS, Material, material_from_moduli
 
 if TYPE_CHECKING:  # numpy is imported where used: the CLI lists the materials without it
     import numpy as np
@@ -39,68 +40,16 @@ __all__ = [
     "ALUMINIUM",
     "MATERIALS",
     "Material",
+    "NU_TOLERANCE",
     "PhysicalBranches",
+    "check_same_nu",
     "fd_mhz_mm",
+    "frequency_khz",
+    "zgv_in_units",
     "material_from_moduli",
     "physical_branches",
     "rayleigh_speed",
 ]
-
-
-@dataclass(frozen=True)
-class Material:
-    """An isotropic material by its bulk wave speeds (m/s) and, optionally, density (kg/m^3)."""
-
-    c_L: float
-    c_T: float
-    rho: float | None = None
-    name: str = "custom"
-
-    def __post_init__(self):
-        check_positive("c_T", self.c_T)
-        check_positive("c_L", self.c_L)
-        if not self.c_L > self.c_T * math.sqrt(4 / 3):  # nu > -1
-            raise InputError(f"c_L must exceed c_T sqrt(4/3) (nu > -1), got c_L={self.c_L}, "
-                             f"c_T={self.c_T}")
-
-    @property
-    def nu(self) -> float:
-        """Poisson's ratio :math:`(c_L^2 - 2 c_T^2) / (2 (c_L^2 - c_T^2))`."""
-        L2, T2 = self.c_L**2, self.c_T**2
-        return (L2 - 2 * T2) / (2 * (L2 - T2))
-
-    @property
-    def plate_velocity(self) -> float:
-        """S0 speed at :math:`fd \\to 0`: :math:`c_{pl} = 2 c_T \\sqrt{1 - c_T^2/c_L^2}` (m/s)."""
-        return 2 * self.c_T * math.sqrt(1 - (self.c_T / self.c_L) ** 2)
-
-    def as_dict(self) -> dict:
-        """Inputs as plain data (for CSV headers and JSON)."""
-        return {"name": self.name, "c_L [m/s]": self.c_L, "c_T [m/s]": self.c_T,
-                "rho [kg/m^3]": self.rho, "nu": self.nu}
-
-
-def material_from_moduli(E: float, nu: float, rho: float, name: str = "custom") -> Material:
-    """Material from Young's modulus E (Pa), Poisson's ratio and density (kg/m^3).
-
-    :math:`c_T^2 = E / (2 \\rho (1+\\nu))`, :math:`c_L^2 = E (1-\\nu) / (\\rho (1+\\nu)(1-2\\nu))`.
-
-    >>> m = material_from_moduli(70e9, 0.33, 2700.0)
-    >>> round(m.c_T), round(m.nu, 12)
-    (3122, 0.33)
-    """
-    check_positive("E", E)
-    check_positive("rho", rho)
-    if not -1 < nu < 0.5:
-        raise InputError(f"nu must be in (-1, 0.5), got {nu}")
-    c_T = math.sqrt(E / (2 * rho * (1 + nu)))
-    c_L = math.sqrt(E * (1 - nu) / (rho * (1 + nu) * (1 - 2 * nu)))
-    return Material(c_L, c_T, rho, name)
-
-
-#: The Dispersion Calculator's aluminium example (bulk speeds as issue 10 quotes them).
-ALUMINIUM = Material(c_L=6320.0, c_T=3130.0, rho=2700.0, name="aluminium")
-MATERIALS = {"aluminium": ALUMINIUM}
 
 
 def rayleigh_speed(material: Material) -> float:
@@ -128,11 +77,38 @@ def fd_mhz_mm(Omega, material: Material):
     return np.asarray(Omega, dtype=float) * material.c_T / math.pi * 1e-3
 
 
+#: Largest relative difference between two Poisson's ratios taken as the same nu. Rule: the
+#: nu of a material is computed from its speeds in floating point (a few ulps); anything
+#: above 1e-9 is a different material, not round-off.
+NU_TOLERANCE = 1e-9
+
+
+def check_same_nu(nu_branches, material: Material, what: str = "branches") -> float:
+    """Return the material's nu if the branches were computed at it; raise naming both.
+
+    >>> check_same_nu(0.3, ALUMINIUM)
+    Traceback (most recent call last):
+    ...
+    dispersion.errors.InputError: branches computed at nu = 0.3 cannot be combined with aluminium (nu = 0.337506): compute them at the material's nu (e.g. exact_branches(kappa, nu=material.nu))
+    """
+    if nu_branches is None:
+        raise InputError(f"{what} carry no nu: pass nu= (the Poisson ratio they were computed "
+                         f"at) so it can be checked against {material.name} "
+                         f"(nu = {material.nu:.6g})")
+    nu_b = float(nu_branches)
+    if not abs(nu_b - material.nu) <= NU_TOLERANCE * max(abs(material.nu), 1e-3):
+        raise InputError(f"{what} computed at nu = {nu_b:.6g} cannot be combined with "
+                         f"{material.name} (nu = {material.nu:.6g}): compute them at the "
+                         f"material's nu (e.g. exact_branches(kappa, nu=material.nu))")
+    return material.nu
+
+
 @dataclass(frozen=True)
 class PhysicalBranches:
     """Branches in physical units on one kappa grid (arrays per label; NaN where absent).
 
-    ``frequency`` in kHz, ``fd`` in MHz mm, ``phase``/``group`` in m/s, ``wavelength`` in mm.
+    ``frequency`` in kHz, ``fd`` in MHz mm, ``phase``/``group`` in m/s, ``wavelength`` in mm;
+    ``nu`` is the material's, which the branches were checked to share.
     """
 
     material: Material
@@ -146,20 +122,48 @@ class PhysicalBranches:
     UNITS = {"frequency": "kHz", "fd": "MHz mm", "phase": "m/s", "group": "m/s",
              "wavelength": "mm"}
 
+    @property
+    def nu(self) -> float:
+        return self.material.nu
+
+    def title(self) -> str:
+        """Material, thickness and nu, for captions."""
+        return f"{self.material.name}, d = {self.thickness_mm:g} mm, nu = {self.nu:.4f}"
+
+    def curves(self) -> dict[str, dict[str, np.ndarray]]:
+        """Per label, arrays along the kappa grid: ``f`` (kHz), ``fd``, ``c_p``, ``c_g`` (m/s),
+        ``k`` (rad/mm), for :func:`dispersion.plotting.lamb.figure_dispersion`."""
+        with np.errstate(divide="ignore"):
+            k = 2 * math.pi / self.wavelength
+        return {lab: {"f": self.frequency[lab], "fd": self.fd[lab], "c_p": self.phase[lab],
+                      "c_g": self.group.get(lab, np.full(k.shape, np.nan)), "k": k}
+                for lab in self.frequency}
+
 
 def physical_branches(kappa, omega: dict, group: dict | None, material: Material,
-                      thickness_mm: float) -> PhysicalBranches:
+                      thickness_mm: float, *, nu: float | None = None) -> PhysicalBranches:
     """Dimensionless branches (``omega[label]``, ``group[label]`` = dOmega/dkappa) in units.
+
+    One source of nu: the branches must have been computed at the material's Poisson ratio.
+    ``omega`` as returned by the tracer (``ExactBranches.omega``) carries its ``nu``; a
+    plain mapping needs ``nu=``. A mismatch raises :class:`~dispersion.errors.InputError`
+    naming both values (:func:`check_same_nu`).
 
     >>> import numpy as np
     >>> import numpy as np
-    >>> pb = physical_branches(np.array([1.0]), {"S0": np.array([1.6])}, None, ALUMINIUM, 1.0)
+    >>> pb = physical_branches(np.array([1.0]), {"S0": np.array([1.6])}, None, ALUMINIUM, 1.0,
+    ...                        nu=ALUMINIUM.nu)
     >>> round(float(pb.fd["S0"][0]), 4), round(float(pb.wavelength[0]), 4)   # h = 0.5 mm
     (1.5941, 3.1416)
     """
     import numpy as np
 
     check_positive("thickness", thickness_mm)
+    tagged = getattr(omega, "nu", None)
+    if tagged is not None and nu is not None and float(tagged) != float(nu):
+        raise InputError(f"nu = {nu:.6g} given, but the branches were computed at "
+                         f"nu = {float(tagged):.6g}")
+    check_same_nu(tagged if tagged is not None else nu, material)
     kappa = np.asarray(kappa, dtype=float)
     h_m = thickness_mm * 1e-3 / 2
     cT = material.c_T
@@ -170,3 +174,26 @@ def physical_branches(kappa, omega: dict, group: dict | None, material: Material
     fd = {lab: fd_mhz_mm(w, material) for lab, w in omega.items()}
     grp = {lab: g * cT for lab, g in (group or {}).items()}
     return PhysicalBranches(material, float(thickness_mm), freq, fd, phase, grp, wavelength)
+
+
+
+def frequency_khz(Omega, material: Material, thickness_mm: float):
+    """:math:`f = \\Omega c_T / (2\\pi h)` in kHz for a plate of thickness d = 2h (mm)."""
+    return np.asarray(Omega, dtype=float) * material.c_T / (math.pi * thickness_mm)
+
+
+def zgv_in_units(points, material: Material, thickness_mm: float) -> list[dict]:
+    """Zero-group-velocity points (label, kappa, Omega) as dicts in the practitioner's units:
+    ``mode``, ``f [kHz]``, ``fd [MHz mm]``, ``c_p [m/s]``, ``wavelength [mm]``.
+
+    >>> from dispersion.waves.velocities import ZGVPoint
+    >>> zgv_in_units([ZGVPoint("S1", 1.0, 2.0)], ALUMINIUM, 1.0)[0]["c_p [m/s]"]
+    6260.0
+    """
+    out = []
+    for p in points:
+        f = float(frequency_khz(p.omega, material, thickness_mm))
+        out.append({"mode": p.label, "f [kHz]": f, "fd [MHz mm]": f * thickness_mm * 1e-3,
+                    "c_p [m/s]": p.omega / p.kappa * material.c_T,
+                    "wavelength [mm]": math.pi * thickness_mm / p.kappa})
+    return out

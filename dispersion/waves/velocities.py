@@ -3,10 +3,18 @@
 Dimensionless, in units of the shear speed :math:`c_T`: the phase velocity is
 :math:`c_p / c_T = \\Omega / \\kappa` and the group velocity :math:`c_g / c_T = d\\Omega/d\\kappa`.
 
-- Exact branches: implicit differentiation of the Rayleigh-Lamb function,
-  :math:`d\\Omega/d\\kappa = -F_\\kappa / F_\\Omega`
-  (:func:`dispersion.waves.rayleigh_lamb.frequency_slope`); S0 and A0 below
-  :data:`dispersion.waves.exact_branches.SERIES_KAPPA` from the derivative of their series.
+- Exact branches: implicit differentiation of the scaled Rayleigh-Lamb function,
+  :math:`d\\Omega/d\\kappa = -R_\\kappa / R_\\Omega` by the complex step
+  (:func:`dispersion.waves.rayleigh_lamb.scaled_slope`); S0 and A0 below
+  :func:`dispersion.waves.exact_branches.series_switch` (where the series' own error estimate
+  of the slope reaches 1e-14) from the derivative of their series. Each slope carries an error
+  estimate: its sensitivity to the rounding of :math:`\\Omega` (large where a root sits
+  within round-off-sized distances of a Mindlin bound, e.g. a branch leaving its cut-off, or
+  the pair at coincident cut-offs) plus :math:`64\\epsilon |c_g|`. Where that estimate exceeds
+  the tolerance (:data:`VELOCITY_RTOL` relative, :data:`VELOCITY_ATOL` absolute) the root and
+  slope are recomputed in extended precision (:func:`slope_extended`, mpmath at
+  :data:`EXTENDED_DPS` digits, the root bracketed between its two Mindlin bounds); whatever
+  still cannot be certified is listed in :attr:`Velocities.uncertain` with the reason.
 - Discrete branches: from the eigenvector :math:`\\phi` of
   :math:`(K - \\Omega^2 M)\\phi = 0` (Hellmann-Feynman),
 
@@ -15,9 +23,13 @@ Dimensionless, in units of the shear speed :math:`c_T`: the phase velocity is
       \\frac{d\\Omega}{d\\kappa} = \\frac{\\phi^T (K' - \\Omega^2 M') \\phi}{2 \\Omega\\, \\phi^T M \\phi},
 
   with :math:`K', M'` by complex-step differentiation of the same x-functions that build K
-  and M (:func:`dispersion.waves.discrete_branches.pencil_derivative`). Where the float eigenvalue is not
-  accurate (small kappa, see :func:`dispersion.waves.discrete_branches.discrete_branches`) the slope is a
-  central difference of extended-precision eigenvalues.
+  and M (:func:`dispersion.waves.discrete_branches.pencil_derivative`). On the characteristic-
+  polynomial path (:mod:`dispersion.waves.pencil_polynomial`, every small pencil) the same
+  slope comes from implicit differentiation of the exact polynomial,
+  :math:`d\\mu/du = -P_u / P_\\mu`, with an error bound: certified to 1e-12 relative, or the
+  kappa is listed in ``DiscreteBranches.failures`` (near a zero group velocity or a double
+  root, where only an absolute bound holds). Where the float eigenvalue is not accurate and
+  the polynomial path is not available, the eigenvector formula runs in ball arithmetic.
 
 >>> import numpy as np
 >>> from dispersion.waves.exact_branches import trace_branches
@@ -32,24 +44,41 @@ C. Prada, D. Clorennec, D. Royer, J. Acoust. Soc. Am. 124 (2008) 203 (ZGV Lamb m
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
 from dispersion.errors import InputError
-from dispersion.waves.rayleigh_lamb import deflated_frequency_function, frequency_slope
-from dispersion.waves.exact_branches import SERIES_KAPPA, ExactBranches, fundamental_series, trace_branches
+from dispersion.waves.exact_branches import (ExactBranches, fundamental_series, series_region,
+                                             trace_branches)
+from dispersion.waves.rayleigh_lamb import (deflated_frequency_function,
+                                            scaled_slope, speed_ratio_squared)
 
-__all__ = ["Velocities", "ZGVPoint", "exact_velocities", "phase_velocity", "zgv_points"]
+__all__ = ["EXTENDED_DPS", "VELOCITY_ATOL", "VELOCITY_RTOL", "Velocities", "ZGVPoint",
+           "exact_velocities", "phase_velocity", "slope_extended", "zgv_points"]
+
+#: Tolerance of an exact group velocity: relative, or absolute (c_g / c_T) where c_g is near
+#: zero (cut-offs, zero-group-velocity points), whichever is larger.
+VELOCITY_RTOL = 1e-12
+VELOCITY_ATOL = 1e-14
+#: Digits of the extended-precision recomputation: 40, plus 4 per decade of kappa below 1 (the
+#: trivial root of F costs about kappa^-4 of relative accuracy near A0).
+EXTENDED_DPS = 40
 
 
 @dataclass(frozen=True)
 class Velocities:
-    """Phase and group velocity over :math:`c_T` per branch label, on the branches' kappa grid."""
+    """Phase and group velocity over :math:`c_T` per branch label, on the branches' kappa grid.
+
+    ``uncertain``: ``(label, kappa, reason)`` where the group velocity could not be certified to
+    :data:`VELOCITY_RTOL` (or :data:`VELOCITY_ATOL` absolute); empty for discrete branches.
+    """
 
     kappa: np.ndarray
     phase: dict[str, np.ndarray]
     group: dict[str, np.ndarray]
+    uncertain: tuple = ()
 
 
 @dataclass(frozen=True)
@@ -72,27 +101,149 @@ def phase_velocity(kappa, omega) -> np.ndarray:
         return np.where(kappa > 0, omega / np.where(kappa > 0, kappa, 1.0), np.nan)
 
 
+def _removable(kind: str, nu: float) -> bool:
+    """S at nu = 0 (in floating point): S0 = sqrt(2) kappa is the removable Mindlin bound P = 0."""
+    return kind == "S" and speed_ratio_squared(nu) == 0.5
+
+
+def _mp_scaled(kind: str, kappa, W, nu, mp):
+    """The scaled function of :func:`dispersion.waves.rayleigh_lamb.scaled_frequency_function`
+    in its quotient form, in mpmath arithmetic (cot, tan of complex square roots)."""
+    s = (1 - 2 * nu) / (2 * (1 - nu))
+    k2, W2 = kappa**2, W**2
+    P, Q = s * W2 - k2, W2 - k2
+    a = Q - k2
+    p, q = mp.sqrt(mp.mpc(P)), mp.sqrt(mp.mpc(Q))
+    if kind == "S":
+        zP = p * mp.cot(p) if P != 0 else mp.mpf(1)
+        return mp.re((a * a * zP / P + 4 * k2 * q * mp.cot(q)) / W2)
+    return mp.re(-(a * a * mp.tan(p) / p + 4 * k2 * q * mp.tan(q)) / W2)
+
+
+def slope_extended(kind: str, kappa: float, omega: float, nu: float, label_index: int):
+    """Root and group velocity of branch ``kind + label_index`` at ``kappa`` in mpmath.
+
+    The root is bracketed between its two Mindlin bounds (computed in the same precision:
+    the j-th interval of :func:`dispersion.waves.rayleigh_lamb.mindlin_bounds`, 0 below the
+    first) narrowed to :math:`\\Omega (1 \\pm 10^{-10})`, closed by the Anderson-Bjorck method,
+    and the slope is :math:`-R_\\kappa/R_\\Omega` by mpmath's differentiation. Returns
+    ``(Omega, c_g, reason)``, ``reason`` None when certified (the bracket holds one sign change).
+
+    >>> w, cg, why = slope_extended("A", 1e-6, 1.5707963267959473, 0.25, 1)   # A1
+    >>> why is None, round(cg / 1e-6, 9)
+    (True, 2.101157213)
+    """
+    import mpmath as mp
+
+    dps = EXTENDED_DPS + int(4 * max(0.0, -math.log10(kappa)))
+    with mp.workdps(dps):
+        k, n = mp.mpf(kappa), mp.mpf(nu)
+        s = (1 - 2 * n) / (2 * (1 - n))
+        off = 0 if kind == "S" else mp.mpf(1) / 2
+        top = mp.mpf(omega) * 2 + 10
+        bounds = []
+        for scale, first in ((s, 1 if _removable(kind, nu) else 0),
+                             (mp.mpf(1), 1 if kind == "S" else 0)):
+            j = first
+            while True:
+                w = mp.sqrt((k * k + ((j + off) * mp.pi) ** 2) / scale)
+                bounds.append(w)
+                if w > top:
+                    break
+                j += 1
+        bounds.sort()
+        if _removable(kind, nu):
+            s0 = k * mp.sqrt(2)
+            if abs(s0 - omega) <= 1e-15 * s0:
+                return float(s0), math.sqrt(2.0), None
+            # the removable bound S0 shifts the labels of the roots above it by one
+            label_index -= int(omega > s0)
+        lo = mp.mpf(0) if label_index == 0 else bounds[label_index - 1]
+        hi = bounds[label_index]
+        a = max(lo, mp.mpf(omega) * (1 - mp.mpf("1e-10")))
+        b = min(hi, mp.mpf(omega) * (1 + mp.mpf("1e-10")))
+
+        def R(kk, W):
+            return _mp_scaled(kind, kk, W, n, mp)
+
+        try:
+            ra, rb = R(k, a) if a > lo else mp.inf, R(k, b) if b < hi else -mp.inf
+            if not (ra > 0 > rb):
+                return float("nan"), float("nan"), "no sign change of the scaled function " \
+                    "within 1e-10 of the root in extended precision"
+            if a == lo or b == hi:  # a pole at the end: bisect it away first
+                for _ in range(200):
+                    m = (a + b) / 2
+                    rm = R(k, m)
+                    a, b = (m, b) if rm > 0 else (a, m)
+                    if b - a < mp.mpf(10) ** (-dps + 5) * b:
+                        break
+                W = (a + b) / 2
+            else:
+                W = mp.findroot(lambda x: R(k, x), (a, b), solver="anderson")
+            rk = mp.diff(lambda x: R(x, W), k)
+            rw = mp.diff(lambda x: R(k, x), W)
+        except (ValueError, ZeroDivisionError) as exc:
+            return float("nan"), float("nan"), f"extended precision failed: {exc}"
+        return float(W), float(-rk / rw), None
+
+
+def _slope_error(kind, kappa, omega, nu, cg):
+    """Error estimate of :func:`scaled_slope` at a float root (see the module docstring).
+
+    The sensitivity to :math:`\\Omega` is a central difference over a step of 1e-9, or 1/100
+    of the distance to the nearest Mindlin bound if that is less (the slope varies on that
+    scale); a root within 1e-10 of a bound gets no float estimate (infinite error).
+    """
+    from dispersion.waves.exact_branches import _bounds
+
+    bounds = _bounds(kind, kappa, nu, 2 * float(omega.max()) + 10)
+    dist = np.min(np.abs(bounds - omega[:, None]), axis=1) / omega
+    delta = np.minimum(1e-9, 0.01 * dist) * omega
+    up = scaled_slope(kind, kappa, omega + delta, nu)
+    dn = scaled_slope(kind, kappa, omega - delta, nu)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        sens = np.abs(up - dn) / (2 * delta)
+        err = sens * 2 * np.spacing(omega) + 64 * np.finfo(float).eps * np.abs(cg)
+    err[dist < 1e-10] = np.inf
+    return np.where(np.isfinite(err), err, np.inf)
+
+
 def exact_velocities(exact: ExactBranches) -> Velocities:
     """Phase and group velocity of every traced exact branch (see the module docstring)."""
-    k = exact.kappa
-    phase, group = {}, {}
+    k, nu = exact.kappa, exact.nu
+    phase, group, uncertain = {}, {}, []
     for label, w in exact.omega.items():
+        kind, j = label[0], int(label[1:])
         phase[label] = phase_velocity(k, w)
         g = np.full(k.shape, np.nan)
         ok = np.isfinite(w) & (k > 0)
-        g[ok] = frequency_slope(label[0], k[ok], w[ok], exact.nu)
-        if label in ("S0", "A0"):
-            small = ok & (k <= SERIES_KAPPA)
-            if np.any(small):
-                g[small] = fundamental_series(label, exact.nu, k[small])[1]
-            if label == "S0":
-                g[k == 0] = fundamental_series(label, exact.nu, [0.0])[1][0]
-            else:
-                g[k == 0] = 0.0
+        series = np.zeros(k.shape, bool)
+        if j == 0 and not _removable(kind, nu):
+            series = ok & series_region(label, nu, k)
+            if np.any(series):
+                g[series] = fundamental_series(label, nu, k[series])[1]
+            # kappa = 0: S0 moves at the plate speed sqrt(2/(1-nu)) (eq 14), A0 starts flat
+            g[k == 0] = math.sqrt(2 / (1 - nu)) if kind == "S" else 0.0
         else:
             g[(k == 0) & np.isfinite(w)] = 0.0  # cut-offs: Omega is even in kappa
+            if _removable(kind, nu):
+                g[(k == 0) & (w == 0)] = math.sqrt(2.0)
+        rest = np.flatnonzero(ok & ~series)
+        if rest.size:
+            cg = scaled_slope(kind, k[rest], w[rest], nu)
+            err = _slope_error(kind, k[rest], w[rest], nu, cg)
+            g[rest] = cg
+            tol = np.maximum(VELOCITY_RTOL * np.abs(cg), VELOCITY_ATOL)
+            for i in np.flatnonzero(~(err <= tol)):
+                W, cg_x, why = slope_extended(kind, float(k[rest[i]]), float(w[rest[i]]), nu, j)
+                if why is None:
+                    g[rest[i]] = cg_x
+                else:
+                    uncertain.append((label, float(k[rest[i]]), f"{why} (float estimate "
+                                      f"{cg[i]:.12g} +- {err[i]:.1e}; near-double root)"))
         group[label] = g
-    return Velocities(k, phase, group)
+    return Velocities(k, phase, group, tuple(uncertain))
 
 
 def _branch_omega(kind: str, kappa: float, guess: float, nu: float, width: float) -> float:
@@ -136,7 +287,7 @@ def zgv_points(nu: float, kappa_max: float, omega_max: float, count: int = 400) 
                 t = (kk - kappa[i]) / h
                 guess = (1 - t) * w[i] + t * w[i + 1]
                 om = _branch_omega(label[0], kk, guess, nu, width)
-                return float(frequency_slope(label[0], kk, om, nu))
+                return float(scaled_slope(label[0], kk, om, nu))
 
             try:
                 kz = brentq(slope, kappa[i], kappa[i + 1], xtol=1e-14)

@@ -1,0 +1,143 @@
+"""Lamb and SH dispersion curves in the practitioner's units, and mode shapes through the plate.
+
+Drawn from plain data: ``curves`` maps a mode label to arrays ``f`` (kHz), ``fd`` (MHz mm),
+``c_p``, ``c_g`` (m/s) and ``k`` (rad/mm) ordered along the branch
+(:meth:`dispersion.waves.mode_table.ModeTable.curves`,
+:meth:`dispersion.waves.units.PhysicalBranches.curves`); ``zgv`` is a list of dicts with
+``mode``, ``f [kHz]``, ``fd [MHz mm]``, ``c_p [m/s]``, ``wavelength [mm]``; ``cutoffs`` maps
+labels to kHz. The title is the result's own (material, thickness, nu). S modes solid blue, A
+dashed red, SH dotted green; ZGV points black circles, cut-offs triangles on the axis.
+
+>>> import numpy as np
+>>> c = {"S0": {"f": np.array([100.0, 200.0]), "fd": np.array([0.1, 0.2]),
+...             "c_p": np.array([5400.0, 5390.0]), "c_g": np.array([5380.0, 5300.0]),
+...             "k": np.array([0.1, 0.2])}}
+>>> fig = figure_dispersion(c, "aluminium, d = 1 mm, nu = 0.3375")
+>>> [ax.get_xlabel() for ax in fig.axes]
+['fd [MHz mm]', 'fd [MHz mm]', 'f [kHz]']
+"""
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+
+__all__ = ["figure_dispersion", "figure_mode_fields", "plot_curves"]
+
+_STYLE = {"S": ("C0", "-"), "A": ("C3", "--"), "SH": ("C2", ":")}
+_PANELS = (("fd", "c_p", "fd [MHz mm]", "phase velocity c_p [m/s]"),
+           ("fd", "c_g", "fd [MHz mm]", "group velocity c_g [m/s]"),
+           ("f", "k", "f [kHz]", "wavenumber k [rad/mm]"))
+
+
+def _family(label: str) -> str:
+    return label.rstrip("0123456789?")
+
+
+def plot_curves(curves: Mapping, x: str, y: str, ax=None, ymax: float | None = None):
+    """One line per mode of ``curves[label][y]`` against ``[x]``, labelled at its end."""
+    from dispersion.plotting import axes
+
+    ax = axes(ax)
+    for label, d in curves.items():
+        xs, ys = np.asarray(d[x], float), np.asarray(d[y], float)
+        ok = np.isfinite(xs) & np.isfinite(ys)
+        if ymax is not None:
+            ys = np.where(ys <= ymax, ys, np.nan)
+            ok &= np.isfinite(ys)
+        if not np.any(ok):
+            continue
+        colour, ls = _STYLE.get(_family(label), ("k", "-"))
+        ax.plot(xs, ys, color=colour, ls=ls, lw=1.1)
+        i = np.flatnonzero(ok)[-1] if y != "c_p" else np.flatnonzero(ok)[0]
+        ax.annotate(label, (xs[i], ys[i]), fontsize=7, color=colour,
+                    xytext=(2, 2), textcoords="offset points")
+    return ax
+
+
+def figure_dispersion(curves: Mapping, title: str, zgv: Sequence[Mapping] = (),
+                      cutoffs: Mapping | None = None, c_max: float | None = None):
+    """Phase and group velocity against fd, wavenumber against f; ZGV and cut-offs marked.
+
+    ``c_max`` caps the phase-velocity axis (it diverges at each cut-off); default: three
+    times the largest group velocity drawn.
+    """
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(12.0, 4.0), layout="constrained")
+    axs = fig.subplots(1, 3)
+    if c_max is None:
+        cg = [np.nanmax(np.abs(d["c_g"])) for d in curves.values() if len(d["c_g"])]
+        c_max = 3 * max(cg) if cg else None
+    for ax, (x, y, xl, yl) in zip(axs, _PANELS):
+        plot_curves(curves, x, y, ax, ymax=c_max if y == "c_p" else None)
+        ax.set_xlabel(xl)
+        ax.set_ylabel(yl)
+        ax.set_xlim(left=0)
+        if y != "c_g":  # a backward wave (S1 below its cut-off) has c_g < 0: keep it
+            ax.set_ylim(bottom=0)
+        else:
+            ax.axhline(0.0, color="0.7", lw=0.6)
+    fd_per_khz = _fd_per_khz(curves)
+    for p in zgv:
+        axs[1].plot(p["fd [MHz mm]"], 0.0, "o", mfc="none", color="k", ms=6, clip_on=False)
+        axs[1].annotate(f"ZGV {p['mode']}", (p["fd [MHz mm]"], 0.0), fontsize=7,
+                        xytext=(3, 6), textcoords="offset points")
+        axs[0].plot(p["fd [MHz mm]"], p["c_p [m/s]"], "o", mfc="none", color="k", ms=6)
+        axs[2].plot(p["f [kHz]"], 2 * np.pi / p["wavelength [mm]"], "o", mfc="none",
+                    color="k", ms=6)
+    xmax = max((np.nanmax(d["f"]) for d in curves.values() if len(d["f"])), default=None)
+    for label, f_c in (cutoffs or {}).items():
+        if xmax is None or f_c > xmax:
+            continue
+        colour = _STYLE.get(_family(label), ("k", "-"))[0]
+        axs[2].plot(f_c, 0.0, "^", color=colour, ms=5, clip_on=False)
+        if fd_per_khz is not None:
+            axs[1].plot(f_c * fd_per_khz, 0.0, "^", color=colour, ms=5, clip_on=False)
+    axs[2].plot([], [], "^", color="0.4", ms=5, label="cut-off")
+    if zgv:
+        axs[2].plot([], [], "o", mfc="none", color="k", ms=6, label="ZGV point")
+    for fam, (colour, ls) in _STYLE.items():
+        if any(_family(lab) == fam for lab in curves):
+            axs[2].plot([], [], color=colour, ls=ls, label=f"{fam} modes")
+    axs[2].legend(fontsize="small", loc="upper left")
+    fig.suptitle(title, fontsize="medium")
+    return fig
+
+
+def _fd_per_khz(curves: Mapping) -> float | None:
+    for d in curves.values():
+        f, fd = np.asarray(d["f"], float), np.asarray(d["fd"], float)
+        ok = np.isfinite(f) & np.isfinite(fd) & (f > 0)
+        if np.any(ok):
+            return float(fd[ok][0] / f[ok][0])
+    return None
+
+
+def figure_mode_fields(fields: Sequence[Mapping], title: str):
+    """Displacements and stresses through the thickness, one column of panels per root.
+
+    Each entry of ``fields`` has ``"name"`` (caption of the root), ``"y [mm]"`` and any of
+    the displacement (``u_*``) and stress (``sigma_*``) arrays.
+    """
+    from matplotlib.figure import Figure
+
+    n = len(fields)
+    fig = Figure(figsize=(4.2 * max(n, 1), 6.0), layout="constrained")
+    axs = np.atleast_2d(fig.subplots(2, max(n, 1), squeeze=False))
+    for j, fl in enumerate(fields):
+        y = fl["y [mm]"]
+        for key, val in fl.items():
+            if key.startswith("u_"):
+                axs[0, j].plot(val, y, label=key)
+            elif key.startswith("sigma_"):
+                axs[1, j].plot(val, y, label=key)
+        axs[0, j].set_title(fl["name"], fontsize="small")
+        axs[0, j].set_xlabel("displacement / max |u|")
+        axs[1, j].set_xlabel("stress / (mu max|u| / h)")
+        for ax in axs[:, j]:
+            ax.set_ylabel("y [mm]")
+            ax.axvline(0.0, color="0.7", lw=0.6)
+            ax.legend(fontsize="small")
+    fig.suptitle(title, fontsize="medium")
+    return fig

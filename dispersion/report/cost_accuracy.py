@@ -1,0 +1,51 @@
+"""Report section: every mass rule judged on cost and accuracy at once (issue 21).
+
+``measure`` is :func:`dispersion.studies.cost_accuracy.measure`; ``render`` writes
+``cost_accuracy.png`` and a table from the stored JSON, computing nothing.
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+from dispersion.io import save_figure
+from dispersion.studies.cost_accuracy import measure
+
+__all__ = ["measure", "render"]
+
+
+def _pct(x) -> str:
+    return "-" if x is None else f"{100 * x:+.3g} %"
+
+
+def render(data: dict, out: Path) -> str:
+    """Chart and Markdown from the stored result of :func:`measure`."""
+    from dispersion.plotting.cost_accuracy import plot_cost_accuracy
+
+    out = Path(out)
+    ax = plot_cost_accuracy(data)
+    save_figure(ax.figure, out / "cost_accuracy.png", dpi=130)
+    rows = ["| p | mass | n | r | critical step [H/c_T] | cost | S0 error | A0 error | "
+            "S0 semi-discrete | A0 semi-discrete | Pareto |",
+            "|---|---|---|---|---|---|---|---|---|---|---|"]
+    for pt in data["points"]:
+        rows.append(f"| {pt['p']} | {pt['mass']} | {pt['n']} | {pt['r']:g} | "
+                    f"{pt['tau_crit']:.4g} | {pt['cost']:.4g} | {_pct(pt['error_S0'])} | "
+                    f"{_pct(pt['error_A0'])} | {_pct(pt['semi_error_S0'])} | "
+                    f"{_pct(pt['semi_error_A0'])} | {'yes' if pt['pareto'] else ''} |")
+    front = ", ".join(f"p = {pt['p']} {pt['mass']}" for pt in
+                      sorted(data["points"], key=lambda q: q["cost"]) if pt["pareto"])
+    singular = f"contact set {data['contact']}, gamma_s = {data['gamma_s']:g}"
+    return (
+        "## Cost against accuracy of the mass rules\n\n"
+        "![cost against accuracy](cost_accuracy.png)\n\n"
+        f"Bloch plate patch, plane strain, nu = {data['nu']:g}, square elements "
+        f"(n = max(p + 1, 3) control points through the thickness, r = b/H = 2/(n - p)); "
+        f"singular rules: {singular}. Accuracy: signed phase-velocity error of S0 and A0 "
+        f"against the exact Rayleigh-Lamb roots at {data['elements_per_wavelength']} elements "
+        f"per wavelength, fully discrete with central differences at {data['courant']:g} "
+        "times the rule's own critical step (semi-discrete error beside it). Cost: time steps "
+        "per unit time times degrees of freedom per unit area (all 2n DOFs of a cell, the "
+        "massless ones of the singular rules included). Pareto front (cheapest first): "
+        f"{front}.\n\n" + "\n".join(rows) + "\n\n"
+        "Data: `cost_accuracy.json`. Regenerate: `dispersion reproduce --sections "
+        "cost_accuracy`.\n")

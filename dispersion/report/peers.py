@@ -1,0 +1,80 @@
+"""Report section: the Lamb-wave calculators on the package index, side by side with ours.
+
+``measure`` is :func:`dispersion.studies.peers.measure`; ``render`` writes the Markdown
+table from the stored JSON. Peers that are not installed are listed as skipped, peers that
+failed as failed (never timed).
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+from dispersion.studies.peers import measure
+
+__all__ = ["measure", "render", "render_tables"]
+
+_HEAD = ("| task | tool | status | reference roots | found | missed | spurious | "
+         "max rel. error | median rel. error | whole process [s] | time / ours |\n"
+         "|---|---|---|---|---|---|---|---|---|---|---|\n")
+
+
+def _f(x, digits: int = 2) -> str:
+    return "-" if x is None else f"{x:.{digits}g}"
+
+
+def render_tables(data: dict) -> str:
+    """The Markdown table of every task and tool (no recomputation)."""
+    lines = []
+    for task in data["tasks"].values():
+        for tool, row in task["tools"].items():
+            ok = row["status"] == "ok"
+            lines.append(
+                f"| {task['name']} ({task['frequencies']} frequencies) | {tool} | "
+                f"{row['status']} | {task['reference roots']} | "
+                + " | ".join(str(row[k]) if ok else "-" for k in ("found", "missed", "spurious"))
+                + f" | {_f(row.get('max_error'))} | {_f(row.get('median_error'))} | "
+                f"{_f(row.get('seconds'), 3)} | {_f(row.get('time_over_ours'), 3)} |")
+    return _HEAD + "\n".join(lines) + "\n"
+
+
+def summary(data: dict) -> str:
+    """One line per task: who found every reference root, and the time ratios."""
+    out = []
+    for task in data["tasks"].values():
+        parts = []
+        for tool, row in task["tools"].items():
+            if row["status"] != "ok":
+                parts.append(f"{tool} {row['status']}")
+                continue
+            parts.append(f"{tool} {row['found']}/{task['reference roots']} roots, max error "
+                         f"{_f(row['max_error'])}, time/ours {_f(row['time_over_ours'], 3)}")
+        out.append(f"- {task['name']}: " + "; ".join(parts) + ".")
+    return "\n".join(out) + "\n"
+
+
+#: The figure of our modes of the benchmark plate (README links it).
+FIGURE = "lamb_aluminium.png"
+
+
+def render(data: dict, out: Path) -> str:
+    """Markdown of the section, and the figure of our modes, from the stored result."""
+    import numpy as np
+
+    from dispersion.io import save_figure
+    from dispersion.plotting.lamb import figure_dispersion
+
+    c = data["curves"]
+    modes = {lab: {k: np.array([np.nan if x is None else x for x in v], dtype=float)
+                   for k, v in d.items()} for lab, d in c["modes"].items()}
+    fig = figure_dispersion(modes, c["title"], c["zgv"], c["cutoffs [kHz]"])
+    save_figure(fig, Path(out) / FIGURE, dpi=130)
+    m = data["material"]
+    return (
+        "## Side by side: Lamb-wave calculators from the package index\n\n"
+        f"![Lamb and SH modes of the benchmark plate]({FIGURE})\n\n"
+        f"Plate: c_L = {m['c_L [m/s]']:g} m/s, c_T = {m['c_T [m/s]']:g} m/s, "
+        f"d = {m['thickness [mm]']:g} mm. Each tool runs as a whole process in the same "
+        "session (best of the repeats); reference roots are the textbook Rayleigh-Lamb "
+        "equations solved by mpmath at 40 digits from every root any tool found; a root is "
+        "found within 1e-2 in phase velocity (window 0.1-30 km/s). The machine may have been "
+        f"shared: compare ratios, not seconds (Python {data['python']}).\n\n"
+        + summary(data) + "\n" + render_tables(data))

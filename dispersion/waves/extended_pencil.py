@@ -1,0 +1,208 @@
+"""The plate pencil in ball arithmetic: the reference and last resort of the discrete branches.
+
+K and M are formed from the exact matrices of :func:`dispersion.symbolic.plate.stiffness_terms`
+and the exact x-functions (nu rationalised) in arb ball arithmetic (python-flint), projected
+on a basis, massless DOFs condensed, and the eigenvalues of :math:`M^{-1}K` enclosed by
+:meth:`flint.acb_mat.eig`. :mod:`dispersion.waves.discrete_branches` calls it only where
+neither the exact characteristic polynomial nor the float eigen-solver certifies a root.
+
+References
+----------
+F. Johansson, "Arb: efficient arbitrary-precision midpoint-radius interval arithmetic",
+IEEE Trans. Computers 66 (2017) 1281-1292.
+"""
+from __future__ import annotations
+
+import functools
+import math
+import threading
+
+import numpy as np
+import sympy
+
+from dispersion.errors import InputError
+from dispersion.symbolic.plate import (
+    PlatePatch,
+    lame,
+    mass_block,
+    stiffness_terms,
+    x_functions,
+)
+
+__all__ = ["extended_frequencies"]
+
+
+class _Key:
+    """A patch as a cache key (its sympy matrices are not hashable)."""
+
+    def __init__(self, patch: PlatePatch):
+        self.patch = patch
+        # the entries themselves (hashable sympy numbers): never the printed matrix
+        self.key = (patch.p, patch.n, patch.model, patch.r, tuple(patch.My), patch.x_mass)
+
+    def __hash__(self):
+        return hash(self.key)
+
+    def __eq__(self, other):
+        return isinstance(other, _Key) and self.key == other.key
+
+
+def _arb_compile(expr):
+    """A sympy expression in kappa (sums, products, integer powers, rationals, cos, sin) as a
+    function ``k -> arb ball``: the exact formulas of :func:`x_functions`, evaluated without
+    rounding the rational coefficients to floats."""
+    import flint
+
+    if expr.is_Symbol:
+        return lambda k: k
+    if expr.is_Rational:
+        p, q = int(expr.p), int(expr.q)
+        return lambda k: flint.arb(p) / q
+    parts = [_arb_compile(a) for a in expr.args]
+    if expr.is_Add:
+        return lambda k: sum((f(k) for f in parts), flint.arb(0))
+    if expr.is_Mul:
+        def mul(k):
+            out = flint.arb(1)
+            for f in parts:
+                out = out * f(k)
+            return out
+        return mul
+    if expr.is_Pow and expr.exp.is_Integer:
+        e = int(expr.exp)
+        return lambda k: parts[0](k) ** e
+    if isinstance(expr, sympy.cos):
+        return lambda k: parts[0](k).cos()
+    if isinstance(expr, sympy.sin):
+        return lambda k: parts[0](k).sin()
+    raise InputError(f"cannot evaluate {expr} in interval arithmetic")
+
+
+@functools.lru_cache(maxsize=16)
+def _exact_terms(key: _Key, nu: float):
+    """``[(coefficient expr, B)]`` for K, dK/dkappa, M, dM/dkappa (exact sympy data)."""
+    patch = key.patch
+    k = sympy.Symbol("kappa")
+    nu_q = sympy.nsimplify(nu, rational=True)
+    mat, xf = lame(nu_q), x_functions(patch, k)
+    K = [(sympy.sympify(mat[m] * xf[f]), B) for m, f, B in stiffness_terms(patch)]
+    M = [(sympy.sympify(xf["mx"]), mass_block(patch))]
+    return {"K": K, "dK": [(c.diff(k), B) for c, B in K], "M": M,
+            "dM": [(c.diff(k), B) for c, B in M]}
+
+
+def _arb_rational_matrix(B):
+    import flint
+
+    return flint.arb_mat([[flint.arb(int(v.p)) / int(v.q) for v in row] for row in B.tolist()])
+
+
+@functools.lru_cache(maxsize=64)
+def _projected_terms(key: _Key, nu: float, which: str, basis: bytes | None, shape, prec: int):
+    """``[(coefficient expr, E^T B E as arb_mat)]`` at working precision ``prec`` (cached)."""
+    import flint
+
+    n2 = 2 * key.patch.n
+    Ef = np.eye(n2) if basis is None else np.frombuffer(basis).reshape(shape)
+    E = flint.arb_mat(Ef.tolist())
+    Et = E.transpose()
+    return [(_arb_compile(c), Et * _arb_rational_matrix(B) * E)
+            for c, B in _exact_terms(key, nu)[which] if c != 0]
+
+
+def _arb_matrix(key, nu, which, basis, k):
+    import flint
+
+    raw = None if basis is None else np.ascontiguousarray(basis, dtype=float)
+    terms = _projected_terms(key, nu, which, None if raw is None else raw.tobytes(),
+                             None if raw is None else raw.shape, flint.ctx.prec)
+    n = (2 * key.patch.n) if basis is None else np.shape(basis)[1]
+    out = flint.arb_mat(n, n)
+    for f, PB in terms:
+        out += f(k) * PB
+    return out
+
+
+def extended_frequencies(patch: PlatePatch, nu: float, kappa, basis=None,
+                         dps: int = 40, slopes: bool = False):
+    """Finite :math:`\\Omega` of the pencil at one ``kappa`` in ``dps``-digit ball arithmetic.
+
+    The reference (and the fallback) where float eigenvalues lose their relative accuracy:
+    :math:`\\Omega^2` of A0 is about :math:`\\kappa^4`, so at :math:`\\kappa = 10^{-6}` it is
+    1e-24 beside eigenvalues of order one. K and M are formed from the exact matrices of
+    :func:`dispersion.symbolic.plate.stiffness_terms` and the exact x-functions (nu rationalised) in
+    arb ball arithmetic (python-flint), projected on ``basis`` (columns spanning a mirror
+    block, or None), massless DOFs condensed, and the eigenvalues of :math:`M^{-1}K` enclosed
+    by :meth:`flint.acb_mat.eig`. With ``slopes=True`` also :math:`d\\Omega/d\\kappa` of every
+    mode by the eigenvector formula in the same precision (returns ``(Omega, slopes)``).
+
+    >>> from dispersion.symbolic.plate import plate_patch
+    >>> w = extended_frequencies(plate_patch(model="x-exact"), 0.3, 1e-6)
+    >>> float(w[0] / 1e-12)  # A0: Omega ~ sqrt(2 / (3 (1 - nu))) kappa^2 (eq 16)
+    0.9759000729...
+    """
+    with _FLINT_LOCK:  # flint's working precision is process-global
+        return _extended(patch, nu, kappa, basis, dps, slopes)
+
+
+_FLINT_LOCK = threading.Lock()
+
+
+def _extended(patch, nu, kappa, basis, dps, slopes):
+    import flint
+
+    key, nu = _Key(patch), float(nu)
+    old = flint.ctx.prec
+    flint.ctx.prec = 64 * math.ceil((dps * 3.33 + 20) / 64)  # few precisions: cached terms
+    try:
+        k = flint.arb(float(kappa)) if not isinstance(kappa, flint.arb) else kappa
+        K, M = _arb_matrix(key, nu, "K", basis, k), _arb_matrix(key, nu, "M", basis, k)
+        n = K.nrows()
+        zero = [i for i in range(n) if all(M[i, j] == 0 for j in range(n))]
+        keep = [i for i in range(n) if i not in zero]
+        Krr, Mrr = _arb_sub(K, keep, keep), _arb_sub(M, keep, keep)
+        if zero:
+            Krm = _arb_sub(K, keep, zero)
+            Kmm = _arb_sub(K, zero, zero)
+            Krr = Krr - Krm * Kmm.solve(Krm.transpose())
+        A = flint.acb_mat(Mrr.solve(Krr))
+        if slopes:
+            lam, R = A.eig(right=True)
+        else:
+            try:
+                lam = A.eig()
+            except ValueError:  # a multiple eigenvalue (e.g. both rigid modes at kappa = 0)
+                lam = A.eig(nonstop=True)
+                tight = [float(v.rad()) <= 1e-20 * max(abs(float(v.mid())), 1.0)
+                         for v in (x.real for x in lam)]
+                if not all(tight):
+                    raise ValueError("eigenvalue enclosures too wide") from None
+        order = sorted(range(len(lam)), key=lambda j: float(lam[j].real.mid()))
+        roots = [max(lam[j].real.mid(), flint.arb(0)).sqrt() for j in order]
+        W = np.array([float(v) for v in roots])
+        if not slopes:
+            return W
+        dK, dM = _arb_matrix(key, nu, "dK", basis, k), _arb_matrix(key, nu, "dM", basis, k)
+        G = []
+        for j, w in zip(order, roots):
+            x = flint.acb_mat(n, 1)
+            xr = flint.acb_mat([[R[a, j]] for a in range(len(keep))])
+            for a, i in enumerate(keep):
+                x[i, 0] = xr[a, 0]
+            if zero:
+                xm = flint.acb_mat(Kmm).solve(-flint.acb_mat(_arb_sub(K, zero, keep)) * xr)
+                for a, i in enumerate(zero):
+                    x[i, 0] = xm[a, 0]
+            w_ = flint.acb(w)
+            num = (x.transpose() * flint.acb_mat(dK - w * w * dM) * x)[0, 0]
+            den = 2 * w_ * (x.transpose() * flint.acb_mat(M) * x)[0, 0]
+            G.append(float((num / den).real.mid()) if float(w) > 0 else float("nan"))
+        return W, np.array(G)
+    finally:
+        flint.ctx.prec = old
+
+
+def _arb_sub(A, rows, cols):
+    import flint
+
+    return flint.arb_mat([[A[i, j] for j in cols] for i in rows])

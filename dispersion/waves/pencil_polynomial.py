@@ -1,0 +1,497 @@
+"""The characteristic polynomial of the plate pencil, exact in its coefficients, for fast roots.
+
+Every x-function of :func:`dispersion.symbolic.plate.x_functions` is a polynomial in one
+well-conditioned variable :math:`u`:
+
+* x-exact: :math:`u = \\kappa^2` (``m = 1``, ``d = u``, ``s^2 = u``);
+* Bloch: :math:`u = 1 - \\cos\\theta = 2 \\sin^2(\\theta/2)`, :math:`\\theta = \\kappa r`
+  (``cos L theta = T_L(1 - u)``, ``sin L theta = sin theta U_{L-1}(1 - u)``,
+  :math:`\\sin^2\\theta = u (2 - u)`).
+
+The determinant is even in ``s`` (the y-displacements are scaled by i, so ``s`` sits in the
+off-diagonal blocks only), and with the mass factor moved into the eigenvalue,
+:math:`\\mu = \\Omega^2 m_x(u)`,
+
+.. math::
+
+    P(u, \\mu) = \\det\\bigl(K(u) - \\mu M_0\\bigr) = \\sum_{j,k} a_{jk}\\, u^k \\mu^j
+
+has exact rational coefficients :math:`a_{jk}` (nu rationalised by its shortest decimal).
+They are found by exact interpolation on a grid of rational nodes (python-flint
+``fmpq_mat.det``), with a degree bound from the rows of the matrix, so the rigid-body
+cancellation at small kappa is done in exact arithmetic, once per patch: evaluated in
+floats, :math:`P` keeps its relative accuracy where :math:`\\Omega^2 \\sim \\kappa^2` (S0)
+or :math:`\\kappa^4` (A0) sits beside eigenvalues of order one.
+
+Roots are polished by Newton's method on :math:`P(u, \\cdot)` and *certified*: with the
+running error bound :math:`e_P = c\\,\\epsilon \\sum_{jk} |a_{jk}| u^k |\\mu|^j` of the
+evaluation, the disc of radius :math:`\\rho = N (|P| + e_P) / (|P_\\mu| - e_{P_\\mu})`
+about each estimate holds a root (:math:`P_\\mu / P = \\sum_i 1/(\\mu - \\mu_i)`), and N
+pairwise disjoint discs hold all N roots, one each.
+
+>>> from dispersion.symbolic.plate import plate_patch, mirror_bases
+>>> poly = pencil_polynomial(plate_patch(model="x-exact"), 0.3, mirror_bases(3, exact=True)["A"])
+>>> poly.coef.shape   # degree 3 in mu, 3 in u = kappa^2
+(4, 4)
+
+References
+----------
+N. J. Higham, *Accuracy and stability of numerical algorithms*, 2nd ed., 2002, section 5.1
+(running error bound of Horner's rule); P. Henrici, *Applied and computational complex
+analysis* I, 1974, section 6.4 (inclusion discs of polynomial roots).
+"""
+from __future__ import annotations
+
+import functools
+from dataclasses import dataclass
+from fractions import Fraction
+from types import SimpleNamespace
+
+import numpy as np
+
+from dispersion.errors import InputError
+
+__all__ = ["PencilPolynomial", "pencil_polynomial", "u_of_kappa", "certified_roots"]
+
+#: Largest block (rows of the projected pencil) the polynomial path takes. The rule: the
+#: interpolation grid has (degree in u + 1) x (N + 1) exact determinants, and the degree in
+#: u grows like N p; at N = 12 (p = 3, n = 6 unsplit) this is about 700 exact 12 x 12
+#: determinants, a second, once per patch. Larger pencils use the eigen-solver path.
+MAX_BLOCK = 12
+
+_EPS = np.finfo(float).eps
+
+
+@dataclass(frozen=True)
+class PencilPolynomial:
+    """:math:`P(u, \\mu) = \\sum a_{jk} u^k \\mu^j` of one block (``coef[j, k]``, floats).
+
+    ``mx`` holds the coefficients of :math:`m_x(u)` (``Omega^2 = mu / m_x``); ``parity``
+    the pair of coefficient tables of :math:`\\operatorname{tr}(\\operatorname{adj}(K - \\mu M) Q)`
+    and of :math:`\\operatorname{tr}\\operatorname{adj}(K - \\mu M)` (Q the projector on the
+    symmetric mirror subspace), whose ratio at a root is the share of the mode shape in that
+    subspace; None where not asked for.
+    """
+
+    model: str
+    r: float | None
+    coef: np.ndarray
+    mx: np.ndarray
+    parity: tuple[np.ndarray, np.ndarray] | None = None
+    #: Bloch: the same tables in :math:`v = 2 - u = 1 + \cos\theta` (exact Taylor shift),
+    #: used where u > 1 so that the evaluation stays well conditioned up to the zone edge.
+    shifted: dict | None = None
+
+    @property
+    def degree(self) -> int:
+        """Number of finite roots (degree in mu)."""
+        return self.coef.shape[0] - 1
+
+
+def u_of_kappa(model: str, r: float | None, kappa: np.ndarray):
+    """``u``, ``v = 2 - u`` (Bloch; None for x-exact) and ``du/dkappa``, each to a few ulp.
+
+    >>> u_of_kappa("bloch", 2.0, np.array([1e-9]))[0] / 2e-18    # u ~ (kappa r)^2 / 2
+    array([1.])
+    """
+    if model == "x-exact":
+        return kappa * kappa, None, 2 * kappa
+    th = kappa * r
+    half, co = np.sin(0.5 * th), np.cos(0.5 * th)
+    return 2 * half * half, 2 * co * co, r * np.sin(th)
+
+
+def _cheb(L: int, kind: str):
+    """T_L(1 - u) or U_L(1 - u) as a list of Fraction coefficients in u (ascending)."""
+    import flint
+
+    x = flint.fmpq_poly([1, -1])
+    a, b = flint.fmpq_poly([1]), (x if kind == "T" else 2 * x)
+    if L == 0:
+        return a
+    for _ in range(L - 1):
+        a, b = b, 2 * x * b - a
+    return b
+
+
+def _x_polys(model: str, p: int, r: Fraction | None, x_mass):
+    """``m, d, s2, mx`` as flint fmpq_poly in u (see the module docstring); ``x_mass`` is the
+    patch's ``((L, c_L), ...)`` with :math:`m_x = \\sum_L c_L \\cos L\\theta` (Bloch)."""
+    import flint
+
+    from dispersion.symbolic.plate import bloch_coefficients
+
+    one = flint.fmpq_poly([1])
+    u = flint.fmpq_poly([0, 1])
+    if model == "x-exact":
+        return {"m": one, "d": u, "s2": u, "mx": one}
+    c = bloch_coefficients(p)
+    q = flint.fmpq(r.numerator, r.denominator)
+
+    m = sum((_q(v) * _cheb(abs(L), "T") for L, v in c["00"].items()), flint.fmpq_poly([0]))
+    d = sum((_q(v) * _cheb(abs(L), "T") for L, v in c["11"].items()), flint.fmpq_poly([0])) \
+        / (q * q)
+    sh = sum((_q(c["10"][L]) * _cheb(L - 1, "U") for L in range(1, p + 1)),
+             flint.fmpq_poly([0])) * (-2) / q
+    s2 = u * (2 - u) * sh * sh
+    mx = sum((_q(v) * _cheb(abs(L), "T") for L, v in x_mass), flint.fmpq_poly([0]))
+    return {"m": m, "d": d, "s2": s2, "mx": mx}
+
+
+def _q(v):
+    """A sympy Rational (or int) as flint.fmpq."""
+    import flint
+
+    return flint.fmpq(int(v.p), int(v.q)) if hasattr(v, "q") else flint.fmpq(int(v))
+
+
+def _fmpq_mat(rows):
+    import flint
+
+    return flint.fmpq_mat([[_q(v) for v in row] for row in rows])
+
+
+@functools.lru_cache(maxsize=64)
+def _build(key):
+    (p, n, model, r, my, x_mass, nu, basis, parity) = key
+    import flint
+    import sympy
+
+    from dispersion.symbolic.plate import lame, stiffness_terms, thickness_matrices
+
+    Y = thickness_matrices(p, n)
+    n2 = 2 * n
+    My = sympy.Matrix(n, n, list(my))
+    M0 = sympy.diag(My, My)
+    nuq = sympy.Rational(nu.numerator, nu.denominator)
+    mat = lame(nuq)
+    xp = _x_polys(model, p, r, x_mass)
+    E = sympy.eye(n2) if basis is None else sympy.Matrix(len(basis), len(basis[0]),
+                                                         [v for row in basis for v in row])
+    nb = E.shape[1]
+    # the determinant is unchanged by scaling the y-columns by s and the y-rows by 1/s
+    # (module docstring): the upper-right part of each s-term takes s^2, the lower-left 1
+    parts = []
+    for m_, f, B in stiffness_terms(SimpleNamespace(Y=Y, n=n)):
+        if f == "s":
+            UR = sympy.zeros(n2)
+            LL = sympy.zeros(n2)
+            UR[:n, n:] = B[:n, n:]
+            LL[n:, :n] = B[n:, :n]
+            parts.append((xp["s2"], mat[m_], E.T * UR * E))
+            parts.append((flint.fmpq_poly([1]), mat[m_], E.T * LL * E))
+        else:
+            parts.append((xp[f], mat[m_], E.T * B * E))
+    parts = [(poly, _q(c), _fmpq_mat(P.tolist())) for poly, c, P in parts
+             if any(v != 0 for v in P)]
+    Mp = _fmpq_mat((E.T * M0 * E).tolist())
+    # degree bound in u: sum over rows of the largest degree of the terms touching the row
+    row_deg = [0] * nb
+    for poly, _, P in parts:
+        for i in range(nb):
+            if any(P[i, j] != 0 for j in range(nb)):
+                row_deg[i] = max(row_deg[i], poly.degree())
+    du = sum(row_deg)
+    N = nb
+    Q = None
+    if parity:
+        from dispersion.symbolic.plate import mirror_bases
+
+        S = mirror_bases(n, exact=True)["S"]
+        Qs = sympy.zeros(n2)
+        for j in range(S.shape[1]):
+            col = S[:, j]
+            Qs += col * col.T / (col.T * col)[0, 0]
+        Q = _fmpq_mat(Qs.tolist())
+    unodes = [flint.fmpq(k) for k in range(du + 1)]
+    mnodes = [flint.fmpq(-(j + 1)) for j in range(N + 1)]
+    vals = [[None] * (N + 1) for _ in range(du + 1)]
+    tq = [[None] * (N + 1) for _ in range(du + 1)]
+    ti = [[None] * (N + 1) for _ in range(du + 1)]
+    for a, uu in enumerate(unodes):
+        K = flint.fmpq_mat(nb, nb)
+        for poly, c, P in parts:
+            K = K + (c * poly(uu)) * P
+        for b, mu in enumerate(mnodes):
+            A = K - mu * Mp
+            det = A.det()
+            vals[a][b] = det
+            if parity:
+                if det == 0:
+                    raise InputError("singular interpolation node")  # caller falls back
+                Ai = A.inv()
+                tq[a][b] = det * sum((Ai * Q)[i, i] for i in range(nb))
+                ti[a][b] = det * sum(Ai[i, i] for i in range(nb))
+    Vu = flint.fmpq_mat([[uu**k for k in range(du + 1)] for uu in unodes]).inv()
+    Vm = flint.fmpq_mat([[mu**j for j in range(N + 1)] for mu in mnodes]).inv().transpose()
+
+    shift = flint.fmpq_poly([2, -1])   # u = 2 - v
+    shifted = {} if model == "bloch" else None
+
+    def floats(polys):
+        out = np.zeros((len(polys), max(p.degree() for p in polys) + 1 if polys else 1))
+        for j, pj in enumerate(polys):
+            cs = pj.coeffs()
+            out[j, :len(cs)] = [float(c) for c in cs]   # exact zeros stay 0.0
+        return _trim_like(out)
+
+    def solve(name, table):
+        C = Vu * flint.fmpq_mat(table) * Vm   # C[k, j]
+        polys = [flint.fmpq_poly([C[k, j] for k in range(du + 1)]) for j in range(N + 1)]
+        if shifted is not None:
+            shifted[name] = floats([pj(shift) for pj in polys])
+        return floats(polys)
+
+    coef = solve("P", vals)
+    par = None
+    if parity:
+        par = (solve("Q", tq), solve("I", ti))
+    mx = floats([xp["mx"]])[0]
+    if shifted is not None:
+        shifted["mx"] = floats([xp["mx"](shift)])
+    return PencilPolynomial(model, None if r is None else float(r), coef, mx, par, shifted)
+
+
+def _trim_like(c):
+    while c.shape[0] > 1 and not np.any(c[-1]):
+        c = c[:-1]
+    while c.shape[1] > 1 and not np.any(c[:, -1]):
+        c = c[:, :-1]
+    return c
+
+
+def pencil_polynomial(patch, nu: float, basis=None, parity: bool = False) -> PencilPolynomial:
+    """The exact characteristic polynomial of ``patch`` projected on ``basis`` (module docstring).
+
+    ``basis`` is an integer mirror basis (``mirror_bases(n, exact=True)[kind]``) or None
+    (the whole pencil). Cached per patch data, nu and basis; raises :class:`InputError`
+    for blocks larger than :data:`MAX_BLOCK`.
+    """
+    nb = 2 * patch.n if basis is None else basis.shape[1]
+    if nb > MAX_BLOCK:
+        raise InputError(f"pencil block of {nb} rows is larger than MAX_BLOCK = {MAX_BLOCK}")
+    r = None if patch.model != "bloch" else Fraction(str(patch.r))
+    x_mass = ((0, 1),) if patch.model != "bloch" or patch.x_lumped else tuple(patch.x_mass)
+    key = (patch.p, patch.n, patch.model, r, tuple(patch.My), x_mass,
+           Fraction(repr(float(nu))),
+           None if basis is None else tuple(tuple(int(v) for v in basis.row(i))
+                                            for i in range(basis.shape[0])), bool(parity))
+    return _build(key)
+
+
+# Numerics below keep arrays as (rows, points): each Horner step is then a contiguous
+# row-broadcast, several times faster than the (points, rows) layout.
+
+def _horner_u(coef: np.ndarray, u: np.ndarray) -> np.ndarray:
+    """``sum_k coef[:, k] u^k`` for every u: shape (rows of coef, len(u))."""
+    out = np.empty((coef.shape[0], u.size))
+    out[:] = coef[:, -1:]
+    for k in range(coef.shape[1] - 2, -1, -1):
+        out *= u
+        out += coef[:, k:k + 1]
+    return out
+
+
+def _derivative_u(coef: np.ndarray) -> np.ndarray:
+    k = np.arange(coef.shape[1])
+    return (coef * k)[:, 1:] if coef.shape[1] > 1 else np.zeros_like(coef)
+
+
+def _values(poly: PencilPolynomial, name: str, u, v, deriv: bool = False, bars: bool = True):
+    """Values (and absolute sums) of the u-polynomials of table ``name`` ("P", "Q", "I", "mx").
+
+    Where u > 1 (Bloch) the shifted table in v is used; ``deriv`` gives d/du instead.
+    Returns arrays of shape (rows of the table, len(u)).
+    """
+    table = {"P": poly.coef, "mx": poly.mx[None, :]}
+    if poly.parity is not None:
+        table.update(Q=poly.parity[0], I=poly.parity[1])
+    hi = None if v is None or poly.shifted is None else np.flatnonzero(u > 1)
+
+    def run(c, x, sign):
+        if deriv:
+            c = sign * _derivative_u(c)
+        J = c.shape[0]
+        out = _horner_u(np.concatenate([c, np.abs(c)]) if bars else c, x)
+        return out[:J], (out[J:] if bars else None)
+
+    if hi is None or hi.size == 0:
+        return run(table[name], u, 1)
+    lo = np.flatnonzero(u <= 1)
+    val_lo, bar_lo = run(table[name], u[lo], 1)
+    val_hi, bar_hi = run(poly.shifted[name], v[hi], -1)
+    val = np.empty((val_lo.shape[0], u.size))
+    val[:, lo], val[:, hi] = val_lo, val_hi
+    bar = None
+    if bars:
+        bar = np.empty_like(val)
+        bar[:, lo], bar[:, hi] = bar_lo, bar_hi
+    return val, bar
+
+
+def _horner_mu(c: np.ndarray, mu: np.ndarray):
+    """``P`` and ``P_mu`` at ``mu`` (shape (R, points)) from coefficient values (J, points)."""
+    p = np.empty_like(mu)
+    p[:] = c[-1]
+    dp = np.zeros_like(mu)
+    for j in range(c.shape[0] - 2, -1, -1):
+        dp *= mu
+        dp += p
+        p *= mu
+        p += c[j]
+    return p, dp
+
+
+def certified_roots(poly: PencilPolynomial, u: np.ndarray, v, guess: np.ndarray,
+                    rtol: float = 2e-10, iterations: int = 8):
+    """Newton-polished roots ``mu`` (ascending, shape of ``guess`` = (points, R)) and radii.
+
+    The radius is the inclusion bound of the module docstring; ``inf`` where it does not
+    hold (disc overlapping a neighbour, a derivative lost in its error bound, NaN). One
+    Newton step everywhere, up to ``iterations`` more where the radius is above
+    ``rtol * mu`` or the first step was large.
+    """
+    c, cbar = _values(poly, "P", u, v)
+    du, dm = poly.coef.shape[1] - 1, poly.coef.shape[0] - 1
+    # Higham (5.3)-type bounds, doubled: Horner in u (2 du), the error of u (<= 4 ulp,
+    # times du from u^k), the coefficients' rounding, Horner in mu (2 dm)
+    g = 2 * (6 * du + 2 * dm + 4) * _EPS
+    # Newton in the form mu' = (mu P_mu - P) / P_mu, numerator by its own Horner rule:
+    # near mu = 0 it is -c_0 / c_1 without the cancellation of mu - P / P_mu
+    cn = c * (np.arange(c.shape[0]) - 1)[:, None]
+    with np.errstate(all="ignore"):
+        mu0 = _small_guesses(c, np.array(guess, dtype=float).T.copy())
+        mu = _newton(c, cn, mu0)
+        rad = _radius(c, cbar, mu, g, dm)
+        # more steps where the radius is too wide, or where the step was above 1e-9 relative
+        # (quadratic convergence: after a step of size d the error is about d^2 relative)
+        again = np.flatnonzero(np.any(~(rad <= rtol * mu) | ~(np.abs(mu - mu0) <= 1e-9 * mu),
+                                      axis=0))
+        for _ in range(iterations):
+            if not again.size:
+                break
+            m0 = mu[:, again]
+            m = _newton(c[:, again], cn[:, again], m0)
+            mu[:, again] = m
+            rad[:, again] = _radius(c[:, again], cbar[:, again], m, g, dm)
+            again = again[np.any(~(np.abs(m - m0) <= 1e-9 * m), axis=0)]
+        if mu.shape[0] > 1 and not np.all(mu[1:] >= mu[:-1]):
+            order = np.argsort(mu, axis=0)
+            mu = np.take_along_axis(mu, order, 0)
+            rad = np.take_along_axis(rad, order, 0)
+        if mu.shape[0] > 1:
+            clash = np.diff(mu, axis=0) <= rad[1:] + rad[:-1]
+            bad = np.zeros_like(rad, dtype=bool)
+            bad[1:] |= clash
+            bad[:-1] |= clash
+            rad[bad] = np.inf
+    return mu.T, rad.T
+
+
+def _newton(c: np.ndarray, cn: np.ndarray, mu: np.ndarray) -> np.ndarray:
+    """One Newton step ``(sum (j - 1) c_j mu^j) / P_mu`` for every root (one Horner loop)."""
+    p = mu * c[-1]
+    p += c[-2]
+    dp = np.empty_like(mu)
+    dp[:] = c[-1]
+    num = mu * cn[-1]
+    num += cn[-2]
+    for j in range(c.shape[0] - 3, -1, -1):
+        dp *= mu
+        dp += p
+        p *= mu
+        p += c[j]
+        num *= mu
+        num += cn[j]
+    num /= dp
+    return num
+
+
+def _radius(c, cbar, mu, g, dm):
+    """Inclusion radius ``dm (|P| + e_P) / (|P_mu| - e_P')`` (inf where not positive)."""
+    a = np.abs(mu)
+    p = mu * c[-1]
+    p += c[-2]
+    pb = a * cbar[-1]
+    pb += cbar[-2]
+    dp = np.empty_like(mu)
+    dp[:] = c[-1]
+    dpb = np.empty_like(mu)
+    dpb[:] = cbar[-1]
+    for j in range(c.shape[0] - 3, -1, -1):
+        dp *= mu
+        dp += p
+        p *= mu
+        p += c[j]
+        dpb *= a
+        dpb += pb
+        pb *= a
+        pb += cbar[j]
+    den = np.abs(dp) - g * dpb
+    rad = dm * (np.abs(p) + g * pb) / den
+    rad[~(den > 0) | ~np.isfinite(mu)] = np.inf
+    return rad
+
+
+def _small_guesses(c: np.ndarray, mu: np.ndarray) -> np.ndarray:
+    """Replace guesses lost in round-off (below 1e-8 of the largest) by the roots of the
+    truncated polynomial: the rigid-body branches (at most two: u_x and u_y translations)
+    are the roots of :math:`c_0 + c_1\\mu` or :math:`c_0 + c_1\\mu + c_2\\mu^2` to a
+    relative O(u) (the remaining roots are O(1)). Arrays are (rows, points)."""
+    small = mu < 1e-8 * np.max(mu, axis=0)
+    z = small.sum(axis=0)
+    one = np.flatnonzero(z == 1)
+    if one.size:
+        mu[0, one] = -c[0, one] / c[1, one]
+    two = np.flatnonzero(z == 2)
+    if two.size and c.shape[0] > 2:
+        a0, a1, a2 = c[0, two], c[1, two], c[2, two]
+        q = -0.5 * (a1 + np.copysign(np.sqrt(np.maximum(a1 * a1 - 4 * a0 * a2, 0)), a1))
+        r1, r2 = a0 / q, q / a2   # stable quadratic roots (Numerical Recipes 5.6)
+        mu[0, two], mu[1, two] = np.minimum(r1, r2), np.maximum(r1, r2)
+    return mu
+
+
+def mass_factor(poly: PencilPolynomial, u, v) -> np.ndarray:
+    """:math:`m_x(u)`, shape (len(u), 1)."""
+    return _values(poly, "mx", u, v, bars=False)[0].T
+
+
+def slopes(poly: PencilPolynomial, u: np.ndarray, v, dudk: np.ndarray, mu: np.ndarray):
+    """:math:`d\\Omega/d\\kappa` at roots ``mu`` (points, R) and a bound on its absolute error.
+
+    Implicitly :math:`d\\mu/du = -P_u / P_\\mu`; with :math:`\\Omega^2 = \\mu / m_x`,
+    :math:`d\\Omega/d\\kappa = (\\mu_u m_x - \\mu m_x') u_\\kappa / (2 \\Omega m_x^2)`.
+    """
+    du, dm = poly.coef.shape[1] - 1, poly.coef.shape[0] - 1
+    mu = mu.T
+    cu, cub = _values(poly, "P", u, v, deriv=True)
+    c, cb = _values(poly, "P", u, v)
+    with np.errstate(all="ignore"):
+        pu, _ = _horner_mu(cu, mu)
+        pub, _ = _horner_mu(cub, np.abs(mu))
+        _, pm = _horner_mu(c, mu)
+        _, pmb = _horner_mu(cb, np.abs(mu))
+        # the rounding constants of certified_roots without its safety factor 2 (each is a
+        # worst-case bound already, Higham 2002, 3.1 and 5.1)
+        g = (6 * du + 2 * dm + 4) * _EPS
+        mu_u = -pu / pm
+        err_mu_u = (g * pub + np.abs(mu_u) * g * pmb) / np.abs(pm)
+        mx = _values(poly, "mx", u, v, bars=False)[0]
+        mxd = _values(poly, "mx", u, v, deriv=True, bars=False)[0]
+        omega = np.sqrt(mu / mx)
+        fac = dudk / (2 * omega * mx * mx)
+        g_val = (mu_u * mx - mu * mxd) * fac
+        g_err = np.abs(fac) * (err_mu_u * np.abs(mx) + 8 * _EPS * (np.abs(mu_u * mx)
+                                                                   + np.abs(mu * mxd))) \
+            + 8 * _EPS * np.abs(g_val)
+    return g_val.T, g_err.T
+
+
+def parity_share(poly: PencilPolynomial, u: np.ndarray, v, mu: np.ndarray) -> np.ndarray:
+    """Share of each root's mode shape in the symmetric mirror subspace (0..1), (points, R)."""
+    mu = mu.T
+    with np.errstate(all="ignore"):
+        a, _ = _horner_mu(_values(poly, "Q", u, v, bars=False)[0], mu)
+        b, _ = _horner_mu(_values(poly, "I", u, v, bars=False)[0], mu)
+        return (a / b).T

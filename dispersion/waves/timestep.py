@@ -1,0 +1,465 @@
+"""Critical time step of central differences for any mass rule: :math:`\\Delta t_{crit} = 2/\\omega_{max}`.
+
+Central differences are stable for :math:`\\omega_{max} \\Delta t \\le 2` (Hughes 2000, 9.3),
+with :math:`\\omega_{max}` the largest discrete frequency. For a uniform mesh it is the
+largest frequency over the Brillouin zone :math:`\\theta \\in [0, \\pi]` of the Bloch patch:
+
+* the periodic 1D bar (element length h, wave speed c), one branch,
+
+  .. math::
+
+      \\left(\\frac{\\omega h}{c}\\right)^2 = \\frac{d(\\theta)}{m(\\theta)}, \\quad
+      d = \\sum_L c^{11}_L \\cos L\\theta, \\quad m = \\sum_L a_L \\cos L\\theta,
+
+  a rational function of :math:`z = \\cos\\theta` (:math:`\\cos L\\theta = T_L(z)`), maximised
+  *exactly*: at :math:`z = \\pm 1` and the real roots of :math:`d' m - d m'` in (-1, 1)
+  (sympy's exact root isolation); p = 1 gives :math:`h/c` lumped and
+  :math:`h/(\\sqrt 3 c)` consistent.
+* the Bloch plate patch (:func:`dispersion.symbolic.plate.plate_patch`, plane strain), all
+  :math:`2n` branches: exact at the zone ends :math:`\\theta = 0, \\pi` (there the pencil is
+  rational; the largest root of its characteristic polynomial is isolated exactly), and a
+  grid of ``n_theta`` phases refined by bounded maximisation inside. The result says which
+  one gave the maximum (``method``); :func:`certified_omega_max` (``certify=True``) adds a
+  *proven* upper bound within 0.1 % by interval arithmetic, hence a proven stable step.
+  Massless DOFs (singular rules) are condensed,
+  :math:`\\hat K = K_{rr} - K_{rm} K_{mm}^{-1} K_{mr}`, as the explicit scheme solves them.
+
+A finite (non-periodic) mesh has boundary modes: for p >= 2 its :math:`\\omega_{max}` exceeds
+the Bloch value (the "outliers" of Cottrell et al. 2006), so its stable step is smaller;
+:func:`matrix_critical_step` gives it from assembled matrices.
+
+>>> cs = critical_step("lumped", 1, model="bar", wave_speed=1.0, h=1.0)
+>>> cs.omega_max_exact, round(cs.dt, 12), round(cs.ratio, 12)     # h/c, and sqrt(3) vs consistent
+(2, 1.0, 1.732050807569)
+
+References
+----------
+T. J. R. Hughes, *The Finite Element Method*, Dover 2000, sec. 9.3. J. A. Cottrell, A. Reali,
+Y. Bazilevs, T. J. R. Hughes, "Isogeometric analysis of structural vibrations", CMAME 195
+(2006) 5257-5296. T. Belytschko, W. K. Liu, B. Moran, *Nonlinear Finite Elements for Continua
+and Structures*, Wiley 2000, sec. 6.3.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import sympy
+
+from dispersion.errors import InputError, check_positive, check_positive_int
+from dispersion.symbolic.mass_rule import get_rule, x_mass_coefficients
+from dispersion.waves.materials import MATERIALS, Material
+
+__all__ = ["MATERIALS", "MODELS", "EXACT_MAX_DOFS", "MAX_N", "certified_omega_max",
+           "CriticalStep", "bar_omega_squared", "float_pencil",
+           "bar_omega_max", "patch_omega_max", "critical_step", "matrix_critical_step"]
+
+MODELS = ("plate", "bar")
+
+_z = sympy.Symbol("z")
+
+
+def _coefficients(rule, p: int):
+    from dispersion.symbolic.plate import bloch_coefficients
+
+    return bloch_coefficients(p)["11"], dict(x_mass_coefficients(rule, p))
+
+
+def bar_omega_squared(mass, p: int) -> sympy.Expr:
+    """Exact :math:`(\\omega h / c)^2` of the periodic bar as a rational function of :math:`z = \\cos\\theta`.
+
+    >>> sympy.factor(bar_omega_squared("consistent", 1))
+    -6*(z - 1)/(z + 2)
+    """
+    rule = _bar_rule(mass)
+    p = check_positive_int("degree p", p)
+    c11, a = _coefficients(rule, p)
+    d = sum(v * sympy.chebyshevt(abs(L), _z) for L, v in c11.items())
+    m = sum(v * sympy.chebyshevt(abs(L), _z) for L, v in a.items())
+    return sympy.cancel(sympy.expand(d) / sympy.expand(m))
+
+
+def _bar_rule(mass):
+    rule = get_rule(mass)
+    if rule.redistributes or rule.states.zero_rows:
+        raise InputError(f"mass {rule.name!r} redistributes at a contact boundary, which the "
+                         "periodic bar has not (use model='plate')")
+    return rule
+
+
+def bar_omega_max(mass, p: int) -> tuple[sympy.Expr, float]:
+    """Exact :math:`\\max_\\theta \\omega h / c` of the periodic bar and the phase where it is reached.
+
+    >>> bar_omega_max("consistent", 2)      # Cottrell et al. 2006: sqrt(10) at theta = pi
+    (sqrt(10), 3.141592653589793)
+    """
+    f = bar_omega_squared(mass, p)
+    num, den = sympy.fraction(sympy.together(f))
+    crit = sympy.Poly(sympy.expand(sympy.diff(num, _z) * den - num * sympy.diff(den, _z)), _z)
+    candidates = [sympy.Integer(-1), sympy.Integer(1)]
+    if crit.degree() > 0:
+        candidates += [z for z in crit.real_roots() if -1 < z < 1]
+    best, best_val = None, None
+    for z in candidates:
+        val = f.subs(_z, z)
+        num_val = sympy.N(val, 40)
+        if best_val is None or num_val > best_val:
+            best, best_val = z, num_val
+    exact = sympy.sqrt(sympy.nsimplify(f.subs(_z, best)) if best.is_Rational else f.subs(_z, best))
+    return sympy.simplify(exact), float(sympy.acos(best))
+
+
+@dataclass(frozen=True)
+class CriticalStep:
+    """Critical step of central differences for one rule, with what it was computed from.
+
+    ``omega_max`` is dimensionless: :math:`\\omega_{max} h / c` (bar: h the element length,
+    c the wave speed) or :math:`\\omega_{max} H / c_T` (plate: H the half-thickness);
+    ``dt`` is :math:`2 / \\omega_{max}` in seconds for ``h`` (m) and the material; ``ratio``
+    is ``dt`` over the consistent mass's; ``method`` says how the maximum was found.
+    """
+
+    mass: str
+    p: int
+    model: str
+    h: float
+    wave_speed: float
+    omega_max: float
+    omega_max_exact: object
+    theta: float
+    method: str
+    dt: float
+    dt_consistent: float
+    n: int | None = None
+    r: object = None
+    nu: float | None = None
+    material: str | None = None
+    #: Proven upper bound on omega_max (dimensionless, :func:`certified_omega_max`), or None.
+    omega_certified: float | None = None
+
+    @property
+    def ratio(self) -> float:
+        return self.dt / self.dt_consistent
+
+    @property
+    def dt_certified(self) -> float | None:
+        """A proven stable step :math:`2/\\bar\\Omega` in seconds (None if not certified)."""
+        if self.omega_certified is None:
+            return None
+        return self.dt * self.omega_max / self.omega_certified
+
+    def describe(self) -> str:
+        """Lines for a terminal, rendered from the fields."""
+        where = "pi" if abs(self.theta - math.pi) < 1e-12 else f"{self.theta:.6g}"
+        if self.model == "bar":
+            setting = (f"periodic 1D bar, element length h = {self.h:g} m, wave speed "
+                       f"c = {self.wave_speed:g} m/s")
+            unit = "omega_max h / c"
+        else:
+            setting = (f"Bloch plate patch (plane strain, nu = {self.nu:.4g}): n = {self.n} control "
+                       f"points through the thickness, element length h = {self.h:g} m, "
+                       f"aspect ratio r = b/H = {self.r}, c_T = {self.wave_speed:g} m/s")
+            unit = "omega_max H / c_T"
+        shown = str(self.omega_max_exact)
+        # a closed form only where it reads better than the number (a float nu rationalises
+        # to long integers)
+        exact = "" if self.omega_max_exact is None or shown == f"{self.omega_max:.12g}" \
+            or len(shown) > 40 else f" = {shown}"
+        mat = f", material {self.material}" if self.material else ""
+        lines = [
+            f"mass {self.mass}, p = {self.p}{mat}; {setting}",
+            f"{unit} = {self.omega_max:.12g}{exact} at theta = {where} ({self.method})",
+            f"Delta t_crit = 2 / omega_max = {self.dt:.6g} s; ratio to consistent mass "
+            f"= {self.ratio:.6g}",
+        ]
+        if self.omega_certified is not None:
+            lines.append(f"proven: {unit} <= {self.omega_certified:.12g} (interval arithmetic), "
+                         f"so {self.dt_certified:.6g} s is a proven stable step")
+        return "\n".join(lines)
+
+
+def _edge_omega_max(patch, nu, theta) -> tuple[sympy.Expr, float] | None:
+    """Exact largest Omega of the condensed pencil at theta = 0 or pi (rational there)."""
+    from dispersion.symbolic.plate import dynamic_stiffness
+
+    kappa = sympy.Integer(0) if theta == 0 else sympy.pi / patch.r
+    lam = sympy.Symbol("lam")
+    Kd = dynamic_stiffness(patch, kappa, sympy.Integer(0), sympy.nsimplify(nu))
+    Mfull = -(dynamic_stiffness(patch, kappa, sympy.Integer(1), sympy.nsimplify(nu)) - Kd)
+    K, M = sympy.Matrix(Kd).applyfunc(sympy.nsimplify), sympy.Matrix(Mfull).applyfunc(sympy.nsimplify)
+    ml = list(patch.massless)
+    keep = [i for i in range(K.rows) if i not in ml]
+    if ml:
+        Krm, Kmm = K.extract(keep, ml), K.extract(ml, ml)
+        K = K.extract(keep, keep) - Krm * Kmm.inv() * Krm.T
+        M = M.extract(keep, keep)
+    poly = sympy.Poly((K - lam * M).det(method="berkowitz"), lam)
+    roots = poly.real_roots()
+    if not roots:
+        return None
+    top = max(roots, key=lambda v: sympy.N(v, 40))
+    return sympy.sqrt(top), float(sympy.N(sympy.sqrt(top), 20))
+
+
+def float_pencil(patch, nu: float):
+    """``kappa -> (K, M)`` float stacks of :func:`dispersion.symbolic.plate.numeric_pencil`,
+    its constant matrices converted once (the pencil is evaluated many times here)."""
+    from dispersion.errors import check_nu
+    from dispersion.symbolic.plate import lame, mass_block, stiffness_terms, x_functions
+
+    nu = float(check_nu(nu))
+    mat = lame(nu)
+    terms = [(mat[m], f, np.array(B, dtype=float)) for m, f, B in stiffness_terms(patch)]
+    M0 = np.array(mass_block(patch), dtype=float)
+
+    def pencil(kappa):
+        kappa = np.atleast_1d(np.asarray(kappa, dtype=float))
+        xf = x_functions(patch, kappa)
+        K = sum(c * xf[f][:, None, None] * B for c, f, B in terms)
+        return K, xf["mx"][:, None, None] * M0
+
+    return pencil
+
+
+#: Largest pencil (2n DOFs) whose zone-end maximum is certified symbolically. Rule: the
+#: exact characteristic polynomial takes at most about a second (measured, p = 2, HRZ:
+#: 2n = 8 0.29 s, 10 0.61 s, 12 0.88 s, 14 2.0 s on the shared 2-core machine).
+EXACT_MAX_DOFS = 12
+#: Most control points through the thickness for a critical step (as ``dispersion branches``):
+#: the exact patch of p = 2, n = 24 builds and is maximised in about 8 s (measured).
+MAX_N = 24
+
+
+def patch_omega_max(patch, nu: float, n_theta: int = 65, exact: bool = True
+                    ) -> tuple[float, object, float, str]:
+    """Largest :math:`\\Omega` of a numeric Bloch patch over the zone: ``(value, exact, theta, method)``.
+
+    ``exact`` (returned) is a sympy number where the maximum sits at a zone end (else None);
+    ``exact=False`` skips that symbolic check and reports the float maximum of the grid.
+    """
+    from scipy.optimize import minimize_scalar
+
+    from dispersion.waves.discrete_branches import pencil_frequencies
+
+    n_theta = check_positive_int("n_theta", n_theta, minimum=3)
+    if patch.model != "bloch" or isinstance(patch.r, sympy.Symbol):
+        raise InputError("the critical step needs a Bloch patch with a numeric aspect ratio r")
+    r = float(patch.r)
+    pencil = float_pencil(patch, nu)
+
+    def top(theta):
+        K, M = pencil(np.atleast_1d(theta) / r)
+        return pencil_frequencies(K, M, patch.massless)[:, -1]
+
+    theta = np.linspace(0.0, math.pi, n_theta)
+    values = top(theta)
+    i = int(np.argmax(values))
+    best, where = float(values[i]), float(theta[i])
+    if 0 < i < n_theta - 1:  # interior maximum: refine between its grid neighbours
+        res = minimize_scalar(lambda t: -float(top(t)[0]), bounds=(theta[i - 1], theta[i + 1]),
+                              method="bounded", options={"xatol": 1e-12})
+        if -res.fun > best:
+            best, where = float(-res.fun), float(res.x)
+        return best, None, where, f"numeric: grid of {n_theta} phases, bounded refinement"
+    if not exact or 2 * patch.n > EXACT_MAX_DOFS:
+        return best, None, where, f"numeric: grid of {n_theta} phases, maximum at a zone end"
+    edge = _edge_omega_max(patch, nu, 0 if i == 0 else 1)
+    if edge is None or abs(edge[1] - best) > 1e-9 * best:
+        raise InputError("exact and float largest frequency disagree at the zone end; "
+                         "the pencil is ill-conditioned")
+    return edge[1], edge[0], where, f"exact at the zone end (grid of {n_theta} phases found no larger)"
+
+
+def certified_omega_max(patch, nu, omega: float, rtol: float = 1e-3, max_cells: int = 20000
+                        ) -> float:
+    """A proven upper bound :math:`\\bar\\Omega \\le (1 + rtol)\\,\\Omega` on the largest frequency.
+
+    Proof by ball arithmetic (python-flint, 128 bits): on every cell of a cover of the zone
+    :math:`\\theta \\in [0, \\pi]` (the spectrum is even in theta), the matrix
+    :math:`\\bar\\Omega^2 m_x(\\theta) M_0 - \\hat K(\\theta)` (massless DOFs condensed) is
+    shown positive definite for *every* theta in the cell by a Cholesky factorisation in
+    interval arithmetic, whose success proves definiteness of all enclosed symmetric
+    matrices (Rump 2006); failing cells are bisected. Then no frequency exceeds
+    :math:`\\bar\\Omega`, so :math:`2/\\bar\\Omega` is a proven stable step. Nu is
+    rationalised. Raises :class:`InputError` if ``max_cells`` do not suffice.
+
+    References: S. M. Rump, "Verification of positive definiteness", BIT 46 (2006) 433-452.
+
+    >>> from dispersion.symbolic.plate import plate_patch
+    >>> patch = plate_patch(mass="lumped")
+    >>> w = patch_omega_max(patch, 0.3)[0]
+    >>> certified_omega_max(patch, 0.3, w) >= w
+    True
+    """
+    import flint
+
+    from dispersion.symbolic.plate import bloch_coefficients, lame, mass_block, stiffness_terms
+
+    if patch.model != "bloch" or isinstance(patch.r, sympy.Symbol):
+        raise InputError("certification needs a Bloch patch with a numeric aspect ratio r")
+    check_positive("rtol", rtol)
+    max_cells = check_positive_int("max_cells", max_cells)
+    old = flint.ctx.prec
+    flint.ctx.prec = 128
+    try:
+        def q(v):
+            v = sympy.Rational(v)
+            return flint.arb(int(v.p)) / int(v.q)
+
+        def mat(B):
+            return [[q(v) for v in row] for row in B.tolist()]
+
+        n2 = 2 * patch.n
+        ml = list(patch.massless)
+        keep = [i for i in range(n2) if i not in ml]
+        c = bloch_coefficients(patch.p)
+        r = q(patch.r)
+        lam = {k: q(v) for k, v in lame(sympy.nsimplify(nu), scaled=False).items()}
+        terms = [(lam[m], f, mat(B)) for m, f, B in stiffness_terms(patch)]
+        M0 = mat(mass_block(patch))
+        upper = (flint.arb(float(omega)) * (1 + flint.arb(float(rtol)))) ** 2
+        top = float(omega) * (1 + float(rtol))
+
+        def definite(lo: float, hi: float) -> bool:
+            th = flint.arb((lo + hi) / 2, (hi - lo) / 2)
+            xf = {"m": sum((q(v) * (L * th).cos() for L, v in c["00"].items()), flint.arb(0)),
+                  "s": -2 / r * sum((q(c["10"][L]) * (L * th).sin()
+                                     for L in range(1, patch.p + 1)), flint.arb(0)),
+                  "d": sum((q(v) * (L * th).cos() for L, v in c["11"].items()),
+                           flint.arb(0)) / r**2}
+            mx = sum((q(v) * (L * th).cos() for L, v in patch.x_mass), flint.arb(0))
+            K = [[sum((cf * xf[f] * B[i][j] for cf, f, B in terms), flint.arb(0))
+                  for j in range(n2)] for i in range(n2)]
+            if ml:
+                Km = flint.arb_mat([[K[i][j] for j in ml] for i in ml])
+                try:
+                    X = Km.solve(flint.arb_mat([[K[i][j] for j in keep] for i in ml]))
+                except (ValueError, ZeroDivisionError):  # ball too wide to invert: split
+                    return False
+                Khat = [[K[i][j] - sum((K[i][ml[t]] * X[t, b] for t in range(len(ml))),
+                                       flint.arb(0))
+                         for b, j in enumerate(keep)] for i in keep]
+            else:
+                Khat = K
+            D = [[upper * mx * M0[i][j] - Khat[a][b] for b, j in enumerate(keep)]
+                 for a, i in enumerate(keep)]
+            return _interval_cholesky(D)
+
+        cells, count = [(0.0, math.pi + 1e-12)], 0
+        while cells:
+            lo, hi = cells.pop()
+            count += 1
+            if count > max_cells:
+                raise InputError(f"max_cells: {max_cells} cells did not prove Omega <= {top:.12g}"
+                                 " (raise rtol or max_cells)")
+            if not definite(lo, hi):
+                if hi - lo < 1e-12:
+                    raise InputError(f"Omega <= {top:.12g} does not hold near theta = {lo:.9g}")
+                mid = (lo + hi) / 2
+                cells += [(lo, mid), (mid, hi)]
+        return top
+    finally:
+        flint.ctx.prec = old
+
+
+def _interval_cholesky(D) -> bool:
+    """True if the Cholesky factorisation of the symmetric ball matrix D (lower triangle used)
+    succeeds with every pivot certainly positive."""
+    n = len(D)
+    L = [[None] * n for _ in range(n)]
+    for k in range(n):
+        piv = D[k][k] - sum((L[k][j] ** 2 for j in range(k)), 0 * D[k][k])
+        if not piv > 0:
+            return False
+        L[k][k] = piv.sqrt()
+        for i in range(k + 1, n):
+            L[i][k] = (D[i][k] - sum((L[i][j] * L[k][j] for j in range(k)), 0 * D[k][k])) \
+                / L[k][k]
+    return True
+
+
+def critical_step(mass, p: int = 2, *, model: str = "plate", material: Material | str = "steel",
+                  h: float = 1.0, n: int | None = None, wave_speed: float | None = None,
+                  contact: str = "top", gamma_s=sympy.Rational(1, 2), n_theta: int = 65,
+                  certify: bool = False) -> CriticalStep:
+    """Critical step of central differences for rule ``mass`` and its ratio to the consistent mass.
+
+    Parameters
+    ----------
+    mass : str or MassRule
+    p : int
+        Degree, 1 <= p <= 24.
+    model : ``"plate"`` or ``"bar"``
+        ``"plate"``: the Bloch plate patch with ``n`` (default max(p + 1, 3), the singular
+        rules need three) control points through
+        the thickness and square elements of edge ``h`` (m): thickness :math:`2H = (n - p) h`,
+        aspect ratio :math:`r = 2/(n - p)`; Poisson's ratio and :math:`c_T` of ``material``.
+        ``"bar"``: the periodic bar, element length ``h``, wave speed ``wave_speed`` (default
+        the material's bar speed :math:`\\sqrt{E/\\rho} = c_T \\sqrt{2(1+\\nu)}`).
+    material : Material or name in :data:`MATERIALS`
+    contact, gamma_s :
+        Contact set and weight of the singular rules (plate only).
+    certify : bool
+        Plate only: also prove an upper bound on omega_max within 0.1 %
+        (:func:`certified_omega_max`); the bar's maximum is exact already.
+
+    >>> cs = critical_step("hrz", 2, model="bar", wave_speed=1.0)
+    >>> cs.omega_max_exact, round(cs.theta, 6), round(cs.ratio, 6)  # at 2 pi/3; sqrt(10)/sqrt(3/2)
+    (sqrt(6)/2, 2.094395, 2.581989)
+    """
+    if model not in MODELS:
+        raise InputError(f"model must be one of {', '.join(MODELS)}; got {model!r}")
+    if isinstance(material, str):
+        if material not in MATERIALS:
+            raise InputError(f"material must be one of {', '.join(MATERIALS)}; got {material!r}")
+        material = MATERIALS[material]
+    h = float(check_positive("h", h))
+    rule = get_rule(mass)
+    if model == "bar":
+        c = float(check_positive("wave_speed", wave_speed)) if wave_speed is not None \
+            else material.c_T * math.sqrt(2 * (1 + material.nu))
+        exact, theta = bar_omega_max(rule, p)
+        ref, _ = bar_omega_max("consistent", p)
+        w, w_ref = float(exact), float(ref)
+        return CriticalStep(rule.name, p, "bar", h, c, w, exact, theta,
+                            "exact (rational function of cos theta)", 2 * h / (c * w),
+                            2 * h / (c * w_ref),
+                            material=None if wave_speed is not None else material.name)
+    from dispersion.symbolic.plate import check_size, plate_patch
+
+    n = max(p + 1, 3) if n is None else n
+    if isinstance(n, int) and not isinstance(n, bool) and n > MAX_N:  # plate allows N_MAX
+        raise InputError(f"control points n must be an integer in [p + 1, {MAX_N}] for a "
+                         f"critical step, got {n}")
+    p, n = check_size(p, n)
+    r = sympy.Rational(2, n - p)
+    nu = material.nu
+    patch = plate_patch(p, n, "bloch", r, rule, contact, gamma_s)
+    w, exact, theta, method = patch_omega_max(patch, nu, n_theta)
+    w_ref = patch_omega_max(plate_patch(p, n, "bloch", r, "consistent"), nu, n_theta)[0]
+    H = (n - p) * h / 2
+    c = material.c_T
+    proven = certified_omega_max(patch, nu, w) if certify else None
+    return CriticalStep(rule.name, p, "plate", h, c, w, exact, theta, method, 2 * H / (c * w),
+                        2 * H / (c * w_ref), n, r, nu, material.name, proven)
+
+
+def matrix_critical_step(K, M, tol: float = 1e-12) -> float:
+    """:math:`2/\\omega_{max}` of assembled matrices, zero rows of M condensed (free surface).
+
+    >>> round(matrix_critical_step(np.array([[2.0, -1.0], [-1.0, 2.0]]), np.diag([1.0, 0.0])), 9)
+    1.632993162
+    """
+    import scipy.linalg as sla
+    import scipy.sparse as sp
+
+    K = K.toarray() if sp.issparse(K) else np.asarray(K, dtype=float)
+    M = M.toarray() if sp.issparse(M) else np.asarray(M, dtype=float)
+    zero = np.all(np.abs(M) <= tol * np.abs(M).max(), axis=1)
+    r, m = np.flatnonzero(~zero), np.flatnonzero(zero)
+    Kh = K[np.ix_(r, r)]
+    if m.size:
+        Kh = Kh - K[np.ix_(r, m)] @ np.linalg.solve(K[np.ix_(m, m)], K[np.ix_(m, r)])
+    w2 = float(sla.eigh(Kh, M[np.ix_(r, r)], eigvals_only=True)[-1])
+    return 2.0 / math.sqrt(w2) if w2 > 0 else math.inf

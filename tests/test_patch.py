@@ -1,0 +1,111 @@
+"""One patch value: the default patch is the same object through every entry point (issue 22),
+and its labels are rendered from its fields."""
+from __future__ import annotations
+
+import pytest
+
+import dispersion
+from dispersion import defaults
+from dispersion.errors import InputError
+from dispersion.symbolic.patch import Patch, as_patch
+
+DEFAULT = Patch()
+
+
+def test_defaults_are_those_of_dispersion_defaults():
+    assert (DEFAULT.p, DEFAULT.n, DEFAULT.model, DEFAULT.r, DEFAULT.mass, DEFAULT.contact,
+            DEFAULT.gamma_s) == (defaults.P, defaults.N, defaults.MODEL, defaults.R,
+                                 defaults.MASS, defaults.CONTACT, defaults.GAMMA_S)
+
+
+def test_plate_patch_and_the_api_build_the_default_patch():
+    from dispersion.symbolic.plate import plate_patch
+
+    assert plate_patch().spec == DEFAULT
+    assert dispersion.patch() == DEFAULT
+    assert dispersion.patch().plate.spec == DEFAULT
+
+
+def test_discrete_series_derives_the_default_patch(monkeypatch):
+    import dispersion.symbolic.plate as plate
+    from dispersion.symbolic.power_balance import discrete_series
+
+    seen = []
+    original = plate.plate_patch
+    monkeypatch.setattr(plate, "plate_patch", lambda *a, **k: seen.append(original(*a, **k))
+                        or seen[-1])
+    assert discrete_series("S0", 4) == DEFAULT.series("S0", 4)
+    assert seen and all(p.spec == DEFAULT for p in seen)
+
+
+@pytest.mark.parametrize("argv", [["series"], ["series", "--branch", "A0", "--order", "6"]])
+def test_series_command_builds_the_default_patch(argv):
+    from dispersion.cli import build_parser
+    from dispersion.cli.series import _resolve
+
+    assert _resolve(build_parser("series").parse_args(argv)) == DEFAULT
+
+
+def test_branches_command_builds_the_default_patch():
+    from dispersion.cli import build_parser
+    from dispersion.cli.branches import _settings
+
+    s = _settings(build_parser("branches").parse_args(["branches", "--count", "3"]))
+    assert s["patch"] == DEFAULT
+
+
+def test_a_claims_entry_builds_the_default_patch():
+    from dispersion.claims import parse_claims
+
+    claim = parse_claims('[[claim]]\nname = "a"\nbranch = "S0"\nmodel = "bloch"\n'
+                         'coefficients = {2 = "2/(1-nu)"}\n')[0]
+    assert Patch(**claim.model.patch_kwargs()) == DEFAULT
+
+
+def test_series_and_command_line_agree_on_the_same_request():
+    # issue 22: `dispersion series --mass singular --branch A0 --order 6` and
+    # discrete_series('A0', 6, mass='singular') gave different numbers
+    import json
+
+    from dispersion.cli import main
+    from dispersion.symbolic.power_balance import discrete_series
+
+    api = discrete_series("A0", 6, mass="singular")
+    import contextlib
+    import io
+
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        assert main(["series", "--mass", "singular", "--branch", "A0", "--order", "6",
+                     "--format", "json"]) == 0
+    import sympy
+
+    cli = json.loads(out.getvalue())["coefficients"]
+    nu = sympy.Symbol("nu")
+    assert all(sympy.simplify(sympy.sympify(cli[str(k)], locals={"nu": nu}) - v) == 0
+               for k, v in api.items())
+
+
+def test_labels_are_rendered_from_the_fields():
+    p = Patch(mass="singular", r="1/2", gamma_s=0, p=3, n=5)
+    for text in (p.label(), p.title(), "\n".join(p.header_lines())):
+        assert "1/2" in text and "singular" in text and "top" in text
+        assert "3" in text and "5" in text
+    assert "gamma_s" not in Patch().title()  # consistent: contact and gamma_s do not apply
+
+
+def test_round_trip_and_replace():
+    p = Patch(mass="singular", r="1/2", weights={2: {1: "1/2", 0: "1/2"}})
+    assert Patch.from_dict(p.as_dict()) == p
+    assert as_patch(p, mass="lumped").mass == "lumped" and as_patch(p) is p
+    assert p.replace(mass="consistent").replace(mass="singular").gamma_s == p.gamma_s
+
+
+@pytest.mark.parametrize("fields,match", [
+    (dict(p=0), "degree p"), (dict(model="fem"), "model"), (dict(mass="heavy"), "mass"),
+    (dict(gamma_s=2), "gamma_s"), (dict(contact="left"), "contact"),
+    (dict(model="x-exact", r=3), "Bloch model only"), (dict(r=0), "aspect ratio"),
+])
+def test_bad_fields_are_refused(fields, match):
+    with pytest.raises(InputError, match=match):
+        Patch(**fields)

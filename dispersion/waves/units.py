@@ -27,14 +27,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
 
 from dispersion.errors import InputError, check_positive
 from dispersion.waves.materials import ALUMINIUM, MATERIALS, Material, material_from_moduli
 
-if TYPE_CHECKING:  # numpy is imported where used: the CLI lists the materials without it
-    import numpy as np
+import numpy as np
 
 __all__ = [
     "ALUMINIUM",
@@ -62,8 +60,6 @@ def rayleigh_speed(material: Material) -> float:
     >>> round(rayleigh_speed(ALUMINIUM), 1)
     2920.8
     """
-    import numpy as np
-
     eta = (material.c_T / material.c_L) ** 2
     roots = np.roots([1.0, -8.0, 8.0 * (3 - 2 * eta), -16.0 * (1 - eta)])
     real = [r.real for r in roots if abs(r.imag) < 1e-12 and 0 < r.real < 1]
@@ -72,8 +68,6 @@ def rayleigh_speed(material: Material) -> float:
 
 def fd_mhz_mm(Omega, material: Material):
     """Frequency-thickness :math:`f d = \\Omega c_T / \\pi` in MHz mm (Hz m is 1e-3 MHz mm)."""
-    import numpy as np
-
     return np.asarray(Omega, dtype=float) * material.c_T / math.pi * 1e-3
 
 
@@ -150,14 +144,11 @@ def physical_branches(kappa, omega: dict, group: dict | None, material: Material
     naming both values (:func:`check_same_nu`).
 
     >>> import numpy as np
-    >>> import numpy as np
     >>> pb = physical_branches(np.array([1.0]), {"S0": np.array([1.6])}, None, ALUMINIUM, 1.0,
     ...                        nu=ALUMINIUM.nu)
     >>> round(float(pb.fd["S0"][0]), 4), round(float(pb.wavelength[0]), 4)   # h = 0.5 mm
     (1.5941, 3.1416)
     """
-    import numpy as np
-
     check_positive("thickness", thickness_mm)
     tagged = getattr(omega, "nu", None)
     if tagged is not None and nu is not None and float(tagged) != float(nu):

@@ -414,7 +414,8 @@ def run(args) -> int:
     elif args.figure:
         from dispersion.plotting.branches import figure2, plot_exact
 
-        model = args.model + (f", r = {s['r']:g}" if args.model == "bloch" else "")
+        model = args.model + (f", r = {s['r']:g}" if args.model == "bloch" and s["r"] is not None
+                              else "")
         if results:
             from dispersion.studies.branch_study import figure2_data
 

@@ -9,6 +9,13 @@ T = 12 (4 periods). Both codes' histories at x = 0 are compared with the same ex
 total energy from its value at t = 0, % of 1/8), relative L2-in-time errors of u(0), v(0)
 and the contact stress, min gap, wall time of the time loop and of the whole process.
 
+Whole process, side by side (issue 23): ``dispersion impact signorini-1d`` as a user runs it
+(20 elements, dt 0.002, T = 12: 6000 steps; ``python -m dispersion``, JSON to stdout) against
+GetFEM's driver on the same bar, run in turn A B A B ... ``--repeats`` times; wall seconds and
+the children's CPU seconds (``resource.getrusage``) of every run, the median of each and the
+median of the pair-by-pair ratios (GetFEM / ours: above 1, ours is faster). A shared machine
+moves both; the pairing keeps the ratio meaningful.
+
 GetFEM runs in a subprocess of Debian's ``/usr/bin/python3`` (``apt-get install -y
 python3-getfem``) through our driver ``benchmarks/getfem/signorini_1d_getfem.py`` (GetFEM
 assembly, the demo's masses and contact algorithms; see its docstring for why its linear
@@ -18,6 +25,8 @@ from __future__ import annotations
 
 import argparse
 import json
+import resource
+import statistics
 import subprocess
 import sys
 import time
@@ -86,10 +95,55 @@ def run_ours(mass: str, scheme: str, nx: int, dt: float, t_end: float) -> dict:
             "seconds_loop": json.loads(proc.stdout)["loop"], "seconds_process": wall}
 
 
+#: (our mass, our scheme, GetFEM's mass, GetFEM's scheme): the same bar, the nearest schemes.
+PAIRS = (("singular", "explicit", "singular", "explicit"),
+         ("singular", "kane", "singular", "implicit"),
+         ("lumped", "explicit", "lumped", "explicit"),
+         ("lumped", "kane", "lumped", "implicit"))
+
+
+def _timed(cmd: list[str]) -> tuple[float, float]:
+    """Wall and CPU (user + sys of the child) seconds of one run of ``cmd``."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.perf_counter()
+    subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True,
+                   timeout=600)
+    wall = time.perf_counter() - t0
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return wall, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+
+
+def whole_process(nx: int, dt: float, t_end: float, repeats: int) -> list[dict]:
+    """``dispersion impact signorini-1d`` against GetFEM's driver, in turn, per pair."""
+    rows = []
+    for mass, scheme, g_mass, g_scheme in PAIRS:
+        ours = [sys.executable, "-m", "dispersion", "impact", "signorini-1d", "--mass", mass,
+                "--scheme", scheme, "--elements", str(nx), "--dt", str(dt), "--t-end",
+                str(t_end), "--format", "json"]
+        cfg = json.dumps({"NX": nx, "dt": dt, "T": t_end, "mass": g_mass, "scheme": g_scheme})
+        theirs = [PYTHON, str(DRIVER), cfg]
+        _timed(ours), _timed(theirs)  # warm-up: file caches, not counted
+        a, b = [], []
+        for _ in range(repeats):
+            a.append(_timed(ours))
+            b.append(_timed(theirs))
+        rows.append({
+            "ours": f"{mass}/{scheme}", "getfem": f"{g_mass}/{g_scheme}", "runs": repeats,
+            "ours_wall_s": statistics.median(w for w, _ in a),
+            "getfem_wall_s": statistics.median(w for w, _ in b),
+            "ours_cpu_s": statistics.median(c for _, c in a),
+            "getfem_cpu_s": statistics.median(c for _, c in b),
+            "ratio_wall": statistics.median(wb / wa for (wa, _), (wb, _) in zip(a, b)),
+            "ratio_cpu": statistics.median(cb / ca for (_, ca), (_, cb) in zip(a, b))})
+    return rows
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="one period (T = 3) instead of four")
     ap.add_argument("--json", help="also write the rows as JSON to PATH")
+    ap.add_argument("--repeats", type=int, default=7,
+                    help="whole-process runs of each side per pair (default 7)")
     args = ap.parse_args()
     if not getfem_available():
         print(f"GetFEM not available to {PYTHON} (apt-get install -y python3-getfem): skipped")
@@ -130,8 +184,19 @@ def main() -> int:
     print(f"singular, explicit: time loop {g['seconds_loop'] / o['seconds_loop']:.1f}x faster, "
           f"whole process {g['seconds_process'] / o['seconds_process']:.1f}x "
           "(GetFEM / dispersion)")
+    procs = whole_process(nx, dt, 12.0 if not args.quick else t_end, max(1, args.repeats))
+    print(f"\nWhole process, as a user runs it (NX = {nx}, dt = {dt}, "
+          f"{round((12.0 if not args.quick else t_end) / dt)} steps; median of "
+          f"{procs[0]['runs']} runs each, A B A B ...; ratio = GetFEM / ours, pair by pair)")
+    print(f"{'ours':>18} {'GetFEM':>18} {'ours wall':>10} {'GetFEM wall':>12} {'ratio':>6} "
+          f"{'ours cpu':>9} {'GetFEM cpu':>11} {'ratio':>6}")
+    for r in procs:
+        print(f"{r['ours']:>18} {r['getfem']:>18} {r['ours_wall_s']:>10.3f} "
+              f"{r['getfem_wall_s']:>12.3f} {r['ratio_wall']:>6.2f} {r['ours_cpu_s']:>9.3f} "
+              f"{r['getfem_cpu_s']:>11.3f} {r['ratio_cpu']:>6.2f}")
     if args.json:
-        Path(args.json).write_text(json.dumps(rows, indent=1) + "\n")
+        Path(args.json).write_text(json.dumps({"accuracy": rows, "whole_process": procs},
+                                              indent=1) + "\n")
     return 0
 
 

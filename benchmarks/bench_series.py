@@ -30,12 +30,14 @@ def _print_tables(result) -> None:
     print("kappa^K  ours-process  lean-entry  maxima-process  ratio | ours-compute  "
           "maxima-compute  ratio | peak MiB ours/maxima  agree")
     for p in result.race:
-        ratio = (p.maxima_process_s / p.ours_process_s) if p.maxima_process_s else None
-        cratio = (p.maxima_compute_s / p.ours_compute_s) if p.maxima_compute_s else None
+        ok = p.maxima_status == "ok"  # a failed peer run is never timed
+        ratio = (p.maxima_process_s / p.ours_process_s) if ok else None
+        cratio = (p.maxima_compute_s / p.ours_compute_s) if ok and p.maxima_compute_s else None
         print(f"{p.order:7d}  {_s(p.ours_process_s):>12}  {_s(p.ours_lean_process_s):>10}  "
               f"{_s(p.maxima_process_s):>14}  {_s(ratio):>5} | {_s(p.ours_compute_s):>12}  "
               f"{_s(p.maxima_compute_s):>14}  {_s(cratio):>5} | "
-              f"{_s(p.ours_peak_mib)}/{_s(p.maxima_peak_mib)}  {p.agree}")
+              f"{_s(p.ours_peak_mib)}/{_s(p.maxima_peak_mib)}  "
+              f"{p.agree if p.maxima_status != 'failed' else 'FAILED: ' + p.maxima_error}")
     print("\nmass        p  n    seconds")
     for q in result.scaling:
         print(f"{q.mass:10s} {q.p:2d} {q.n:2d}  {q.seconds:.3g}")
@@ -50,11 +52,13 @@ def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true")
     parser.add_argument("--out", type=Path, default=None)
+    parser.add_argument("--repeats", type=int, default=3,
+                        help="runs of each side of the race, in turn (medians)")
     parser.add_argument("--textbook", type=float, default=None, metavar="S",
                         help="seconds per branch for the textbook sympy route (off by default)")
     args = parser.parse_args(argv)
     start = time.perf_counter()
-    result = measure(quick=args.quick, extended=not args.quick)
+    result = measure(quick=args.quick, extended=not args.quick, repeats=max(1, args.repeats))
     _print_tables(result)
     if args.out is not None:
         print("wrote", save(args.out / "series_speed.json", "series_speed", result,

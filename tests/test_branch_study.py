@@ -14,6 +14,8 @@ from dispersion.report.branches import render
 from dispersion.results import dumps
 
 NU = 0.3
+PATCH = {"p": 2, "n": 3, "model": "bloch", "r": "7/3", "mass": "consistent", "contact": "top",
+         "gamma_s": "0"}
 
 
 @pytest.fixture(scope="module")
@@ -31,8 +33,15 @@ def small_study() -> dict:
         "exact": fig2["exact"], "exact_failures": [], "discrete": fig2["discrete"],
         "mpmath_error": 1e-16, "mpmath_points": 1,
         "zgv": [{"label": "S1", "kappa": 0.84, "omega": 2.73}],
-        "orders": [{"mass": "consistent", "branch": "S0", "fitted": 4.0, "max_log_residual": 0.01,
-                    "monotone": True, "series": 4}],
+        "orders": [{"patch": PATCH, "mass": "consistent", "branch": "S0", "points": 5,
+                    "series_order": 4, "series_leading_coefficient": -0.0125,
+                    "window": [0.05, 0.3], "fitted": 4.04, "max_log_residual": 0.01,
+                    "series_slope": 4.04, "verdict": "fitted"},
+                   {"patch": dict(PATCH, mass="singular"), "mass": "singular", "branch": "A0",
+                    "points": 0,
+                    "series_order": 2, "series_leading_coefficient": 0.0043,
+                    "window": None, "fitted": None, "max_log_residual": None,
+                    "series_slope": None, "verdict": "no window: (test)"}],
         "per_wavelength": {"r": 2.0, "elements_per_wavelength": [4.0, 40.0],
                            "curves": [{"p": 2, "n": 3, "mass": "consistent", "branch": "S0",
                                        "error": [1e-3, 1e-7]}]},
@@ -117,3 +126,16 @@ def test_tracer_accuracy_reference_is_checked_against_mpmath():
     assert acc.reference_mpmath_error < 1e-14
     loose, tight = acc.rows
     assert tight["error"] < 1e-11 < loose["error"] < 1e-5
+
+
+def test_order_tables_are_headed_by_the_patch_the_result_carries(small_study):
+    from dispersion.report.branches import summary
+
+    text = summary(small_study)
+    # the fixture's patch has r = 7/3, a value no code path types: the heading must come
+    # from the stored fields
+    assert text.count("**Bloch r = b/h = 7/3, p = 2, n = 3**") == 1  # one table per geometry
+    assert "r = b/h = 1/2" not in text and "r = 2" not in text
+    rows = [ln for ln in text.splitlines()
+            if ln.startswith("| singular (contact top, gamma_s = 0) | A0")]
+    assert len(rows) == 1 and "none: no window" in rows[0] and "| empty |" in rows[0]

@@ -30,6 +30,10 @@ def register(subparsers) -> None:
     parser.add_argument("--budget", type=_budget, default=120.0,
                         help="seconds allowed to each child process, in (0, 600]")
     parser.add_argument("--maxima", default="maxima", help="maxima executable")
+    parser.add_argument("--repeats", type=int, choices=range(1, 11), default=None,
+                        metavar="{1..10}",
+                        help="runs of each side of the race, in turn, medians reported "
+                             "(default: 3, --quick: 1)")
     parser.add_argument("--format", choices=("text", "json"), default="text",
                         help="what goes to stdout: the Markdown tables or the JSON record")
     parser.add_argument("--out", default=None, metavar="DIR",
@@ -54,8 +58,9 @@ def handler(args: argparse.Namespace) -> int:
 
         require_matplotlib("bench --out (its chart)")
     start = time.perf_counter()
+    repeats = args.repeats or (1 if args.quick else 3)
     result = measure(quick=args.quick, timeout=args.budget, maxima=args.maxima,
-                     extended=not args.quick)
+                     extended=not args.quick, repeats=repeats)
     seconds = time.perf_counter() - start
     from dispersion.results import dumps, envelope, jsonable
 

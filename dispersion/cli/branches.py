@@ -420,7 +420,9 @@ def run(args) -> int:
 
             data, _ = figure2_data(nu, kappa, args.omega_max, patches, exact=exact,
                                    velocities=vel, discrete=dict(results))
-            fig = figure2(data, title=caption(inputs))
+            specs = [pt.spec for pt in patches.values()]
+            fig = figure2(data, title=f"nu = {nu:g}, {specs[0].geometry_title()}; "
+                                      + ", ".join(sp.mass_title() for sp in specs))
         else:
             fig = plot_exact(kappa, exact.omega, args.omega_max)
             fig.axes[0].set_title(caption(inputs), fontsize="small")

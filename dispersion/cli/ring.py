@@ -74,7 +74,7 @@ def register(sub) -> None:
                        description="Quarter ring (one quadratic NURBS patch) bouncing on a "
                                    "rigid frictionless plane; reconstructed scenario (see "
                                    "dispersion.contact.scenario). Every default below is the "
-                                   "default scene.")
+                                   "default scene. " + _stability_note())
     p.add_argument("--mass", choices=MASS_VARIANTS, default="singular",
                    help="mass variant (default: singular)")
     p.add_argument("--scheme", choices=("kane", "standard", "explicit"), default="kane",
@@ -113,6 +113,12 @@ def scenario_from(args) -> Scenario:
     return replace(DEFAULT, **changes).with_level(args.level)
 
 
+def _stability_note() -> str:
+    from dispersion.contact.energy_balance import STABILITY_NOTE
+
+    return STABILITY_NOTE
+
+
 def run(args) -> int:
     from dispersion.contact.simulate import simulate_ring
     from dispersion.io import check_output_dir
@@ -135,6 +141,9 @@ def run(args) -> int:
     finally:
         if bar is not None:
             bar.close()
+    if res.summary.get("energy_flag"):
+        print(f"warning: ring ({args.mass} mass, {args.scheme}): {res.summary['energy_flag']}; "
+              "the figures of this run are not a result", file=sys.stderr)
     if out is not None:
         import io
 
@@ -157,5 +166,6 @@ def run(args) -> int:
               f"{s['energy_change_percent']:+.3f} %, max penetration "
               f"{s['max_penetration_greville']:.2e} m at the Greville points, "
               f"{s['max_penetration']:.2e} m between them, {s['contact_events']} contact "
-              f"events, rotation {s['final_rotation_deg']:.1f} deg")
+              f"events, rotation {s['final_rotation_deg']:.1f} deg"
+              + (" [UNSTABLE: energy grows; not a result]" if s.get("energy_flag") else ""))
     return 0

@@ -41,7 +41,11 @@ class _Default:
         return getattr(defaults, self.name)
 
     def __str__(self) -> str:
-        return str(self.value())
+        if self.literal is not None:
+            return str(self.literal)
+        from dispersion import defaults
+
+        return defaults.text(self.name)  # the help text: no sympy
 
 
 def _integer(name: str, valid):

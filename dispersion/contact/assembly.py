@@ -38,9 +38,10 @@ import numpy as np
 import scipy.sparse as sp
 
 from dispersion.errors import InputError
-from dispersion.symbolic.mass import contact_weights, mass_variant, redistribution_matrix
+from dispersion.symbolic.mass import mass_variant
 from dispersion.contact.material import StVenantKirchhoff
 from dispersion.contact.nurbs import RingPatch, SplineBasis1D
+from dispersion.contact.redistribution import float_redistribution
 
 __all__ = [
     "Discretization",
@@ -256,17 +257,6 @@ def consistent_mass(disc: Discretization, rho: float) -> sp.csr_matrix:
     cols = np.tile(disc.conn, (1, nf)).ravel()
     n = disc.n_points
     return sp.csr_matrix((Me.ravel(), (rows, cols)), shape=(n, n))
-
-
-def float_redistribution(n: int, contact: str, gamma_s: float) -> np.ndarray:
-    """Float redistribution matrix of :func:`dispersion.symbolic.mass.redistribution_matrix` across ``n``
-    functions, contact set ``contact`` (``"top"``: index n-1, ``"bottom"``: index 0).
-
-    >>> float_redistribution(3, "bottom", 0.5).tolist()
-    [[0.0, 0.5, 0.5], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
-    """
-    R = redistribution_matrix(n, contact_weights(n, contact, gamma_s))
-    return np.array(R.tolist(), dtype=float)
 
 
 def patch_redistribution(patch: RingPatch, side: str = "eta1",

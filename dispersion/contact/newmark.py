@@ -44,18 +44,20 @@ stable for :math:`\\omega_{max} \\Delta t \\le 2`).
 """
 from __future__ import annotations
 
+import sys
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
-import scipy.linalg as sla
-import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 
 from dispersion.errors import ConvergenceError, InputError, check_positive, check_positive_int
 
-__all__ = ["SCHEMES", "DENSE_MAX", "ContactProblem", "History", "Newmark", "State",
-           "critical_step", "consistent_state", "integrate", "step"]
+if TYPE_CHECKING:
+    import scipy.sparse as sp
+
+__all__ = ["SCHEMES", "DENSE_MAX", "RING_SCHEMES", "ContactProblem", "History", "Newmark",
+           "State", "critical_step", "consistent_state", "integrate", "newmark_for", "step"]
 
 SCHEMES = ("kane", "standard")
 
@@ -67,6 +69,20 @@ SCHEMES = ("kane", "standard")
 DENSE_MAX = 64
 #: Largest problem whose mass and constraint matrices are kept dense for products.
 _MATVEC_DENSE_MAX = 400
+
+
+def _issparse(A) -> bool:
+    """True for a scipy.sparse matrix; never imports scipy (such a matrix means it is loaded).
+
+    A problem given as numpy arrays (the 1D bar up to a few hundred DOFs) runs on numpy alone:
+    scipy's import costs more than a whole small run.
+    """
+    sp = sys.modules.get("scipy.sparse")
+    return sp is not None and sp.issparse(A)
+
+
+def _dense(A) -> np.ndarray:
+    return A.toarray() if _issparse(A) else np.asarray(A, dtype=float)
 
 
 @dataclass(frozen=True)
@@ -134,6 +150,20 @@ class Newmark:
         return self.beta == 0
 
 
+#: Time integrators by name: Kane's contact-modified Newmark, standard Newmark, explicit
+#: central differences (beta = 0, Kane's contact impulse).
+RING_SCHEMES = ("kane", "standard", "explicit")
+
+
+def newmark_for(scheme: str, **kwargs) -> Newmark:
+    """:class:`~.newmark.Newmark` of the scheme named ``scheme`` (see :data:`RING_SCHEMES`)."""
+    if scheme not in RING_SCHEMES:
+        raise InputError(f"scheme must be one of {', '.join(RING_SCHEMES)}; got {scheme!r}")
+    if scheme == "explicit":
+        return Newmark(beta=0.0, gamma=0.5, scheme="kane", **kwargs)
+    return Newmark(scheme=scheme, **kwargs)
+
+
 @dataclass
 class State:
     """Displacement, velocity, internal and contact accelerations, contact forces ``lam`` at
@@ -189,13 +219,17 @@ class _Solver:
 
     def matrix(self, A):
         if self.dense:
-            return A.toarray() if sp.issparse(A) else np.asarray(A)
+            return _dense(A)
+        import scipy.sparse as sp
+
         return sp.csc_matrix(A)
 
     def solve(self, A, b):
         try:
             if self.dense:
                 return np.linalg.solve(A, b)
+            import scipy.sparse.linalg as spla
+
             return spla.spsolve(A, b)
         except (RuntimeError, np.linalg.LinAlgError, ValueError) as exc:  # SuperLU, LAPACK
             raise ConvergenceError(f"singular or non-finite step matrix ({exc}); the scene's "
@@ -205,8 +239,10 @@ class _Solver:
         try:
             if self.dense:
                 # a few dozen unknowns: one product with the inverse beats any solve call
-                inv = np.linalg.inv(A.toarray() if sp.issparse(A) else A)
+                inv = np.linalg.inv(_dense(A))
                 return lambda b: inv @ b
+            import scipy.sparse.linalg as spla
+
             return spla.splu(A).solve
         except (RuntimeError, np.linalg.LinAlgError, ValueError) as exc:  # SuperLU, LAPACK
             raise ConvergenceError(f"singular or non-finite step matrix ({exc}); the scene's "
@@ -217,6 +253,11 @@ class _Split:
     """Massive / massless DOF split and a factorization of the massive block of ``M``."""
 
     def __init__(self, prob: ContactProblem, nm: Newmark):
+        if not (_issparse(prob.M) or _issparse(prob.G)):
+            self._init_dense(prob, nm)
+            return
+        import scipy.sparse as sp
+
         M = sp.csr_matrix(prob.M)
         rowmax = np.asarray(abs(M).max(axis=1).todense()).ravel()
         self.massless = np.flatnonzero(rowmax <= 1e-14 * rowmax.max())
@@ -243,6 +284,29 @@ class _Split:
         self.Gd = G.toarray() if small else None
         self.f_ext = np.zeros(prob.n) if prob.f_ext is None else np.asarray(prob.f_ext, float)
         self.rows = np.zeros(prob.n, bool)  # rows whose internal force is implicit (explicit)
+        self.rows[self.massless] = True
+
+    def _init_dense(self, prob: ContactProblem, nm: Newmark):
+        """The same split for a problem given as numpy arrays (no scipy)."""
+        M = np.asarray(prob.M, dtype=float)
+        G = np.asarray(prob.G, dtype=float).reshape(-1, M.shape[0])
+        rowmax = np.abs(M).max(axis=1)
+        self.massless = np.flatnonzero(rowmax <= 1e-14 * rowmax.max())
+        self.massive = np.setdiff1d(np.arange(M.shape[0]), self.massless)
+        Mmm = M[np.ix_(self.massive, self.massive)]
+        self.diagonal = not np.any(Mmm - np.diag(np.diag(Mmm)))
+        if self.diagonal:
+            d = np.diag(Mmm).copy()
+            self.solve = lambda b: b / d
+        else:
+            solver = _Solver(Mmm.shape[0], nm)
+            self.solve = solver.factor(solver.matrix(Mmm))
+        # a constraint that acts only on massless DOFs carries lambda = mu (eq 12)
+        self.only_massless = np.array([bool(np.all(np.isin(np.flatnonzero(row), self.massless)))
+                                       for row in G], dtype=bool)
+        self.M, self.Md, self.G, self.Gd = M, M, G, G
+        self.f_ext = np.zeros(prob.n) if prob.f_ext is None else np.asarray(prob.f_ext, float)
+        self.rows = np.zeros(prob.n, bool)
         self.rows[self.massless] = True
 
     def a_int(self, f: np.ndarray) -> np.ndarray:
@@ -274,14 +338,22 @@ class _Linear:
     """Factorized step matrix ``c1 M + P K`` and its response to the constraints (linear)."""
 
     def __init__(self, prob: ContactProblem, split: _Split, nm: Newmark, c1: float):
-        K = sp.csr_matrix(prob.K)
-        if nm.explicit:
-            K = sp.diags(split.rows.astype(float)) @ K
-        A = (c1 * split.M + K).tocsc()
+        if _issparse(split.M):
+            import scipy.sparse as sp
+
+            K = sp.csr_matrix(prob.K)
+            if nm.explicit:
+                K = sp.diags(split.rows.astype(float)) @ K
+            A = (c1 * split.M + K).tocsc()
+        else:
+            K = _dense(prob.K)
+            if nm.explicit:
+                K = split.rows.astype(float)[:, None] * K
+            A = c1 * split.M + K
         solver = _Solver(prob.n, nm)
         self.solve = solver.factor(solver.matrix(A))
         G = split.G
-        self.W = self.solve(split.G.T.toarray()) if G.shape[0] else np.zeros((prob.n, 0))
+        self.W = self.solve(_dense(split.G).T) if G.shape[0] else np.zeros((prob.n, 0))
         self.S = G @ self.W
         self.K = K
 
@@ -360,14 +432,16 @@ class _Tangent:
         solver = _Solver(n, nm)
         K = prob.internal(U)[1]
         if solver.dense:
-            K = K.toarray() if sp.issparse(K) else np.asarray(K)
-            M = split.M.toarray()
+            K = _dense(K)
+            M = _dense(split.M)
             if mask is not None:
                 K = K * mask[:, None]
             A = c1 * M + K
             if keep is not None:
                 A = A * keep[:, None] + np.diag(1 - keep)
         else:
+            import scipy.sparse as sp
+
             K = sp.csr_matrix(K)
             if mask is not None:
                 K = sp.diags(mask) @ K
@@ -380,7 +454,7 @@ class _Tangent:
             d = np.diag(A) if solver.dense else A.diagonal()
             self.c_ncp = float(np.abs(d).max())
         G = split.G
-        self.W = self.solve(split.G.T.toarray()) if G.shape[0] else np.zeros((n, 0))
+        self.W = self.solve(_dense(split.G).T) if G.shape[0] else np.zeros((n, 0))
         if self.W.ndim == 1:
             self.W = self.W[:, None]
         self.S = np.asarray(G @ self.W)
@@ -472,12 +546,14 @@ def critical_step(prob: ContactProblem, u: np.ndarray | None = None) -> float:
     """
     split = _Split(prob, Newmark())
     u = np.zeros(prob.n) if u is None else np.asarray(u, float)
-    K = prob.internal(u)[1]
-    K = K.toarray() if sp.issparse(K) else np.asarray(K)
+    K = _dense(prob.internal(u)[1])
     m = split.massive
     Kmm = K[np.ix_(m, m)]
-    Mmm = split.M[m][:, m].toarray()
-    w2 = float(sla.eigh(Kmm, Mmm, eigvals_only=True, subset_by_index=[len(m) - 1, len(m) - 1])[0])
+    Mmm = _dense(split.M)[np.ix_(m, m)]
+    # K x = w^2 M x with M = L L^T: the standard problem L^-1 K L^-T (numpy alone)
+    L = np.linalg.cholesky(Mmm)
+    X = np.linalg.solve(L, Kmm)
+    w2 = float(np.linalg.eigvalsh(np.linalg.solve(L, X.T).T)[-1])
     return float(2.0 / np.sqrt(w2)) if w2 > 0 else float("inf")
 
 

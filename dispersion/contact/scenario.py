@@ -12,11 +12,10 @@
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
 
-import numpy as np
-
-from dispersion.defaults import GAMMA_S, NU_FLOAT
+from dispersion.defaults import GAMMA_S_FLOAT, NU_FLOAT
 from dispersion.errors import InputError, check_memory, check_nu, check_positive, check_positive_int
 
 __all__ = ["MAX_ELEMENTS", "MAX_STEPS", "MAX_SECONDS", "Scenario"]
@@ -105,15 +104,15 @@ class Scenario:
     t_end: float = 360.0
     n_xi_elements: int = 16
     n_eta_elements: int = 2
-    gamma_s: float = float(GAMMA_S)
+    gamma_s: float = GAMMA_S_FLOAT
 
     def __post_init__(self):
         for name in ("r_inner", "r_outer", "rho", "v0", "v0_over_cT", "dt", "t_end"):
             check_positive(name, getattr(self, name))
         check_nu(self.nu)
-        if not np.isfinite(self.theta0_deg):
+        if not math.isfinite(self.theta0_deg):
             raise InputError(f"theta0_deg must be finite, got {self.theta0_deg}")
-        if not np.isfinite(self.gap):
+        if not math.isfinite(self.gap):
             raise InputError(f"gap must be a finite number >= 0, got {self.gap}")
         if not 1e-150 <= self.dt <= 1e150:  # the step matrices scale like 1 / dt^2
             raise InputError(f"dt must lie in [1e-150, 1e150] s (dt^2 and 1/dt^2 must stay "
@@ -159,7 +158,7 @@ class Scenario:
 
     @property
     def shear_wave_speed(self) -> float:
-        return float(np.sqrt(self.E / (2 * (1 + self.nu)) / self.rho))
+        return math.sqrt(self.E / (2 * (1 + self.nu)) / self.rho)
 
     @property
     def n_steps(self) -> int:

@@ -39,8 +39,8 @@ import numpy as np
 
 from dispersion.errors import InputError, check_memory, check_positive, check_positive_int
 from dispersion.contact.bar import Bar, bar_model, check_steps
-from dispersion.contact.newmark import integrate
-from dispersion.contact.simulate import newmark_for
+from dispersion.contact.energy_balance import energy_balance
+from dispersion.contact.newmark import integrate, newmark_for
 
 __all__ = ["ExactSignorini", "SignoriniResult", "exact_solution", "signorini_1d",
            "MAX_T_EXACT", "MAX_SECONDS", "work_seconds"]
@@ -191,7 +191,9 @@ class SignoriniResult:
     the stress before the first contact at t = 1); ``energy_drift_percent`` (max over the run of
     the total energy minus its value at t = 0, in % of 1/8), ``first_step_change_percent``,
     ``initial_energy_change_percent`` (what the consistent initial state changed, % of 1/8),
-    ``energy_error_percent`` (final energy vs the exact 1/8), ``min_gap``; ``seconds`` wall time.
+    ``energy_error_percent`` (final energy vs the exact 1/8), ``min_gap``; the energy balance
+    (:func:`~.energy_balance.energy_balance`: ``energy_growth_percent``,
+    ``energy_growth_bound_percent``, ``energy_flag``); ``seconds`` wall time.
     """
 
     p: int
@@ -298,6 +300,7 @@ def signorini_1d(p: int = 1, n_elements: int = 20, mass: str = "singular",
         "initial_energy_change_percent": float(100 * hist.initial_energy_change / E_exact),
         "energy_error_percent": float(100 * (total[-1] - E_exact) / E_exact),
         "min_gap": float(np.min(arr["gap_min"])),
+        **energy_balance(total, scheme, mass).fields(),
     }
     return SignoriniResult(p, n_elements, mass, scheme, dt, t_end, consistent, t, u0, v0,
                            stress, arr["kinetic"], arr["strain"], total, errors, seconds)

@@ -22,8 +22,9 @@ import numpy as np
 import scipy.sparse as sp
 
 from dispersion.errors import InputError
+from dispersion.contact.energy_balance import energy_balance
 from dispersion.contact.material import StVenantKirchhoff
-from dispersion.contact.newmark import ContactProblem, Newmark, integrate
+from dispersion.contact.newmark import RING_SCHEMES, ContactProblem, integrate, newmark_for
 from dispersion.contact.nurbs import RingPatch, quarter_ring
 from dispersion.contact.problem import Plane, patch_problem
 from dispersion.contact.scenario import Scenario
@@ -31,19 +32,7 @@ from dispersion.contact.scenario import Scenario
 __all__ = ["RING_SCHEMES", "RingResult", "Scenario", "newmark_for", "ring_patch", "ring_problem",
            "simulate_ring"]
 
-#: Time integrators by name: Kane's contact-modified Newmark, standard Newmark, explicit
-#: central differences (beta = 0, Kane's contact impulse).
-RING_SCHEMES = ("kane", "standard", "explicit")
 _SAMPLES_PER_ELEMENT = 8
-
-
-def newmark_for(scheme: str, **kwargs) -> Newmark:
-    """:class:`~.newmark.Newmark` of the scheme named ``scheme`` (see :data:`RING_SCHEMES`)."""
-    if scheme not in RING_SCHEMES:
-        raise InputError(f"scheme must be one of {', '.join(RING_SCHEMES)}; got {scheme!r}")
-    if scheme == "explicit":
-        return Newmark(beta=0.0, gamma=0.5, scheme="kane", **kwargs)
-    return Newmark(scheme=scheme, **kwargs)
 
 
 def ring_patch(sc: Scenario) -> RingPatch:
@@ -154,7 +143,9 @@ def simulate_ring(sc: Scenario | None = None, mass: str = "singular", scheme: st
     force), ``contact_events`` (separate contact intervals), ``final_rotation_deg`` (rotation
     of the chord between the arc ends), ``in_contact_at_end``, ``newton_iterations_max``,
     ``free_flight_energy_spread_percent`` (max - min of the total energy after the last
-    contact; ``None`` when the run ends in contact).
+    contact; ``None`` when the run ends in contact), and the energy balance of
+    :func:`~.energy_balance.energy_balance` (``energy_growth_percent``,
+    ``energy_growth_bound_percent``, ``energy_flag``: None or why the run is flagged).
     """
     sc = sc or Scenario()
     sc.check_work()
@@ -235,5 +226,6 @@ def _simulate(sc, mass, scheme, progress, tol, solver, contact_threshold, pertur
         "free_flight_energy_spread_percent":
             float(100 * np.ptp(after) / E0) if len(after) else None,
         "perturbation": perturbation, "seed": seed,
+        **energy_balance(arr["total"], scheme, mass).fields(),
     }
     return RingResult(sc, mass, scheme, series, summary)

@@ -10,7 +10,11 @@
 - a dt sweep of the singular mass with a fitted rate (at least 4 points, fit residual,
   monotonicity stated);
 - wall time per step against the number of elements;
-- the 1D Signorini scene (:mod:`.signorini`) for every mass and both schemes.
+- the shown scene at a handful of time steps around the paper's (:data:`DT_FACTORS`), both
+  masses: the lumped figures move with dt as much as with round-off;
+- the scene's history (:data:`SCENE_HISTORY`): every earlier default scene run again;
+- the 1D Signorini scene (:mod:`.signorini`) for every mass and every scheme (plain Newmark
+  included, flagged by its energy balance).
 
 ``quick`` (CI): the scene scaled by 1/8 (about 4 steps per impact), 2 perturbed runs per
 mass (1 for the singular mass), a 2 x 2 grid, the sweep on the scene scaled by 1/16, one Signorini period, P1 only.
@@ -29,7 +33,7 @@ from dispersion.contact.scenario import Scenario
 from dispersion.contact.signorini import signorini_1d
 from dispersion.contact.simulate import simulate_ring
 
-__all__ = ["DEFAULT_RULE", "PAPER", "SCENE_HISTORY", "RingStudy", "fit_rate", "measure",
+__all__ = ["DEFAULT_RULE", "DT_FACTORS", "PAPER", "SCENE_HISTORY", "RingStudy", "fit_rate", "measure",
            "step_seconds", "steps_per_impact"]
 
 #: The paper's energy changes (sec. 3): lumped, singular (percent).
@@ -44,14 +48,24 @@ DEFAULT_RULE = (
     "figures were in view (history below); this grid shows how much the energy figures "
     "depend on those choices.")
 
-#: The scene's history (``git log -p dispersion/contact/scenario.py``), disclosed.
+#: The scene's history (``git log -p dispersion/contact/scenario.py``), disclosed: each earlier
+#: default as the fields that differ from today's :class:`Scenario` (same material, v0, dt and
+#: 16 x 2 elements), measured by :func:`measure` (never typed figures).
 SCENE_HISTORY = (
-    ("r = 2 m", "first reconstruction", None, None),
-    ("r = 20 m, arc from 200 deg", "rescaled", -10.3, -3.1),
-    ("r = 160 m, arc from 200 deg", "rescaled for steps per impact", -11.8, -0.076),
-    ("r = 144-160 m, arc from 180 deg, gap 0.08 m, t_end 360 s", "current default",
-     -8.8, -0.03),
+    ("r = 1.8-2 m, arc from 215 deg, gap 0.01 m, t_end 12 s", "first reconstruction (cf6ffba)",
+     {"r_inner": 1.8, "r_outer": 2.0, "theta0_deg": 215.0, "gap": 0.01, "t_end": 12.0}),
+    ("r = 18-20 m, arc from 200 deg, gap 0.01 m, t_end 40 s", "rescaled (32fd48a)",
+     {"r_inner": 18.0, "r_outer": 20.0, "theta0_deg": 200.0, "gap": 0.01, "t_end": 40.0}),
+    ("r = 144-160 m, arc from 200 deg, gap 0.08 m, t_end 360 s",
+     "rescaled for steps per impact (uncommitted step; as the default, arc from 200 deg)",
+     {"theta0_deg": 200.0}),
+    ("r = 144-160 m, arc from 180 deg, gap 0.08 m, t_end 360 s", "current default (acd178f)", {}),
 )
+
+#: Time steps of the dt spread, relative to the scene's dt (the paper's 0.05 s: 0.045, 0.0499,
+#: 0.0501, 0.055 s), run for both masses next to the default run (end time rounded to a
+#: whole number of steps).
+DT_FACTORS = (0.9, 0.998, 1.002, 1.1)
 
 
 def steps_per_impact(sc: Scenario) -> float:
@@ -105,6 +119,7 @@ class RingStudy:
     timing: list
     signorini: list
     seconds: dict
+    dt_spread: dict = None
 
 
 def _run(args):
@@ -116,6 +131,12 @@ def _run(args):
         return {"mass": mass, "dt": sc.dt, "converged": False, "error": str(exc),
                 "seconds": time.perf_counter() - t0}, None
     return dict(res.summary, converged=True, seconds=time.perf_counter() - t0), res
+
+
+def _at_dt(sc: Scenario, dt: float) -> Scenario:
+    """The scene at step ``dt``, its end time rounded to a whole number of steps (the ring
+    flies free by then, so the energy figures do not depend on the last fraction of a step)."""
+    return replace(sc, dt=dt, t_end=round(sc.t_end / dt) * dt)
 
 
 def _summary_row(args):
@@ -190,6 +211,28 @@ def measure(quick: bool = False, executor=None) -> RingStudy:
     seconds["spread"] = time.perf_counter() - t0
 
     t0 = time.perf_counter()
+    # the same scene at a handful of dt around the paper's: the lumped figures move with dt
+    # as much as with round-off (issue 18); every run is stated
+    dt_rows = _map(executor, _summary_row, [(_at_dt(scene, scene.dt * f), m, "kane", {})
+                                            for m in ("lumped", "singular") for f in DT_FACTORS])
+    dt_spread = {}
+    for m in ("lumped", "singular"):
+        rows = [pair[m]["summary"]] + [r for r in dt_rows if r["mass"] == m]
+        runs = [{"dt": r["dt"], "energy_change_percent": r.get("energy_change_percent"),
+                 "contact_events": r.get("contact_events"), "converged": r["converged"],
+                 "energy_flag": r.get("energy_flag")} for r in rows]
+        both = [r for r in runs if r["converged"]] + [
+            {"energy_change_percent": r["energy_change_percent"],
+             "contact_events": r["contact_events"]}
+            for r in spread_rows if r["mass"] == m and r["converged"]]
+        e = [r["energy_change_percent"] for r in both]
+        ev = [r["contact_events"] for r in both]
+        dt_spread[m] = {"runs": sorted(runs, key=lambda r: r["dt"]),
+                        "all_runs": len(both), "energy_min": min(e), "energy_max": max(e),
+                        "events_min": min(ev), "events_max": max(ev)}
+    seconds["dt_spread"] = time.perf_counter() - t0
+
+    t0 = time.perf_counter()
     factors = (0.0625, 0.125) if quick else (0.125, 0.25, 0.5, 1.0)
     angles = (180.0, 200.0) if quick else (180.0, 190.0, 200.0)
     jobs = [(replace(base, theta0_deg=a).scaled(f), m, "kane", {})
@@ -202,6 +245,39 @@ def measure(quick: bool = False, executor=None) -> RingStudy:
         row["theta0_deg"] = sc.theta0_deg
         row["r_outer"] = sc.r_outer
     seconds["grid"] = time.perf_counter() - t0
+
+    t0 = time.perf_counter()
+    # the scene's history, measured: each earlier default run now (quick: the small ones)
+    known = {(j[0], j[1]): row for j, row in zip(jobs, grid)}  # a history scene in the grid
+    known.update({(scene, m): pair[m]["summary"] for m in ("lumped", "singular")})
+    hist_jobs = []
+    for _, _, fields in SCENE_HISTORY:
+        sc = replace(base, **fields)
+        if (sc, "lumped") in known:
+            continue
+        if quick and sc.n_steps > 2000:
+            continue
+        hist_jobs += [(sc, m, "kane", {}) for m in ("lumped", "singular")]
+    hist_done = iter(_map(executor, _summary_row, hist_jobs))
+    history = []
+    for label, note, fields in SCENE_HISTORY:
+        sc = replace(base, **fields)
+        row = {"scene": label, "note": note, "fields": dict(fields)}
+        for m in ("lumped", "singular"):
+            if (sc, m) in known:
+                r = known[(sc, m)]
+            elif quick and sc.n_steps > 2000:
+                r = None
+            else:
+                r = next(hist_done)
+            row[m] = ({"status": "not run in quick mode"} if r is None else
+                      {"status": "Newton failed", "error": r.get("error")}
+                      if not r.get("converged") else
+                      {"status": "ok", "energy_change_percent": r["energy_change_percent"],
+                       "contact_events": r["contact_events"]})
+        row["steps_per_impact"] = steps_per_impact(sc)
+        history.append(row)
+    seconds["history"] = time.perf_counter() - t0
 
     t0 = time.perf_counter()
     sweep_scale = 0.0625 if quick else 0.125
@@ -219,15 +295,16 @@ def measure(quick: bool = False, executor=None) -> RingStudy:
 
     t0 = time.perf_counter()
     t_sig = 3.0 if quick else 12.0
+    # every scheme, the unstable one included: the report shows it flagged, not hidden
     sig_jobs = [(1, m, s, t_sig) for m in ("lumped", "consistent", "singular")
-                for s in ("kane", "explicit")]
+                for s in ("kane", "explicit", "standard")]
     if not quick:
         sig_jobs += [(2, m, "kane", t_sig) for m in ("lumped", "consistent", "singular")]
     signorini = _map(executor, _signorini, sig_jobs)
     seconds["signorini"] = time.perf_counter() - t0
     seconds["total"] = time.perf_counter() - t_all
     sc_dict = dict(vars(scene), E=scene.E)
-    return RingStudy(quick, DEFAULT_RULE, SCENE_HISTORY, PAPER, sc_dict,
+    return RingStudy(quick, DEFAULT_RULE, tuple(history), PAPER, sc_dict,
                      steps_per_impact(scene), steps_per_impact(base), base.r_outer,
                      pair, spread, grid, sweep, dt_fit, sweep_scale, timing,
-                     signorini, seconds)
+                     signorini, seconds, dt_spread)

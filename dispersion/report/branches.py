@@ -54,6 +54,84 @@ def _fmt(x, spec=".3g") -> str:
     return "-" if x is None else format(x, spec)
 
 
+def _patch_heading(f: dict) -> str:
+    """The geometry a fit was computed on, rendered from the fields the result carries
+    (:meth:`dispersion.symbolic.patch.Patch.as_dict`)."""
+    geom = f"Bloch r = b/h = {f['r']}" if f["model"] == "bloch" else "x-exact"
+    return f"{geom}, p = {f['p']}, n = {f['n']}"
+
+
+def _mass_cell(f: dict) -> str:
+    """The mass variant, with its contact set and weight where they apply (singular)."""
+    if not f["mass"].startswith("singular"):
+        return f["mass"]
+    if f.get("weights"):
+        return f"{f['mass']} (weights {f['weights']})"
+    return f"{f['mass']} (contact {f['contact']}, gamma_s = {f['gamma_s']})"
+
+
+def _window(o: dict) -> str:
+    w = o.get("window")
+    return "empty" if not w else f"[{w[0]:.3g}, {w[1]:.3g}]"
+
+
+def _order_cell(o: dict) -> str:
+    return f"{o['fitted']:.2f}" if o.get("verdict") == "fitted" else f"none: {o['verdict']}"
+
+
+def _series_cell(o: dict) -> str:
+    if o.get("series_order") is None:
+        return "no error term"
+    return f"{o['series_leading_coefficient']:+.3g} kappa^{o['series_order']}"
+
+
+def _order_tables(orders) -> list[str]:
+    """One table per patch: window, points, fitted order, residual and the series' prediction."""
+    from dispersion.studies.asymptotic_fit import (ERROR_FLOOR, LEAD_OVER_REST, POINTS,
+                                                   RESIDUAL_MAX)
+
+    lines = [
+        "Order of the relative error |Omega_h / Omega - 1| (shape-paired), fitted by least "
+        f"squares on log-log over {POINTS} geometric kappas inside the window where the "
+        "series of the error (discrete minus exact series, "
+        "`dispersion.studies.asymptotic_fit`) has its leading term at least "
+        f"{LEAD_OVER_REST:g}x the sum of the later known terms and at least {ERROR_FLOOR:g} "
+        f"(1000x the solvers' accuracy); no order if the window is empty or the largest log "
+        f"residual exceeds {RESIDUAL_MAX:g}. 'Series slope' is the least-squares slope of the "
+        "truncated series itself on the same points.", ""]
+    headings = list(dict.fromkeys(_patch_heading(o["patch"]) for o in orders))
+    for head in headings:
+        lines += [f"**{head}**", "",
+                  "| mass | branch | series of the error | window (kappa) | points | fitted order "
+                  "| max log residual | series slope |", "|---|---|---|---|---|---|---|---|"]
+        for o in (o for o in orders if _patch_heading(o["patch"]) == head):
+            lines.append(f"| {_mass_cell(o['patch'])} | {o['branch']} | {_series_cell(o)} | "
+                         f"{_window(o)} | "
+                         f"{o['points']} | {_order_cell(o)} | "
+                         f"{_fmt(o['max_log_residual'], '.2g')} | "
+                         f"{_fmt(o['series_slope'], '.3f')} |")
+        lines.append("")
+    return lines
+
+
+def _legacy_order_table(orders) -> list[str]:
+    """A record from before the windowed fits (no ``patch`` per row) renders as it was stored;
+    ``dispersion reproduce`` replaces it."""
+    lines = ["| mass | branch | fitted order of the relative error | points | max log residual "
+             "| monotone | series predicts |", "|---|---|---|---|---|---|---|"]
+    for o in orders:
+        lines.append(f"| {o['mass']} | {o['branch']} | {_fmt(o['fitted'], '.2f')} | {o['points']} "
+                     f"| {_fmt(o['max_log_residual'], '.2g')} | {'yes' if o['monotone'] else 'no'} "
+                     f"| {o['series']} |")
+    return lines
+
+
+def _orders_block(orders) -> list[str]:
+    if any("patch" not in o for o in orders):
+        return _legacy_order_table(orders)
+    return _order_tables(orders)
+
+
 def render(data: dict, out: Path) -> str:
     """Figures and Markdown of the branches study from its stored JSON ``data``."""
     from dispersion.plotting import branches as plots
@@ -89,15 +167,8 @@ def render(data: dict, out: Path) -> str:
         f"Traced roots against 40-digit mpmath ({data['mpmath_points']} random roots): max "
         f"relative error {data['mpmath_error']:.1e}; tracer failures reported: "
         f"{len(data['exact_failures'])}.", "",
-        "Order of the relative error of Omega (Bloch r = 2, kappa in [0.04, 0.16], 5 points, "
-        "least squares on log-log, shape-paired):", "",
-        "| mass | branch | fitted order | max log residual | monotone | series predicts |",
-        "|---|---|---|---|---|---|",
     ]
-    for o in data["orders"]:
-        fitted = f"{o['fitted']:.2f}" if o["monotone"] else "(not monotone: no rate)"
-        lines.append(f"| {o['mass']} | {o['branch']} | {fitted} | "
-                     f"{o['max_log_residual']:.2g} | {o['monotone']} | {o['series']} |")
+    lines += _orders_block(data["orders"])
     zgv = ", ".join(f"{z['label']} at kappa = {z['kappa']:.6f}, Omega = {z['omega']:.6f}"
                     for z in data["zgv"]) or "none"
     lines += [
@@ -154,12 +225,6 @@ def summary(data: dict) -> str:
             f"{z['label']} at kappa = {z['kappa']:.6f}, Omega = {z['omega']:.6f}"
             for z in data["zgv"]) + ".",
         "",
-        "| mass | branch | fitted order of the relative error | points | max log residual "
-        "| monotone | series predicts |",
-        "|---|---|---|---|---|---|---|",
     ]
-    for o in data["orders"]:
-        lines.append(f"| {o['mass']} | {o['branch']} | {_fmt(o['fitted'], '.2f')} | {o['points']} "
-                     f"| {_fmt(o['max_log_residual'], '.2g')} | {'yes' if o['monotone'] else 'no'} "
-                     f"| {o['series']} |")
-    return "\n".join(lines) + "\n"
+    lines += _orders_block(data["orders"])
+    return "\n".join(lines).rstrip("\n") + "\n"

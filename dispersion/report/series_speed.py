@@ -54,10 +54,33 @@ def render(data: dict, out: Path) -> str:
             + render_tables(data))
 
 
+def _counted(p: dict) -> bool:
+    """A peer run counts only if it succeeded (older records: timed and agreeing)."""
+    status = p.get("maxima_status")
+    if status is None:
+        return bool(p.get("maxima_process_s")) and p.get("agree") is True
+    return status == "ok"
+
+
+def _failures(race) -> str:
+    failed = [p for p in race if p.get("maxima_status") == "failed"]
+    if not failed:
+        return ""
+    return ("**Maxima failed** (no time, memory or ratio is given for a failed run): "
+            + "; ".join(f"kappa^{p['order']}: {p.get('maxima_error') or 'failed'}"
+                        for p in failed) + ".\n\n")
+
+
+def _peer_cell(p: dict) -> str:
+    if p.get("maxima_status") == "failed":
+        return "FAILED"
+    return "-" if p.get("agree") is None else ("yes" if p["agree"] else "NO")
+
+
 def render_tables(data: dict) -> str:
     """The Markdown of the section without the chart (headline, race table, growth table)."""
     race, points, fits = data["race"], data["scaling"], data["fits"]
-    raced = [p for p in race if p.get("maxima_process_s")]
+    raced = [p for p in race if _counted(p)]
     if raced:
         head = "; ".join(
             f"kappa^{p['order']}: {_ratio(p['maxima_process_s'], p['ours_process_s'])}"
@@ -65,26 +88,29 @@ def render_tables(data: dict) -> str:
         comp = "; ".join(
             f"kappa^{p['order']}: {_ratio(p['maxima_compute_s'], p['ours_compute_s'])}"
             for p in raced)
-        agree = all(p.get("agree") for p in raced)
         headline = (
             "**Headline (whole process, both cold, as a user runs them)**: Maxima's time over "
             f"ours is {head} (above 1: we are faster). Compute only (ours in-process vs the "
-            f"time Maxima reports itself): {comp}. Every coefficient of the two programs "
-            f"{'agrees' if agree else 'does NOT agree'} (compared exactly at two values of "
-            "nu).\n\n")
+            f"time Maxima reports itself): {comp}. Only runs whose every coefficient agrees "
+            "with ours (compared exactly at two values of nu) are timed.\n\n")
     else:
-        headline = "Maxima was not run; only our times are shown.\n\n"
+        headline = "No Maxima run succeeded; only our times are shown.\n\n"
+    headline = _failures(race) + headline
     rows = ["| kappa^K | ours process s | Maxima process s | Maxima/ours | ours lean entry s | "
-            "ours compute s | Maxima compute s | Maxima/ours | peak MiB ours / Maxima | agree |",
+            "ours compute s | Maxima compute s | Maxima/ours | peak MiB ours / Maxima | "
+            "Maxima run agrees |",
             "|---|---|---|---|---|---|---|---|---|---|"]
     for p in race:
+        ok = _counted(p)
+        m_proc = p["maxima_process_s"] if ok else None
+        m_comp = p["maxima_compute_s"] if ok else None
+        m_peak = p["maxima_peak_mib"] if ok else None
         rows.append(
-            f"| {p['order']} | {_fmt(p['ours_process_s'])} | {_fmt(p['maxima_process_s'])} | "
-            f"{_ratio(p['maxima_process_s'], p['ours_process_s'])} | "
-            f"{_fmt(p.get('ours_lean_process_s'))} | {_fmt(p['ours_compute_s'])} | {_fmt(p['maxima_compute_s'])} | "
-            f"{_ratio(p['maxima_compute_s'], p['ours_compute_s'])} | "
-            f"{_fmt(p['ours_peak_mib'], 4)} / {_fmt(p['maxima_peak_mib'], 4)} | "
-            f"{'-' if p['agree'] is None else ('yes' if p['agree'] else 'NO')} |")
+            f"| {p['order']} | {_fmt(p['ours_process_s'])} | {_fmt(m_proc)} | "
+            f"{_ratio(m_proc, p['ours_process_s'])} | "
+            f"{_fmt(p.get('ours_lean_process_s'))} | {_fmt(p['ours_compute_s'])} | "
+            f"{_fmt(m_comp)} | {_ratio(m_comp, p['ours_compute_s'])} | "
+            f"{_fmt(p['ours_peak_mib'], 4)} / {_fmt(m_peak, 4)} | {_peer_cell(p)} |")
     fit_rows = ["| mass | p | n | fitted exponent b (t ~ n^b) | rms log residual | "
                 "monotone in n |", "|---|---|---|---|---|---|"]
     for f in fits:
@@ -128,7 +154,7 @@ def summary(data: dict) -> str:
     """The README block: every number from the stored result (``dispersion reproduce``)."""
     race, points, fits = data["race"], data["scaling"], data["fits"]
     lines = []
-    raced = [p for p in race if p.get("maxima_process_s")]
+    raced = [p for p in race if _counted(p)]
     for p in raced:
         lines.append(
             f"- Rayleigh-Lamb S0 + A0 to kappa^{p['order']}, whole process (cold): ours "
@@ -137,9 +163,13 @@ def summary(data: dict) -> str:
             f"(Maxima/ours {_ratio(p['maxima_process_s'], p['ours_process_s'])}); compute only "
             f"{_fmt(p['ours_compute_s'])} s vs {_fmt(p['maxima_compute_s'])} s "
             f"({_ratio(p['maxima_compute_s'], p['ours_compute_s'])}); coefficients "
-            f"{'identical' if p.get('agree') else 'DIFFERENT'}.")
+            "identical.")
     for p in race:
-        if not p.get("maxima_process_s") and p.get("ours_process_s"):
+        if p.get("maxima_status") == "failed":
+            lines.append(f"- Maxima to kappa^{p['order']} FAILED, not timed: "
+                         f"{p.get('maxima_error') or 'failed'}.")
+    for p in race:
+        if not _counted(p) and p.get("ours_process_s"):
             lines.append(f"- Ours alone to kappa^{p['order']}: {_fmt(p['ours_process_s'])} s "
                          f"whole process, peak {_fmt(p['ours_peak_mib'], 3)} MiB.")
     sizes = {(q["mass"], q["p"], q["n"]): q["seconds"] for q in points}

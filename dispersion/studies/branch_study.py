@@ -8,8 +8,10 @@ and bar; mode shapes; the speed/accuracy of the tracer and the discrete solver).
 - Figure 2: Bloch patch r = 1/2 (the caption's h/b = 2), p = 2, n = 3, consistent and singular
   mass (contact on top), nu = 0.3; errors of each exact branch against the discrete mode of
   the same shape (:func:`dispersion.waves.mode_shapes.pair_by_shape`), signed.
-- Fitted orders: least squares over 5 kappas in [0.04, 0.16] (monotone points required, the
-  residual stored), next to the series' prediction (:func:`dispersion.waves.discrete_branches.predicted_error`).
+- Fitted orders: every mass at r = 2 and r = 1/2, least squares over 5 kappas inside the
+  window where the series of the error says its leading term dominates
+  (:mod:`dispersion.studies.asymptotic_fit`), with the window, the points, the residual and
+  the series' prediction; no order where the window is empty or the residual large.
 - Error per wavelength: Bloch patch with square elements (r = 2, as in the studies), signed
   relative phase-velocity error :math:`c^h_p / c_p - 1 = \\Omega^h/\\Omega - 1` of S0 and A0
   against elements per wavelength :math:`2\\pi / (\\kappa r)`; and the bar of
@@ -29,9 +31,10 @@ import numpy as np
 
 from dispersion import defaults
 from dispersion.waves.bar_dispersion import bar_dispersion
-from dispersion.waves.discrete_branches import discrete_branches, fitted_order, fundamental_branches, predicted_error
+from dispersion.waves.discrete_branches import discrete_branches, fundamental_branches
 from dispersion.waves.mode_shapes import discrete_mode_shape, discrete_modes, exact_mode_shape, mac
 from dispersion.waves.mode_shapes import pair_by_shape
+from dispersion.symbolic.patch import Patch
 from dispersion.symbolic.plate import plate_patch
 from dispersion.waves.exact_branches import (
     ExactBranches,
@@ -80,24 +83,45 @@ def _arr(x) -> list:
     return np.asarray(x, dtype=float).tolist()
 
 
-def _orders(nu: float) -> list[dict]:
-    small = np.geomspace(0.04, 0.16, 5)
-    exact = trace_branches(nu, small, 4.0)
+#: The patches whose error orders are fitted: every mass, at the studies' square elements
+#: (r = 2) and at Figure 2's aspect ratio (r = 1/2); p = 2, n = 3, contact on top,
+#: gamma_s = 0. The result carries each as :meth:`Patch.as_dict`; every heading is rendered
+#: from that.
+FIT_PATCHES = tuple(Patch(model="bloch", r=r, mass=m, contact="top", gamma_s=0)
+                    for r in ("2", "1/2") for m in ("consistent", "lumped", "singular"))
+
+
+def _orders(nu: float, patches=FIT_PATCHES) -> list[dict]:
+    """Fitted orders of |Omega_h / Omega - 1| inside the window the error series allows
+    (:mod:`dispersion.studies.asymptotic_fit`), per patch and branch, errors shape-paired."""
+    from fractions import Fraction
+
+    from dispersion.studies.asymptotic_fit import fit_in_window, relative_error_series
+
+    nu_q = Fraction(str(nu))
     rows = []
-    for mass in ("consistent", "singular"):
-        patch = plate_patch(model="bloch", r=_R_SQUARE, mass=mass)
-        paired = pair_by_shape(patch, nu, exact).relative_error(exact)
+    for spec in patches:
+        fields = spec.as_dict()
+        patch = plate_patch(spec)
+
+        def measure(kappa, patch=patch):
+            exact = trace_branches(nu, kappa, 4.0)
+            return pair_by_shape(patch, nu, exact).relative_error(exact)
+
+        cache = {}
         for branch in ("S0", "A0"):
-            err = np.abs(paired[branch])
-            monotone = bool(np.all(np.diff(err) > 0))
-            q = fitted_order(small, err)
-            c = np.polyfit(np.log(small), np.log(err), 1)
-            resid = float(np.max(np.abs(np.polyval(c, np.log(small)) - np.log(err))))
-            q_series, _ = predicted_error(branch, nu, model="bloch", r=_R_SQUARE, mass=mass)
-            rows.append({"mass": mass, "branch": branch, "points": len(small),
-                         "kappa": _arr(small), "error": _arr(paired[branch]),
-                         "fitted": q, "max_log_residual": resid, "monotone": monotone,
-                         "series": q_series})
+            series = relative_error_series(branch, nu_q, spec)
+
+            def one(kappa, branch=branch):
+                key = tuple(np.round(kappa, 15))
+                if key not in cache:
+                    cache[key] = measure(np.asarray(kappa))
+                return cache[key][branch]
+
+            row = fit_in_window(series, one, kappa_max=math.pi / float(spec.r))
+            rows.append({"patch": fields, "mass": spec.mass, "branch": branch,
+                         "points": len(row["kappa"]),
+                         "series_terms": {str(k): float(v) for k, v in series.items()}, **row})
     return rows
 
 

@@ -106,11 +106,11 @@ def series_frequency(coefficients: dict, kappa, order: int | None = None) -> np.
 
 
 def order_of_accuracy(discrete: dict, exact: dict) -> int | None:
-    """Lowest power of kappa at which the two :math:`\\Omega^2` series differ (None: none)."""
-    for j in sorted(set(discrete) | set(exact)):
-        if sympy.simplify(sympy.sympify(discrete.get(j, 0)) - sympy.sympify(exact.get(j, 0))) != 0:
-            return j
-    return None
+    """Lowest power of kappa at which the two :math:`\\Omega^2` series differ (None: none):
+    :func:`dispersion.symbolic.power_balance.first_difference`."""
+    from dispersion.symbolic.power_balance import first_difference
+
+    return first_difference(discrete, exact)
 
 
 def departure_kappa(kappa, reference, approx, tol: float) -> float | None:

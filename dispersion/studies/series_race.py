@@ -20,6 +20,9 @@ Two measurements, one result (:class:`SeriesSpeed`, stored as JSON by
   the residual is the rms of the log misfit).
 
 Maxima runs only if it is installed (``shutil.which("maxima")``); otherwise the result says so.
+A peer run counts only if it succeeded (:func:`peer_failure`): a run that exits non-zero,
+prints an error, returns no coefficients or coefficients that differ from ours is stored as
+failed with its message, and no time, memory or ratio is kept for it.
 
 >>> fit_growth([3, 4, 6, 8], [1.0, 8 / 3.375, 8.0, 8 / 0.421875])["exponent"]
 3.0
@@ -42,8 +45,8 @@ from dispersion.errors import InputError
 
 __all__ = [
     "TIMEOUT", "TIMEOUT_MAX", "RacePoint", "ScalingPoint", "GrowthFit", "SeriesSpeed",
-    "fit_growth", "maxima_program", "measure", "parse_maxima_output", "race", "run_child",
-    "scaling",
+    "fit_growth", "maxima_program", "measure", "parse_maxima_output", "peer_failure", "race",
+    "run_child", "scaling",
 ]
 
 #: Default and largest ceiling (seconds) for one child process of the race.
@@ -65,6 +68,8 @@ class RacePoint:
     maxima_compute_s: float | None = None
     maxima_peak_mib: float | None = None
     agree: bool | None = None  # every coefficient equal (None: Maxima not run)
+    maxima_status: str | None = None  # "ok", "failed" or None (not run)
+    maxima_error: str | None = None  # why a failed peer run does not count
 
 
 @dataclass(frozen=True)
@@ -124,7 +129,8 @@ def parse_maxima_output(text: str) -> tuple[dict[str, dict[int, str]], float | N
 
 
 def run_child(cmd: list[str], timeout: float, cwd: str | None = None):
-    """Run ``cmd``; return ``(wall seconds, peak RSS MiB, stdout, exit status)``, None on timeout.
+    """Run ``cmd``; return ``(wall seconds, peak RSS MiB, stdout, exit status, stderr)``, None
+    on timeout.
 
     The peak memory is the child's own, read by GNU ``time -f %M`` (a forked child's own
     ``ru_maxrss`` starts at the parent's size, so the parent cannot measure it directly);
@@ -138,7 +144,7 @@ def run_child(cmd: list[str], timeout: float, cwd: str | None = None):
         full = [gnu_time, "-f", "%M", "-o", str(rss_file), *cmd] if gnu_time else cmd
         start = time.perf_counter()
         try:
-            proc = subprocess.run(full, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
+            proc = subprocess.run(full, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                                   text=True, cwd=cwd, timeout=timeout, check=False)
         except subprocess.TimeoutExpired:
             return None
@@ -148,7 +154,7 @@ def run_child(cmd: list[str], timeout: float, cwd: str | None = None):
             text = rss_file.read_text().strip().splitlines()
             if text and text[-1].isdigit():
                 peak = int(text[-1]) / 1024.0
-    return wall, peak, proc.stdout, proc.returncode
+    return wall, peak, proc.stdout, proc.returncode, proc.stderr
 
 
 @functools.lru_cache(maxsize=1)
@@ -197,6 +203,42 @@ def _agree(ours: dict, theirs: dict) -> bool:
     return True
 
 
+#: Lines by which Maxima (or its Lisp) reports an error; its batch mode may still exit 0.
+_PEER_ERROR = re.compile(
+    r"(-- an error|error|failed to load|could not find|not found|undefined|unbound"
+    r"|Maxima encountered a Lisp)", re.IGNORECASE)
+
+
+def peer_failure(returncode: int, stdout: str, stderr: str, coeffs: dict,
+                 ours: dict) -> str | None:
+    """Why a peer run does not count (None: it succeeded).
+
+    It fails if it exited non-zero, printed an error line (on either stream), returned no
+    coefficient, or returned coefficients that differ from ``ours`` (compared exactly at two
+    rational values of nu).
+
+    >>> peer_failure(0, "COEF S0 2 -2/(nu-1)", "", {"S0": {2: "-2/(nu-1)"}},
+    ...              {"S0": {2: "-2/(nu - 1)"}}) is None
+    True
+    >>> peer_failure(0, "loadfile: failed to load stringproc", "", {}, {"S0": {2: "2"}})
+    'printed an error: loadfile: failed to load stringproc'
+    """
+    lines = [ln.strip() for ln in (stdout + "\n" + stderr).splitlines()
+             if ln.strip() and not _COEF.match(ln.strip())]
+    errors = [ln for ln in lines if _PEER_ERROR.search(ln)]
+    if returncode != 0:
+        return f"exit status {returncode}" + (f": {errors[0][:200]}" if errors else "")
+    if errors:
+        return f"printed an error: {errors[0][:200]}"
+    if not any(coeffs.values()):
+        return "returned no coefficients" + (f" (last line: {lines[-1][:200]})" if lines else "")
+    try:
+        same = _agree(ours, coeffs)
+    except (InputError, ZeroDivisionError, SyntaxError) as exc:
+        return f"returned an unreadable coefficient ({exc})"
+    return None if same else "its coefficients differ from ours"
+
+
 def _maxima_version(exe: str) -> str:
     try:
         out = subprocess.run([exe, "--version"], capture_output=True, text=True, timeout=30)
@@ -206,9 +248,14 @@ def _maxima_version(exe: str) -> str:
 
 
 def race(orders, timeout: float = TIMEOUT, maxima: str | None = "maxima",
-         notes: list | None = None, maxima_max_order: int = 64) -> tuple[RacePoint, ...]:
+         notes: list | None = None, maxima_max_order: int = 64,
+         repeats: int = 1) -> tuple[RacePoint, ...]:
     """Race ours against Maxima at each order of ``orders`` (Maxima skipped if ``None`` and
-    above ``maxima_max_order``)."""
+    above ``maxima_max_order``). With ``repeats`` > 1 the two run in turn (ours, Maxima, ours,
+    ...) and each figure is the median over the runs, so that a shared machine's drift moves
+    both sides alike; a peer that fails once is failed."""
+    from statistics import median
+
     notes = [] if notes is None else notes
     exe = shutil.which(maxima) if maxima else None
     program = maxima_program()
@@ -216,26 +263,51 @@ def race(orders, timeout: float = TIMEOUT, maxima: str | None = "maxima",
     for order in orders:
         cmd = [sys.executable, "-m", "dispersion", "series", "--exact", "--branch", "both",
                "--order", str(order), "--format", "json"]
-        run = run_child(cmd, timeout)
-        if run is None or run[3] != 0:
-            notes.append(f"ours at kappa^{order}: " + ("timeout" if run is None else
-                                                       f"exit {run[3]}"))
+        mine, lean, theirs = [], [], []
+        why = None
+        for _ in range(max(1, repeats)):
+            run = run_child(cmd, timeout)
+            if run is None or run[3] != 0:
+                why = "timeout" if run is None else f"exit {run[3]}"
+                break
+            mine.append(run)
+            lrun = run_child([sys.executable, "-m", "dispersion.cli.series", *cmd[4:]], timeout)
+            if lrun is not None and lrun[3] == 0:
+                lean.append(lrun[0])
+            if exe is not None and order <= maxima_max_order:
+                with _batch_file(order, program) as (folder, name):
+                    theirs.append(run_child([exe, "--very-quiet", "-b", name], timeout,
+                                            cwd=folder))
+        if why is not None:
+            notes.append(f"ours at kappa^{order}: {why}")
             points.append(RacePoint(order, None, None, None))
             continue
-        lean = run_child([sys.executable, "-m", "dispersion.cli.series", *cmd[4:]], timeout)
         compute, ours = _ours_compute(order)
-        point = dict(order=order, ours_process_s=run[0], ours_compute_s=compute,
-                     ours_peak_mib=run[1],
-                     ours_lean_process_s=lean[0] if lean and lean[3] == 0 else None)
-        if exe is not None and order <= maxima_max_order:
-            with _batch_file(order, program) as (folder, name):
-                mrun = run_child([exe, "--very-quiet", "-b", name], timeout, cwd=folder)
-            if mrun is None:
-                notes.append(f"Maxima at kappa^{order}: stopped after {timeout:g} s")
-            else:
-                coeffs, seconds = parse_maxima_output(mrun[2])
-                point.update(maxima_process_s=mrun[0], maxima_compute_s=seconds,
-                             maxima_peak_mib=mrun[1], agree=_agree(ours, coeffs))
+        peaks = [r[1] for r in mine if r[1] is not None]
+        point = dict(order=order, ours_process_s=median(r[0] for r in mine),
+                     ours_compute_s=compute, ours_peak_mib=max(peaks) if peaks else None,
+                     ours_lean_process_s=median(lean) if lean else None)
+        if theirs:
+            fail = None
+            for mrun in theirs:
+                if mrun is None:
+                    fail = f"stopped after {timeout:g} s"
+                else:
+                    coeffs, _ = parse_maxima_output(mrun[2])
+                    fail = peer_failure(mrun[3], mrun[2], mrun[4], coeffs, ours)
+                if fail is not None:
+                    break
+            if fail is None:
+                m_peaks = [r[1] for r in theirs if r[1] is not None]
+                m_compute = [parse_maxima_output(r[2])[1] for r in theirs]
+                point.update(maxima_process_s=median(r[0] for r in theirs),
+                             maxima_compute_s=median(c for c in m_compute if c is not None)
+                             if any(c is not None for c in m_compute) else None,
+                             maxima_peak_mib=max(m_peaks) if m_peaks else None,
+                             agree=True, maxima_status="ok")
+            else:  # a failed peer run is not timed: no time, memory or ratio is kept
+                notes.append(f"Maxima at kappa^{order} failed, not timed: {fail}")
+                point.update(agree=False, maxima_status="failed", maxima_error=fail)
         points.append(RacePoint(**point))
     return tuple(points)
 
@@ -303,14 +375,16 @@ def scaling(grid: dict[int, tuple[int, ...]], masses=("consistent", "lumped", "s
 
 
 def measure(quick: bool = False, executor=None, *, timeout: float = TIMEOUT,
-            maxima: str | None = "maxima", extended: bool = False) -> SeriesSpeed:
+            maxima: str | None = "maxima", extended: bool = False,
+            repeats: int = 1) -> SeriesSpeed:
     """The race and the scaling table (``quick``: fewer orders and sizes, for CI).
 
     Full: ours at kappa^8, 16, 32, 64 and Maxima to kappa^32; scaling at kappa^8 for p = 2
     (n = 3..10), 3 and 4 (four sizes each), about half a minute on a quiet 2-core machine as
     ``dispersion reproduce`` needs. ``extended`` (``dispersion bench``) adds Maxima at
     kappa^64 and n = 12. ``executor`` is not used: the timings run one after the other so
-    that they do not compete for the cores.
+    that they do not compete for the cores. ``repeats``: runs of each side of the race (in
+    turn; medians reported).
     """
     if not (isinstance(timeout, (int, float)) and 0 < timeout <= TIMEOUT_MAX):
         raise InputError(f"timeout (seconds per child process) must lie in (0, {TIMEOUT_MAX:g}], "
@@ -323,14 +397,14 @@ def measure(quick: bool = False, executor=None, *, timeout: float = TIMEOUT,
     exe = shutil.which(maxima) if maxima else None
     if exe is None:
         notes.append(f"Maxima not found ({maxima!r} on PATH): the race shows ours only "
-                     "(apt-get install -y maxima)")
+                     "(apt-get install -y maxima maxima-share)")
     if _gnu_time() is None:
         notes.append("GNU time not found: no peak memory (apt-get install -y time)")
-    race_points = race(orders, timeout, maxima, notes, maxima_max_order)
+    race_points = race(orders, timeout, maxima, notes, maxima_max_order, repeats)
     points, fits = scaling(grid)
     return SeriesSpeed(race_points, points, fits, _maxima_version(exe) if exe else None,
                        tuple(notes), {"quick": quick, "orders": list(orders),
                                       "grid": {str(k): list(v) for k, v in grid.items()},
                                       "scaling_order": 8, "timeout_s": timeout,
                                       "maxima_max_order": maxima_max_order,
-                                      "extended": extended})
+                                      "extended": extended, "repeats": repeats})

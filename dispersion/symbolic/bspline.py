@@ -10,13 +10,15 @@ in the Bernstein basis of that span,
 
 The extraction operators :math:`C^e` are exact rationals obtained by knot insertion
 (Borden et al. 2011), so one code path serves both the symbolic dispersion analysis
-(sympy polynomials) and the numeric ring solver (float Bernstein values).
+(sympy polynomials) and the numeric ring solver (float Bernstein values). An open uniform
+knot vector also has a float path, :meth:`SplineBasis1D.uniform` (the 1D bar: no sympy).
 
 >>> kv = open_knot_vector(2, 1)
 >>> kv.n
 3
 >>> [str(g) for g in kv.greville()]
 ['0', '1/2', '1']
+>>> import sympy
 >>> u = sympy.Symbol("u")
 >>> [sympy.factor(f) for f in basis_polynomials(kv, u)[0][1]]
 [(u - 1)**2, -2*u*(u - 1), u**2]
@@ -32,11 +34,14 @@ from __future__ import annotations
 from dataclasses import dataclass
 from fractions import Fraction
 from math import comb
+from typing import TYPE_CHECKING
 
 import numpy as np
-import sympy
 
 from dispersion.errors import InputError, check_positive_int
+
+if TYPE_CHECKING:  # annotations only: sympy is imported where it is used
+    import sympy
 
 __all__ = [
     "KnotVector",
@@ -62,6 +67,8 @@ class KnotVector:
     p: int
 
     def __post_init__(self):
+        import sympy
+
         check_positive_int("degree p", self.p)
         ks = tuple(sympy.Rational(k) for k in self.knots)
         if any(b < a for a, b in zip(ks, ks[1:])):
@@ -105,6 +112,8 @@ def open_knot_vector(p: int, n_elements: int, a=0, b=1) -> KnotVector:
     >>> open_knot_vector(1, 2).knots
     (0, 0, 1/2, 1, 1)
     """
+    import sympy
+
     p = check_positive_int("degree p", p)
     n_elements = check_positive_int("number of elements", n_elements, maximum=MAX_ELEMENTS)
     a, b = sympy.Rational(a), sympy.Rational(b)
@@ -130,6 +139,8 @@ def insert_knot(kv: KnotVector, x) -> tuple[KnotVector, sympy.Matrix]:
     Returns the new knot vector and the ``(n+1) x n`` matrix ``A`` mapping old control
     points to new ones, ``Q = A P``; the bases obey ``N_old = A^T N_new``.
     """
+    import sympy
+
     x = sympy.Rational(x)
     t, p = kv.knots, kv.p
     if not t[p] <= x <= t[kv.n]:
@@ -150,6 +161,8 @@ def insert_knot(kv: KnotVector, x) -> tuple[KnotVector, sympy.Matrix]:
 
 def refine(kv: KnotVector, n_new: int) -> tuple[KnotVector, sympy.Matrix]:
     """Split every span into ``n_new`` equal parts by knot insertion; returns ``(kv, A)``."""
+    import sympy
+
     n_new = check_positive_int("number of subdivisions", n_new)
     A = sympy.eye(kv.n)
     for a, b in kv.elements():
@@ -165,6 +178,8 @@ def extraction_operators(kv: KnotVector) -> list[tuple[tuple, list[int], sympy.M
     ``C`` is ``(p+1) x (p+1)``; row ``a`` holds the Bernstein coefficients of the basis
     function with global index ``active[a]`` on that span.
     """
+    import sympy
+
     p = kv.p
     new, T = kv, sympy.eye(kv.n)  # N_old = T N_new throughout
     for x in sorted(set(kv.knots[p:kv.n + 1])):
@@ -216,6 +231,8 @@ def basis_polynomials(kv: KnotVector, x: sympy.Symbol, local: bool = True):
     With ``local=True`` the variable is the span coordinate u in [0, 1]; otherwise the
     global parameter x.
     """
+    import sympy
+
     out = []
     for (left, right), active, C in extraction_operators(kv):
         u = x if local else (x - left) / (right - left)
@@ -227,6 +244,7 @@ def basis_polynomials(kv: KnotVector, x: sympy.Symbol, local: bool = True):
 def cardinal_pieces(p: int, x: sympy.Symbol) -> list[sympy.Expr]:
     """Polynomial pieces of the cardinal B-spline of degree p on ``[j, j+1]``, j = 0..p, in local u.
 
+    >>> import sympy
     >>> [str(e) for e in cardinal_pieces(1, sympy.Symbol("u"))]
     ['u', '1 - u']
     """
@@ -244,6 +262,52 @@ def as_fraction_matrix(C: sympy.Matrix) -> np.ndarray:
 
 
 @dataclass(frozen=True)
+class UniformKnots:
+    """Float open uniform knot vector: degree ``p``, ``n_elements`` equal spans of [a, b].
+
+    What :class:`SplineBasis1D` reads of a knot vector (``p``, ``n``, ``knots``), without
+    exact rationals (see :meth:`SplineBasis1D.uniform`).
+    """
+
+    p: int
+    n_elements: int
+    a: float = 0.0
+    b: float = 1.0
+
+    @property
+    def n(self) -> int:
+        """Number of basis functions."""
+        return self.n_elements + self.p
+
+    @property
+    def knots(self) -> tuple[float, ...]:
+        inner = [self.a + (self.b - self.a) * i / self.n_elements
+                 for i in range(1, self.n_elements)]
+        return tuple([float(self.a)] * (self.p + 1) + inner + [float(self.b)] * (self.p + 1))
+
+    def greville(self) -> list[float]:
+        """Greville abscissae :math:`(t_{i+1} + \\dots + t_{i+p}) / p` (floats)."""
+        t, p = self.knots, self.p
+        return [sum(t[i + 1:i + p + 1]) / p for i in range(self.n)]
+
+
+def _cox_de_boor(knots: np.ndarray, p: int, span: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """The p + 1 B-splines non-zero on knot span ``span`` at ``x`` (The NURBS Book, A2.2),
+    vectorised over the last axes of ``span`` and ``x``; shape ``x.shape + (p + 1,)``."""
+    N = [np.ones_like(x)] + [np.zeros_like(x) for _ in range(p)]
+    left = [None] + [x - knots[span + 1 - j] for j in range(1, p + 1)]
+    right = [None] + [knots[span + j] - x for j in range(1, p + 1)]
+    for j in range(1, p + 1):
+        saved = np.zeros_like(x)
+        for r in range(j):
+            temp = N[r] / (right[r + 1] + left[j - r])
+            N[r] = saved + right[r + 1] * temp
+            saved = left[j - r] * temp
+        N[j] = saved
+    return np.stack(N, axis=-1)
+
+
+@dataclass(frozen=True)
 class SplineBasis1D:
     """Float Bezier extraction of a knot vector: spans, active indices and operators ``C``.
 
@@ -254,9 +318,11 @@ class SplineBasis1D:
     >>> active, N = basis.evaluate([0.0, 0.25, 1.0])
     >>> np.allclose(N.sum(axis=1), 1.0), active[1].tolist()      # partition of unity
     (True, [0, 1, 2])
+    >>> np.allclose(SplineBasis1D.uniform(2, 2).C, basis.C)     # the float path agrees
+    True
     """
 
-    kv: KnotVector
+    kv: KnotVector | UniformKnots
     spans: np.ndarray  # (n_el, 2) float [left, right]
     active: np.ndarray  # (n_el, p+1) int
     C: np.ndarray  # (n_el, p+1, p+1) float
@@ -267,6 +333,31 @@ class SplineBasis1D:
         spans = np.array([[float(a), float(b)] for (a, b), _, _ in ops])
         active = np.array([act for _, act, _ in ops], dtype=int)
         C = np.array([np.array(c.tolist(), dtype=float) for _, _, c in ops])
+        return cls(kv, spans, active, C)
+
+    @classmethod
+    def uniform(cls, p: int, n_elements: int, a: float = 0.0, b: float = 1.0) -> SplineBasis1D:
+        """The open uniform basis in floats: no sympy, cost linear in ``n_elements``.
+
+        On each span the p + 1 non-zero B-splines (Cox-de Boor) are sampled at p + 1
+        Chebyshev points and ``C`` solves :math:`N(u_k) = C B(u_k)` (the Bernstein matrix
+        at those points is well conditioned for the degrees accepted here). Agrees with
+        :meth:`from_knots` of :func:`open_knot_vector` to round-off (tested).
+        """
+        p = check_positive_int("degree p", p)
+        n_elements = check_positive_int("number of elements", n_elements, maximum=MAX_ELEMENTS)
+        if not b > a:
+            raise InputError(f"interval must have b > a, got [{a}, {b}]")
+        kv = UniformKnots(p, n_elements, float(a), float(b))
+        knots = np.asarray(kv.knots)
+        e = np.arange(n_elements)
+        spans = np.column_stack([knots[p + e], knots[p + e + 1]])
+        u = 0.5 - 0.5 * np.cos((2 * np.arange(p + 1) + 1) * np.pi / (2 * p + 2))
+        x = spans[:, :1] + (spans[:, 1:] - spans[:, :1]) * u  # (n_el, p+1)
+        N = _cox_de_boor(knots, p, (p + e)[:, None], x)  # (n_el, point k, function a)
+        B = bernstein_numeric(p, u)  # (point k, bernstein b)
+        C = np.linalg.solve(B[None], N).transpose(0, 2, 1)  # N_ka = B_kb C_ab
+        active = e[:, None] + np.arange(p + 1)
         return cls(kv, spans, active, C)
 
     def element_of(self, x: np.ndarray) -> np.ndarray:

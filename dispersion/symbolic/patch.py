@@ -197,13 +197,22 @@ class Patch:
         >>> Patch(mass="singular", r="1/2").title()
         'Bloch r = b/h = 1/2, p = 2, n = 3, singular mass (contact top, gamma_s = 1/2)'
         """
+        text = f"{self.geometry_title()}, {self.mass_title()}"
+        if self.nu is not None:
+            text += f", nu = {self.nu}"
+        return text
+
+    def geometry_title(self) -> str:
+        """The patch without its mass: ``Bloch r = b/h = 2, p = 2, n = 3``."""
         geom = ("Bloch r = b/h = " + str(self.r) if self.model == "bloch" else "x-exact")
-        text = f"{geom}, p = {self.p}, n = {self.n}, {self.mass_name} mass"
+        return f"{geom}, p = {self.p}, n = {self.n}"
+
+    def mass_title(self) -> str:
+        """The mass with what applies to it: ``singular mass (contact top, gamma_s = 1/2)``."""
+        text = f"{self.mass_name} mass"
         if self.singular:
             text += (f" (weights {self.weights_dict})" if self.weights is not None
                      else f" (contact {self.contact}, gamma_s = {self.gamma_s})")
-        if self.nu is not None:
-            text += f", nu = {self.nu}"
         return text
 
     def header_lines(self) -> list[str]:

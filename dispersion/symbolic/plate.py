@@ -75,7 +75,7 @@ __all__ = [
     "x_taylor",
 ]
 
-MODELS = ("x-exact", "bloch")
+from dispersion.defaults import MODELS  # noqa: E402 - stated with the defaults
 _y = sympy.Symbol("y")
 
 #: Highest degree p through the thickness. The rule: the float pencil of the numeric branches

@@ -212,7 +212,7 @@ def _substitute_nu(series: dict, nu) -> dict:
 
     if nu is None:
         return series
-    nu = check_nu(sympy.nsimplify(nu) if isinstance(nu, float) else nu)
+    nu = check_nu(sympy.Rational(repr(nu)) if isinstance(nu, float) else nu)  # shortest decimal
     symbol = sympy.Symbol("nu")
     return {k: sympy.factor(v.subs(symbol, nu)) for k, v in series.items()}
 

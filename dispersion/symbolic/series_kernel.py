@@ -326,11 +326,19 @@ def branch_coefficients(F: Series, N: int) -> tuple[object, list]:
                 continue
             coef[(k, j)] = c * rp(j + 2 * k - 2)
     jmax = max((j for _, j in coef), default=0)
-    # P[j][i] = [u^i] Y^j
+    # P[j][i] = [u^i] Y^j, needed for i <= need[j] only: by c_kj P[j][kk - k] (kk <= N) and
+    # by P[j + 1][i + 1] (the terms w^j of an exact branch come with high powers of t, so
+    # the high powers of Y are needed to low order only: most products are skipped)
+    need = [0] * (jmax + 2)
+    for j in range(jmax, 0, -1):
+        kmin = min((k for k, jj in coef if jj == j), default=None)
+        need[j] = max(N - kmin if kmin is not None else -1, need[j + 1] - 1)
     P = [[zero + 1] + [zero] * N] + [[zero] * (N + 1) for _ in range(jmax)]
     z = [zero] * (N + 1)
     for kk in range(1, N + 1):
         for j in range(2, jmax + 1):  # [u^kk] Y^j uses z_1 .. z_(kk-1) only
+            if kk > need[j]:
+                continue
             P[j][kk] = sum((z[l] * P[j - 1][kk - l] for l in range(1, kk - j + 2)), zero)
         acc = zero
         for (k, j), c in coef.items():

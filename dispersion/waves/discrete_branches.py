@@ -641,18 +641,17 @@ def predicted_error(branch: str, nu: float, order: int = 10, **patch_kwargs) -> 
     ``exact_series``) and :math:`\\Omega^2 = c \\kappa^l + \\dots`, the relative error of
     :math:`\\Omega` is :math:`\\tfrac{\\delta}{2c} \\kappa^{m-l}`. Returns ``(m - l, delta / 2c)``.
     """
-    from dispersion.symbolic.power_balance import discrete_series
+    from dispersion.symbolic.power_balance import discrete_series, first_difference
     from dispersion.waves.exact_series import exact_series
 
+    nu = sympy.nsimplify(nu) if isinstance(nu, float) else nu  # exact comparison below
     d = discrete_series(branch, order, nu=nu, **patch_kwargs)
     e = exact_series(branch, order, nu=nu)
     lead = min(k for k, v in e.items() if v != 0)
-    diff = {k: float(d.get(k, 0)) - float(e.get(k, 0)) for k in sorted(set(d) | set(e))}
-    nonzero = [k for k, v in diff.items() if abs(v) > 1e-14 * max(1.0, abs(float(e.get(k, 1))))]
-    if not nonzero:
+    m = first_difference(d, e)
+    if m is None:
         raise InputError(f"no error term up to kappa^{order}; raise order")
-    m = nonzero[0]
-    return m - lead, diff[m] / (2 * float(e[lead]))
+    return m - lead, float(d.get(m, 0) - e.get(m, 0)) / (2 * float(e[lead]))
 
 
 def fundamental_branches(patch: PlatePatch, nu: float, kappa) -> dict[str, np.ndarray]:

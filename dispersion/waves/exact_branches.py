@@ -146,11 +146,28 @@ class ExactBranches(BranchViews):
         return label[0]
 
 
+@functools.lru_cache(maxsize=4)
+def _raw_series(label: str):
+    from dispersion.waves.exact_series import exact_series_raw
+
+    return exact_series_raw(label, _SERIES_ORDER)
+
+
 @functools.lru_cache(maxsize=32)
 def _series_coefficients(label: str, nu: float) -> tuple[tuple[int, float], ...]:
-    from dispersion.waves.exact_series import exact_series
+    # the coefficients (polynomials in nu over QQ, derived once) evaluated exactly at the
+    # float nu (a dyadic rational), then rounded once: no symbolic substitution or factoring,
+    # whose cost grows with the digits of nu
+    import flint
+    from fractions import Fraction
 
-    return tuple((k, float(c)) for k, c in sorted(exact_series(label, _SERIES_ORDER, nu=nu).items()))
+    q = Fraction(float(nu))
+    x = flint.fmpq(q.numerator, q.denominator)
+    out = []
+    for k, num, den in _raw_series(label):
+        v = num(0, x) / den(0, x)
+        out.append((k, float(Fraction(int(v.p), int(v.q)))))
+    return tuple(sorted(out))
 
 
 def series_switch(label: str, nu: float, rtol: float = SERIES_RTOL) -> float:

@@ -35,13 +35,14 @@ def _exact_build(kind: str, sigma: int, form: str):
 class _GToNu:
     """p(g) (2 (1 - nu))^e with g = (1 - 2 nu) / (2 (1 - nu)): a polynomial in nu.
 
-    The powers of 1 - 2 nu and 2 (1 - nu) are computed once and shared by every coefficient.
+    By Horner in 1 - 2 nu; the powers of 2 (1 - nu) are computed once and shared by every
+    coefficient.
     """
 
     def __init__(self, ctx_nu):
         nu = ctx_nu.gens()[1]
         self.ctx = ctx_nu
-        self.num, self.den = [ctx_nu.from_dict({}) + 1], [ctx_nu.from_dict({}) + 1]
+        self.den = [ctx_nu.from_dict({}) + 1]  # powers of 2 (1 - nu), computed once
         self.factors = (1 - 2 * nu, 2 - 2 * nu)
 
     def _pow(self, table: list, base, e: int):
@@ -50,11 +51,19 @@ class _GToNu:
         return table[e]
 
     def __call__(self, p, e: int):
-        out = self.ctx.from_dict({})
-        for mon, c in p.to_dict().items():
-            out += c * self._pow(self.num, self.factors[0], mon[1]) \
-                * self._pow(self.den, self.factors[1], e - mon[1])
-        return out
+        # sum_a c_a X^a Y^(e - a), X = 1 - 2 nu, Y = 2 - 2 nu, by Horner in X: each step a
+        # product with the linear X and a scalar multiple of a cached power of Y
+        coef = {mon[1]: c for mon, c in p.to_dict().items()}
+        if not coef:
+            return self.ctx.from_dict({})
+        X, Y = self.factors
+        deg = max(coef)
+        h = self.ctx.from_dict({}) + coef[deg]
+        for a in range(deg - 1, -1, -1):
+            h = h * X
+            if a in coef:
+                h += coef[a] * self._pow(self.den, Y, deg - a)
+        return h * self._pow(self.den, Y, e - deg)
 
 
 def exact_series_raw(branch: str, order: int, form: str = "standard") -> list[tuple]:

@@ -28,10 +28,11 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-import numpy as np
 
 from dispersion.errors import InputError, check_positive
 from dispersion.waves.materials import ALUMINIUM, MATERIALS, Material, material_from_moduli
+
+import numpy as np
 
 __all__ = [
     "ALUMINIUM",

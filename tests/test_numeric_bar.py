@@ -1,0 +1,67 @@
+"""The 1D bar's numeric path (issue 23: no sympy, no scipy for a small bar) against the exact
+and the sparse paths it replaces."""
+from __future__ import annotations
+
+import re
+from dataclasses import replace
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from dispersion.contact.bar import Bar, bar_model
+from dispersion.contact.newmark import integrate, newmark_for
+from dispersion.contact.redistribution import float_redistribution
+from dispersion.symbolic.bspline import SplineBasis1D, open_knot_vector
+from dispersion.errors import InputError
+from dispersion.symbolic.mass import contact_weights, redistribution_matrix
+
+
+@settings(max_examples=10, deadline=None)
+@given(st.integers(1, 6), st.integers(1, 12))
+def test_uniform_float_basis_equals_the_exact_extraction(p, n_el):
+    exact = SplineBasis1D.from_knots(open_knot_vector(p, n_el))
+    fast = SplineBasis1D.uniform(p, n_el)
+    assert np.array_equal(exact.active, fast.active) and fast.kv.n == exact.kv.n
+    assert np.allclose(fast.spans, exact.spans, rtol=0, atol=1e-15)
+    assert np.allclose(fast.C, exact.C, rtol=0, atol=1e-12)
+    g_exact = np.array([float(g) for g in exact.kv.greville()])
+    assert np.allclose(fast.kv.greville(), g_exact, rtol=0, atol=1e-15)
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.integers(3, 9), st.sampled_from(["top", "bottom", "both"]),
+       st.fractions(0, 1, max_denominator=16))
+def test_float_redistribution_equals_the_exact_matrix(n, contact, gamma):
+    try:
+        exact = redistribution_matrix(n, contact_weights(n, contact, gamma))
+    except InputError as exc:  # what the exact path refuses, the float path refuses too
+        with pytest.raises(InputError, match=re.escape(str(exc))):
+            float_redistribution(n, contact, float(gamma))
+        return
+    # 1 - float(gamma) may differ from float(1 - gamma) in the last bit
+    assert np.allclose(float_redistribution(n, contact, float(gamma)),
+                       np.array(exact.tolist(), dtype=float), rtol=0, atol=2e-16)
+
+
+def _dense_twin(prob):
+    """The same problem handed to the solver as numpy arrays (the scipy-free path)."""
+    return replace(prob, M=sp.csr_matrix(prob.M).toarray(), G=sp.csr_matrix(prob.G).toarray(),
+                   K=sp.csr_matrix(prob.K).toarray())
+
+
+@pytest.mark.parametrize("mass,scheme", [("singular", "explicit"), ("singular", "kane"),
+                                         ("consistent", "kane"), ("lumped", "explicit")])
+def test_dense_and_sparse_solver_paths_agree(mass, scheme):
+    model = bar_model(Bar(20, 1, 1.0, 1.0, 1.0, mass, clamped=("right",), contact="left"))
+    sparse = model.problem
+    dense = _dense_twin(sparse)
+    u0 = model.coefficients(lambda x: 0.5 * (1 - x))
+    # up to t = 0.9: no contact yet, so no chatter amplifies the round-off of either path
+    runs = [integrate(prob, u0, np.zeros(prob.n), 0.002, 450, newmark_for(scheme),
+                      keep_states=True) for prob in (dense, sparse)]
+    a, b = (np.array([s.u for s in h.states]) for h in runs)
+    assert np.allclose(a, b, rtol=0, atol=1e-12)
+    assert np.allclose(runs[0].total, runs[1].total, rtol=1e-12, atol=0)

@@ -1,0 +1,76 @@
+"""The ring report names its scheme and its spread (``dispersion/report/ring.py``, issue 18).
+
+Rendered from a small synthetic result (no ring is run here); the figures are made up and
+only their routing to the page is checked.
+"""
+from __future__ import annotations
+
+import inspect
+
+from dispersion.contact import study
+from dispersion.report import ring
+
+
+def _sig(mass, scheme, stress, flag=None):
+    return {"p": 1, "mass": mass, "scheme": scheme, "dt": 0.002, "t_end": 12.0, "seconds": 0.1,
+            "stress_rel_l2": stress, "u0_rel_l2": 0.01, "v0_rel_l2": 0.1,
+            "energy_drift_percent": 1.0, "initial_energy_change_percent": 0.0,
+            "energy_flag": flag}
+
+
+def _runs(values):
+    return [{"dt": dt, "energy_change_percent": e, "contact_events": n, "converged": True,
+             "energy_flag": None} for dt, e, n in values]
+
+
+DATA = {
+    "quick": False, "scenario": {"r_inner": 144.0, "r_outer": 160.0, "dt": 0.05},
+    "steps_per_impact": 29.5, "sweep_scale": 0.125, "paper": {"lumped": -9.5, "singular": -0.097},
+    "dt_fit": {"rate": None, "points": 3, "monotone": False, "residual": None},
+    "pair": {m: {"summary": {"converged": True, "energy_change_percent": e, "contact_events": n}}
+             for m, e, n in (("lumped", -10.04, 123), ("singular", -0.031, 15))},
+    "spread": {"lumped": {"runs": 4, "energy_min": -10.1, "energy_max": -9.7, "events_min": 110,
+                          "events_max": 125, "perturbation": 1e-12},
+               "singular": {"runs": 2, "energy_min": -0.031, "energy_max": -0.031,
+                            "events_min": 15, "events_max": 15, "perturbation": 1e-12}},
+    "dt_spread": {
+        "lumped": {"runs": _runs([(0.045, -8.6, 101), (0.05, -10.04, 123), (0.055, -10.25, 131)]),
+                   "all_runs": 6, "energy_min": -10.25, "energy_max": -8.6, "events_min": 101,
+                   "events_max": 131},
+        "singular": {"runs": _runs([(0.045, -0.016, 15), (0.05, -0.031, 15), (0.055, -0.036, 15)]),
+                     "all_runs": 4, "energy_min": -0.036, "energy_max": -0.016,
+                     "events_min": 15, "events_max": 15}},
+    "signorini": [_sig("lumped", "kane", 1.169), _sig("consistent", "kane", 0.779),
+                  _sig("singular", "kane", 0.31), _sig("lumped", "explicit", 1.001),
+                  _sig("consistent", "explicit", 0.709), _sig("singular", "explicit", 0.31),
+                  _sig("lumped", "standard", 9.9, flag="grows")],
+}
+
+
+def test_signorini_figures_are_per_scheme_never_the_best_of():
+    text = ring.summary(DATA)
+    # issue 18: under "Kane's Newmark" the README quoted the explicit scheme's 1.001 / 0.709
+    kane = next(ln for ln in text.splitlines() if ln.strip().startswith("- kane:"))
+    explicit = next(ln for ln in text.splitlines() if ln.strip().startswith("- explicit:"))
+    assert "lumped 1.169" in kane and "consistent 0.779" in kane and "1.001" not in kane
+    assert "lumped 1.001" in explicit and "consistent 0.709" in explicit
+    standard = next(ln for ln in text.splitlines() if ln.strip().startswith("- standard:"))
+    assert "UNSTABLE" in standard
+
+
+def test_ring_figures_carry_their_dt_and_round_off_spread():
+    text = ring.summary(DATA)
+    assert "dt = 0.045, 0.05, 0.055 s" in text and "-10.25 .. -8.6 %" in text
+    assert "101-131 contact events" in text
+    page = "\n".join(ring._robust_text(DATA))
+    assert "a loss of at least 8.6 % in every run" in page
+    assert "0.045: -8.6 (101)" in page and "0.055: -10.2 (131)" in page
+
+
+def test_scene_history_has_no_typed_figures():
+    # every history entry is a scene (fields of Scenario), no figure: the study measures them
+    for label, note, fields in study.SCENE_HISTORY:
+        assert isinstance(fields, dict) and set(fields) <= set(inspect.signature(
+            study.Scenario).parameters)
+    src = inspect.getsource(study)
+    assert "-8.8" not in src and "-0.03," not in src

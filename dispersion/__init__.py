@@ -48,6 +48,7 @@ _MODULES = {
     "schema": "claims.schema", "verify": "claims.verify", "cli": "cli", "staging": "staging",
     "peers": "studies.peers", "spline_mass": "symbolic.spline_mass",
     "extended_pencil": "waves.extended_pencil", "pencil_polynomial": "waves.pencil_polynomial",
+    "asymptotic_fit": "studies.asymptotic_fit",
     "materials": "waves.materials", "frequency": "waves.frequency", "sh": "waves.sh",
     "mode_table": "waves.mode_table",
     "mass_rule": "symbolic.mass_rule", "timestep": "waves.timestep",

@@ -140,9 +140,7 @@ def render(data: dict, out: Path) -> str:
     r = data["r_figure2"]
     fig2 = {"nu": data["nu"], "kappa": data["kappa"], "omega_max": data["omega_max"],
             "exact": data["exact"], "discrete": data["discrete"]}
-    save_figure(plots.figure2(fig2, title=f"nu = {data['nu']}, Bloch model, r = b/h = {r:g} "
-                                          "(h/b = 2), p = 2, n = 3"),
-                out / "figure2.png", dpi=130)
+    save_figure(plots.figure2(fig2, title=_figure2_title(data, r)), out / "figure2.png", dpi=130)
     save_figure(plots.figure_velocities(fig2, fd_per_omega=data["fd_per_omega_aluminium"],
                                         zgv=data["zgv"]),
                 out / "branches_velocities.png", dpi=130)
@@ -228,3 +226,16 @@ def summary(data: dict) -> str:
     ]
     lines += _orders_block(data["orders"])
     return "\n".join(lines).rstrip("\n") + "\n"
+
+
+def _figure2_title(data, r) -> str:
+    """The title of Figure 2 from the patches the study stored (geometry once, each mass with
+    its contact set and gamma_s); older records without patches keep their stored r."""
+    from dispersion.symbolic.patch import Patch
+
+    stored = [d.get("patch") for d in data["discrete"].values()]
+    if stored and all(stored):
+        specs = [Patch.from_dict(p) for p in stored]
+        return (f"nu = {data['nu']}, {specs[0].geometry_title()}; "
+                + ", ".join(sp.mass_title() for sp in specs))
+    return f"nu = {data['nu']}, Bloch model, r = b/h = {r:g}"

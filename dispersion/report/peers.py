@@ -8,9 +8,23 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from dispersion.report.compare import close, timing, unjudged
 from dispersion.studies.peers import measure
 
-__all__ = ["measure", "render", "render_tables"]
+__all__ = ["measure", "render", "render_tables", "TOLERANCES"]
+
+#: Comparison rules (:mod:`dispersion.report.compare`), first match wins. Times are listed,
+#: never judged; the peers are an optional extra (installed or not on the machine that
+#: reproduces), so only our own row is judged: its counts exactly, its errors to 1e-12.
+TOLERANCES = (
+    timing("*.seconds", "wall time"),
+    timing("*.time_over_ours", "ratio of wall times"),
+    close("tasks.*.tools.dispersion.*_error", abs=1e-12,
+          why="round-off of the root solver and of the mpmath reference"),
+    unjudged("tasks.*.tools.disba.*", "optional peer (the peers extra): installed or not"),
+    unjudged("tasks.*.tools.displam.*", "optional peer (the peers extra): installed or not"),
+    unjudged("tasks.*.tools.lambwaves.*", "optional peer: not on the package index"),
+)
 
 _HEAD = ("| task | tool | status | reference roots | found | missed | spurious | "
          "max rel. error | median rel. error | whole process [s] | time / ours |\n"

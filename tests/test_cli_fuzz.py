@@ -6,7 +6,7 @@ links to them, paths through a file) are run in a sandbox folder. Every run must
 exit 0, 2, or 1 with one line naming a ConvergenceError (a scene that does not converge),
 never a traceback; no file outside the named outputs may be created or changed (a snapshot
 of the sandbox before and after). Step counts are drawn small, so a valid run is quick; the
-default run draws 6 cases per command, ``-m slow`` 150.
+default run draws 6 cases per command, ``-m slow`` 40 (900 run by hand on an earlier commit passed).
 """
 from __future__ import annotations
 
@@ -23,7 +23,7 @@ from dispersion.cli import main
 _SETTINGS = dict(deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture,
                                                         HealthCheck.too_slow])
 FAST = settings(max_examples=6, derandomize=True, **_SETTINGS)
-SLOW = settings(max_examples=150, **_SETTINGS)
+SLOW = settings(max_examples=40, **_SETTINGS)  # a branches case costs up to ~10 s: CI budget
 
 _GARBAGE = st.sampled_from(["nan", "inf", "-inf", "-1", "0", "1e300", "1e-300", "abc", "",
                             "1e999999999", "0x10", "--", " 3", "1_000", "\x1b[31m"])

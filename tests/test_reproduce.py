@@ -238,7 +238,7 @@ def test_missing_section_module_is_an_error(monkeypatch):
 
 @pytest.mark.slow
 def test_quick_reproduce_end_to_end(tmp_path):
-    out = tmp_path / "reports"
+    out = tmp_path / "run"
     t0 = time.perf_counter()
     assert main(["reproduce", "--quick", "--out", str(out)]) == 0
     index = out / "index.md"

@@ -80,6 +80,7 @@ def test_latex_shows_the_factored_forms_of_the_text(capsys):
 @pytest.mark.slow  # lark's Earley parser takes tens of seconds on a shared machine
 def test_latex_keeps_the_factored_forms_of_the_text(capsys):
     """Each LaTeX coefficient is the text one, same factors (lark's LaTeX parser reads it back)."""
+    import lark  # noqa: F401  (the test extra installs it; a missing reader must fail, not skip terms)
     import sympy
     from sympy.parsing.latex import parse_latex
 

@@ -132,7 +132,9 @@ def kappa_grid(kmin: float, kmax: float, count: int) -> np.ndarray:
 
 
 def _material(args):
-    mat = _frequency.material_from_args(args)
+    from dispersion.cli.options import material_from_args
+
+    mat = material_from_args(args)
     if mat is not None and args.thickness is None:
         raise InputError("a material needs --thickness (plate thickness d = 2h in mm)")
     if mat is None and args.thickness is not None:

@@ -19,6 +19,7 @@ import sys
 
 import numpy as np
 
+from dispersion.cli.options import material_from_args
 from dispersion.cli.outputs import EMPTY_NOTE, cell, check_figure, csv_text, emit
 from dispersion.errors import InputError
 
@@ -100,35 +101,6 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 def requested(args) -> bool:
     return args.frequency is not None or args.fd is not None
-
-
-def material_from_args(args):
-    """The material of ``--material``, ``--cl/--ct[/--rho]`` or ``--youngs-modulus/--nu/--rho``
-    (None without any); other combinations are refused naming the options."""
-    from dispersion.waves.materials import material, user_material
-
-    user = {"--cl": args.cl, "--ct": args.ct, "--rho": args.rho,
-            "--youngs-modulus": args.youngs_modulus}
-    given = [k for k, v in user.items() if v is not None]
-    if args.youngs_modulus is not None and args.nu is not None:
-        given.append("--nu")
-    if args.material:
-        if given:
-            raise InputError(f"--material must not be combined with user values "
-                             f"({', '.join(given)})")
-        return material(args.material)
-    if not given:
-        return None
-    E = None if args.youngs_modulus is None else args.youngs_modulus * 1e9
-    nu = args.nu if args.youngs_modulus is not None else None
-    try:
-        return user_material(E=E, nu=nu, rho=args.rho, c_L=args.cl, c_T=args.ct)
-    except InputError as exc:
-        names = {"c_L": "--cl", "c_T": "--ct", "E": "--youngs-modulus", "rho": "--rho"}
-        msg = str(exc)
-        for k, v in names.items():
-            msg = re.sub(rf"\b{k}\b", v, msg)
-        raise InputError(msg) from None
 
 
 def _check(args):

@@ -103,17 +103,11 @@ def test_random_option_text_is_a_value_in_range_or_one_argparse_error(text):
 def test_reading_a_fraction_loads_no_sympy():
     # the options read rationals with the claims reader, which must stay light: the exact
     # series with --nu 3/10 prints from the flint kernel alone (cli/series.py's promise)
-    import subprocess
-    import sys
+    from helpers import lean_series
 
-    code = ("import sys, io, contextlib\n"
-            "from dispersion.cli.series import lean_main\n"
-            "buf = io.StringIO()\n"
-            "with contextlib.redirect_stdout(buf):\n"
-            "    rc = lean_main(['--exact', '--order', '4', '--nu', '3/10', '--format', 'json'])\n"
-            "print(rc, 'sympy' in sys.modules, '3/10' in buf.getvalue())\n")
-    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
-    assert proc.stdout.split() == ["0", "False", "True"], proc.stderr
+    rc, sympy_loaded, out = lean_series(["--exact", "--order", "4", "--nu", "3/10",
+                                         "--format", "json"])
+    assert (rc, sympy_loaded) == (0, False) and "3/10" in out
 
 
 # ------------------------------------------------------------------ one material parser

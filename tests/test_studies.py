@@ -227,7 +227,7 @@ def test_gamma_study_titles_state_the_patch_its_rows_stored():
              "A0": {"6": g}, "S0_error": [0.1 + g], "A0_error": [0.2 + g]} for g in (0, 1)]
     want = "singular mass (contact bottom), Bloch r = b/h = 5/2, p = 3, n = 6"
     title = figure_gamma(rows, kappas=[0.5], nu=0.3, r=2)._suptitle.get_text()
-    assert title.startswith(want) and "top" not in title and "r = b/h = 2" not in title
+    assert title.startswith("S" + want[1:]) and "top" not in title and "r = b/h = 2" not in title
     data = {"quick": True, "nu": NU, "r": 2, "kappas": [0.5], "gamma": rows, "orders": [],
             "dt_crit": [], "tol": 1e-3, "kappa_grid": [], "radius": [], "bar": []}
     md = _markdown(data)

@@ -80,9 +80,8 @@ def _markdown(d: dict) -> str:
         f"Bloch patch with square elements (r = b/h = {r}), nu = {nu}{_contact_text(d)}; all "
         "data in [studies.json](studies.json).", "",
         "### (a) The redistribution weight gamma_s", "",
-        "The paper uses one weight and leaves others open. "
-        + (gamma_patch_text(d["gamma"]) or "Singular mass (patch not recorded in this older "
-                                            "result)")
+        "The paper uses one weight and leaves others open. Patch: "
+        + (gamma_patch_text(d["gamma"]) or "singular mass (not recorded in this older result)")
         + ": the coefficients of Omega^2 and the relative error of Omega against the exact "
         "Rayleigh-Lamb branch, at each gamma_s.", "",
         "![gamma_s study](studies_gamma.png)", "",

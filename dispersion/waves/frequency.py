@@ -2,7 +2,7 @@
 
 At a fixed :math:`\\Omega = \\omega h / c_T` the real wavenumbers :math:`\\kappa = kh \\ge 0` of
 each symmetry class are the roots of the deflated Rayleigh-Lamb function
-:math:`G(\\kappa, \\Omega)` (:func:`dispersion.waves.rayleigh_lamb.deflated_with_noise`,
+:math:`G(\\kappa, \\Omega)` (:func:`dispersion.waves.deflated_frequency.deflated_with_noise`,
 sampled with a bound on its rounding error). They are found and *counted* by the argument of
 the kappa tracer (:mod:`dispersion.waves.exact_branches`), turned on its side:
 
@@ -26,7 +26,7 @@ the kappa tracer (:mod:`dispersion.waves.exact_branches`), turned on its side:
    :math:`N(\\kappa_{hi}) = 0`. Whatever does not add up is listed in ``failures``.
 
 Roots are closed by the Illinois method to ``rtol`` and, where :math:`P < 0` makes G
-cosh-sized, polished on :func:`~dispersion.waves.rayleigh_lamb.evanescent_frequency_function`.
+cosh-sized, polished on :func:`~dispersion.waves.deflated_frequency.evanescent_frequency_function`.
 SH modes come in closed form (:mod:`dispersion.waves.sh`).
 
 >>> r = modes_at_frequency(0.3, [1.0])
@@ -47,13 +47,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from dispersion.errors import InputError, check_nu, check_positive
-from dispersion.waves.rayleigh_lamb import (
-    cutoff_frequencies,
-    deflated_with_noise,
-    evanescent_frequency_function,
-    frequency_slope,
-    speed_ratio_squared,
-)
+from dispersion.waves.deflated_frequency import deflated_with_noise, evanescent_frequency_function
+from dispersion.waves.numeric_frequency import frequency_slope
+from dispersion.waves.rayleigh_lamb import cutoff_frequencies, speed_ratio_squared
 
 __all__ = ["FREQUENCY_OMEGA_MAX", "FREQUENCY_OMEGA_MIN", "MAX_SCAN_SAMPLES", "SLOPE_OMEGA",
            "FrequencyRoots", "modes_at_frequency", "zgv_points"]
@@ -246,7 +242,7 @@ def _polish(kind, kappa, omega, nu, width: float = 1e-9):
     return out
 
 
-#: Below this Omega the float slope :func:`~dispersion.waves.rayleigh_lamb.frequency_slope`
+#: Below this Omega the float slope :func:`~dispersion.waves.numeric_frequency.frequency_slope`
 #: loses about eps / Omega^2 to the trivial root of F at Omega = 0 (measured against mpmath:
 #: 2e-11 at Omega = 2e-3, 3e-12 at 1e-2, 4e-14 at 0.1); rule: where eps / Omega^2 > 1e-13
 #: the slope is taken in 30-digit arithmetic instead.
@@ -380,7 +376,7 @@ def zgv_points(nu: float, omega_top: float, per_unit: float = 40.0):
     The branches are traced (:func:`~dispersion.waves.exact_branches.trace_branches`) on
     ``per_unit`` kappa samples per unit of kappa up to omega_top (a ZGV point has
     :math:`c_p > c_T`, so :math:`\\kappa < \\Omega`); where the slope
-    :func:`~dispersion.waves.rayleigh_lamb.frequency_slope` changes sign along a branch, the
+    :func:`~dispersion.waves.numeric_frequency.frequency_slope` changes sign along a branch, the
     Illinois method finds the kappa of zero slope, the branch solved for Omega at each kappa.
     The same points as :func:`dispersion.waves.velocities.zgv_points`, without the series of
     S0 and A0 (which have no ZGV point), so no symbolic algebra is loaded.

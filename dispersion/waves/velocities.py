@@ -5,7 +5,7 @@ Dimensionless, in units of the shear speed :math:`c_T`: the phase velocity is
 
 - Exact branches: implicit differentiation of the scaled Rayleigh-Lamb function,
   :math:`d\\Omega/d\\kappa = -R_\\kappa / R_\\Omega` by the complex step
-  (:func:`dispersion.waves.rayleigh_lamb.scaled_slope`); S0 and A0 below
+  (:func:`dispersion.waves.scaled_frequency.scaled_slope`); S0 and A0 below
   :func:`dispersion.waves.exact_branches.series_switch` (where the series' own error estimate
   of the slope reaches 1e-14) from the derivative of their series. Each slope carries an error
   estimate: its sensitivity to the rounding of :math:`\\Omega` (large where a root sits
@@ -52,8 +52,8 @@ import numpy as np
 from dispersion.errors import InputError
 from dispersion.waves.exact_branches import (ExactBranches, fundamental_series, series_region,
                                              trace_branches)
-from dispersion.waves.rayleigh_lamb import (deflated_frequency_function,
-                                            scaled_slope, speed_ratio_squared)
+from dispersion.waves.deflated_frequency import deflated_frequency_function
+from dispersion.waves.scaled_frequency import bound_table, removable_bound, scaled_slope
 
 __all__ = ["EXTENDED_DPS", "VELOCITY_ATOL", "VELOCITY_RTOL", "Velocities", "ZGVPoint",
            "exact_velocities", "phase_velocity", "slope_extended", "zgv_points"]
@@ -101,13 +101,8 @@ def phase_velocity(kappa, omega) -> np.ndarray:
         return np.where(kappa > 0, omega / np.where(kappa > 0, kappa, 1.0), np.nan)
 
 
-def _removable(kind: str, nu: float) -> bool:
-    """S at nu = 0 (in floating point): S0 = sqrt(2) kappa is the removable Mindlin bound P = 0."""
-    return kind == "S" and speed_ratio_squared(nu) == 0.5
-
-
 def _mp_scaled(kind: str, kappa, W, nu, mp):
-    """The scaled function of :func:`dispersion.waves.rayleigh_lamb.scaled_frequency_function`
+    """The scaled function of :func:`dispersion.waves.scaled_frequency.scaled_frequency_function`
     in its quotient form, in mpmath arithmetic (cot, tan of complex square roots)."""
     s = (1 - 2 * nu) / (2 * (1 - nu))
     k2, W2 = kappa**2, W**2
@@ -124,7 +119,7 @@ def slope_extended(kind: str, kappa: float, omega: float, nu: float, label_index
     """Root and group velocity of branch ``kind + label_index`` at ``kappa`` in mpmath.
 
     The root is bracketed between its two Mindlin bounds (computed in the same precision:
-    the j-th interval of :func:`dispersion.waves.rayleigh_lamb.mindlin_bounds`, 0 below the
+    the j-th interval of :func:`dispersion.waves.scaled_frequency.mindlin_bounds`, 0 below the
     first) narrowed to :math:`\\Omega (1 \\pm 10^{-10})`, closed by the Anderson-Bjorck method,
     and the slope is :math:`-R_\\kappa/R_\\Omega` by mpmath's differentiation. Returns
     ``(Omega, c_g, reason)``, ``reason`` None when certified (the bracket holds one sign change).
@@ -142,7 +137,7 @@ def slope_extended(kind: str, kappa: float, omega: float, nu: float, label_index
         off = 0 if kind == "S" else mp.mpf(1) / 2
         top = mp.mpf(omega) * 2 + 10
         bounds = []
-        for scale, first in ((s, 1 if _removable(kind, nu) else 0),
+        for scale, first in ((s, 1 if removable_bound(kind, nu) else 0),
                              (mp.mpf(1), 1 if kind == "S" else 0)):
             j = first
             while True:
@@ -152,7 +147,7 @@ def slope_extended(kind: str, kappa: float, omega: float, nu: float, label_index
                     break
                 j += 1
         bounds.sort()
-        if _removable(kind, nu):
+        if removable_bound(kind, nu):
             s0 = k * mp.sqrt(2)
             if abs(s0 - omega) <= 1e-15 * s0:
                 return float(s0), math.sqrt(2.0), None
@@ -195,9 +190,7 @@ def _slope_error(kind, kappa, omega, nu, cg):
     of the distance to the nearest Mindlin bound if that is less (the slope varies on that
     scale); a root within 1e-10 of a bound gets no float estimate (infinite error).
     """
-    from dispersion.waves.exact_branches import _bounds
-
-    bounds = _bounds(kind, kappa, nu, 2 * float(omega.max()) + 10)
+    bounds = bound_table(kind, kappa, nu, 2 * float(omega.max()) + 10)
     dist = np.min(np.abs(bounds - omega[:, None]), axis=1) / omega
     delta = np.minimum(1e-9, 0.01 * dist) * omega
     up = scaled_slope(kind, kappa, omega + delta, nu)
@@ -219,7 +212,7 @@ def exact_velocities(exact: ExactBranches) -> Velocities:
         g = np.full(k.shape, np.nan)
         ok = np.isfinite(w) & (k > 0)
         series = np.zeros(k.shape, bool)
-        if j == 0 and not _removable(kind, nu):
+        if j == 0 and not removable_bound(kind, nu):
             series = ok & series_region(label, nu, k)
             if np.any(series):
                 g[series] = fundamental_series(label, nu, k[series])[1]
@@ -227,7 +220,7 @@ def exact_velocities(exact: ExactBranches) -> Velocities:
             g[k == 0] = math.sqrt(2 / (1 - nu)) if kind == "S" else 0.0
         else:
             g[(k == 0) & np.isfinite(w)] = 0.0  # cut-offs: Omega is even in kappa
-            if _removable(kind, nu):
+            if removable_bound(kind, nu):
                 g[(k == 0) & (w == 0)] = math.sqrt(2.0)
         rest = np.flatnonzero(ok & ~series)
         if rest.size:

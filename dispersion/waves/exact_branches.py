@@ -57,6 +57,7 @@ from dispersion.errors import (
     check_real_in_range,
     check_wavenumbers,
 )
+from dispersion.waves.illinois import illinois
 from dispersion.waves.rayleigh_lamb import OMEGA_MAX, cutoff_frequencies
 from dispersion.waves.scaled_frequency import bound_table, removable_bound, scaled_with_noise
 
@@ -245,40 +246,6 @@ def _check_grid(kappa) -> np.ndarray:
     return kappa
 
 
-def _illinois(f, a, b, fa, fb, rtol: float, max_iter: int):
-    """Vectorised Illinois (modified regula falsi) on brackets with ``fa > 0 > fb``.
-
-    Returns the midpoints of the final brackets, the brackets, and the rows still open.
-    """
-    a, b, fa, fb = a.copy(), b.copy(), fa.copy(), fb.copy()
-    side = np.zeros(a.shape, dtype=int)
-    active = b > np.nextafter(a, np.inf)
-    for _ in range(max_iter):
-        idx = np.flatnonzero(active)
-        if idx.size == 0:
-            break
-        A, B, FA, FB = a[idx], b[idx], fa[idx], fb[idx]
-        c = (A * FB - B * FA) / (FB - FA)
-        bad = ~((c > A) & (c < B))
-        c = np.where(bad, 0.5 * (A + B), c)
-        fc = f(idx, c)
-        left = fc > 0          # the root lies right of c
-        zero = fc == 0
-        new_a, new_fa = np.where(left, c, A), np.where(left, fc, FA)
-        new_b, new_fb = np.where(left, B, c), np.where(left, FB, fc)
-        sd = side[idx]
-        # Illinois: the end kept twice in a row has its value halved
-        new_fb = np.where(left & (sd == 1), 0.5 * new_fb, new_fb)
-        new_fa = np.where(~left & (sd == -1), 0.5 * new_fa, new_fa)
-        side[idx] = np.where(left, 1, -1)
-        new_a, new_b = np.where(zero, c, new_a), np.where(zero, c, new_b)
-        a[idx], b[idx], fa[idx], fb[idx] = new_a, new_b, new_fa, new_fb
-        done = (new_b - new_a <= rtol * c) | zero
-        done |= np.nextafter(new_a, np.inf) >= new_b   # no float strictly inside
-        active[idx[done]] = False
-    return 0.5 * (a + b), a, b, active
-
-
 def _scaled(kind, kappa, omega, nu):
     return scaled_with_noise(kind, kappa, omega, nu)
 
@@ -347,7 +314,7 @@ def _trace_class(kind, kappa, nu, omega_max, rtol, max_iter):
     def g(idx, x):
         return np.arctan(_scaled(kind, kk[idx], x, nu)[0])
 
-    w, A, B, open_ = _illinois(g, a, b, fa, fb, rtol, max_iter)
+    w, _, _, open_ = illinois(g, a, b, fa, fb, rtol, max_iter)
     ok = _certify(kind, kk, w, lo[ki, ji], hi[ki, ji], nu)
     roots[ki, ji] = w
     for r in np.flatnonzero(open_ | ~ok):

@@ -48,6 +48,7 @@ import numpy as np
 
 from dispersion.errors import InputError, check_nu, check_positive
 from dispersion.waves.deflated_frequency import deflated_with_noise, evanescent_frequency_function
+from dispersion.waves.illinois import illinois
 from dispersion.waves.numeric_frequency import frequency_slope
 from dispersion.waves.rayleigh_lamb import cutoff_frequencies, speed_ratio_squared
 
@@ -138,35 +139,6 @@ def _kappa_hi(kind: str, nu: float, omega: np.ndarray, start: np.ndarray):
                for i in todo]
 
 
-def _illinois(f, a, b, fa, fb, rtol: float, max_iter: int = 200):
-    """Vectorised Illinois (regula falsi with halving of the stale end) on sign changes."""
-    a, b, fa, fb = a.copy(), b.copy(), fa.copy(), fb.copy()
-    side = np.zeros(a.size, dtype=int)
-    active = np.ones(a.size, dtype=bool)
-    for _ in range(max_iter):
-        idx = np.flatnonzero(active)
-        if idx.size == 0:
-            break
-        A, B, FA, FB = a[idx], b[idx], fa[idx], fb[idx]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            c = (A * FB - B * FA) / (FB - FA)
-        c = np.where((c > np.minimum(A, B)) & (c < np.maximum(A, B)), c, 0.5 * (A + B))
-        fc = f(idx, c)
-        left = np.sign(fc) == np.sign(FA)
-        sd = side[idx]
-        nA, nFA = np.where(left, c, A), np.where(left, fc, FA)
-        nB, nFB = np.where(left, B, c), np.where(left, FB, fc)
-        nFB = np.where(left & (sd == 1), 0.5 * nFB, nFB)
-        nFA = np.where(~left & (sd == -1), 0.5 * nFA, nFA)
-        side[idx] = np.where(left, 1, -1)
-        a[idx], b[idx], fa[idx], fb[idx] = nA, nB, nFA, nFB
-        done = (np.abs(nB - nA) <= rtol * np.abs(c)) | (fc == 0)
-        done |= np.nextafter(np.minimum(nA, nB), np.inf) >= np.maximum(nA, nB)
-        a[idx[done]] = b[idx[done]] = c[done]
-        active[idx[done]] = False
-    return 0.5 * (a + b), active
-
-
 class _Scan:
     """Samples (frequency index, kappa, G, rounding bound), sorted by (index, kappa)."""
 
@@ -233,8 +205,9 @@ def _polish(kind, kappa, omega, nu, width: float = 1e-9):
     if not np.any(ok):
         return kappa
     wo = w[ok]
-    roots, active = _illinois(lambda idx, x: evanescent_frequency_function(kind, x, wo[idx], nu),
-                              a[ok], b[ok], fa[ok], fb[ok], 1e-17)
+    roots, _, _, active = illinois(
+        lambda idx, x: evanescent_frequency_function(kind, x, wo[idx], nu),
+        a[ok], b[ok], fa[ok], fb[ok], 1e-17)
     sub = k.copy()
     sub[ok] = np.where(active, sub[ok], roots)
     out = kappa.copy()
@@ -318,7 +291,7 @@ def _class_roots(kind, nu, omega, step, rtol, max_depth, zgv_kappa):
     def f(idx, x):
         return deflated_with_noise(kind, x, omega[rf[idx]], nu)[0]
 
-    roots, unconverged = _illinois(f, sk[j], sk[j + 1], sg[j], sg[j + 1], rtol)
+    roots, _, _, unconverged = illinois(f, sk[j], sk[j + 1], sg[j], sg[j + 1], rtol)
     for i in np.flatnonzero(unconverged):
         failures.append((float(omega[rf[i]]), kind, "root refinement did not converge"))
     roots = _polish(kind, roots, omega[rf], nu)
@@ -358,65 +331,20 @@ def _class_roots(kind, nu, omega, step, rtol, max_depth, zgv_kappa):
     return rf, labels, roots, group, failures
 
 
-def _scalar_root(f, a: float, b: float, rtol: float) -> float:
-    """Root of a scalar function with a sign change on [a, b] (Illinois; no scipy import)."""
-    fa, fb = f(a), f(b)
-    if not fa * fb < 0:
-        raise ValueError("no sign change")
-    root, active = _illinois(lambda idx, x: np.array([f(float(x[0]))]), np.array([a]),
-                             np.array([b]), np.array([fa]), np.array([fb]), rtol)
-    if active[0]:
-        raise ValueError("did not converge")
-    return float(root[0])
-
-
 def zgv_points(nu: float, omega_top: float, per_unit: float = 40.0):
     """Zero-group-velocity points of the exact branches with :math:`\\Omega \\le` omega_top.
 
-    The branches are traced (:func:`~dispersion.waves.exact_branches.trace_branches`) on
-    ``per_unit`` kappa samples per unit of kappa up to omega_top (a ZGV point has
-    :math:`c_p > c_T`, so :math:`\\kappa < \\Omega`); where the slope
-    :func:`~dispersion.waves.numeric_frequency.frequency_slope` changes sign along a branch, the
-    Illinois method finds the kappa of zero slope, the branch solved for Omega at each kappa.
-    The same points as :func:`dispersion.waves.velocities.zgv_points`, without the series of
-    S0 and A0 (which have no ZGV point), so no symbolic algebra is loaded.
+    :func:`dispersion.waves.velocities.zgv_points` on ``per_unit`` kappa samples per unit of
+    kappa up to omega_top (120 to 4000 samples): a ZGV point has :math:`c_p > c_T`, so
+    :math:`\\kappa < \\Omega`.
 
     >>> [(p.label, round(p.kappa, 6), round(p.omega, 6)) for p in zgv_points(0.3, 3.0)]
     [('S1', 0.838288, 2.730307)]
     """
-    from dispersion.waves.exact_branches import trace_branches
-    from dispersion.waves.velocities import ZGVPoint
+    from dispersion.waves.velocities import zgv_points as zgv_on_grid
 
     count = int(min(max(per_unit * omega_top, 120), 4000))
-    kappa = np.linspace(omega_top / count, omega_top, count)
-    tr = trace_branches(nu, kappa, omega_top)
-    h = kappa[1] - kappa[0]
-    out = []
-    for label, w in tr.omega.items():
-        if label[1:] == "0":
-            continue  # S0 and A0 rise monotonically
-        kind = label[0]
-        ok = np.isfinite(w)
-        g = np.full(w.shape, np.nan)
-        g[ok] = frequency_slope(kind, kappa[ok], w[ok], nu)
-        change = np.flatnonzero(np.isfinite(g[1:]) & np.isfinite(g[:-1])
-                                & (np.sign(g[1:]) != np.sign(g[:-1])))
-        for i in change:
-            width = 4 * h * (abs(g[i]) + abs(g[i + 1])) + 1e-3
-
-            def branch(kk, i=i, kind=kind, w=w, width=width):
-                t = (kk - kappa[i]) / h
-                guess = (1 - t) * w[i] + t * w[i + 1]
-                return _scalar_root(lambda W: float(deflated_with_noise(kind, kk, W, nu)[0]),
-                                    guess - width, guess + width, 1e-15)
-
-            try:
-                kz = _scalar_root(lambda kk: float(frequency_slope(kind, kk, branch(kk), nu)),
-                                  kappa[i], kappa[i + 1], 1e-14)
-                out.append(ZGVPoint(label, float(kz), float(branch(kz))))
-            except ValueError:  # no single bracketed root near the guess: not a ZGV point
-                continue
-    return sorted(out, key=lambda p: (p.omega, p.label))
+    return zgv_on_grid(nu, omega_top, omega_top, count + 1)
 
 
 def modes_at_frequency(nu: float, omega, *, kinds=("S", "A", "SH"), step: float = 0.02,

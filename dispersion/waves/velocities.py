@@ -53,6 +53,8 @@ from dispersion.errors import InputError
 from dispersion.waves.exact_branches import (ExactBranches, fundamental_series, series_region,
                                              trace_branches)
 from dispersion.waves.deflated_frequency import deflated_frequency_function
+from dispersion.waves.illinois import scalar_root
+from dispersion.waves.numeric_frequency import frequency_slope
 from dispersion.waves.scaled_frequency import bound_table, removable_bound, scaled_slope
 
 __all__ = ["EXTENDED_DPS", "VELOCITY_ATOL", "VELOCITY_RTOL", "Velocities", "ZGVPoint",
@@ -239,54 +241,50 @@ def exact_velocities(exact: ExactBranches) -> Velocities:
     return Velocities(k, phase, group, tuple(uncertain))
 
 
-def _branch_omega(kind: str, kappa: float, guess: float, nu: float, width: float) -> float:
-    from scipy.optimize import brentq
-
-    def g(w):
-        return float(deflated_frequency_function(kind, kappa, w, nu))
-
-    lo, hi = guess - width, guess + width
-    if g(lo) * g(hi) > 0:
-        raise InputError(f"no single root of the {kind} branch near Omega={guess:.6g} at "
-                         f"kappa={kappa:.6g}")
-    return brentq(g, lo, hi, xtol=1e-15, rtol=4 * np.finfo(float).eps)
-
-
 def zgv_points(nu: float, kappa_max: float, omega_max: float, count: int = 400) -> list[ZGVPoint]:
     """Zero-group-velocity points of the exact branches with :math:`0 < \\kappa \\le` kappa_max.
 
-    Sign changes of :math:`d\\Omega/d\\kappa` along each traced branch are closed by Brent's
-    method in kappa, the branch followed by a bracketed root solve at each kappa. ZGV
-    points are where a backward wave (e.g. S1 for most nu) turns; the points at
-    :math:`\\kappa = 0` (cut-offs, slope zero by symmetry) are not listed.
+    The branches are traced (:func:`~dispersion.waves.exact_branches.trace_branches`) on
+    ``count`` evenly spaced kappa in [0, kappa_max] (0 left out); where the slope
+    :func:`~dispersion.waves.numeric_frequency.frequency_slope` changes sign along a branch
+    the Illinois method (:func:`~dispersion.waves.illinois.scalar_root`) finds the kappa of
+    zero slope, the branch solved for Omega at each kappa on the deflated function
+    (:func:`~dispersion.waves.deflated_frequency.deflated_frequency_function`). ZGV points are
+    where a backward wave (e.g. S1 for most nu) turns; S0 and A0 rise monotonically, and the
+    points at :math:`\\kappa = 0` (cut-offs, slope zero by symmetry) are not listed. The one
+    implementation behind :func:`dispersion.waves.frequency.zgv_points` too.
 
     >>> [(p.label, round(p.kappa, 4), round(p.omega, 4)) for p in zgv_points(0.3, 2.0, 4.0)]
     [('S1', 0.8383, 2.7303)]
     """
-    from scipy.optimize import brentq
-
-    kappa = np.linspace(0.0, kappa_max, count)[1:]
-    exact = trace_branches(nu, kappa, omega_max)
-    v = exact_velocities(exact)
+    if count < 3:
+        raise InputError(f"count must be an integer >= 3, got {count!r}")
+    kappa = np.linspace(0.0, kappa_max, int(count))[1:]
+    tr = trace_branches(nu, kappa, omega_max)
     h = kappa[1] - kappa[0]
     out = []
-    for label, g in v.group.items():
-        w = exact.omega[label]
-        change = np.flatnonzero(np.isfinite(g[1:]) & np.isfinite(g[:-1]) & (np.sign(g[1:]) != np.sign(g[:-1])))
+    for label, w in tr.omega.items():
+        if label[1:] == "0":
+            continue  # S0 and A0 rise monotonically
+        kind = label[0]
+        ok = np.isfinite(w)
+        g = np.full(w.shape, np.nan)
+        g[ok] = frequency_slope(kind, kappa[ok], w[ok], nu)
+        change = np.flatnonzero(np.isfinite(g[1:]) & np.isfinite(g[:-1])
+                                & (np.sign(g[1:]) != np.sign(g[:-1])))
         for i in change:
             width = 4 * h * (abs(g[i]) + abs(g[i + 1])) + 1e-3
 
-            def slope(kk, i=i, label=label, width=width):
+            def branch(kk, i=i, kind=kind, w=w, width=width):
                 t = (kk - kappa[i]) / h
                 guess = (1 - t) * w[i] + t * w[i + 1]
-                om = _branch_omega(label[0], kk, guess, nu, width)
-                return float(scaled_slope(label[0], kk, om, nu))
+                return scalar_root(lambda W: float(deflated_frequency_function(kind, kk, W, nu)),
+                                   guess - width, guess + width, 1e-15)
 
             try:
-                kz = brentq(slope, kappa[i], kappa[i + 1], xtol=1e-14)
-                t = (kz - kappa[i]) / h
-                om = _branch_omega(label[0], kz, (1 - t) * w[i] + t * w[i + 1], nu, width)
-            except (InputError, ValueError):
+                kz = scalar_root(lambda kk: float(frequency_slope(kind, kk, branch(kk), nu)),
+                                 kappa[i], kappa[i + 1], 1e-14)
+                out.append(ZGVPoint(label, float(kz), float(branch(kz))))
+            except ValueError:  # no single bracketed root near the guess: not a ZGV point
                 continue
-            out.append(ZGVPoint(label, float(kz), float(om)))
     return sorted(out, key=lambda p: (p.omega, p.label))

@@ -7,6 +7,7 @@ import math
 import mpmath
 import numpy as np
 import pytest
+from mp_lamb import mp_C, mp_F
 
 from dispersion.waves.deflated_frequency import (
     deflated_frequency_function,
@@ -14,30 +15,25 @@ from dispersion.waves.deflated_frequency import (
     evanescent_frequency_function,
 )
 from dispersion.waves.numeric_frequency import numeric_frequency_function
-from dispersion.waves.rayleigh_lamb import frequency_function, speed_ratio_squared
+from dispersion.waves.rayleigh_lamb import speed_ratio_squared
 
-DPS = 40  # digits of the mpmath references, set locally with mpmath.workdps
+DPS = 40  # digits of the mpmath references
 
 
-@pytest.fixture(autouse=True)
-def _forty_digits():
+def ref_F(kind, kappa, Omega, nu, power=0):
+    """Omega^-power F of the defining equation, computed at DPS digits, as a float."""
     with mpmath.workdps(DPS):
-        yield
+        return float(mp_F(kind, kappa, Omega, nu) / mpmath.mpf(Omega) ** power)
 
 
-def mp_C(z):
-    return mpmath.cos(mpmath.sqrt(z))
-
-
-def mp_S(z):
-    return mpmath.sinc(mpmath.sqrt(z))
-
-
-def mp_F(kind, kappa, Omega, nu):
-    """The defining equation (frequency_function) in 40-digit arithmetic."""
-    F = frequency_function(kind, mpmath.mpf(kappa) ** 2, mpmath.mpf(Omega) ** 2,
-                           mpmath.mpf(nu), mp_C, mp_S)
-    return mpmath.re(F)
+def ref_evanescent(kind, kappa, Omega, nu):
+    """F / (C(P) c_Q), c_Q = C(Q) where Q < 0 else 1, at DPS digits, as a float."""
+    with mpmath.workdps(DPS):
+        s = speed_ratio_squared(mpmath.mpf(nu))
+        W2, k2 = mpmath.mpf(Omega) ** 2, mpmath.mpf(kappa) ** 2
+        P, Q = s * W2 - k2, W2 - k2
+        cq = mp_C(Q) if Q < 0 else 1
+        return float(mpmath.re(mp_F(kind, kappa, Omega, nu) / (mp_C(P) * cq)))
 
 
 @pytest.mark.parametrize("kind", ["S", "A"])
@@ -46,19 +42,19 @@ def test_numeric_twin_and_deflation_match_the_definition(kind):
     rng = np.random.default_rng(1)
     pts = list(zip(rng.uniform(0, 12, 25), rng.uniform(0, 8, 25))) + [(0.05, 0.002), (15, 0.1)]
     for kappa, Omega in pts:
-        ref = mp_F(kind, kappa, Omega, 0.3)
+        ref = ref_F(kind, kappa, Omega, 0.3)
         F = float(numeric_frequency_function(kind, kappa, Omega, 0.3))
         G = float(deflated_frequency_function(kind, kappa, Omega, 0.3))
         # rounding is relative to the size of the terms: |a|^2 + 4 k^2 (|P| + |Q|) times cosh^2
         k2, W2 = kappa**2, Omega**2
         terms = ((W2 - 2 * k2) ** 2 + 4 * k2 * 2 * (k2 + W2)) * math.cosh(math.sqrt(k2 + W2)) ** 2
-        assert abs(F - float(ref)) <= 1e-13 * terms
-        assert abs(W2 * G - float(ref)) <= 1e-13 * terms
+        assert abs(F - ref) <= 1e-13 * terms
+        assert abs(W2 * G - ref) <= 1e-13 * terms
     # where deflation matters: near A0 at small kappa, G keeps full relative accuracy
     for kappa, Omega in [(0.05, 0.002), (0.01, 1e-4), (0.2, 0.03)]:
-        ref = mp_F(kind, kappa, Omega, 0.3) / mpmath.mpf(Omega) ** 2
+        ref = ref_F(kind, kappa, Omega, 0.3, power=2)
         G = float(deflated_frequency_function(kind, kappa, Omega, 0.3))
-        assert abs(G - float(ref)) <= 1e-13 * abs(float(ref))
+        assert abs(G - ref) <= 1e-13 * abs(ref)
 
 
 @pytest.mark.parametrize("kind", ["S", "A"])
@@ -72,11 +68,11 @@ def test_divided_differences_by_series_and_by_half_angles_agree_with_the_definit
     pts = [(k, w) for k, w in zip(rng.uniform(0, 1.6, 30), rng.uniform(0, 2.5, 30))]
     pts += [(0.5, w) for w in np.linspace(1.3, 1.6, 7)]  # Q crosses 2 near Omega = 1.5
     for kappa, Omega in pts:
-        ref = mp_F(kind, kappa, Omega, nu) / mpmath.mpf(Omega) ** 2
+        ref = ref_F(kind, kappa, Omega, nu, power=2)
         G = float(deflated_frequency_function(kind, kappa, Omega, nu))
         k2, W2 = kappa**2, Omega**2
         size = (W2 - 2 * k2) ** 2 + W2 + 4 * k2 + abs(s * W2 - k2) + 1
-        assert abs(G - float(ref)) <= 1e-13 * size, (kappa, Omega)
+        assert abs(G - ref) <= 1e-13 * size, (kappa, Omega)
 
 
 @pytest.mark.parametrize("kind", ["S", "A"])
@@ -84,16 +80,12 @@ def test_evanescent_form_is_the_definition_divided_by_its_growth(kind):
     # F / (C(P) c_Q), c_Q = C(Q) where Q < 0 else 1, in 40 digits; roots of F with P < 0 are
     # its roots, and it stays of order one where F grows like exp(2 kappa)
     nu = 0.3
-    s = speed_ratio_squared(nu)
     for kappa in (3.0, 10.0, 40.0):
         for frac in (0.3, 0.8, 0.95):   # Omega = frac * kappa: P < 0 (s < 1)
             Omega = frac * kappa
-            P = s * mpmath.mpf(Omega) ** 2 - mpmath.mpf(kappa) ** 2
-            Q = mpmath.mpf(Omega) ** 2 - mpmath.mpf(kappa) ** 2
-            cq = mp_C(Q) if Q < 0 else 1
-            ref = mpmath.re(mp_F(kind, kappa, Omega, nu) / (mp_C(P) * cq))
+            ref = ref_evanescent(kind, kappa, Omega, nu)
             got = float(evanescent_frequency_function(kind, kappa, Omega, nu))
-            assert abs(got - float(ref)) <= 1e-12 * (abs(float(ref)) + kappa**4), (kappa, frac)
+            assert abs(got - ref) <= 1e-12 * (abs(ref) + kappa**4), (kappa, frac)
 
 
 def test_noise_bound_marks_the_trivial_cancellation():

@@ -7,11 +7,11 @@ import math
 import mpmath
 import numpy as np
 import pytest
+from mp_lamb import mp_F
 
 from dispersion.errors import InputError
 from dispersion.waves.rayleigh_lamb import (
     cutoff_frequencies,
-    frequency_function,
     speed_ratio_squared,
 )
 from dispersion.waves.exact_branches import trace_branches
@@ -23,20 +23,6 @@ DPS = 40  # digits of the mpmath references, set locally with mpmath.workdps
 def _forty_digits():
     with mpmath.workdps(DPS):
         yield
-
-
-def mp_C(z):
-    return mpmath.cos(mpmath.sqrt(z))
-
-
-def mp_S(z):
-    return mpmath.sinc(mpmath.sqrt(z))
-
-
-def mp_F(kind, kappa, Omega, nu):
-    """The defining equation (frequency_function) in 40-digit arithmetic."""
-    F = frequency_function(kind, mpmath.mpf(kappa) ** 2, Omega**2, mpmath.mpf(nu), mp_C, mp_S)
-    return mpmath.re(F)
 
 
 def mp_root(kind, kappa, Omega0, nu):

@@ -10,9 +10,9 @@ import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
+from mp_lamb import mp_C, mp_F, mp_S
 
 from dispersion.errors import InputError
-from dispersion.waves.rayleigh_lamb import frequency_function
 from dispersion.waves.scaled_frequency import (
     bound_table,
     mindlin_bounds,
@@ -27,13 +27,11 @@ def mp_scaled(kind, kappa, Omega, nu):
     """R from its definition: R_S = F_S / (Omega^2 P S(P) S(Q)), R_A = -F_A / (Omega^2 C(P) C(Q)),
     F the defining equation (frequency_function) in 40-digit arithmetic."""
     with mpmath.workdps(40):
-        C = lambda z: mpmath.cos(mpmath.sqrt(z))  # noqa: E731
-        S = lambda z: mpmath.sinc(mpmath.sqrt(z))  # noqa: E731
         k, W, n = mpmath.mpf(kappa), mpmath.mpf(Omega), mpmath.mpf(nu)
         s = (1 - 2 * n) / (2 * (1 - n))
         P, Q = s * W**2 - k**2, W**2 - k**2
-        F = frequency_function(kind, k**2, W**2, n, C, S)
-        R = F / (W**2 * P * S(P) * S(Q)) if kind == "S" else -F / (W**2 * C(P) * C(Q))
+        F = mp_F(kind, k, W, n)
+        R = F / (W**2 * P * mp_S(P) * mp_S(Q)) if kind == "S" else -F / (W**2 * mp_C(P) * mp_C(Q))
         return float(mpmath.re(R))
 
 

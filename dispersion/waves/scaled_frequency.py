@@ -10,14 +10,14 @@ tracer of the exact branches (:mod:`dispersion.waves.exact_branches`) counts and
 its roots with it (:func:`scaled_with_noise` bounds the rounding error), and the exact group
 velocities (:mod:`dispersion.waves.velocities`) are its slope :func:`scaled_slope`.
 
->>> r = [float(scaled_frequency_function("A", 10.0, w, 0.3)) for w in (9.27, 9.28)]
->>> r[0] > 0 > r[1]          # A0 at kappa = 10 lies at Omega = 9.2711348522995...
+>>> b = mindlin_bounds("S", 1.0, 0.3, 4.0)       # one root between consecutive bounds
+>>> r = scaled_frequency_function("S", 1.0, [b[0] * (1 + 1e-9), b[1] * (1 - 1e-9)], 0.3)
+>>> bool(r[0] > 0 > r[1])
 True
 
 References
 ----------
-R. D. Mindlin, Waves and vibrations in isotropic, elastic plates, in *Structural
-Mechanics* (J. N. Goodier, N. J. Hoff eds.), Pergamon 1960, pp. 199-232 (the bounds).
+R. D. Mindlin 1960 (the bounds; cited in full at :func:`scaled_frequency_function`).
 """
 from __future__ import annotations
 

@@ -8,7 +8,9 @@ import scipy.linalg
 from dispersion.errors import InputError
 from dispersion.symbolic.plate import numeric_pencil, plate_patch
 from dispersion.studies import paper_studies as studies
-from dispersion.waves.discrete_branches import critical_time_step, fundamental_branches, pencil_frequencies
+from dispersion.waves.discrete_branches import fundamental_branches
+from dispersion.waves.pencil_frequencies import pencil_frequencies
+from dispersion.waves.timestep import critical_time_step
 from dispersion.waves.exact_branches import exact_fundamental
 
 NU = 0.3

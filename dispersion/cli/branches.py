@@ -19,17 +19,17 @@ import io
 import math
 import os
 import sys
-
-import numpy as np
+from typing import TYPE_CHECKING
 
 from dispersion import defaults
+from dispersion.defaults import CONTACT_SETS, MASS_VARIANTS, MODELS, N_MAX, P_MAX, R_RANGE
 from dispersion.errors import InputError
 from dispersion.io import check_output_file, unit_target, write_bytes, write_unit
-from dispersion.symbolic.mass import CONTACT_SETS, MASS_VARIANTS
-from dispersion.symbolic.plate import MODELS, N_MAX, P_MAX, R_RANGE
-from dispersion.waves.exact_branches import check_samples
 from dispersion.cli import frequency as _frequency
 from dispersion.cli.options import integer, number, real
+
+if TYPE_CHECKING:  # numpy and the tracer are imported where used: --help stays light
+    import numpy as np
 
 #: Up-front bounds (issue 11); the exact tracer's scan is bounded by
 #: :data:`dispersion.waves.exact_branches.MAX_SAMPLES` (count * (omega-max / 0.05 + 1)).
@@ -57,7 +57,7 @@ def register(sub) -> None:
                    help=f"contact set of a singular mass (default: {defaults.CONTACT})")
     p.add_argument("--gamma-s", type=real("gamma_s", 0, 1), default=None,
                    help="share of a contact shape function sent to the second neighbour, "
-                        f"singular masses only (default: {defaults.GAMMA_S})")
+                        f"singular masses only (default: {defaults.text('GAMMA_S')})")
     p.add_argument("--model", choices=MODELS, default=None,
                    help=f"patch model along x (default: {defaults.MODEL})")
     p.add_argument("--r", type=real("r", *R_RANGE), default=None,
@@ -108,13 +108,11 @@ def register(sub) -> None:
 
 
 def _schemes():
-    from dispersion.waves.fully_discrete import SCHEMES
-
-    return tuple(SCHEMES)
+    return defaults.TIME_SCHEMES
 
 
 def _materials():
-    from dispersion.waves.units import MATERIALS
+    from dispersion.waves.materials import MATERIALS
 
     return MATERIALS
 
@@ -128,6 +126,8 @@ def kappa_grid(kmin: float, kmax: float, count: int) -> np.ndarray:
                          f"[{kmin}, {kmax}]")
     if isinstance(count, bool) or not 2 <= count <= MAX_COUNT:
         raise InputError(f"count must be an integer in [2, {MAX_COUNT}], got {count}")
+    import numpy as np
+
     return np.linspace(kmin, kmax, count)
 
 
@@ -198,6 +198,8 @@ def _settings(args) -> dict:
     kappa = kappa_grid(args.kappa_min, args.kappa_max, args.count)
     if not (math.isfinite(args.omega_max) and 0 < args.omega_max <= MAX_OMEGA):
         raise InputError(f"omega-max must be in (0, {MAX_OMEGA:g}], got {args.omega_max}")
+    from dispersion.waves.exact_branches import check_samples
+
     check_samples(args.count, args.omega_max, what="count * (omega-max / 0.05 + 1)")
     if args.csv is not None:
         check_output_file(args.csv, option="--csv")
@@ -275,6 +277,8 @@ def _inputs(args, s) -> dict:
 
 def _rows(kappa, omega, group, symmetry, source, material, thickness, omega_max, nu):
     """Row dicts of one branch set (finite Omega <= omega_max) computed at ``nu``."""
+    import numpy as np
+
     from dispersion.waves.units import physical_branches
     from dispersion.waves.velocities import phase_velocity
 
@@ -317,6 +321,8 @@ def _text(rows, inputs) -> str:
 
 
 def run(args) -> int:
+    import numpy as np
+
     from dispersion.cli.outputs import emit
     from dispersion.waves.discrete_branches import discrete_branches
     from dispersion.symbolic.plate import plate_patch

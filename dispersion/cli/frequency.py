@@ -16,12 +16,14 @@ import argparse
 import math
 import re
 import sys
-
-import numpy as np
+from typing import TYPE_CHECKING
 
 from dispersion.cli.options import material_from_args
 from dispersion.cli.outputs import EMPTY_NOTE, cell, check_figure, csv_text, emit
 from dispersion.errors import InputError
+
+if TYPE_CHECKING:  # numpy is imported where used: the parser (and --help) stays light
+    import numpy as np
 
 #: Most frequencies of one request (a grid's COUNT included); the scan bound of
 #: :data:`dispersion.waves.frequency.MAX_SCAN_SAMPLES` applies as well.
@@ -48,6 +50,8 @@ def parse_values(text: str, option: str, units: dict | None = _UNITS) -> np.ndar
     >>> parse_values("10kHz:1MHz:3", "--frequency").tolist()
     [10.0, 505.0, 1000.0]
     """
+    import numpy as np
+
     out = []
     for token in str(text).split(","):
         parts = token.split(":")
@@ -166,6 +170,8 @@ def render_text(rows: list[dict], header: list[str]) -> str:
 
 def _fields(table, label: str):
     """Through-thickness fields of every root labelled ``label`` (one frequency)."""
+    import numpy as np
+
     from dispersion.waves.mode_shapes import exact_mode_fields
     from dispersion.waves.sh import sh_mode_shape
 

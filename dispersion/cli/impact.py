@@ -11,7 +11,7 @@ import argparse
 import sys
 
 from dispersion.errors import InputError
-from dispersion.symbolic.mass import MASS_VARIANTS
+from dispersion.defaults import MASS_VARIANTS
 from dispersion.cli.options import number
 
 SCENES = ("signorini-1d",)

@@ -15,9 +15,10 @@ from dispersion.errors import InputError
 
 
 def register(sub) -> None:
-    from dispersion.symbolic.mass import CONTACT_SETS
-    from dispersion.symbolic.mass_rule import RULE_NAMES
-    from dispersion.waves.timestep import MATERIALS, MODELS
+    # light modules only: --help builds this parser without numpy or sympy
+    from dispersion.defaults import CONTACT_SETS, TIMESTEP_MODELS as MODELS
+    from dispersion.defaults import MASS_VARIANTS as RULE_NAMES
+    from dispersion.waves.materials import MATERIALS
 
     p = sub.add_parser(
         "timestep", help="critical time step of central differences for mass rules",

@@ -47,7 +47,8 @@ from dataclasses import dataclass
 import numpy as np
 import sympy
 
-from dispersion.waves.discrete_branches import critical_time_step, fundamental_branches
+from dispersion.waves.discrete_branches import fundamental_branches
+from dispersion.waves.timestep import critical_time_step
 from dispersion.symbolic.plate import plate_patch
 from dispersion.sweep import parallel_map
 from dispersion.waves.exact_branches import exact_fundamental

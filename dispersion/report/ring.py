@@ -129,31 +129,22 @@ def _flag_cell(r: dict) -> str:
     return "UNSTABLE: " + r["energy_flag"] if r["energy_flag"] else "ok"
 
 
-#: How the pages name the time integrators the runs store by name (long: the page, short:
-#: the README block).
-SCHEME_TEXT = {"kane": ("Kane's contact-modified Newmark", "Kane's Newmark"),
-               "standard": ("standard Newmark", "standard Newmark"),
-               "explicit": ("explicit central differences", "explicit central differences")}
+#: How the pages name the time integrators the runs store by name.
+SCHEME_TEXT = {"kane": "Kane's contact-modified Newmark", "standard": "standard Newmark",
+               "explicit": "explicit central differences"}
 
 
-def _scheme_text(data: dict, short: bool = False) -> str:
+def _scheme_text(data: dict) -> str:
     """The integrator of the shown scene, from the pair's stored summaries."""
     names = dict.fromkeys(data["pair"][m]["summary"].get("scheme") for m in ("lumped", "singular"))
-    return " / ".join(SCHEME_TEXT[n][short] if n in SCHEME_TEXT else str(n)
-                      for n in names if n) or "scheme not recorded"
+    return " / ".join(SCHEME_TEXT.get(n, str(n)) for n in names if n) or "scheme not recorded"
 
 
 def _elements_text(rows: list) -> str:
-    """The element counts of the Signorini rows as stored. Records from before the rows
-    stored it were measured by :func:`dispersion.contact.study._signorini` at the default
-    mesh of :func:`~dispersion.contact.signorini.signorini_1d`, which is read from there."""
+    """The element counts of the Signorini rows, as stored (older records did not store it)."""
     counts = sorted({r["n_elements"] for r in rows if "n_elements" in r})
-    if not counts and rows:
-        import inspect
-
-        from dispersion.contact.signorini import signorini_1d
-
-        counts = [inspect.signature(signorini_1d).parameters["n_elements"].default]
+    if not counts:
+        return "element count not recorded (older record)"
     return " / ".join(str(c) for c in counts) + " elements"
 
 
@@ -162,7 +153,7 @@ def _pair_lines(data: dict) -> list[str]:
     change with the spread of its round-off runs."""
     pair, spread, sc = data["pair"], data["spread"], data["scenario"]
     lines = [f"Ring scene r = {sc['r_inner']:g}-{sc['r_outer']:g} m, dt = {sc['dt']:g} s "
-             f"({data['steps_per_impact']:.0f} steps per impact), {_scheme_text(data, True)}:"]
+             f"({data['steps_per_impact']:.0f} steps per impact), {_scheme_text(data)}:"]
     for m in ("lumped", "singular"):
         s, sp = pair[m]["summary"], spread[m]
         if not s.get("converged"):

@@ -28,7 +28,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
-from dispersion import results
+from dispersion import defaults, results
 from dispersion.errors import InputError, check_int_in_range
 from dispersion.io import write_text
 from dispersion.report import SECTIONS, section_module
@@ -40,10 +40,10 @@ from dispersion.sweep import MAX_JOBS_PER_CPU, default_jobs, process_pool, progr
 __all__ = ["DEFAULT_OUT", "DEFAULT_REFERENCE", "MAX_JOBS_PER_CPU", "ReproduceRun",
            "reproduce", "measure_sections", "render_folder", "check_sections"]
 
-#: Where a user's run goes (untracked; listed in .gitignore).
-DEFAULT_OUT = "reproduced"
-#: The committed reference a run is compared with.
-DEFAULT_REFERENCE = "reports"
+#: Where a user's run goes, and the committed reference it is compared with (stated in
+#: :mod:`dispersion.defaults`, which the command line reads without this module).
+DEFAULT_OUT = defaults.REPORT_OUT
+DEFAULT_REFERENCE = defaults.REPORT_REFERENCE
 #: Sections whose renderer draws no figure; every other one needs matplotlib (``plots``).
 _NO_FIGURES = ("coefficients",)
 

@@ -421,7 +421,7 @@ def trace_branches(
 
 def mpmath_error(exact: ExactBranches, count: int = 20, dps: int = 40, seed: int = 0) -> float:
     """Largest relative error of ``count`` random traced roots (kappa > 0) against roots of the
-    defining equation (:func:`dispersion.waves.rayleigh_lamb.frequency_function`) found by mpmath
+    defining equation (:func:`dispersion.waves.rayleigh_lamb.mpmath_frequency_function`) found by mpmath
     in ``dps`` digits (:func:`mpmath.workdps`, the global precision is left alone).
 
     >>> mpmath_error(trace_branches(0.3, [0.5, 2.0], 4.0), count=3) < 1e-14
@@ -429,7 +429,7 @@ def mpmath_error(exact: ExactBranches, count: int = 20, dps: int = 40, seed: int
     """
     import mpmath
 
-    from dispersion.waves.rayleigh_lamb import frequency_function
+    from dispersion.waves.rayleigh_lamb import mpmath_frequency_function
 
     rng = np.random.default_rng(seed)
     pts = [(lab, i) for lab, w in exact.omega.items() for i in np.flatnonzero(np.isfinite(w))
@@ -439,12 +439,10 @@ def mpmath_error(exact: ExactBranches, count: int = 20, dps: int = 40, seed: int
         nu = mpmath.mpf(exact.nu)
         for j in rng.choice(len(pts), size=min(count, len(pts)), replace=False):
             lab, i = pts[j]
-            k2, w0 = mpmath.mpf(exact.kappa[i]) ** 2, mpmath.mpf(exact.omega[lab][i])
+            k, w0 = mpmath.mpf(exact.kappa[i]), mpmath.mpf(exact.omega[lab][i])
 
-            def f(W, lab=lab, k2=k2):
-                F = frequency_function(lab[0], k2, W**2, nu, lambda z: mpmath.cos(mpmath.sqrt(z)),
-                                       lambda z: mpmath.sinc(mpmath.sqrt(z)))
-                return mpmath.re(F) / W**2
+            def f(W, lab=lab, k=k):
+                return mpmath_frequency_function(lab[0], k, W, nu) / W**2
 
             eps = mpmath.mpf("1e-9")
             root = mpmath.findroot(f, (w0 * (1 - eps), w0 * (1 + eps)), solver="anderson",

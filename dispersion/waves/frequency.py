@@ -50,7 +50,8 @@ from dispersion.errors import InputError, check_nu, check_positive
 from dispersion.waves.deflated_frequency import deflated_with_noise, evanescent_frequency_function
 from dispersion.waves.illinois import illinois
 from dispersion.waves.numeric_frequency import frequency_slope
-from dispersion.waves.rayleigh_lamb import cutoff_frequencies, speed_ratio_squared
+from dispersion.waves.rayleigh_lamb import (cutoff_frequencies, mpmath_frequency_function,
+                                            speed_ratio_squared)
 
 __all__ = ["FREQUENCY_OMEGA_MAX", "FREQUENCY_OMEGA_MIN", "MAX_SCAN_SAMPLES", "SLOPE_OMEGA",
            "FrequencyRoots", "modes_at_frequency", "zgv_points"]
@@ -226,16 +227,12 @@ def _slope_mp(kind, kappa, omega, nu) -> np.ndarray:
     """:math:`d\\Omega/d\\kappa = -F_\\kappa / F_\\Omega` of the frequency function in mpmath."""
     import mpmath
 
-    from dispersion.waves.rayleigh_lamb import frequency_function
-
     out = np.empty(kappa.size)
     with mpmath.workdps(30):
         m_nu = mpmath.mpf(nu)
 
         def F(k, W):
-            return mpmath.re(frequency_function(
-                kind, k**2, W**2, m_nu, lambda z: mpmath.cos(mpmath.sqrt(z)),
-                lambda z: mpmath.sinc(mpmath.sqrt(z))))
+            return mpmath_frequency_function(kind, k, W, m_nu)
 
         for i, (k, W) in enumerate(zip(kappa, omega)):
             k, W = mpmath.mpf(float(k)), mpmath.mpf(float(W))

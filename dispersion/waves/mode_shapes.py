@@ -198,7 +198,8 @@ def discrete_modes(patch: PlatePatch, nu: float, kappa) -> tuple[np.ndarray, np.
     Frequencies where float round-off would blur them are recomputed in extended precision
     (as in :func:`dispersion.waves.discrete_branches.discrete_branches`).
     """
-    from dispersion.waves.discrete_branches import _refine_small, pencil_frequencies
+    from dispersion.waves.discrete_branches import _refine_small
+    from dispersion.waves.pencil_frequencies import pencil_frequencies
 
     kappa = np.atleast_1d(np.asarray(kappa, dtype=float))
     K, M = numeric_pencil(patch, nu, kappa)

@@ -45,7 +45,8 @@ import math
 
 from dispersion.errors import InputError, check_nu, check_real_in_range
 
-__all__ = ["OMEGA_MAX", "cutoff_frequencies", "frequency_function", "speed_ratio_squared"]
+__all__ = ["OMEGA_MAX", "cutoff_frequencies", "frequency_function", "mpmath_frequency_function",
+           "speed_ratio_squared"]
 
 
 #: Largest Omega of :func:`cutoff_frequencies` (and so of the tracer). Rule: the cut-off list
@@ -91,6 +92,24 @@ def frequency_function(kind: str, kappa2, Omega2, nu, C, S, form: str = "standar
     if kind == "A":
         return a * a * S(P) * C(Q) + 4 * kappa2 * Q * C(P) * S(Q)
     raise InputError(f"kind must be 'S' or 'A', got {kind!r}")
+
+
+def mpmath_frequency_function(kind: str, kappa, Omega, nu):
+    """:func:`frequency_function` in mpmath at the current precision (``mpmath.workdps``),
+    real part, with mpmath's :math:`\\cos\\sqrt z` and :math:`\\operatorname{sinc}\\sqrt z`:
+    the extended-precision reference of every float form.
+
+    >>> import mpmath
+    >>> with mpmath.workdps(30):
+    ...     bool(abs(mpmath_frequency_function("S", 0, mpmath.pi, "0.3")) < 1e-25)
+    True
+    """
+    import mpmath
+
+    F = frequency_function(kind, mpmath.mpf(kappa) ** 2, mpmath.mpf(Omega) ** 2, mpmath.mpf(nu),
+                           lambda z: mpmath.cos(mpmath.sqrt(z)),
+                           lambda z: mpmath.sinc(mpmath.sqrt(z)))
+    return mpmath.re(F)
 
 
 def cutoff_frequencies(kind: str, nu: float, omega_max: float) -> list[tuple[float, str]]:

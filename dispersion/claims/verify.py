@@ -15,8 +15,12 @@ from typing import Callable
 import sympy
 
 from dispersion.claims.report import readable
-from dispersion.claims.schema import (EXACT, EXPLICIT_KINDS, Claim, Model, load_claims,
-                                      paper_claims_path)
+from dispersion.claims import explicit
+from dispersion.claims.claim import Claim
+from dispersion.claims.claim_model import ClaimModel
+from dispersion.claims.claims_file import paper_claims_path
+from dispersion.claims.exact_model import ExactModel
+from dispersion.claims.schema import load_claims
 from dispersion.errors import DispersionError, InputError, check_int_in_range
 from dispersion.symbolic.power_balance import NU
 
@@ -88,27 +92,23 @@ class Verification:
 # --------------------------------------------------------------------------- deriving
 
 @functools.lru_cache(maxsize=64)
-def _series(model: Model, branch: str, order: int) -> dict[int, sympy.Expr]:
+def _series(model: ClaimModel, branch: str, order: int) -> dict[int, sympy.Expr]:
     """Derived series of ``branch`` of ``model`` to kappa^order (cached per process)."""
-    from dispersion.symbolic.power_balance import discrete_series
-    from dispersion.waves.exact_series import exact_series
+    if isinstance(model, ExactModel):
+        from dispersion.waves.exact_series import exact_series
 
-    if model.exact:
         return exact_series(branch, order)
-    return discrete_series(branch, order, **model.patch_kwargs())
+    return model.series(branch, order)
 
 
-def _omega(model: Model, branch: str, kappa: float, nu: float, guess: float) -> float:
+def _omega(model: ClaimModel, branch: str, kappa: float, nu: float, guess: float) -> float:
     """Omega of ``branch`` at one kappa (NaN if it does not exist below 2 guess + 1)."""
-    if model.exact:
+    if isinstance(model, ExactModel):
         from dispersion.waves.exact_branches import trace_branches
 
         br = trace_branches(nu, [kappa], 2 * guess + 1)
     else:
-        from dispersion.symbolic.plate import plate_patch
-        from dispersion.waves.discrete_branches import discrete_branches
-
-        br = discrete_branches(plate_patch(**model.patch_kwargs()), nu, [kappa])
+        br = model.branches([kappa], nu)
     return float(br.omega[branch][0]) if branch in br.omega else float("nan")
 
 
@@ -118,9 +118,7 @@ def _key(task: tuple) -> tuple:
 
 
 def _run_task(task: tuple):
-    if task[0] in EXPLICIT_KINDS:
-        from dispersion.claims import explicit
-
+    if task[0] in explicit.KINDS:
         return explicit.run(task)
     if task[0] == "series":
         return _series(*task[1:])
@@ -263,7 +261,7 @@ def _series_verdict(claim: Claim, derived: dict) -> Verdict:
 
 def _error_order_tasks(claim: Claim) -> list[tuple]:
     return [("series", claim.model, claim.branch, claim.order),
-            ("series", Model(EXACT), claim.branch, claim.order)]
+            ("series", ExactModel(), claim.branch, claim.order)]
 
 
 def _error_order_verdict(claim: Claim, patch: dict, exact: dict) -> Verdict:
@@ -302,14 +300,10 @@ class KindRule:
 
 
 def _explicit_tasks(claim: Claim) -> list[tuple]:
-    from dispersion.claims import explicit
-
     return [explicit.task(claim)]
 
 
 def _explicit_verdict(claim: Claim, derived) -> Verdict:
-    from dispersion.claims import explicit
-
     return Verdict(*explicit.verdict(claim, derived))
 
 

@@ -82,11 +82,19 @@ def claim_model(entry: dict, own: dict, fail, bar: bool = False) -> ClaimModel:
 def check_patch(model: ClaimModel, entry: dict, fail) -> None:
     """Build the patch's matrices once (after the work is known to be bounded): every setting
     checked, the weights against the control points included."""
-    if isinstance(model, Patch):
+    if not isinstance(model, Patch):
+        return
+    if model.weights is not None and model.singular:  # the weights' own rules, named as such
+        from dispersion.symbolic.mass import redistribution_matrix
+
         try:
-            model.plate
+            redistribution_matrix(model.n, model.weights_dict)
         except InputError as exc:
-            _failure(exc, entry, fail, PATCH_KEYS, "patch")
+            fail("weights", f"the toolkit cannot build this patch: {exc}")
+    try:
+        model.plate
+    except InputError as exc:
+        _failure(exc, entry, fail, PATCH_KEYS, "patch")
 
 
 def _integers(entry: dict, fail) -> dict:
@@ -114,9 +122,11 @@ def _bar(entry: dict, own: dict, fail) -> BarModel:
 
 
 def _failure(exc: InputError, entry: dict, fail, keys, what: str) -> None:
-    """``fail`` on the key the toolkit's message names (the words before "must")."""
-    words = str(exc).split(" must")[0].replace("(", " ").split()
-    key = next((k for k in keys if k in words and k in entry), "model")
+    """``fail`` on the key the toolkit's message names first: the subject (the words before
+    "must"), else any key the message names (``n must be >= p + 1`` with only ``p`` given)."""
+    text = str(exc).replace("(", " ")
+    words = text.split(" must")[0].split() + text.split()
+    key = next((w for w in words if w in keys and w in entry), "model")
     fail(key, f"the toolkit cannot build this {what}: {exc}")
 
 

@@ -21,6 +21,7 @@ ValueError: gamma_s: the toolkit cannot build this patch: gamma_s must lie in [0
 from __future__ import annotations
 
 import re
+from dataclasses import fields
 from typing import Union
 
 from dispersion import defaults
@@ -32,8 +33,10 @@ from dispersion.symbolic.patch import Patch
 
 __all__ = ["PATCH_KEYS", "ClaimModel", "claim_model", "check_patch"]
 
-#: The keys of a claims entry that set the patch (the fields of :class:`Patch` a file gives).
-PATCH_KEYS = ("p", "n", "r", "mass", "contact", "gamma_s", "weights")
+#: The keys of a claims entry that set the patch: the fields of :class:`Patch` but ``model``
+#: (the entry's ``model`` key names the patch model or another model) and ``nu`` (a claim's
+#: ``nu`` is the number it substitutes into the series, not a setting of the patch).
+PATCH_KEYS = tuple(f.name for f in fields(Patch) if f.name not in ("model", "nu"))
 #: What a claim is about.
 ClaimModel = Union[Patch, BarModel, ExactModel]
 

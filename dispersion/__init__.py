@@ -37,6 +37,8 @@ _MODULES = {
     "bspline": "symbolic.bspline", "mass": "symbolic.mass", "plate": "symbolic.plate",
     "series_kernel": "symbolic.series_kernel", "power_balance": "symbolic.power_balance",
     "rayleigh_lamb": "waves.rayleigh_lamb", "exact_branches": "waves.exact_branches",
+    "numeric_frequency": "waves.numeric_frequency",
+    "deflated_frequency": "waves.deflated_frequency", "scaled_frequency": "waves.scaled_frequency",
     "discrete_branches": "waves.discrete_branches", "velocities": "waves.velocities",
     "units": "waves.units", "mode_shapes": "waves.mode_shapes",
     "bar_dispersion": "waves.bar_dispersion", "errata": "claims.errata",
@@ -53,6 +55,8 @@ _MODULES = {
     "mode_table": "waves.mode_table",
     "mass_rule": "symbolic.mass_rule", "timestep": "waves.timestep",
     "fully_discrete": "waves.fully_discrete", "cost_accuracy": "studies.cost_accuracy",
+    "discrete_error": "waves.discrete_error", "pencil_frequencies": "waves.pencil_frequencies",
+    "illinois": "waves.illinois",
 }
 _SUBMODULES = tuple(_MODULES)
 

@@ -114,3 +114,16 @@ def test_round_trip_and_replace():
 def test_bad_fields_are_refused(fields, match):
     with pytest.raises(InputError, match=match):
         Patch(**fields)
+
+
+def test_coefficients_page_names_the_patches_its_claims_carry():
+    # the page typed "r = 2, p = 2, n = 3 ... contact on the top surface"; it now names the
+    # patch each claim's model carries (values here no code path types)
+    from dispersion.report.coefficients import _patches_text
+
+    claims = [{"model": "Rayleigh-Lamb (exact)"},
+              {"model": "bloch p=3 n=7 r=5/3, singular mass (bottom, gamma_s=1/5)"},
+              {"model": "bloch p=3 n=7 r=5/3, singular mass (bottom, gamma_s=1/5)"}]
+    text = _patches_text(claims)
+    assert text.count("p=3 n=7 r=5/3, singular mass (bottom, gamma_s=1/5)") == 1
+    assert "top" not in text and "p = 2" not in text and "Rayleigh" not in text

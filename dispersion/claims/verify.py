@@ -20,19 +20,16 @@ from dispersion.claims.claim import Claim
 from dispersion.claims.claim_model import ClaimModel
 from dispersion.claims.claims_file import paper_claims_path
 from dispersion.claims.exact_model import ExactModel
+from dispersion.claims.limits import MAX_JOBS
 from dispersion.claims.report import readable
 from dispersion.claims.schema import load_claims
 from dispersion.errors import DispersionError, InputError, check_int_in_range
 from dispersion.symbolic.power_balance import NU
 
 __all__ = ["MAX_JOBS", "MAX_DERIVATIONS", "Term", "ClaimResult", "Verification", "KIND_RULES",
-           "verdict", "describe_difference", "check_claim", "check_jobs", "verify_claims", "verify_file"]
+           "verdict", "describe_difference", "check_claim", "check_jobs", "verify_claims",
+           "verify_file"]
 
-#: Most worker processes :func:`verify_claims` starts. A worker is a Python process holding
-#: sympy and its caches: ``verify --paper`` in one process peaks at 110 MiB resident, so 64
-#: workers stay under a third of this machine's 24 GiB, and on its 2 cores more workers than
-#: derivations or cores only add start-up time.
-MAX_JOBS = 64
 #: Most distinct derivations one verification runs. Each is bounded by the engine's own
 #: limits (about a minute at worst, :func:`dispersion.symbolic.power_balance.check_request`);
 #: the paper's file needs 8 and a series to kappa^8 takes ~0.1 s, so 100 cheap ones take

@@ -56,16 +56,34 @@ def _fmt(x, digits: int = 4) -> str:
     return "-" if x is None else f"{x:.{digits}g}"
 
 
+def _bar_text(rows: list) -> str:
+    """The bar of study (c) as its rows stored it (degree and Courant number)."""
+    kinds = dict.fromkeys((r["p"], r["courant"]) for r in rows if "p" in r and "courant" in r)
+    if not kinds:
+        return "a B-spline bar (degree and step not recorded in this older result)"
+    return " / ".join(f"a B-spline bar of degree {p} at Courant number {c:g}" for p, c in kinds)
+
+
+def _contact_text(d: dict) -> str:
+    """The contact set of the singular masses, as the gamma_s study's patches stored it."""
+    sides = dict.fromkeys(row["patch"]["contact"] for row in d["gamma"] if row.get("patch"))
+    return f", contact on the {' / '.join(sides)} surface" if sides else ""
+
+
 def _markdown(d: dict) -> str:
+    from dispersion.plotting.studies import gamma_patch_text
+
     quick = d["quick"]
     nu, r = d["nu"], d["r"]
     lines = ["## Studies beyond the paper", ""]
     lines += [
-        f"Bloch patch with square elements (r = b/h = {r}), nu = {nu}, contact on the top "
-        "surface; all data in [studies.json](studies.json).", "",
+        f"Bloch patch with square elements (r = b/h = {r}), nu = {nu}{_contact_text(d)}; all "
+        "data in [studies.json](studies.json).", "",
         "### (a) The redistribution weight gamma_s", "",
-        "The paper uses one weight and leaves others open. Singular mass, quadratic splines, "
-        "n = 3: the coefficients of Omega^2 and the relative error of Omega against the exact "
+        "The paper uses one weight and leaves others open. "
+        + (gamma_patch_text(d["gamma"]) or "Singular mass (patch not recorded in this older "
+                                            "result)")
+        + ": the coefficients of Omega^2 and the relative error of Omega against the exact "
         "Rayleigh-Lamb branch, at each gamma_s.", "",
         "![gamma_s study](studies_gamma.png)", "",
     ]
@@ -122,8 +140,8 @@ def _markdown(d: dict) -> str:
                      f"{_fmt(row['kappa_star'], 3)} |")
     lines += ["", "Newmark (beta = 1/4, gamma = 1/2) with and without the contact "
               "modification of Kane et al. (paper eqs 6-10; 'standard': plain Newmark with "
-              "the contact force treated like any other force): quadratic B-spline bar hitting a rigid wall "
-              "(dispersion.contact.bar, Courant number 0.5), whose exact solution conserves "
+              f"the contact force treated like any other force): {_bar_text(d['bar'])} hitting a "
+              "rigid wall (dispersion.contact.bar), whose exact solution conserves "
               "energy and keeps a constant contact stress. Oscillation = standard deviation of "
               "the contact force over the middle of the contact, over rho c v0.", "",
               "| scheme | mass | elements | energy change % | force oscillation | "

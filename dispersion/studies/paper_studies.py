@@ -47,7 +47,8 @@ from dataclasses import dataclass
 import numpy as np
 import sympy
 
-from dispersion.waves.discrete_branches import critical_time_step, fundamental_branches
+from dispersion.waves.discrete_branches import fundamental_branches
+from dispersion.waves.timestep import critical_time_step
 from dispersion.symbolic.plate import plate_patch
 from dispersion.sweep import parallel_map
 from dispersion.waves.exact_branches import exact_fundamental
@@ -65,6 +66,8 @@ __all__ = [
 NU = sympy.Rational(3, 10)  #: Poisson's ratio of the studies (the paper's Figure 2)
 R_ASPECT = 2  #: aspect ratio b/h of the Bloch patch (square elements, b = 2h)
 _MODEL = {"model": "bloch", "r": R_ASPECT}
+BAR_P = 2  #: degree of the B-spline bar of study (c)
+BAR_COURANT = 0.5  #: its time step over the element's transit time h / c
 
 
 @dataclass(frozen=True)
@@ -137,10 +140,11 @@ def _gamma_case(gamma, order: int, kappas: tuple[float, ...]) -> dict:
     """Study (a) at one gamma_s: series and signed branch errors of the singular mass."""
     g = sympy.nsimplify(gamma)
     kw = dict(_MODEL, mass="singular", contact="top", gamma_s=g)
-    out = {"gamma_s": float(g)}
+    patch = plate_patch(**kw)
+    out = {"gamma_s": float(g), "patch": patch.spec.as_dict()}
     for branch in ("S0", "A0"):
         out[branch] = {str(j): float(v) for j, v in _discrete(branch, order, NU, **kw).items()}
-    num = fundamental_branches(plate_patch(**kw), float(NU), kappas)
+    num = fundamental_branches(patch, float(NU), kappas)
     for branch in ("S0", "A0"):
         ref = exact_fundamental(branch[0], kappas, float(NU))
         out[f"{branch}_error"] = [float(e) for e in (num[branch] - ref) / ref]
@@ -189,10 +193,11 @@ def _bar_case(case: tuple[str, str], n_elements: int) -> dict:
     from dispersion.contact.bar import simulate_bar
 
     scheme, mass = case
-    m = simulate_bar(n_elements=n_elements, mass=mass, scheme=scheme).metrics
+    m = simulate_bar(n_elements=n_elements, p=BAR_P, mass=mass, scheme=scheme,
+                     courant=BAR_COURANT).metrics
     keys = ("energy_change_percent", "force_oscillation", "duration_error", "rebound_error")
-    return {"scheme": scheme, "mass": mass, "n_elements": n_elements,
-            **{k: float(m[k]) for k in keys}}
+    return {"scheme": scheme, "mass": mass, "n_elements": n_elements, "p": BAR_P,
+            "courant": BAR_COURANT, **{k: float(m[k]) for k in keys}}
 
 
 def measure_studies(quick: bool = False, executor: Executor | None = None) -> Studies:

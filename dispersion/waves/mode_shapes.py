@@ -45,7 +45,8 @@ import numpy as np
 from dispersion.symbolic.bspline import SplineBasis1D, open_knot_vector
 from dispersion.errors import InputError, check_nu
 from dispersion.symbolic.plate import PlatePatch, numeric_pencil
-from dispersion.waves.rayleigh_lamb import cos_sqrt, sinc_sqrt, speed_ratio_squared
+from dispersion.waves.numeric_frequency import cos_sqrt, sinc_sqrt
+from dispersion.waves.rayleigh_lamb import speed_ratio_squared
 
 __all__ = [
     "PairedBranches",

@@ -83,8 +83,8 @@ The package is split by what each part holds: :mod:`~dispersion.claims.reader` (
 expression reader) with :mod:`~dispersion.claims.limits` (its size rules),
 :mod:`~dispersion.claims.claims_file` (the file as text and TOML, within limits),
 :mod:`~dispersion.claims.schema` (TOML to :class:`~dispersion.claims.claim.Claim` values,
-field by field, with :mod:`~dispersion.claims.fields`), :mod:`~dispersion.claims.claim_model`
-(the model keys to one :class:`~dispersion.symbolic.patch.Patch`, or the
+field by field, with :mod:`~dispersion.claims.claim_fields`),
+:mod:`~dispersion.claims.claim_model` (the model keys to one :class:`~dispersion.symbolic.patch.Patch`, or the
 :mod:`~dispersion.claims.exact_model` or the :mod:`~dispersion.claims.bar_model`),
 :mod:`~dispersion.claims.explicit` (the explicit-dynamics kinds),
 :mod:`~dispersion.claims.verify` (derivations, scheduling, verdicts),

@@ -27,7 +27,7 @@ from typing import Union
 from dispersion import defaults
 from dispersion.claims.bar_model import BarModel
 from dispersion.claims.exact_model import EXACT, ExactModel
-from dispersion.claims.fields import rational, shown
+from dispersion.claims.claim_fields import rational, shown
 from dispersion.errors import InputError
 from dispersion.symbolic.patch import Patch
 

@@ -44,7 +44,7 @@ import sympy
 
 from dispersion.claims.bar_model import BarModel
 from dispersion.claims.claim import Claim
-from dispersion.claims.fields import expression
+from dispersion.claims.claim_fields import expression
 
 __all__ = ["KINDS", "KIND_FIELDS", "step_claim", "series_claim", "task", "run", "verdict"]
 

@@ -7,7 +7,7 @@ Every field is then checked for its type and range here and refused with one
 become one value, a :class:`dispersion.symbolic.patch.Patch` (or the exact plate, or the
 periodic bar), in :mod:`dispersion.claims.claim_model`; expressions and numbers go through
 :mod:`dispersion.claims.reader` (a whitelist, never evaluated, see
-:mod:`dispersion.claims.fields`); the derivation a claim asks for is bounded by the
+:mod:`dispersion.claims.claim_fields`); the derivation a claim asks for is bounded by the
 toolkit's own limits (:func:`dispersion.symbolic.power_balance.check_request`,
 :func:`dispersion.symbolic.plate.check_size`) before any work starts.
 """
@@ -23,7 +23,7 @@ from dispersion.claims.claim import Claim
 from dispersion.claims.claim_model import PATCH_KEYS, check_patch, claim_model
 from dispersion.claims.claims_file import Lines, paper_claims_path, read_text, read_toml
 from dispersion.claims.exact_model import EXACT, ExactModel
-from dispersion.claims.fields import expression, number, rational, shown
+from dispersion.claims.claim_fields import expression, number, rational, shown
 from dispersion.claims.report import readable
 from dispersion.errors import InputError
 from dispersion.symbolic.patch import Patch

@@ -112,16 +112,17 @@ def _integers(entry: dict, fail) -> dict:
 
 
 def _bar(entry: dict, own: dict, fail) -> BarModel:
+    keys = tuple(f.name for f in fields(BarModel))  # p and mass
     for key in PATCH_KEYS:
-        if key in own and key not in ("p", "mass"):
-            fail(key, "not a setting of the periodic bar (p and mass only)")
+        if key in own and key not in keys:
+            fail(key, f"not a setting of the periodic bar ({' and '.join(keys)} only)")
     kw = _integers({k: v for k, v in entry.items() if k != "n"}, fail)
     if "mass" in entry:
         kw["mass"] = entry["mass"]
     try:
         return BarModel(**kw)
     except InputError as exc:
-        _failure(exc, entry, fail, ("p", "mass"), "bar")
+        _failure(exc, entry, fail, keys, "bar")
 
 
 def _failure(exc: InputError, entry: dict, fail, keys, what: str) -> None:

@@ -88,7 +88,13 @@ def model_tables(draw):
     keep = set(draw(st.lists(st.sampled_from(sorted(table)), unique=True)))
     if keep & {"p", "weights"}:  # they are valid for the n drawn with them
         keep.add("n")
-    return {k: table[k] for k in sorted(keep) if table[k] is not None}
+    out = {k: table[k] for k in sorted(keep) if table[k] is not None}
+    # contact on both surfaces of n = 3 points: each surface's second neighbour is the other
+    # surface (paper eqs 2-3), so only gamma_s = 0 is a patch; the rule, stated before drawing
+    if (out.get("contact") == "both" and out.get("n", 3) == 3 and "weights" not in out
+            and out.get("gamma_s", Fraction(1, 2)) != 0):
+        out["contact"] = "top"
+    return out
 
 
 def _reference(table: dict) -> Patch:

@@ -90,7 +90,7 @@ def model_tables(draw):
         keep.add("n")
     out = {k: table[k] for k in sorted(keep) if table[k] is not None}
     # contact on both surfaces of n = 3 points: each surface's second neighbour is the other
-    # surface (paper eqs 2-3), so only gamma_s = 0 is a patch; the rule, stated before drawing
+    # surface (paper eqs 2-3), so only gamma_s = 0 is a patch (Patch states the rule)
     if (out.get("contact") == "both" and out.get("n", 3) == 3 and "weights" not in out
             and out.get("gamma_s", Fraction(1, 2)) != 0):
         out["contact"] = "top"
@@ -138,7 +138,7 @@ INVALID = {
     "n": [1, 201, 3.0, "3", False],
     "r": [0, -1, "0", "1/0", "nan", 10**6, "1/1000000", "abc", True, 1e400],
     "mass": ["heavy", "", 3, "Singular"],
-    "contact": ["left", "", 1],
+    "contact": ["left", "", 1, "both"],  # both: n = 3 and gamma_s = 1/2, see above
     "gamma_s": [2, -1, "3/2", "x", float("inf"), True],
     "weights": [{}, "w", {"a": {"1": 1}}, {"2": {"2": 1}}, {"2": {"1": Fraction(1, 2)}},
                 {"9": {"1": 1}}, {"2": {"1": 2, "0": -1}}],

@@ -110,6 +110,7 @@ def test_round_trip_and_replace():
     (dict(p=0), "degree p"), (dict(model="fem"), "model"), (dict(mass="heavy"), "mass"),
     (dict(gamma_s=2), "gamma_s"), (dict(contact="left"), "contact"),
     (dict(model="x-exact", r=3), "Bloch model only"), (dict(r=0), "aspect ratio"),
+    (dict(mass="singular", contact="both"), "contact 'both' needs n >= 4"),
 ])
 def test_bad_fields_are_refused(fields, match):
     with pytest.raises(InputError, match=match):

@@ -18,7 +18,7 @@ import re
 import sys
 from typing import TYPE_CHECKING
 
-from dispersion.cli.options import material_from_args
+from dispersion.cli.options import material_from_args, real
 from dispersion.cli.outputs import EMPTY_NOTE, cell, check_figure, csv_text, emit
 from dispersion.errors import InputError
 
@@ -95,9 +95,10 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--mode-shape", metavar="MODE",
                    help="with one --frequency/--fd: displacements and stresses through the "
                         "thickness of MODE (e.g. S0, A1, SH0) instead of the mode table")
-    p.add_argument("--rho", type=float, default=None,
+    p.add_argument("--rho", type=real("rho", 0, lo_open=True), default=None,
                    help="density in kg/m^3 (with --cl/--ct, or with --youngs-modulus and --nu)")
-    p.add_argument("--youngs-modulus", type=float, default=None, metavar="E",
+    p.add_argument("--youngs-modulus", type=real("youngs-modulus", 0, lo_open=True),
+                   default=None, metavar="E",
                    help="Young's modulus E in GPa (with --nu and --rho: a user material)")
     p.add_argument("--json", help="with --frequency/--fd: write the table as JSON to FILE "
                                   "('-': stdout)")

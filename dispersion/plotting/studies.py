@@ -76,7 +76,8 @@ def figure_gamma(rows: Sequence[dict], kappas: Sequence[float], exact: dict | No
     where = ", ".join(x for x in (f"nu = {nu:g}" if nu is not None else "",
                                   f"Bloch r = b/h = {r:g}" if r is not None and what is None
                                   else "") if x)
-    fig.suptitle((what or "singular mass (patch not recorded in this older result)")
+    what = what or "singular mass (patch not recorded in this older result)"
+    fig.suptitle(what[:1].upper() + what[1:]
                  + r": effect of the redistribution weight $\gamma_s$"
                  + (f" ({where})" if where else ""), fontsize="medium")
     return fig

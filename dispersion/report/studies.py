@@ -65,9 +65,22 @@ def _bar_text(rows: list) -> str:
 
 
 def _contact_text(d: dict) -> str:
-    """The contact set of the singular masses, as the gamma_s study's patches stored it."""
-    sides = dict.fromkeys(row["patch"]["contact"] for row in d["gamma"] if row.get("patch"))
+    """The contact set of the singular masses, as the studies' patches stored it."""
+    from dispersion.symbolic.patch import Patch
+
+    rows = [row for key in ("gamma", "orders", "dt_crit", "radius") for row in d.get(key, ())]
+    specs = [Patch.from_dict(row["patch"]) for row in rows if row.get("patch")]
+    sides = dict.fromkeys(sp.contact for sp in specs if sp.singular)
     return f", contact on the {' / '.join(sides)} surface" if sides else ""
+
+
+def _mass_cell(row: dict) -> str:
+    """The row's mass as its stored patch states it (contact and gamma_s for a singular one)."""
+    if not row.get("patch"):
+        return row["mass"]  # an older record: the mass name only
+    from dispersion.symbolic.patch import Patch
+
+    return Patch.from_dict(row["patch"]).mass_title().replace(" mass", "", 1)
 
 
 def _markdown(d: dict) -> str:
@@ -80,9 +93,8 @@ def _markdown(d: dict) -> str:
         f"Bloch patch with square elements (r = b/h = {r}), nu = {nu}{_contact_text(d)}; all "
         "data in [studies.json](studies.json).", "",
         "### (a) The redistribution weight gamma_s", "",
-        "The paper uses one weight and leaves others open. "
-        + (gamma_patch_text(d["gamma"]) or "Singular mass (patch not recorded in this older "
-                                            "result)")
+        "The paper uses one weight and leaves others open. Patch: "
+        + (gamma_patch_text(d["gamma"]) or "singular mass (not recorded in this older result)")
         + ": the coefficients of Omega^2 and the relative error of Omega against the exact "
         "Rayleigh-Lamb branch, at each gamma_s.", "",
         "![gamma_s study](studies_gamma.png)", "",
@@ -119,7 +131,7 @@ def _markdown(d: dict) -> str:
     for row in d["orders"]:
         s0, a0 = (f"> {row['order']}" if row[f"{b}_order"] is None else row[f"{b}_order"]
                   for b in ("S0", "A0"))
-        lines.append(f"| {row['p']} | {row['n']} | {row['mass']} | {s0} | {a0} | "
+        lines.append(f"| {row['p']} | {row['n']} | {_mass_cell(row)} | {s0} | {a0} | "
                      f"{_fmt(row['S0'].get('4'))} | "
                      f"{_fmt(row['A0'].get('6'))} |")
     lines += ["", "### (c) Where the methods fail", "",
@@ -127,7 +139,7 @@ def _markdown(d: dict) -> str:
               "over the Brillouin zone, in units h/c_T (massless DOFs condensed):", "",
               "| p | n | mass | dt_crit |", "|---|---|---|---|"]
     for row in d["dt_crit"]:
-        lines.append(f"| {row['p']} | {row['n']} | {row['mass']} | {row['dt_crit']:.4f} |")
+        lines.append(f"| {row['p']} | {row['n']} | {_mass_cell(row)} | {row['dt_crit']:.4f} |")
     lines += ["", f"Radius of validity of the truncated series: the smallest kappa at which "
               f"Omega from the series departs from the numeric branch (exact Rayleigh-Lamb "
               f"root, or the discrete patch's own eigenvalue) by more than "

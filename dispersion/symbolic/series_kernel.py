@@ -282,10 +282,50 @@ def branch_coefficients(F: Series, N: int) -> tuple[object, list]:
     ctx = F.ctx
     w0num, w0den = _leading_root(Q[0])
     a, b = w0den, -w0num  # w0 = -b / a
-    # R_k(y) = a^E Q_k((y - b) / a), E = max w-degree: polynomial in (y, params) with y = a delta
+    # R_k(y) = a^E Q_k((y - b) / a), E = max w-degree: polynomial in (y, params) with y = a delta.
+    # With one parameter every coefficient below is univariate (w is absent): the work runs
+    # on fmpq_poly, whose products are several times cheaper than fmpq_mpoly's, and the
+    # results are mapped back exactly (the same coefficients, another representation).
+    uni = ctx.nvars() == 2
+    R = _shifted_uni(Q, a, b) if uni else _shifted(Q, a, b)
+    r0 = R[0]
+    if r0.get(0) is not None and not r0[0].is_zero():
+        raise DispersionError("internal: leading balance not solved by its root")
+    rho = r0.get(1)
+    if rho is None or rho.is_zero():
+        raise DispersionError("the branch is not a simple root at the origin; cannot isolate it")
+    # Y = -sum_{(k,j) != (0,1)} r_kj rho^(j + 2k - 2) Y^j u^k, Y = sum_{k>=1} z_k u^k
+    zero = rho * 0
+    rho_pows = {0: zero + 1}
+
+    def rp(e):
+        if e not in rho_pows:
+            rho_pows[e] = rp(e - 1) * rho
+        return rho_pows[e]
+
+    coef = {}
+    for k, rk in enumerate(R):
+        for j, c in rk.items():
+            if (k, j) == (0, 1) or c.is_zero():
+                continue
+            if k == 0 and j < 2:
+                continue
+            coef[(k, j)] = c * rp(j + 2 * k - 2)
+    z = _power_recurrence(coef, N, zero)
+    a_ = _to_uni(a) if uni else a
+    dens = [a_ * rp(2 * k - 1) for k in range(1, N + 1)]
+    if uni:
+        z = [_from_uni(ctx, c) for c in z]
+        dens = [_from_uni(ctx, c) for c in dens]
+    nums = [w0num] + [z[k] for k in range(1, N + 1)]
+    return nums, [a] + dens
+
+
+def _shifted(Q: list, a, b) -> list[dict]:
+    """``[{j: [y^j] a^E Q_k((y - b) / a)}]`` over (y, *params) (``fmpq_mpoly``, y in w's place)."""
+    ctx = a.context()
     E = max(q.degrees()[0] for q in Q)
-    gens = ctx.gens()
-    y = gens[0]
+    y = ctx.gens()[0]
     a_pows = [ctx.from_dict({}) + 1]
     for _ in range(E):
         a_pows.append(a_pows[-1] * a)
@@ -302,29 +342,57 @@ def branch_coefficients(F: Series, N: int) -> tuple[object, list]:
             if e in by_e:
                 acc += by_e[e] * a_pows[E - e]
         R.append(_by_power(acc))
-    r0 = R[0]
-    if r0.get(0) is not None and not r0[0].is_zero():
-        raise DispersionError("internal: leading balance not solved by its root")
-    rho = r0.get(1)
-    if rho is None or rho.is_zero():
-        raise DispersionError("the branch is not a simple root at the origin; cannot isolate it")
-    # Y = -sum_{(k,j) != (0,1)} r_kj rho^(j + 2k - 2) Y^j u^k, Y = sum_{k>=1} z_k u^k
-    zero = ctx.from_dict({})
-    rho_pows = {0: zero + 1}
+    return R
 
-    def rp(e):
-        if e not in rho_pows:
-            rho_pows[e] = rp(e - 1) * rho
-        return rho_pows[e]
 
-    coef = {}
-    for k, rk in enumerate(R):
-        for j, c in rk.items():
-            if (k, j) == (0, 1) or c.is_zero():
-                continue
-            if k == 0 and j < 2:
-                continue
-            coef[(k, j)] = c * rp(j + 2 * k - 2)
+def _shifted_uni(Q: list, a, b) -> list[dict]:
+    """:func:`_shifted` for one parameter x: ``{j: fmpq_poly in x}`` (same coefficients)."""
+    E = max(q.degrees()[0] for q in Q)
+    A, B = _to_uni(a), _to_uni(b)
+    zero = flint.fmpq_poly(0)
+    a_pows = [zero + 1]
+    for _ in range(E):
+        a_pows.append(a_pows[-1] * A)
+    R = []
+    for q in Q:
+        by_e: dict[int, dict] = {}
+        for (e, i), c in q.to_dict().items():
+            by_e.setdefault(e, {})[i] = c
+        acc: list = []  # coefficients of y^0, y^1, ...
+        for e in range(E, -1, -1):  # Horner in w: sum_e c_e (y - b)^e a^(E - e)
+            new = [zero] * (len(acc) + 1)
+            for j, c in enumerate(acc):  # acc * (y - b)
+                if not c.is_zero():
+                    new[j + 1] += c
+                    new[j] -= c * B
+            acc = new
+            if e in by_e:
+                acc[0] += _poly(by_e[e]) * a_pows[E - e]
+        R.append({j: c for j, c in enumerate(acc) if not c.is_zero()})
+    return R
+
+
+def _poly(terms: dict):
+    """``fmpq_poly`` with the coefficients ``{power: value}``."""
+    out = [flint.fmpq(0)] * (max(terms) + 1)
+    for i, v in terms.items():
+        out[i] = v
+    return flint.fmpq_poly(out)
+
+
+def _to_uni(c):
+    """A polynomial in (w, x) free of w as an ``fmpq_poly`` in x."""
+    terms = {mon[1]: v for mon, v in c.to_dict().items()}
+    return _poly(terms) if terms else flint.fmpq_poly(0)
+
+
+def _from_uni(ctx, p):
+    """Inverse of :func:`_to_uni`: an ``fmpq_poly`` in x as a polynomial in (w, x)."""
+    return ctx.from_dict({(0, i): v for i, v in enumerate(p.coeffs()) if v != 0})
+
+
+def _power_recurrence(coef: dict, N: int, zero) -> list:
+    """``[z_0 = 0, z_1, ..., z_N]`` of Y = sum z_k u^k solving Y = -sum c_kj Y^j u^k."""
     jmax = max((j for _, j in coef), default=0)
     # P[j][i] = [u^i] Y^j, needed for i <= need[j] only: by c_kj P[j][kk - k] (kk <= N) and
     # by P[j + 1][i + 1] (the terms w^j of an exact branch come with high powers of t, so
@@ -346,9 +414,7 @@ def branch_coefficients(F: Series, N: int) -> tuple[object, list]:
                 acc += c * P[j][kk - k]
         z[kk] = -acc
         P[1][kk] = z[kk]
-    nums = [w0num] + [z[k] for k in range(1, N + 1)]
-    dens = [a] + [a * rp(2 * k - 1) for k in range(1, N + 1)]
-    return nums, dens
+    return z
 
 
 def _by_power(p) -> dict[int, object]:

@@ -183,13 +183,144 @@ def _ours_compute(order: int) -> tuple[float, dict[str, dict[int, str]]]:
     return time.perf_counter() - start, out
 
 
+_VALUE_TOKEN = re.compile(r"\s*(?:(\d+)|(nu)|(\*\*|[-+*/^()]))")
+#: Bounds of a coefficient text read by :func:`_value`: nesting and the size of an exponent.
+_VALUE_DEPTH = 100
+_VALUE_EXPONENT = 1024
+
+
 def _value(text: str, nu: Fraction) -> Fraction:
-    """Exact value of a coefficient string (ours or Maxima's linear syntax) at a rational nu."""
-    expr = text.replace("^", "**")
-    if not re.fullmatch(r"[0-9nu+\-*/() ]+", expr):
-        raise InputError(f"unexpected coefficient text {text!r}")
-    expr = re.sub(r"(\d+)", r"F(\1)", expr)
-    return eval(expr, {"__builtins__": {}}, {"F": Fraction, "nu": nu})  # noqa: S307 - checked
+    """Exact value of a coefficient string (ours or Maxima's linear syntax) at a rational nu.
+
+    Read by a whitelist recursive-descent parser over exact fractions (integers, ``nu``,
+    ``+ - * / ^ **`` and parentheses; integer exponents); nothing is ``eval``-ed. Anything
+    else is an :class:`InputError` naming the position.
+
+    >>> _value("-2/(nu-1)", Fraction(3, 10))
+    Fraction(20, 7)
+    >>> _value("2*nu^2 - (1 - nu)^-1", Fraction(1, 2))
+    Fraction(-3, 2)
+    >>> _value("__import__('os')", Fraction(0))
+    Traceback (most recent call last):
+    ...
+    dispersion.errors.InputError: unexpected text at position 0 of a coefficient: "__import__('"
+    """
+    return _ValueReader(text, nu).read()
+
+
+class _ValueReader:
+    """expr := term (('+'|'-') term)*; term := unary (('*'|'/') unary)*;
+    unary := ('+'|'-') unary | power; power := atom (('^'|'**') signed integer)?;
+    atom := integer | nu | '(' expr ')'."""
+
+    def __init__(self, text: str, nu: Fraction):
+        self.nu, self.tokens, pos = nu, [], 0
+        if not isinstance(text, str):
+            raise InputError(f"a coefficient must be text, got {type(text).__name__}")
+        while pos < len(text):
+            m = _VALUE_TOKEN.match(text, pos)
+            if m is None or m.end() == pos:
+                if text[pos:].strip() == "":
+                    break
+                raise InputError(f"unexpected text at position {pos} of a coefficient: "
+                                 f"{text[pos:pos + 12]!r}")
+            self.tokens.append((m.group(1) or m.group(2) or m.group(3), m.start(m.lastindex),
+                                m.group(1)))
+            pos = m.end()
+        self.i, self.depth = 0, 0
+
+    def _peek(self):
+        return self.tokens[self.i][0] if self.i < len(self.tokens) else None
+
+    def _fail(self, what: str):
+        where = (f"at position {self.tokens[self.i][1]}" if self.i < len(self.tokens)
+                 else "at the end")
+        raise InputError(f"{what} {where} of a coefficient")
+
+    def read(self) -> Fraction:
+        if not self.tokens:
+            raise InputError("empty coefficient")
+        value = self._expr()
+        if self.i != len(self.tokens):
+            self._fail(f"unexpected {self._peek()!r}")
+        return value
+
+    def _expr(self) -> Fraction:
+        value = self._term()
+        while self._peek() in ("+", "-"):
+            op = self.tokens[self.i][0]
+            self.i += 1
+            value = value + self._term() if op == "+" else value - self._term()
+        return value
+
+    def _term(self) -> Fraction:
+        value = self._unary()
+        while self._peek() in ("*", "/"):
+            op = self.tokens[self.i][0]
+            self.i += 1
+            x = self._unary()
+            if op == "/":
+                if x == 0:
+                    self._fail("division by zero")
+                value /= x
+            else:
+                value *= x
+        return value
+
+    def _unary(self) -> Fraction:
+        sign = 1
+        while self._peek() in ("+", "-"):
+            sign = -sign if self.tokens[self.i][0] == "-" else sign
+            self.i += 1
+        return sign * self._power()
+
+    def _power(self) -> Fraction:
+        base = self._atom()
+        if self._peek() not in ("^", "**"):
+            return base
+        self.i += 1
+        sign = 1
+        paren = self._peek() == "("
+        self.i += paren
+        while self._peek() in ("+", "-"):
+            sign = -sign if self.tokens[self.i][0] == "-" else sign
+            self.i += 1
+        if self.i >= len(self.tokens) or self.tokens[self.i][2] is None:
+            self._fail("an integer exponent is required")
+        e = sign * int(self.tokens[self.i][0])
+        self.i += 1
+        if paren:
+            if self._peek() != ")":
+                self._fail("')' expected")
+            self.i += 1
+        if abs(e) > _VALUE_EXPONENT:
+            self._fail(f"exponent {e} out of range [-{_VALUE_EXPONENT}, {_VALUE_EXPONENT}]")
+        if base == 0 and e < 0:
+            self._fail("division by zero")
+        return base ** e
+
+    def _atom(self) -> Fraction:
+        tok = self._peek()
+        if tok is None:
+            self._fail("unexpected end")
+        if tok == "nu":
+            self.i += 1
+            return self.nu
+        if self.tokens[self.i][2] is not None:
+            self.i += 1
+            return Fraction(int(tok))
+        if tok == "(":
+            self.depth += 1
+            if self.depth > _VALUE_DEPTH:
+                self._fail(f"nesting deeper than {_VALUE_DEPTH}")
+            self.i += 1
+            value = self._expr()
+            if self._peek() != ")":
+                self._fail("')' expected")
+            self.i += 1
+            self.depth -= 1
+            return value
+        self._fail(f"unexpected {tok!r}")
 
 
 def _agree(ours: dict, theirs: dict) -> bool:
@@ -234,7 +365,7 @@ def peer_failure(returncode: int, stdout: str, stderr: str, coeffs: dict,
         return "returned no coefficients" + (f" (last line: {lines[-1][:200]})" if lines else "")
     try:
         same = _agree(ours, coeffs)
-    except (InputError, ZeroDivisionError, SyntaxError) as exc:
+    except InputError as exc:
         return f"returned an unreadable coefficient ({exc})"
     return None if same else "its coefficients differ from ours"
 

@@ -266,12 +266,14 @@ def _cofactor(rows: list[list[list]], D: int) -> list:
 # --------------------------------------------------------------------------- branch solve
 
 
-def branch_coefficients(F: Series, N: int) -> tuple[object, list]:
+def branch_coefficients(F: Series, N: int, univariate: bool | None = None) -> tuple[object, list]:
     """Solve :math:`F(t, w) = t^m Q(t, w) = 0` for :math:`w = w_0 + \\sum_{k \\ge 1} w_k t^k`.
 
     ``F.coeffs`` are polynomials in ``(w, *params)``; ``F.D`` must reach ``m + N``.
     Returns ``(den, [num_0, ..., num_N])`` as ``fmpq_mpoly`` in the same context (``w``
     absent) with :math:`w_k = \\text{num}_k / \\text{den}_k`, ``den`` a list of denominators.
+    ``univariate``: with one parameter, work on ``fmpq_poly`` (the fast route, default);
+    ``False`` keeps ``fmpq_mpoly`` throughout (the reference route, same coefficients).
     """
     m = F.valuation()
     if m is None:
@@ -286,7 +288,7 @@ def branch_coefficients(F: Series, N: int) -> tuple[object, list]:
     # With one parameter every coefficient below is univariate (w is absent): the work runs
     # on fmpq_poly, whose products are several times cheaper than fmpq_mpoly's, and the
     # results are mapped back exactly (the same coefficients, another representation).
-    uni = ctx.nvars() == 2
+    uni = ctx.nvars() == 2 and univariate is not False
     R = _shifted_uni(Q, a, b) if uni else _shifted(Q, a, b)
     r0 = R[0]
     if r0.get(0) is not None and not r0[0].is_zero():

@@ -1,5 +1,6 @@
-"""The fast route of the branch solve (fmpq_poly, one parameter) against the reference route
-(fmpq_mpoly throughout, ``univariate=False``): the same coefficients, searched by hypothesis.
+"""The fast route of the branch solve (fmpq_poly and Horner in Y, one parameter) against the
+reference route (fmpq_mpoly and the table of powers of Y, ``univariate=False``): the same
+coefficients, searched by hypothesis.
 
 Two independent checks: (1) both routes give identical numerators and denominators;
 (2) the series they give solves F(t, w(t)) = O(t^(N+1)) at a random rational value of the

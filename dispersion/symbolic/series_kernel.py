@@ -19,7 +19,9 @@ Three algorithms, all polynomial in their sizes:
   :math:`w_0 = -b/a` the simple root of the leading balance and :math:`\\rho` the linear
   coefficient in :math:`y`, the substitution :math:`y = \\rho\\, Y(t / \\rho^2)` turns the
   equation into :math:`Y = -\\sum \\tilde r_{kj} Y^j u^k` with polynomial coefficients: every
-  order is one polynomial update, with no division at all.
+  order is one polynomial update, with no division at all With one parameter (the exact series) the
+  update runs on univariate ``fmpq_poly`` by Horner in Y (:func:`_horner_recurrence`); the
+  ``fmpq_mpoly`` table of powers of Y (:func:`_power_recurrence`) is the reference route.
 
 >>> ctx = context(("g",))
 >>> t = Series.gen_t(ctx, 3)
@@ -272,8 +274,9 @@ def branch_coefficients(F: Series, N: int, univariate: bool | None = None) -> tu
     ``F.coeffs`` are polynomials in ``(w, *params)``; ``F.D`` must reach ``m + N``.
     Returns ``(den, [num_0, ..., num_N])`` as ``fmpq_mpoly`` in the same context (``w``
     absent) with :math:`w_k = \\text{num}_k / \\text{den}_k`, ``den`` a list of denominators.
-    ``univariate``: with one parameter, work on ``fmpq_poly`` (the fast route, default);
-    ``False`` keeps ``fmpq_mpoly`` throughout (the reference route, same coefficients).
+    ``univariate``: with one parameter, work on ``fmpq_poly`` by Horner in Y (the fast route,
+    default); ``False`` keeps ``fmpq_mpoly`` and the table of powers of Y throughout (the
+    reference route, same coefficients).
     """
     m = F.valuation()
     if m is None:
@@ -313,7 +316,7 @@ def branch_coefficients(F: Series, N: int, univariate: bool | None = None) -> tu
             if k == 0 and j < 2:
                 continue
             coef[(k, j)] = c * rp(j + 2 * k - 2)
-    z = _power_recurrence(coef, N, zero)
+    z = (_horner_recurrence if uni else _power_recurrence)(coef, N, zero)
     a_ = _to_uni(a) if uni else a
     dens = [a_ * rp(2 * k - 1) for k in range(1, N + 1)]
     if uni:
@@ -391,6 +394,48 @@ def _to_uni(c):
 def _from_uni(ctx, p):
     """Inverse of :func:`_to_uni`: an ``fmpq_poly`` in x as a polynomial in (w, x)."""
     return ctx.from_dict({(0, i): v for i, v in enumerate(p.coeffs()) if v != 0})
+
+
+def _horner_recurrence(coef: dict, N: int, zero) -> list:
+    """:func:`_power_recurrence` by Horner in Y, order by order (the fast route).
+
+    With A_j(u) = sum_k c_kj u^k, H_jmax = A_jmax and H_j = A_j + Y H_(j+1), the equation is
+    Y = -H_0. [u^i] H_j needs z_1 .. z_i and [u^(< i)] H_(j+1) only (Y has no constant
+    term, and [u^0] H_1 = 0), so every entry is one sum of products z_l [u^(i-l)] H_(j+1) and
+    no coefficient c_kj is multiplied at all. [u^i] H_j reaches u^N in H_0 only for
+    i <= N - j.
+    """
+    jmax = max((j for _, j in coef), default=0)
+    A = [[zero] * (N + 1) for _ in range(jmax + 2)]
+    for (k, j), c in coef.items():
+        if k <= N:
+            A[j][k] = c
+    # H[j][i], i <= N - j; H[jmax + 1] = 0
+    H = [[None] * (N + 1) for _ in range(jmax + 2)]
+    H[jmax + 1] = [zero] * (N + 1)
+    for j in range(1, jmax + 1):
+        H[j][0] = A[j][0]
+    z = [zero] * (N + 1)
+    for kk in range(1, N + 1):
+        i = kk - 1  # H_j[kk - 1] for j >= 1 uses z_1 .. z_(kk-1)
+        if i >= 1:
+            for j in range(jmax, 0, -1):
+                if i > N - j:
+                    continue
+                nxt = H[j + 1]
+                acc = A[j][i]
+                for l in range(1, i + 1):
+                    h = nxt[i - l]
+                    if h is not None and not z[l].is_zero() and not h.is_zero():
+                        acc = acc + z[l] * h
+                H[j][i] = acc
+        acc = A[0][kk]
+        for l in range(1, kk):
+            h = H[1][kk - l]
+            if h is not None and not h.is_zero():
+                acc = acc + z[l] * h
+        z[kk] = -acc
+    return z
 
 
 def _power_recurrence(coef: dict, N: int, zero) -> list:

@@ -19,7 +19,7 @@ Three algorithms, all polynomial in their sizes:
   :math:`w_0 = -b/a` the simple root of the leading balance and :math:`\\rho` the linear
   coefficient in :math:`y`, the substitution :math:`y = \\rho\\, Y(t / \\rho^2)` turns the
   equation into :math:`Y = -\\sum \\tilde r_{kj} Y^j u^k` with polynomial coefficients: every
-  order is one polynomial update, with no division at all With one parameter (the exact series) the
+  order is one polynomial update, with no division at all. With one parameter (the exact series) the
   update runs on univariate ``fmpq_poly`` by Horner in Y (:func:`_horner_recurrence`); the
   ``fmpq_mpoly`` table of powers of Y (:func:`_power_recurrence`) is the reference route.
 

@@ -152,3 +152,18 @@ def test_fmpq_poly_round_trip():
     p = _poly_g([flint.fmpq(3, 7), 0, -5, flint.fmpq(1, 11)])
     assert _k._from_uni(CTX, _k._to_uni(p)) == p
     assert _k._from_uni(CTX, _k._to_uni(CTX.from_dict({}))) == CTX.from_dict({})
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.integers(-50, 50), min_size=1, max_size=8), st.integers(0, 4),
+       st.fractions(min_value=-3, max_value=3, max_denominator=11).filter(lambda v: v != 1))
+def test_g_to_nu_equals_direct_substitution(coeffs, extra, nu):
+    # p(g) (2 (1 - nu))^e at g = (1 - 2 nu) / (2 (1 - nu)), evaluated directly with Fractions
+    from dispersion.waves.exact_series import _g_to_nu
+
+    p = _poly_g(coeffs)
+    e = len(coeffs) - 1 + extra
+    g = (1 - 2 * nu) / (2 * (1 - nu))
+    direct = sum(Fraction(c) * g**i for i, c in enumerate(coeffs)) * (2 * (1 - nu)) ** e
+    value = _g_to_nu(p, e)(flint.fmpq(nu.numerator, nu.denominator))
+    assert Fraction(int(value.p), int(value.q)) == direct

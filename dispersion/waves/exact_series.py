@@ -9,8 +9,11 @@ order by order by the generic engine :func:`dispersion.symbolic.power_balance.so
 """
 from __future__ import annotations
 
+import flint
+
 from dispersion.errors import check_nu
 from dispersion.symbolic import series_kernel as _k
+from dispersion.symbolic.series_kernel import _from_uni
 from dispersion.symbolic.power_balance import (BRANCHES, _substitute_nu, _to_expr,
                                                check_request, solve_branch)
 from dispersion.waves.rayleigh_lamb import frequency_function
@@ -32,38 +35,23 @@ def _exact_build(kind: str, sigma: int, form: str):
     return ctx, build
 
 
-class _GToNu:
-    """p(g) (2 (1 - nu))^e with g = (1 - 2 nu) / (2 (1 - nu)): a polynomial in nu.
+def _g_to_nu(p, e: int):
+    """p(g) (2 (1 - nu))^e with g = (1 - 2 nu) / (2 (1 - nu)), as an ``fmpq_poly`` in nu.
 
-    By Horner in 1 - 2 nu; the powers of 2 (1 - nu) are computed once and shared by every
-    coefficient.
+    With Y = 2 - 2 nu, 1 - 2 nu = Y - 1 and g = 1 - 1/Y, so p(g) Y^e = Y^e P(1/Y) with
+    P(v) = p(1 - v): two polynomial compositions and a reversal, all in FLINT.
     """
-
-    def __init__(self, ctx_nu):
-        nu = ctx_nu.gens()[1]
-        self.ctx = ctx_nu
-        self.den = [ctx_nu.from_dict({}) + 1]  # powers of 2 (1 - nu), computed once
-        self.factors = (1 - 2 * nu, 2 - 2 * nu)
-
-    def _pow(self, table: list, base, e: int):
-        while len(table) <= e:
-            table.append(table[-1] * base)
-        return table[e]
-
-    def __call__(self, p, e: int):
-        # sum_a c_a X^a Y^(e - a), X = 1 - 2 nu, Y = 2 - 2 nu, by Horner in X: each step a
-        # product with the linear X and a scalar multiple of a cached power of Y
-        coef = {mon[1]: c for mon, c in p.to_dict().items()}
-        if not coef:
-            return self.ctx.from_dict({})
-        X, Y = self.factors
-        deg = max(coef)
-        h = self.ctx.from_dict({}) + coef[deg]
-        for a in range(deg - 1, -1, -1):
-            h = h * X
-            if a in coef:
-                h += coef[a] * self._pow(self.den, Y, deg - a)
-        return h * self._pow(self.den, Y, e - deg)
+    terms = {int(mon[1]): c for mon, c in p.to_dict().items()}
+    if not terms:
+        return flint.fmpq_poly(0)
+    coeffs = [flint.fmpq(0)] * (max(terms) + 1)
+    for i, c in terms.items():
+        coeffs[i] = c
+    P = flint.fmpq_poly(coeffs)(flint.fmpq_poly([1, -1])).coeffs()  # P(v) = p(1 - v)
+    R = [flint.fmpq(0)] * (e + 1)
+    for i, c in enumerate(P):  # Y^e P(1/Y) = sum_i P_i Y^(e - i)
+        R[e - i] = c
+    return flint.fmpq_poly(R)(flint.fmpq_poly([2, -2]))
 
 
 def exact_series_raw(branch: str, order: int, form: str = "standard") -> list[tuple]:
@@ -74,13 +62,13 @@ def exact_series_raw(branch: str, order: int, form: str = "standard") -> list[tu
     kind, sigma, order = check_request(branch, order, exact=True)
     ctx, build = _exact_build(kind, sigma, form)
     nums, dens = solve_branch(build, sigma, order, 2 * sigma)  # the lowest power is t^(2 sigma)
-    to_nu = _GToNu(_k.context(("nu",)))
+    ctx_nu = _k.context(("nu",))
     out = []
     for k, (a, b) in enumerate(zip(nums, dens)):
         e = max(a.degrees()[1], b.degrees()[1])
-        num, den = to_nu(a, e), to_nu(b, e)
-        g = num.gcd(den)
-        out.append((2 * (sigma + k), num / g, den / g))
+        num, den = _g_to_nu(a, e), _g_to_nu(b, e)
+        g = num.gcd(den)  # monic, as fmpq_mpoly's gcd: the same reduced pair
+        out.append((2 * (sigma + k), _from_uni(ctx_nu, num / g), _from_uni(ctx_nu, den / g)))
     return out
 
 

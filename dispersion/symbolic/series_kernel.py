@@ -299,7 +299,14 @@ def branch_coefficients(F: Series, N: int, univariate: bool | None = None) -> tu
     rho = r0.get(1)
     if rho is None or rho.is_zero():
         raise DispersionError("the branch is not a simple root at the origin; cannot isolate it")
-    # Y = -sum_{(k,j) != (0,1)} r_kj rho^(j + 2k - 2) Y^j u^k, Y = sum_{k>=1} z_k u^k
+    # Y = -sum_{(k,j) != (0,1)} r_kj rho^(j + 2k - 2) Y^j u^k, Y = sum_{k>=1} z_k u^k.
+    # Over QQ[x] a constant is a unit: the fast route scales by the monic rho / L instead
+    # (y = rho' Y, t = rho'^2 u, the equation divided by L rho'^2), which keeps the powers
+    # of L's numerator and denominator out of every coefficient (w_k = z_k / (a rho'^(2k-1))).
+    lead = None
+    if uni:
+        lead = rho.coeffs()[-1]
+        rho = rho / lead
     zero = rho * 0
     rho_pows = {0: zero + 1}
 
@@ -315,7 +322,8 @@ def branch_coefficients(F: Series, N: int, univariate: bool | None = None) -> tu
                 continue
             if k == 0 and j < 2:
                 continue
-            coef[(k, j)] = c * rp(j + 2 * k - 2)
+            coef[(k, j)] = c * rp(j + 2 * k - 2) if lead is None else \
+                c * rp(j + 2 * k - 2) / lead
     z = (_horner_recurrence if uni else _power_recurrence)(coef, N, zero)
     a_ = _to_uni(a) if uni else a
     dens = [a_ * rp(2 * k - 1) for k in range(1, N + 1)]

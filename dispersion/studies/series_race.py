@@ -463,6 +463,9 @@ def _warm_bytecode(notes: list) -> None:
         return
     notes.append("ours: one untimed warm-up run first (Python's bytecode cache written, as "
                  "after pip install)")
+    if any("__editable__" in str(getattr(f, "__module__", "")) for f in sys.meta_path):
+        notes.append("ours runs from an editable install (pip install -e): its import finder "
+                     "adds start-up that an installed copy does not have")
 
 
 class _batch_file:

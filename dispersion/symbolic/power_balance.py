@@ -78,8 +78,9 @@ def check_request(branch: str, order, exact: bool, n: int | None = None) -> tupl
     exact kappa^64 0.35 s / 34 MiB, kappa^96 1.6 s / 50 MiB, kappa^128 5.0 s / 89 MiB
     (before the univariate Horner route: 1.1 s, 5.9 s, 35 s), growing like order^4:
     exact orders <= 128 stay well inside the bound. Discrete, singular mass (the dearest):
-    n = 12 kappa^8 7.3 s, n = 12 kappa^20 40 s / 184 MiB, n = 16 kappa^10 22 s / 176 MiB. Elimination costs (2n)^2 series products
-    per row pivot and the product length grows with the order, so the discrete bound is
+    n = 12 kappa^8 7.3 s, n = 12 kappa^20 40 s / 184 MiB, n = 16 kappa^10 22 s / 176 MiB.
+    Elimination costs (2n)^2 series products per row pivot and the product length grows with
+    the order, so the discrete bound is
     (2n)^2 * order <= 12 000 (both measured cases inside it) and order <= 32. Memory stays far
     below the machine's 24 GiB in every case; time is the binding limit.
 

@@ -54,11 +54,15 @@ def main(argv=None) -> int:
     parser.add_argument("--out", type=Path, default=None)
     parser.add_argument("--repeats", type=int, default=3,
                         help="runs of each side of the race, in turn (medians)")
+    parser.add_argument("--python", default=None, metavar="PATH",
+                        help="interpreter that runs ours in the race (default this one), e.g. "
+                             "that of a non-editable install: pip install . into a fresh venv")
     parser.add_argument("--textbook", type=float, default=None, metavar="S",
                         help="seconds per branch for the textbook sympy route (off by default)")
     args = parser.parse_args(argv)
     start = time.perf_counter()
-    result = measure(quick=args.quick, extended=not args.quick, repeats=max(1, args.repeats))
+    result = measure(quick=args.quick, extended=not args.quick, repeats=max(1, args.repeats),
+                     python=args.python)
     _print_tables(result)
     if args.out is not None:
         print("wrote", save(args.out / "series_speed.json", "series_speed", result,

@@ -380,20 +380,22 @@ def _maxima_version(exe: str) -> str:
 
 def race(orders, timeout: float = TIMEOUT, maxima: str | None = "maxima",
          notes: list | None = None, maxima_max_order: int = 64,
-         repeats: int = 1) -> tuple[RacePoint, ...]:
+         repeats: int = 1, python: str | None = None) -> tuple[RacePoint, ...]:
     """Race ours against Maxima at each order of ``orders`` (Maxima skipped if ``None`` and
     above ``maxima_max_order``). With ``repeats`` > 1 the two run in turn (ours, Maxima, ours,
     ...) and each figure is the median over the runs, so that a shared machine's drift moves
-    both sides alike; a peer that fails once is failed."""
+    both sides alike; a peer that fails once is failed. ``python``: the interpreter that runs
+    ours (default this one), e.g. that of a non-editable install as a user has it."""
     from statistics import median
 
     notes = [] if notes is None else notes
     exe = shutil.which(maxima) if maxima else None
     program = maxima_program()
     points = []
-    _warm_bytecode(notes)
+    python = python or sys.executable
+    _warm_bytecode(notes, python)
     for order in orders:
-        cmd = [sys.executable, "-m", "dispersion", "series", "--exact", "--branch", "both",
+        cmd = [python, "-m", "dispersion", "series", "--exact", "--branch", "both",
                "--order", str(order), "--format", "json"]
         mine, lean, theirs = [], [], []
         why = None
@@ -403,7 +405,7 @@ def race(orders, timeout: float = TIMEOUT, maxima: str | None = "maxima",
                 why = "timeout" if run is None else f"exit {run[3]}"
                 break
             mine.append(run)
-            lrun = run_child([sys.executable, "-m", "dispersion.cli.series", *cmd[4:]], timeout)
+            lrun = run_child([python, "-m", "dispersion.cli.series", *cmd[4:]], timeout)
             if lrun is not None and lrun[3] == 0:
                 lean.append(lrun[0])
             if exe is not None and order <= maxima_max_order:
@@ -444,7 +446,7 @@ def race(orders, timeout: float = TIMEOUT, maxima: str | None = "maxima",
     return tuple(points)
 
 
-def _warm_bytecode(notes: list) -> None:
+def _warm_bytecode(notes: list, python: str) -> None:
     """One untimed run of ours that may write Python's bytecode cache, as a user's installed
     copy has it (``pip install`` compiles; ``PYTHONDONTWRITEBYTECODE`` in the benchmark's
     environment would otherwise make every timed run compile the package from source).
@@ -452,7 +454,7 @@ def _warm_bytecode(notes: list) -> None:
     import os
 
     env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
-    cmd = [sys.executable, "-m", "dispersion", "series", "--exact", "--order", "4",
+    cmd = [python, "-m", "dispersion", "series", "--exact", "--order", "4",
            "--format", "json"]
     try:
         subprocess.run(cmd, capture_output=True, env=env, timeout=TIMEOUT, check=False)
@@ -463,7 +465,10 @@ def _warm_bytecode(notes: list) -> None:
         return
     notes.append("ours: one untimed warm-up run first (Python's bytecode cache written, as "
                  "after pip install)")
-    if any("__editable__" in str(getattr(f, "__module__", "")) for f in sys.meta_path):
+    probe = subprocess.run([python, "-c", "import sys; print(any('__editable__' in "
+                            "str(getattr(f, '__module__', '')) for f in sys.meta_path))"],
+                           capture_output=True, text=True, timeout=TIMEOUT, check=False)
+    if probe.stdout.strip() == "True":
         notes.append("ours runs from an editable install (pip install -e): its import finder "
                      "adds start-up that an installed copy does not have")
 
@@ -532,7 +537,7 @@ def scaling(grid: dict[int, tuple[int, ...]], masses=("consistent", "lumped", "s
 
 def measure(quick: bool = False, executor=None, *, timeout: float = TIMEOUT,
             maxima: str | None = "maxima", extended: bool = False,
-            repeats: int = 1) -> SeriesSpeed:
+            repeats: int = 1, python: str | None = None) -> SeriesSpeed:
     """The race and the scaling table (``quick``: fewer orders and sizes, for CI).
 
     Full: ours at kappa^8, 16, 32, 64 and Maxima to kappa^32; scaling at kappa^8 for p = 2
@@ -540,7 +545,8 @@ def measure(quick: bool = False, executor=None, *, timeout: float = TIMEOUT,
     ``dispersion reproduce`` needs. ``extended`` (``dispersion bench``) adds Maxima at
     kappa^64 and n = 12. ``executor`` is not used: the timings run one after the other so
     that they do not compete for the cores. ``repeats``: runs of each side of the race (in
-    turn; medians reported).
+    turn; medians reported). ``python``: interpreter that runs ours in the race (default
+    this one).
     """
     if not (isinstance(timeout, (int, float)) and 0 < timeout <= TIMEOUT_MAX):
         raise InputError(f"timeout (seconds per child process) must lie in (0, {TIMEOUT_MAX:g}], "
@@ -556,7 +562,9 @@ def measure(quick: bool = False, executor=None, *, timeout: float = TIMEOUT,
                      "(apt-get install -y maxima maxima-share)")
     if _gnu_time() is None:
         notes.append("GNU time not found: no peak memory (apt-get install -y time)")
-    race_points = race(orders, timeout, maxima, notes, maxima_max_order, repeats)
+    if python is not None:
+        notes.append(f"ours run by {python}")
+    race_points = race(orders, timeout, maxima, notes, maxima_max_order, repeats, python)
     points, fits = scaling(grid)
     return SeriesSpeed(race_points, points, fits, _maxima_version(exe) if exe else None,
                        tuple(notes), {"quick": quick, "orders": list(orders),

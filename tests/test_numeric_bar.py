@@ -65,3 +65,27 @@ def test_dense_and_sparse_solver_paths_agree(mass, scheme):
     a, b = (np.array([s.u for s in h.states]) for h in runs)
     assert np.allclose(a, b, rtol=0, atol=1e-12)
     assert np.allclose(runs[0].total, runs[1].total, rtol=1e-12, atol=0)
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.integers(1, 4), st.integers(2, 12), st.sampled_from(["consistent", "lumped",
+                                                               "singular", "singular-lumped"]),
+       st.sampled_from(["left", "right"]))
+def test_float_mass_rules_equal_the_exact_rules(p, n_el, mass, contact):
+    # issue 23: the numeric bar applies the rules in floats (no sympy); the exact route is
+    # the rule on the exact Gram matrix of the same knots with the exact redistribution
+    # (gamma_s = 1/2). Rule stated first: every entry within 1e-15 (entries are <= 1 on L = 1).
+    import sympy
+
+    from dispersion.contact.bar import NUMERIC_RULES
+    from dispersion.symbolic.mass_rule import gram_space, mass_matrix
+
+    assert mass in NUMERIC_RULES
+    model = bar_model(Bar(n_el, p, mass=mass, contact=contact))
+    assert isinstance(model.problem.M, np.ndarray)  # the numpy route, not scipy.sparse
+    n = n_el + p
+    side = "bottom" if contact == "left" else "top"
+    R = redistribution_matrix(n, contact_weights(n, side, sympy.Rational(1, 2)))
+    exact = mass_matrix(mass, gram_space(open_knot_vector(p, n_el, 0, 1), R))
+    diff = np.abs(model.problem.M - np.array(exact.tolist(), dtype=float)).max()
+    assert diff <= 1e-15, diff

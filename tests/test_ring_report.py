@@ -74,3 +74,23 @@ def test_scene_history_has_no_typed_figures():
             study.Scenario).parameters)
     src = inspect.getsource(study)
     assert "-8.8" not in src and "-0.03," not in src
+
+
+def test_signorini_errors_are_reported_as_their_spread():
+    # issue 23: a figure that varies between runs is a spread over the stated perturbations
+    from dispersion.contact.signorini import SIGNORINI_SPREAD_RULE
+
+    spread = {"runs": 8, **{k: {"min": v, "max": v} for k, v in (
+        ("u0_rel_l2", 0.01), ("v0_rel_l2", 0.1), ("energy_drift_percent", 1.0),
+        ("energy_error_percent", -1.0), ("energy_growth_percent", 0.0))},
+        "stress_rel_l2": {"min": 1.101, "max": 1.173}}
+    data = dict(DATA, signorini=[dict(_sig("lumped", "kane", 1.101), spread=spread),
+                                 dict(_sig("singular", "kane", 0.354),
+                                      spread=dict(spread, stress_rel_l2={"min": 0.354,
+                                                                         "max": 0.354}))])
+    kane = next(ln for ln in ring.summary(data).splitlines() if ln.strip().startswith("- kane:"))
+    assert "lumped 1.101 .. 1.173" in kane and "singular 0.354" in kane
+    assert "range over 8 runs" in ring.summary(data)
+    assert [ring._err(r, "stress_rel_l2") for r in data["signorini"]] == ["1.101 .. 1.173",
+                                                                          "0.354"]
+    assert SIGNORINI_SPREAD_RULE in ring._runs_text(data["signorini"])

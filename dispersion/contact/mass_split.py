@@ -64,8 +64,10 @@ class MassSplit:
         M = np.asarray(prob.M, dtype=float)
         G = np.asarray(prob.G, dtype=float).reshape(-1, M.shape[0])
         rowmax = np.abs(M).max(axis=1)
-        self.massless = np.flatnonzero(rowmax <= 1e-14 * rowmax.max())
-        self.massive = np.setdiff1d(np.arange(M.shape[0]), self.massless)
+        # boolean masks, not setdiff1d/isin: those import numpy.ma, a cost a small run notices
+        without_mass = rowmax <= 1e-14 * rowmax.max()
+        self.massless = np.flatnonzero(without_mass)
+        self.massive = np.flatnonzero(~without_mass)
         Mmm = M[np.ix_(self.massive, self.massive)]
         self.diagonal = not np.any(Mmm - np.diag(np.diag(Mmm)))
         if self.diagonal:
@@ -75,8 +77,7 @@ class MassSplit:
             solver = LinearSolver(Mmm.shape[0], nm)
             self.solve = solver.factor(solver.matrix(Mmm))
         # a constraint that acts only on massless DOFs carries lambda = mu (eq 12)
-        self.only_massless = np.array([bool(np.all(np.isin(np.flatnonzero(row), self.massless)))
-                                       for row in G], dtype=bool)
+        self.only_massless = ~np.any(G[:, ~without_mass] != 0, axis=1)
         self.M, self.Md, self.G, self.Gd = M, M, G, G
         self.f_ext = np.zeros(prob.n) if prob.f_ext is None else np.asarray(prob.f_ext, float)
         self.rows = np.zeros(prob.n, bool)

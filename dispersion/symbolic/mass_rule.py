@@ -357,7 +357,7 @@ def check_mass(rule: MassRule, Mv, M, tol: float = 1e-10) -> MassCheck:
         diagonal = bool(np.all(np.abs(A - np.diag(np.diag(A))) <= tol * scale))
         zero = [i for i in range(n) if np.all(np.abs(A[i]) <= tol * scale)]
         translational = abs(A.sum() - _total(M)) <= tol * scale * n
-    keep = np.setdiff1d(np.arange(n), zero)
+    keep = np.flatnonzero(~np.isin(np.arange(n), zero)) if zero else np.arange(n)
     Ar = A[np.ix_(keep, keep)]
     ev = np.linalg.eigvalsh((Ar + Ar.T) / 2) if keep.size else np.zeros(0)
     psd = bool(ev.size == 0 or ev.min() >= -tol * scale * n)

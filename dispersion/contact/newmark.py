@@ -264,7 +264,7 @@ def step(prob: ContactProblem, nm: Newmark, state: State, dt: float, split=None,
         a_tot = c1 * (U - ut)[m]
         if nm.scheme == "kane":
             GT = split.Gd.T if split.Gd is not None else G.T
-            y = split.solve((GT @ mu)[m]) if np.any(mu) else np.zeros(len(m))
+            y = split.solve((GT @ mu)[m]) if mu.any() else np.zeros(len(m))
             a_int[m], a_c[m] = a_tot - y, 2 * beta * y
         else:
             a_int[m] = a_tot
@@ -324,7 +324,7 @@ def consistent_state(prob: ContactProblem, u0: np.ndarray, nm: Newmark | None = 
 
 def _record(hist: History, prob: ContactProblem, split: MassSplit, s: State, keep_states: bool):
     hist.t.append(s.t)
-    hist.contact_force.append(float(np.sum(s.lam)))
+    hist.contact_force.append(float(s.lam.sum()))
     hist.lam.append(s.lam)
     M = split.Md if split.Md is not None else split.M
     mv = M @ s.v
@@ -399,7 +399,7 @@ def _integrate(prob, u0, v0, dt, n_steps, newmark, progress, keep_states, consis
         linear = _Linear(prob, split, nm, 2.0 / dt**2 if nm.explicit else 1 / (nm.beta * dt**2))
     for _ in range(n_steps):
         s = step(prob, nm, s, dt, split, linear, tangent)
-        if not (np.all(np.isfinite(s.u)) and np.all(np.isfinite(s.v))):
+        if not (np.isfinite(s.u).all() and np.isfinite(s.v).all()):
             raise ConvergenceError(f"the state became non-finite at t = {s.t:.6g}; the "
                                    "scene's scale (speeds, sizes, dt) is beyond double precision")
         _record(hist, prob, split, s, keep_states)

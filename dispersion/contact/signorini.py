@@ -54,7 +54,7 @@ SIGNORINI_SPREAD_RULE = (
     "Every 1D Signorini row is the same run repeated with the rigid wall moved k units of "
     "2^-53 (one unit in the last place of the initial gap u(0, 0) = 1/2) beyond x = 0, "
     "k = 0, 1, ..., runs - 1; each error is reported as its range over these runs "
-    "(a single value where all runs agree).")
+    "(a single value where all runs agree to the digits shown).")
 #: The errors of a row whose spread over the runs is reported.
 SPREAD_FIELDS = ("u0_rel_l2", "v0_rel_l2", "stress_rel_l2", "energy_drift_percent",
                  "energy_error_percent", "energy_growth_percent")

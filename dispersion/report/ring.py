@@ -81,8 +81,10 @@ RATE_RESIDUAL_MAX = 0.25
 def _err(r: dict, name: str, spec: str = ".3f") -> str:
     """An error of a Signorini row: its range over the row's runs where they differ."""
     s = (r.get("spread") or {}).get(name)
-    if s and s["min"] is not None and s["min"] != s["max"]:
-        return f"{format(s['min'], spec)} .. {format(s['max'], spec)}"
+    if s and s["min"] is not None:
+        lo, hi = format(s["min"], spec), format(s["max"], spec)
+        if lo != hi:
+            return f"{lo} .. {hi}"
     return _f(r[name], spec)
 
 

@@ -27,16 +27,18 @@ from dispersion.errors import ConvergenceError, DispersionError, IndefiniteMassW
 #: Distribution name on the package index (the import name is ``dispersion``).
 DISTRIBUTION = "dispersion-iga"
 
-_API = ("Patch", "patch", "series", "exact_branches", "lamb_modes", "material", "simulate_ring",
+_API = ("Patch", "PatchModel", "patch", "series", "exact_branches", "lamb_modes", "material", "simulate_ring",
         "simulate_bar")
 #: Public modules by their short names (``dispersion.plate``), wherever they live in the wings.
 _MODULES = {
-    "api": "api", "defaults": "defaults", "errors": "errors", "io": "io", "results": "results",
+    "api": "api", "patch_model": "patch_model", "defaults": "defaults", "errors": "errors", "io": "io", "results": "results",
     "sweep": "sweep", "testing": "testing", "contact": "contact", "claims": "claims",
     "symbolic": "symbolic", "waves": "waves", "studies": "studies",
     "bspline": "symbolic.bspline", "mass": "symbolic.mass", "plate": "symbolic.plate",
     "series_kernel": "symbolic.series_kernel", "power_balance": "symbolic.power_balance",
     "rayleigh_lamb": "waves.rayleigh_lamb", "exact_branches": "waves.exact_branches",
+    "numeric_frequency": "waves.numeric_frequency",
+    "deflated_frequency": "waves.deflated_frequency", "scaled_frequency": "waves.scaled_frequency",
     "discrete_branches": "waves.discrete_branches", "velocities": "waves.velocities",
     "units": "waves.units", "mode_shapes": "waves.mode_shapes",
     "bar_dispersion": "waves.bar_dispersion", "errata": "claims.errata",
@@ -46,6 +48,9 @@ _MODULES = {
     "table": "table", "branch_set": "waves.branch_set",
     "explicit": "claims.explicit", "limits": "claims.limits", "reader": "claims.reader",
     "schema": "claims.schema", "verify": "claims.verify", "cli": "cli", "staging": "staging",
+    "claim": "claims.claim", "claim_model": "claims.claim_model",
+    "claim_fields": "claims.claim_fields", "claims_file": "claims.claims_file",
+    "exact_model": "claims.exact_model", "bar_model": "claims.bar_model",
     "peers": "studies.peers", "spline_mass": "symbolic.spline_mass",
     "extended_pencil": "waves.extended_pencil", "pencil_polynomial": "waves.pencil_polynomial",
     "asymptotic_fit": "studies.asymptotic_fit",
@@ -53,6 +58,8 @@ _MODULES = {
     "mode_table": "waves.mode_table",
     "mass_rule": "symbolic.mass_rule", "timestep": "waves.timestep",
     "fully_discrete": "waves.fully_discrete", "cost_accuracy": "studies.cost_accuracy",
+    "discrete_error": "waves.discrete_error", "pencil_frequencies": "waves.pencil_frequencies",
+    "illinois": "waves.illinois",
 }
 _SUBMODULES = tuple(_MODULES)
 

@@ -5,13 +5,9 @@ import numpy as np
 import pytest
 import scipy.linalg
 
-from dispersion.waves.discrete_branches import (
-    discrete_branches,
-    fitted_order,
-    pencil_frequencies,
-    predicted_error,
-    relative_error,
-)
+from dispersion.waves.discrete_branches import discrete_branches
+from dispersion.waves.discrete_error import fitted_order, predicted_error, relative_error
+from dispersion.waves.pencil_frequencies import pencil_frequencies
 from dispersion.errors import InputError
 from dispersion.symbolic.plate import numeric_pencil, plate_patch
 from dispersion.waves.exact_branches import trace_branches

@@ -15,7 +15,6 @@ with ``#`` lines naming its inputs and the package version; JSON carries them as
 from __future__ import annotations
 
 import argparse
-import csv
 import io
 import math
 import os
@@ -25,7 +24,7 @@ from typing import TYPE_CHECKING
 from dispersion import defaults
 from dispersion.defaults import CONTACT_SETS, MASS_VARIANTS, MODELS, N_MAX, P_MAX, R_RANGE
 from dispersion.errors import InputError
-from dispersion.io import check_output_file, unit_target, write_bytes, write_text, write_unit
+from dispersion.io import check_output_file, unit_target, write_bytes, write_unit
 from dispersion.cli import frequency as _frequency
 from dispersion.cli.options import integer, number, real
 
@@ -42,7 +41,6 @@ MAX_OMEGA = 200.0
 #: 3.4 s, n = 20 in 48 s, n = 30 in 180 s (grows like n^3); n = 3 with 200000 points: ~1e7.
 #: Work bound of the numeric branches: 400 kappa of two masses at n = 24 (about a minute).
 MAX_DISCRETE_WORK = 2 * 400 * 24**3
-FIGURE_SUFFIXES = (".png", ".pdf", ".svg")
 
 
 def register(sub) -> None:
@@ -134,7 +132,9 @@ def kappa_grid(kmin: float, kmax: float, count: int) -> np.ndarray:
 
 
 def _material(args):
-    mat = _frequency.material_from_args(args)
+    from dispersion.cli.options import material_from_args
+
+    mat = material_from_args(args)
     if mat is not None and args.thickness is None:
         raise InputError("a material needs --thickness (plate thickness d = 2h in mm)")
     if mat is None and args.thickness is not None:
@@ -204,19 +204,14 @@ def _settings(args) -> dict:
     if args.csv is not None:
         check_output_file(args.csv, option="--csv")
     if args.figure is not None:
-        if not args.figure.lower().endswith(FIGURE_SUFFIXES):
-            raise InputError(f"--figure must name a file ending in one of "
-                             f"{', '.join(FIGURE_SUFFIXES)}, got {args.figure!r}")
-        check_output_file(args.figure, option="--figure", allow_stdout=False,
-                          suffixes=FIGURE_SUFFIXES)
+        from dispersion.cli.outputs import check_figure
+
+        check_figure(args.figure, "branches")
         if args.csv not in (None, "-") and unit_target(args.csv) is not None and \
                 os.path.abspath(unit_target(args.csv)) == os.path.abspath(unit_target(args.figure)
                                                                           or args.figure):
             raise InputError(f"--csv and --figure must name two different files, got "
                              f"{args.csv!r} and {args.figure!r}")
-        from dispersion.plotting import require_matplotlib
-
-        require_matplotlib("branches --figure")
     _check_scheme(args, masses)
     return {
         "nu": nu, "kappa": kappa, "masses": masses, "material": material, "patch": base,
@@ -308,17 +303,10 @@ def _rows(kappa, omega, group, symmetry, source, material, thickness, omega_max,
 
 
 def _csv(rows, inputs) -> str:
-    buf = io.StringIO()
-    for key, val in inputs.items():
-        buf.write(f"# {key}: {val}\n")
-    buf.write(f"# {_frequency.EMPTY_NOTE}\n")
-    if not rows:
-        return buf.getvalue()
-    w = csv.DictWriter(buf, fieldnames=list(rows[0]), lineterminator="\n")
-    w.writeheader()
-    for row in rows:
-        w.writerow({k: _frequency._cell(v) for k, v in row.items()})
-    return buf.getvalue()
+    from dispersion.cli.outputs import EMPTY_NOTE, csv_text
+
+    return csv_text(rows, [f"# {key}: {val}" for key, val in inputs.items()]
+                    + [f"# {EMPTY_NOTE}"])
 
 
 def _text(rows, inputs) -> str:
@@ -332,16 +320,10 @@ def _text(rows, inputs) -> str:
     return "\n".join(lines) + "\n"
 
 
-def _emit(path: str, text: str) -> None:
-    if path == "-":
-        sys.stdout.write(text)
-    else:
-        write_text(path, text)
-
-
 def run(args) -> int:
     import numpy as np
 
+    from dispersion.cli.outputs import emit
     from dispersion.waves.discrete_branches import discrete_branches
     from dispersion.symbolic.plate import plate_patch
     from dispersion.waves.exact_branches import trace_branches
@@ -405,9 +387,9 @@ def run(args) -> int:
                       args.thickness, args.omega_max, nu)
     if not args.csv and not args.figure:
         if args.format == "csv":
-            _emit("-", _csv(rows, inputs))
+            emit("-", _csv(rows, inputs))
         elif args.format == "text":
-            _emit("-", _text(rows, inputs))
+            emit("-", _text(rows, inputs))
         else:
             from dispersion.results import dumps, envelope
 
@@ -415,7 +397,7 @@ def run(args) -> int:
                                         "failures": [list(f) for f in exact.failures],
                                         "velocity_uncertain": [list(u) for u in vel.uncertain]},
                            inputs=inputs)
-            _emit("-", dumps(env))
+            emit("-", dumps(env))
     if args.figure and s["material"] is not None:
         fig = _physical_figure(kappa, exact, vel, s["material"], args.thickness, args.omega_max)
     elif args.figure:
@@ -447,7 +429,7 @@ def run(args) -> int:
         if unit_target(path) is not None:
             continue
         if isinstance(data, str):
-            _emit(path, data)
+            emit(path, data)
         else:
             write_bytes(path, data)
     return 0

@@ -188,8 +188,8 @@ def _signorini(args):
         undefined = None in values  # no contact before t_end: no relative error
         spread[name] = {"min": None if undefined else min(values),
                         "max": None if undefined else max(values)}
-    return {"p": p, "mass": mass, "scheme": scheme, "dt": r.dt, "t_end": t_end,
-            "seconds": r.seconds, **r.errors, "spread": spread}
+    return {"p": p, "n_elements": r.n_elements, "mass": mass, "scheme": scheme, "dt": r.dt,
+            "t_end": t_end, "seconds": r.seconds, **r.errors, "spread": spread}
 
 
 def measure(quick: bool = False, executor=None) -> RingStudy:

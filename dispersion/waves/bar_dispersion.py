@@ -42,27 +42,35 @@ import numpy as np
 from dispersion.errors import InputError, check_positive_int
 from dispersion.symbolic.plate import bloch_coefficients
 
-__all__ = ["BAR_MASSES", "BarDispersion", "bar_dispersion", "bar_frequency"]
+__all__ = ["BAR_MASSES", "BarDispersion", "bar_dispersion", "bar_frequency", "bar_rule"]
 
 #: Mass variants of the periodic bar shown by default (the registry's rules without a contact
 #: set also apply: hrz, nodal-greville, nodal-lobatto, user rules).
 BAR_MASSES = ("consistent", "lumped")
 
 
-def _check_mass(mass):
+def bar_rule(mass):
+    """The mass rule ``mass`` (name or rule) if it applies to the periodic bar, else InputError.
+
+    A singular mass redistributes at a contact boundary, which the periodic bar has not.
+
+    >>> bar_rule("lumped").name
+    'lumped'
+    """
     from dispersion.symbolic.mass_rule import get_rule
 
     rule = get_rule(mass)
     if rule.redistributes or rule.states.zero_rows:
-        raise InputError(f"mass {rule.name!r} does not apply to the periodic bar (a singular "
-                         "mass acts at a contact boundary only)")
+        raise InputError(f"mass {rule.name!r} does not apply to the periodic bar: it "
+                         "redistributes at a contact boundary, which the periodic bar has "
+                         "not (use model='plate')")
     return rule
 
 
 def bar_frequency(p: int, mass: str, theta) -> np.ndarray:
     """Discrete :math:`\\omega h / c` at :math:`\\theta = kh` (module docstring), float array."""
     p = check_positive_int("degree p", p)
-    rule = _check_mass(mass)
+    rule = bar_rule(mass)
     from dispersion.symbolic.mass_rule import x_mass_coefficients
 
     theta = np.asarray(theta, dtype=float)

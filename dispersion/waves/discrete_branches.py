@@ -1,7 +1,9 @@
 """Discrete dispersion branches of the plate patch: all finite roots of det(K - Omega^2 M) = 0.
 
 For each :math:`\\kappa` of a grid the pencil :math:`(K, M)` of
-:func:`dispersion.symbolic.plate.numeric_pencil` is solved in batches. Massless DOFs
+:func:`dispersion.symbolic.plate.numeric_pencil` is solved in batches
+(:mod:`dispersion.waves.pencil_frequencies`; the error against the exact branches and its
+order are in :mod:`dispersion.waves.discrete_error`). Massless DOFs
 (singular masses, :attr:`PlatePatch.massless`) carry infinite eigenvalues and are never formed:
 
 .. math::
@@ -61,19 +63,13 @@ from dispersion.symbolic.plate import (
     x_functions,
 )
 from dispersion.waves.extended_pencil import extended_frequencies
+from dispersion.waves.pencil_frequencies import congruence, eigenvalue_error, pencil_frequencies
 
 __all__ = [
     "DiscreteBranches",
-    "congruence",
-    "critical_time_step",
     "discrete_branches",
-    "extended_frequencies",
     "fundamental_branches",
     "pencil_derivative",
-    "fitted_order",
-    "pencil_frequencies",
-    "predicted_error",
-    "relative_error",
 ]
 
 
@@ -98,99 +94,7 @@ class DiscreteBranches(BranchViews):
     failures: list[tuple[str, float, str]] = field(default_factory=list)
 
 
-def _condense(K, M, massless):
-    n = K.shape[-1]
-    m = np.asarray(sorted(massless), dtype=int)
-    r = np.setdiff1d(np.arange(n), m)
-    if m.size == 0:
-        return K, M, r, m
-    Krr, Krm = K[:, r[:, None], r], K[:, r[:, None], m]
-    Kmm = K[:, m[:, None], m]
-    Khat = Krr - Krm @ np.linalg.solve(Kmm, np.swapaxes(Krm, 1, 2))
-    return Khat, M[:, r[:, None], r], r, m
-
-
-def pencil_frequencies(K, M, massless=(), vectors: bool = False):
-    """Finite :math:`\\Omega \\ge 0` of batched pencils, ascending, shape ``(m, n - n_massless)``.
-
-    ``massless`` lists DOFs whose mass rows and columns vanish identically; they are
-    condensed, so no infinite eigenvalue is ever formed. With ``vectors=True`` also the
-    mode shapes in all DOFs, shape ``(m, n, n_finite)``.
-
-    >>> K = np.array([[[2.0, -1.0], [-1.0, 2.0]]]); M = np.array([[[1.0, 0.0], [0.0, 0.0]]])
-    >>> pencil_frequencies(K, M, massless=(1,)).round(6).tolist()   # 2 - 1/2 = 1.5
-    [[1.224745]]
-    """
-    K, M = np.asarray(K, dtype=float), np.asarray(M, dtype=float)
-    Kh, Mr, r, m = _condense(K, M, massless)
-    scale = _common_shape(Mr)
-    try:
-        if scale is not None:  # M(kappa) = scale(kappa) * M0: one factorisation for the grid
-            Li = np.linalg.inv(np.linalg.cholesky(Mr[0]))
-            A = congruence(Li, Kh) / scale[:, None, None]
-            Li = np.broadcast_to(Li / np.sqrt(scale)[:, None, None], Mr.shape)
-        else:
-            Li = np.linalg.inv(np.linalg.cholesky(Mr))
-            A = Li @ Kh @ np.swapaxes(Li, 1, 2)
-    except np.linalg.LinAlgError:
-        raise InputError("mass matrix is not positive definite on the DOFs with mass") from None
-    A = 0.5 * (A + np.swapaxes(A, 1, 2))
-    if not vectors:
-        lam = np.linalg.eigvalsh(A)
-        return np.sqrt(np.clip(lam, 0, None))  # rounding only: K is positive semi-definite
-    lam, Y = np.linalg.eigh(A)
-    X = np.empty((K.shape[0], K.shape[1], lam.shape[1]))
-    Xr = np.swapaxes(Li, 1, 2) @ Y
-    X[:, r] = Xr
-    if m.size:
-        Kmm = K[:, m][:, :, m]
-        X[:, m] = -np.linalg.solve(Kmm, K[:, m][:, :, r] @ Xr)
-    return np.sqrt(np.clip(lam, 0, None)), X
-
-
-def congruence(T, K):
-    """:math:`T K_i T^T` for a constant T and a stack K, as one matrix product.
-
-    >>> T = np.array([[1.0, 1.0]]); congruence(T, np.eye(2)[None]).tolist()
-    [[[2.0]]]
-    """
-    T, K = np.asarray(T, dtype=float), np.asarray(K, dtype=float)
-    k, n = T.shape
-    return (K.reshape(K.shape[0], n * n) @ np.kron(T, T).T).reshape(K.shape[0], k, k)
-
-
-def _common_shape(M):
-    """``s`` with ``M[i] == s[i] * M[0]`` to rounding, or None."""
-    if M.shape[0] == 0 or M.shape[1] == 0:
-        return None
-    d = np.diagonal(M[0])
-    i0 = int(np.argmax(d))
-    if d[i0] <= 0:
-        return None
-    s = M[:, i0, i0] / d[i0]
-    if np.any(s <= 0):
-        return None
-    if np.max(np.abs(M - s[:, None, None] * M[0])) <= 1e-14 * np.max(np.abs(M)):
-        return s
-    return None
-
-
-#: Relative accuracy the float eigenvalues must reach; below it the extended-precision path runs.
 RTOL = 1e-11
-
-
-def _float_error(lam: np.ndarray) -> np.ndarray:
-    """Bound on the relative error of float eigenvalues of a symmetric m x m matrix.
-
-    A backward-stable symmetric eigensolver returns the eigenvalues of :math:`A + E` with
-    :math:`\\|E\\| \\le c\\, m\\, \\epsilon \\|A\\|` (forming A adds as much), so by Weyl's
-    theorem :math:`|\\delta\\lambda| / \\lambda \\lesssim m \\epsilon \\lambda_{max} / \\lambda`
-    (Golub and Van Loan, 4th ed., 8.1.2 and 8.7).
-    """
-    top = np.max(np.abs(lam), axis=-1, keepdims=True)
-    m = lam.shape[-1]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return np.where(lam > 0, m * np.finfo(float).eps * top / lam, np.inf)
 
 
 def _extended_safe(patch, nu, k, basis, dps, slopes):
@@ -214,7 +118,7 @@ def _refine_small(patch, nu, kappa, W, basis, G=None, failures=None):
     ``("omega", kappa, reason)`` in ``failures`` (a list, if given).
     """
     lam = W**2
-    bad = np.flatnonzero(np.any(_float_error(lam) > RTOL, axis=1) & (kappa > 0))
+    bad = np.flatnonzero(np.any(eigenvalue_error(lam) > RTOL, axis=1) & (kappa > 0))
     for i in bad:
         top = float(np.max(lam[i]))
         small = max(min(float(np.min(lam[i])), 0.1 * kappa[i] ** 4), 1e-300)
@@ -446,7 +350,7 @@ def _solve_block(patch, nu, kappa, block: _Block, group: bool, failures: list):
                                         Wr**2 * mx[redo], 2 * CERTIFIED_RTOL)
             with np.errstate(all="ignore"):
                 by_poly = (m2 > 0) & (r2 <= 2 * CERTIFIED_RTOL * m2)
-                by_eig = _float_error(Wr**2) <= 2 * CERTIFIED_RTOL
+                by_eig = eigenvalue_error(Wr**2) <= 2 * CERTIFIED_RTOL
             m2 = np.where(by_poly, m2, Wr**2 * mx[redo])
             mu[redo], rad[redo] = m2, np.where(by_poly, r2, 0.0)
             ok[redo] = np.all(by_poly | by_eig, axis=1)
@@ -604,56 +508,6 @@ def _branches_block(patch: PlatePatch, nu: float, kappa: np.ndarray, group: bool
     return omega, symmetry, slopes
 
 
-def relative_error(discrete: DiscreteBranches, exact) -> dict[str, np.ndarray]:
-    """:math:`|\\Omega^h - \\Omega| / \\Omega` per label present in both (S0 with S0, ...).
-
-    ``exact`` is a :class:`dispersion.waves.exact_branches.ExactBranches` on the same grid.
-    Points with :math:`\\Omega = 0` give NaN.
-    """
-    if not np.array_equal(discrete.kappa, exact.kappa):
-        raise InputError("discrete and exact branches must share the kappa grid")
-    out = {}
-    for label, w in discrete.omega.items():
-        if label in exact.omega:
-            ref = exact.omega[label]
-            with np.errstate(divide="ignore", invalid="ignore"):
-                out[label] = np.where(ref > 0, np.abs(w - ref) / ref, np.nan)
-    return out
-
-
-def fitted_order(kappa, error) -> float:
-    """Least-squares slope q of :math:`\\log e = q \\log \\kappa + c` over finite positive points.
-
-    >>> k = np.array([0.01, 0.02, 0.04]); round(fitted_order(k, 3 * k**4), 12)
-    4.0
-    """
-    kappa, error = np.asarray(kappa, dtype=float), np.asarray(error, dtype=float)
-    ok = (kappa > 0) & (error > 0) & np.isfinite(error)
-    if ok.sum() < 2:
-        raise InputError("need at least two points with kappa > 0 and a positive error")
-    return float(np.polyfit(np.log(kappa[ok]), np.log(error[ok]), 1)[0])
-
-
-def predicted_error(branch: str, nu: float, order: int = 10, **patch_kwargs) -> tuple[int, float]:
-    """Leading term of the relative error of :math:`\\Omega` from the series of the core issue.
-
-    With :math:`\\Omega_h^2 - \\Omega^2 = \\delta \\kappa^m + \\dots` (``discrete_series`` minus
-    ``exact_series``) and :math:`\\Omega^2 = c \\kappa^l + \\dots`, the relative error of
-    :math:`\\Omega` is :math:`\\tfrac{\\delta}{2c} \\kappa^{m-l}`. Returns ``(m - l, delta / 2c)``.
-    """
-    from dispersion.symbolic.power_balance import discrete_series, first_difference
-    from dispersion.waves.exact_series import exact_series
-
-    nu = sympy.nsimplify(nu) if isinstance(nu, float) else nu  # exact comparison below
-    d = discrete_series(branch, order, nu=nu, **patch_kwargs)
-    e = exact_series(branch, order, nu=nu)
-    lead = min(k for k, v in e.items() if v != 0)
-    m = first_difference(d, e)
-    if m is None:
-        raise InputError(f"no error term up to kappa^{order}; raise order")
-    return m - lead, float(d.get(m, 0) - e.get(m, 0)) / (2 * float(e[lead]))
-
-
 def fundamental_branches(patch: PlatePatch, nu: float, kappa) -> dict[str, np.ndarray]:
     """Discrete S0 and A0 at ``kappa``: the labels of :func:`discrete_branches` (one rule).
 
@@ -663,23 +517,3 @@ def fundamental_branches(patch: PlatePatch, nu: float, kappa) -> dict[str, np.nd
     """
     br = discrete_branches(patch, nu, kappa)
     return {label: br.omega[label] for label in ("S0", "A0")}
-
-
-def critical_time_step(patch: PlatePatch, nu: float, n_theta: int = 257) -> float:
-    """Largest stable step of explicit central differences, :math:`2/\\max\\Omega`, in h/c_T.
-
-    .. math:: \\Delta t_{crit} = 2 / \\max_{\\theta \\in [0, \\pi]} \\Omega(\\theta / r)
-
-    over the Bloch phase :math:`\\theta = \\kappa r` on ``n_theta`` equally spaced points
-    (both zone ends included), massless DOFs condensed (Belytschko, Liu, Moran 2000, 6.3).
-
-    >>> from dispersion.symbolic.plate import plate_patch
-    >>> 0 < critical_time_step(plate_patch(model="bloch", r=2), 0.3, n_theta=9) < 1
-    True
-    """
-    check_positive_int("n_theta", n_theta, minimum=2)
-    if patch.model != "bloch" or isinstance(patch.r, sympy.Symbol):
-        raise InputError("critical_time_step needs a Bloch patch with a numeric aspect ratio r")
-    theta = np.linspace(0.0, np.pi, n_theta)
-    K, M = numeric_pencil(patch, nu, theta / float(patch.r))
-    return float(2.0 / pencil_frequencies(K, M, patch.massless).max())

@@ -49,10 +49,11 @@ import sympy
 
 from dispersion.errors import InputError, check_positive, check_positive_int
 from dispersion.symbolic.mass_rule import get_rule, x_mass_coefficients
+from dispersion.waves.bar_dispersion import bar_rule
 from dispersion.waves.materials import MATERIALS, Material
 
 __all__ = ["MATERIALS", "MODELS", "EXACT_MAX_DOFS", "MAX_N", "certified_omega_max",
-           "CriticalStep", "bar_omega_squared", "float_pencil",
+           "CriticalStep", "bar_omega_squared", "critical_time_step", "float_pencil",
            "bar_omega_max", "patch_omega_max", "critical_step", "matrix_critical_step"]
 
 MODELS = ("plate", "bar")
@@ -72,20 +73,12 @@ def bar_omega_squared(mass, p: int) -> sympy.Expr:
     >>> sympy.factor(bar_omega_squared("consistent", 1))
     -6*(z - 1)/(z + 2)
     """
-    rule = _bar_rule(mass)
+    rule = bar_rule(mass)
     p = check_positive_int("degree p", p)
     c11, a = _coefficients(rule, p)
     d = sum(v * sympy.chebyshevt(abs(L), _z) for L, v in c11.items())
     m = sum(v * sympy.chebyshevt(abs(L), _z) for L, v in a.items())
     return sympy.cancel(sympy.expand(d) / sympy.expand(m))
-
-
-def _bar_rule(mass):
-    rule = get_rule(mass)
-    if rule.redistributes or rule.states.zero_rows:
-        raise InputError(f"mass {rule.name!r} redistributes at a contact boundary, which the "
-                         "periodic bar has not (use model='plate')")
-    return rule
 
 
 def bar_omega_max(mass, p: int) -> tuple[sympy.Expr, float]:
@@ -240,7 +233,7 @@ def patch_omega_max(patch, nu: float, n_theta: int = 65, exact: bool = True
     """
     from scipy.optimize import minimize_scalar
 
-    from dispersion.waves.discrete_branches import pencil_frequencies
+    from dispersion.waves.pencil_frequencies import pencil_frequencies
 
     n_theta = check_positive_int("n_theta", n_theta, minimum=3)
     if patch.model != "bloch" or isinstance(patch.r, sympy.Symbol):
@@ -269,6 +262,23 @@ def patch_omega_max(patch, nu: float, n_theta: int = 65, exact: bool = True
         raise InputError("exact and float largest frequency disagree at the zone end; "
                          "the pencil is ill-conditioned")
     return edge[1], edge[0], where, f"exact at the zone end (grid of {n_theta} phases found no larger)"
+
+
+def critical_time_step(patch, nu: float, n_theta: int = 65, certify: bool = False) -> float:
+    """Largest stable step of explicit central differences for a Bloch patch, in :math:`H/c_T`.
+
+    .. math:: \\Delta t_{crit} = 2 / \\max_{\\theta \\in [0, \\pi]} \\Omega(\\theta / r)
+
+    with the maximum of :func:`patch_omega_max` (grid of ``n_theta`` phases, refined inside,
+    exact at a zone end); ``certify=True`` returns :math:`2/\\bar\\Omega` with the proven
+    bound of :func:`certified_omega_max` instead, a proven stable step.
+
+    >>> from dispersion.symbolic.plate import plate_patch
+    >>> 0 < critical_time_step(plate_patch(model="bloch", r=2), 0.3, n_theta=9) < 1
+    True
+    """
+    omega = patch_omega_max(patch, nu, n_theta)[0]
+    return 2.0 / (certified_omega_max(patch, nu, omega) if certify else omega)
 
 
 def certified_omega_max(patch, nu, omega: float, rtol: float = 1e-3, max_cells: int = 20000
@@ -426,7 +436,8 @@ def critical_step(mass, p: int = 2, *, model: str = "plate", material: Material 
                             "exact (rational function of cos theta)", 2 * h / (c * w),
                             2 * h / (c * w_ref),
                             material=None if wave_speed is not None else material.name)
-    from dispersion.symbolic.plate import check_size, plate_patch
+    from dispersion.symbolic.patch import check_size
+    from dispersion.symbolic.plate import plate_patch
 
     n = max(p + 1, 3) if n is None else n
     if isinstance(n, int) and not isinstance(n, bool) and n > MAX_N:  # plate allows N_MAX

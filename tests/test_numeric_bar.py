@@ -46,18 +46,19 @@ def test_float_redistribution_equals_the_exact_matrix(n, contact, gamma):
                        np.array(exact.tolist(), dtype=float), rtol=0, atol=2e-16)
 
 
-def _dense_twin(prob):
-    """The same problem handed to the solver as numpy arrays (the scipy-free path)."""
-    return replace(prob, M=sp.csr_matrix(prob.M).toarray(), G=sp.csr_matrix(prob.G).toarray(),
-                   K=sp.csr_matrix(prob.K).toarray())
+def _sparse_twin(prob):
+    """The same problem handed to the solver as scipy.sparse matrices (the large-bar path)."""
+    return replace(prob, M=sp.csr_matrix(prob.M), G=sp.csr_matrix(prob.G),
+                   K=sp.csr_matrix(prob.K))
 
 
 @pytest.mark.parametrize("mass,scheme", [("singular", "explicit"), ("singular", "kane"),
                                          ("consistent", "kane"), ("lumped", "explicit")])
 def test_dense_and_sparse_solver_paths_agree(mass, scheme):
     model = bar_model(Bar(20, 1, 1.0, 1.0, 1.0, mass, clamped=("right",), contact="left"))
-    sparse = model.problem
-    dense = _dense_twin(sparse)
+    dense = model.problem
+    assert isinstance(dense.M, np.ndarray)  # a small bar is assembled as numpy arrays
+    sparse = _sparse_twin(dense)
     u0 = model.coefficients(lambda x: 0.5 * (1 - x))
     # up to t = 0.9: no contact yet, so no chatter amplifies the round-off of either path
     runs = [integrate(prob, u0, np.zeros(prob.n), 0.002, 450, newmark_for(scheme),
@@ -89,3 +90,19 @@ def test_float_mass_rules_equal_the_exact_rules(p, n_el, mass, contact):
     exact = mass_matrix(mass, gram_space(open_knot_vector(p, n_el, 0, 1), R))
     diff = np.abs(model.problem.M - np.array(exact.tolist(), dtype=float)).max()
     assert diff <= 1e-15, diff
+
+
+@pytest.mark.parametrize("mass", ["singular", "lumped", pytest.param("hrz", marks=pytest.mark.slow)])
+def test_large_bar_is_assembled_sparse_and_equals_the_dense_assembly(mass, monkeypatch):
+    # above DENSE_DOFS functions the bar is assembled with scipy.sparse; the same bar
+    # assembled dense (the bound lifted) must give the same matrices
+    from dispersion.contact import bar as bar_module
+
+    b = Bar(bar_module.DENSE_DOFS, 1, mass=mass, clamped=("right",))
+    big = bar_model(b).problem
+    assert sp.issparse(big.M) and sp.issparse(big.K)
+    monkeypatch.setattr(bar_module, "DENSE_DOFS", 10 * bar_module.DENSE_DOFS)
+    small = bar_model(b).problem
+    assert isinstance(small.M, np.ndarray)
+    for A, B in ((big.M, small.M), (big.K, small.K), (big.G, small.G)):
+        assert np.allclose(sp.csr_matrix(A).toarray(), B, rtol=0, atol=1e-12)

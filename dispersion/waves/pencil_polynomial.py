@@ -329,56 +329,87 @@ def _values(poly: PencilPolynomial, name: str, u, v, deriv: bool = False, bars: 
     return val, bar
 
 
-def _horner_mu(c: np.ndarray, mu: np.ndarray):
-    """``P`` and ``P_mu`` at ``mu`` (shape (R, points)) from coefficient values (J, points)."""
+def _horner_mu(c: np.ndarray, mu: np.ndarray, deriv: bool = True):
+    """``P`` and ``P_mu`` (None unless ``deriv``) at ``mu`` (shape (R, points)) from
+    coefficient values (J, points)."""
     p = np.empty_like(mu)
     p[:] = c[-1]
-    dp = np.zeros_like(mu)
+    dp = np.zeros_like(mu) if deriv else None
     for j in range(c.shape[0] - 2, -1, -1):
-        dp *= mu
-        dp += p
+        if deriv:
+            dp *= mu
+            dp += p
         p *= mu
         p += c[j]
     return p, dp
+
+
+#: Relative error of the computed ``u`` (or ``v``) of :func:`u_of_kappa`, in units of eps:
+#: theta = kappa r (half an ulp), numpy's sin or cos (under one ulp), the square and the
+#: factor (half an ulp), the half angle doubling the first two: 4 ulp (x-exact u = kappa^2:
+#: half an ulp).
+U_ULPS = 4
+
+
+def _tables(poly: PencilPolynomial, u: np.ndarray, v):
+    """:math:`c_j(x)`, :math:`\\sum_k |a_{jk}| x^k` and :math:`x\\,\\partial c_j/\\partial x`
+    (x = u, or v = 2 - u where u > 1 on the Bloch model), each of shape (J, points)."""
+    def run(coef, x):
+        J = coef.shape[0]
+        out = _horner_u(np.concatenate([coef, np.abs(coef), coef * np.arange(coef.shape[1])]), x)
+        return out[:J], out[J:2 * J], out[2 * J:]
+
+    hi = None if v is None or poly.shifted is None else np.flatnonzero(u > 1)
+    if hi is None or hi.size == 0:
+        return run(poly.coef, u)
+    lo = np.flatnonzero(u <= 1)
+    out = [np.empty((poly.coef.shape[0], u.size)) for _ in range(3)]
+    for idx, coef, x in ((lo, poly.coef, u[lo]), (hi, poly.shifted["P"], v[hi])):
+        for o, val in zip(out, run(coef, x)):
+            o[:, idx] = val
+    return out
 
 
 def certified_roots(poly: PencilPolynomial, u: np.ndarray, v, guess: np.ndarray,
                     rtol: float = 2e-10, iterations: int = 8):
     """Newton-polished roots ``mu`` (ascending, shape of ``guess`` = (points, R)) and radii.
 
-    The radius is the inclusion bound of the module docstring; ``inf`` where it does not
-    hold (disc overlapping a neighbour, a derivative lost in its error bound, NaN). One
-    Newton step everywhere, up to ``iterations`` more where the radius is above
-    ``rtol * mu`` or the first step was large.
+    Newton's method runs until its step is below 1e-9 relative (the error is then about
+    the square of that), at most ``1 + iterations`` steps; then one certificate per root
+    (:func:`_radius`). The radius is ``inf`` where the certificate fails (a disc
+    overlapping a neighbour, a derivative lost in its error bound, NaN). The certificate
+    does not depend on ``rtol`` (kept for the callers, who compare the radius with it).
     """
-    c, cbar = _values(poly, "P", u, v)
+    c, cbar, cx = _tables(poly, u, v)
     du, dm = poly.coef.shape[1] - 1, poly.coef.shape[0] - 1
-    # Higham (5.3)-type bounds, doubled: Horner in u (2 du), the error of u (<= 4 ulp,
-    # times du from u^k), the coefficients' rounding, Horner in mu (2 dm)
-    g = 2 * (6 * du + 2 * dm + 4) * _EPS
+    # Higham 2002 (3.1, 5.1): coefficients rounded to floats (eps/2), Horner in x
+    # (gamma_{2 du}), Horner in mu (gamma_{2 dm}); doubled for the second-order terms and
+    # the rounding of the bars themselves
+    g = 2 * (du + dm + 1) * _EPS
+    dx = (0.5 if v is None else U_ULPS) * _EPS
     # Newton in the form mu' = (mu P_mu - P) / P_mu, numerator by its own Horner rule:
     # near mu = 0 it is -c_0 / c_1 without the cancellation of mu - P / P_mu
     cn = c * (np.arange(c.shape[0]) - 1)[:, None]
+    n = c.shape[1]
     with np.errstate(all="ignore"):
         mu0 = _small_guesses(c, np.array(guess, dtype=float).T.copy())
         mu = _newton(c, cn, mu0)
-        rad = _radius(c, cbar, mu, g, dm)
-        # more steps where the radius is too wide, or where the step was above 1e-9 relative
-        # (quadratic convergence: after a step of size d the error is about d^2 relative)
-        again = np.flatnonzero(np.any(~(rad <= rtol * mu) | ~(np.abs(mu - mu0) <= 1e-9 * mu),
-                                      axis=0))
+        again = np.flatnonzero(np.any(~(np.abs(mu - mu0) <= 1e-9 * mu), axis=0))
         for _ in range(iterations):
             if not again.size:
                 break
+            if again.size > n // 2:   # most columns: whole rows beat gathering them
+                m0 = mu
+                mu = _newton(c, cn, m0)
+                again = np.flatnonzero(np.any(~(np.abs(mu - m0) <= 1e-9 * mu), axis=0))
+                continue
             m0 = mu[:, again]
             m = _newton(c[:, again], cn[:, again], m0)
             mu[:, again] = m
-            rad[:, again] = _radius(c[:, again], cbar[:, again], m, g, dm)
             again = again[np.any(~(np.abs(m - m0) <= 1e-9 * m), axis=0)]
         if mu.shape[0] > 1 and not np.all(mu[1:] >= mu[:-1]):
-            order = np.argsort(mu, axis=0)
-            mu = np.take_along_axis(mu, order, 0)
-            rad = np.take_along_axis(rad, order, 0)
+            mu = np.sort(mu, axis=0)
+        rad = _radius(c, cbar, cx, mu, g, dx, du)
         if mu.shape[0] > 1:
             clash = np.diff(mu, axis=0) <= rad[1:] + rad[:-1]
             bad = np.zeros_like(rad, dtype=bool)
@@ -389,47 +420,47 @@ def certified_roots(poly: PencilPolynomial, u: np.ndarray, v, guess: np.ndarray,
 
 
 def _newton(c: np.ndarray, cn: np.ndarray, mu: np.ndarray) -> np.ndarray:
-    """One Newton step ``(sum (j - 1) c_j mu^j) / P_mu`` for every root (one Horner loop)."""
-    p = mu * c[-1]
-    p += c[-2]
-    dp = np.empty_like(mu)
-    dp[:] = c[-1]
-    num = mu * cn[-1]
-    num += cn[-2]
-    for j in range(c.shape[0] - 3, -1, -1):
-        dp *= mu
-        dp += p
-        p *= mu
-        p += c[j]
-        num *= mu
-        num += cn[j]
-    num /= dp
+    """One Newton step ``(sum (j - 1) c_j mu^j) / P_mu`` for every root."""
+    num = _horner_mu(cn, mu, deriv=False)[0]
+    num /= _horner_mu(c, mu)[1]
     return num
 
 
-def _radius(c, cbar, mu, g, dm):
-    """Inclusion radius ``dm (|P| + e_P) / (|P_mu| - e_P')`` (inf where not positive)."""
+def _radius(c, cbar, cx, mu, g, dx, du):
+    """A disc about each root estimate that holds exactly one root of :math:`P(x, \\cdot)`.
+
+    Newton-Kantorovich (Ortega and Rheinboldt 1970, 12.6.2) at the computed x: with
+    :math:`F \\ge |P(\\mu)|` and :math:`D \\le |P_\\mu(\\mu)|` (values and their rounding
+    bounds :math:`g \\sum_{jk} |a_{jk}| x^k |\\mu|^j`), :math:`\\eta = F / D` and
+    :math:`K \\ge |P_{\\mu\\mu}|` on the disc of radius :math:`2\\eta` (second derivative of
+    the bar polynomial at :math:`|\\mu| + 2\\eta`), :math:`h = K \\eta / D \\le 1/2` puts one
+    root within :math:`2\\eta` and no other there. The rounding of x itself (``dx``
+    relative) moves the root by :math:`|x P_x / P_\\mu|\\, dx` to first order, taken twice.
+    Disjoint discs (checked by the caller) then hold all roots, one each. Inf where
+    D <= 0 or h > 0.45.
+    """
     a = np.abs(mu)
-    p = mu * c[-1]
-    p += c[-2]
-    pb = a * cbar[-1]
-    pb += cbar[-2]
-    dp = np.empty_like(mu)
-    dp[:] = c[-1]
-    dpb = np.empty_like(mu)
-    dpb[:] = cbar[-1]
-    for j in range(c.shape[0] - 3, -1, -1):
-        dp *= mu
-        dp += p
-        p *= mu
-        p += c[j]
-        dpb *= a
-        dpb += pb
-        pb *= a
-        pb += cbar[j]
-    den = np.abs(dp) - g * dpb
-    rad = dm * (np.abs(p) + g * pb) / den
-    rad[~(den > 0) | ~np.isfinite(mu)] = np.inf
+    p, dp = _horner_mu(c, mu)
+    pb, dpb = _horner_mu(cbar, a)
+    px = _horner_mu(cx, mu, deriv=False)[0]
+    D = np.abs(dp) - g * dpb
+    eta = (np.abs(p) + g * pb) / D
+    b = a + 2 * eta
+    b0 = np.empty_like(mu)
+    b0[:] = cbar[-1]
+    b1 = np.zeros_like(mu)
+    b2 = np.zeros_like(mu)
+    for j in range(c.shape[0] - 2, -1, -1):
+        b2 *= b
+        b2 += b1
+        b1 *= b
+        b1 += b0
+        b0 *= b
+        b0 += cbar[j]
+    K = 2 * b2 * (1 + 4 * g)   # |c_j| <= (1 + g) bar_j, and the rounding of this sum
+    h = K * eta / D
+    rad = 2 * eta + 2 * dx * (np.abs(px) + g * du * pb) / D
+    rad[~(D > 0) | ~(h <= 0.45) | ~np.isfinite(mu) | ~np.isfinite(rad)] = np.inf
     return rad
 
 

@@ -79,8 +79,12 @@ class PencilPolynomial:
     mx: np.ndarray
     parity: tuple[np.ndarray, np.ndarray] | None = None
     #: Bloch: the same tables in :math:`v = 2 - u = 1 + \cos\theta` (exact Taylor shift),
-    #: used where u > 1 so that the evaluation stays well conditioned up to the zone edge.
+    #: used where u > 1 so that the evaluation stays well conditioned up to the zone edge;
+    #: ``"P centred"``: the tables of P in :math:`u - c` about the centres
+    #: :math:`c = j / C`, j = 1 .. 2C - 1, C = ``centres`` (:func:`taylor_centres`), for the
+    #: roots inside the zone (:func:`certified_roots`).
     shifted: dict | None = None
+    centres: int = 1
 
     @property
     def degree(self) -> int:
@@ -240,6 +244,11 @@ def _build(key):
         polys = [flint.fmpq_poly([C[k, j] for k in range(du + 1)]) for j in range(N + 1)]
         if shifted is not None:
             shifted[name] = floats([pj(shift) for pj in polys])
+            if name == "P":
+                centres = shifted["centres"] = taylor_centres(max(pj.degree() for pj in polys))
+                shifted["P centred"] = tuple(
+                    floats([pj(flint.fmpq_poly([flint.fmpq(j, centres), 1])) for pj in polys])
+                    for j in range(1, 2 * centres))
         return floats(polys)
 
     coef = solve("P", vals)
@@ -249,7 +258,8 @@ def _build(key):
     mx = floats([xp["mx"]])[0]
     if shifted is not None:
         shifted["mx"] = floats([xp["mx"](shift)])
-    return PencilPolynomial(model, None if r is None else float(r), coef, mx, par, shifted)
+    return PencilPolynomial(model, None if r is None else float(r), coef, mx, par, shifted,
+                            1 if shifted is None else shifted.pop("centres"))
 
 
 def _trim_like(c):
@@ -344,30 +354,72 @@ def _horner_mu(c: np.ndarray, mu: np.ndarray, deriv: bool = True):
     return p, dp
 
 
-#: Relative error of the computed ``u`` (or ``v``) of :func:`u_of_kappa`, in units of eps:
+#: Error of the computed ``u`` and ``v`` of :func:`u_of_kappa`, relative, in units of eps:
 #: theta = kappa r (half an ulp), numpy's sin or cos (under one ulp), the square and the
-#: factor (half an ulp), the half angle doubling the first two: 4 ulp (x-exact u = kappa^2:
-#: half an ulp).
-U_ULPS = 4
+#: factor (half an ulp), the half angle doubling the first two: 4 (x-exact u = kappa^2:
+#: half an ulp). About a centre c, :math:`x = u - c` (c <= 1) or :math:`(2 - c) - v`
+#: (c > 1) is exact (Sterbenz), so its absolute error is that of u or v, at most 4 eps x 9/8.
+U_ULPS, X_ULPS = 4, 4.5
+def taylor_centres(degree: int) -> int:
+    """Taylor centres per unit of u for a table of ``degree`` in u: ``ceil(degree / 9)``.
+
+    P is tabulated about u = 0, 1/C, ..., 2 (Bloch), so every table is evaluated at
+    :math:`|x| \\le 1/(2C)`. The rule: the terms of a table in u lose to cancellation
+    roughly like the binomial growth of a Taylor shift, about :math:`2^{d}` at
+    :math:`|x| = 1` for degree d; with :math:`|x| \\le 1/(2C)` and C = d/9 that loss stays
+    below a few hundred (measured: the degree-36 table of p = 3, n = 6, singular mass loses
+    up to 1e4 at :math:`|x| = 1/2` and certifies every point inside the zone at 1/8).
+
+    >>> taylor_centres(6), taylor_centres(18), taylor_centres(36)
+    (1, 2, 4)
+    """
+    return max(1, -(-int(degree) // 9))
 
 
 def _tables(poly: PencilPolynomial, u: np.ndarray, v):
-    """:math:`c_j(x)`, :math:`\\sum_k |a_{jk}| x^k` and :math:`x\\,\\partial c_j/\\partial x`
-    (x = u, or v = 2 - u where u > 1 on the Bloch model), each of shape (J, points)."""
+    """Coefficients of P in mu at every point, shape (J, points) each: :math:`c_j(x)`,
+    :math:`\\sum_k |a_{jk}| |x|^k`, :math:`\\partial c_j / \\partial x` and
+    :math:`\\sum_k k |a_{jk}| |x|^{k-1}`, and a bound on the absolute error of x (points).
+
+    x = u - c about the nearest centre c = j / C (Bloch; x-exact: u = kappa^2 only);
+    each table is the exact Taylor shift of the same P.
+    """
     def run(coef, x):
         J = coef.shape[0]
-        out = _horner_u(np.concatenate([coef, np.abs(coef), coef * np.arange(coef.shape[1])]), x)
-        return out[:J], out[J:2 * J], out[2 * J:]
+        dc = np.zeros_like(coef)   # d/dx, padded to the width of coef
+        dc[:, :-1] = _derivative_u(coef)[:, :coef.shape[1] - 1]
+        both = np.concatenate([coef, dc])
+        val, bar = _horner_u(both, x), _horner_u(np.abs(both), np.abs(x))
+        return val[:J], bar[:J], val[J:], bar[J:]
 
-    hi = None if v is None or poly.shifted is None else np.flatnonzero(u > 1)
-    if hi is None or hi.size == 0:
-        return run(poly.coef, u)
-    lo = np.flatnonzero(u <= 1)
-    out = [np.empty((poly.coef.shape[0], u.size)) for _ in range(3)]
-    for idx, coef, x in ((lo, poly.coef, u[lo]), (hi, poly.shifted["P"], v[hi])):
+    if v is None or poly.shifted is None:
+        return (*run(poly.coef, u), 0.5 * _EPS * u)
+    C = poly.centres
+    top = 2 * C
+    j = np.clip(np.rint(u * C), 0, top).astype(int)
+    out = [np.empty((poly.coef.shape[0], u.size)) for _ in range(4)]
+    dx = np.empty(u.shape)
+    order = np.argsort(j, kind="stable")
+    bounds = np.searchsorted(j[order], np.arange(top + 2))
+    for jj in range(top + 1):
+        idx = order[bounds[jj]:bounds[jj + 1]]
+        if not idx.size:
+            continue
+        if jj == 0:
+            coef, x, err = poly.coef, u[idx], U_ULPS * _EPS * u[idx]
+        elif jj == top:
+            coef, x, err = poly.shifted["P"], v[idx], U_ULPS * _EPS * v[idx]
+        else:
+            coef = poly.shifted["P centred"][jj - 1]
+            # u - c, from v past the middle (both exact subtractions)
+            x = u[idx] - jj / C if 2 * jj <= top else (2 - jj / C) - v[idx]
+            err = X_ULPS * _EPS
+        if idx.size == u.size:
+            return (*run(coef, x), np.broadcast_to(err, u.shape))
         for o, val in zip(out, run(coef, x)):
             o[:, idx] = val
-    return out
+        dx[idx] = err
+    return (*out, dx)
 
 
 def certified_roots(poly: PencilPolynomial, u: np.ndarray, v, guess: np.ndarray,
@@ -380,13 +432,12 @@ def certified_roots(poly: PencilPolynomial, u: np.ndarray, v, guess: np.ndarray,
     overlapping a neighbour, a derivative lost in its error bound, NaN). The certificate
     does not depend on ``rtol`` (kept for the callers, who compare the radius with it).
     """
-    c, cbar, cx = _tables(poly, u, v)
+    c, cbar, cd, cdbar, dx = _tables(poly, u, v)
     du, dm = poly.coef.shape[1] - 1, poly.coef.shape[0] - 1
     # Higham 2002 (3.1, 5.1): coefficients rounded to floats (eps/2), Horner in x
     # (gamma_{2 du}), Horner in mu (gamma_{2 dm}); doubled for the second-order terms and
     # the rounding of the bars themselves
     g = 2 * (du + dm + 1) * _EPS
-    dx = (0.5 if v is None else U_ULPS) * _EPS
     # Newton in the form mu' = (mu P_mu - P) / P_mu, numerator by its own Horner rule:
     # near mu = 0 it is -c_0 / c_1 without the cancellation of mu - P / P_mu
     cn = c * (np.arange(c.shape[0]) - 1)[:, None]
@@ -409,7 +460,7 @@ def certified_roots(poly: PencilPolynomial, u: np.ndarray, v, guess: np.ndarray,
             again = again[np.any(~(np.abs(m - m0) <= 1e-9 * m), axis=0)]
         if mu.shape[0] > 1 and not np.all(mu[1:] >= mu[:-1]):
             mu = np.sort(mu, axis=0)
-        rad = _radius(c, cbar, cx, mu, g, dx, du)
+        rad = _radius(c, cbar, cd, cdbar, mu, g, dx)
         if mu.shape[0] > 1:
             clash = np.diff(mu, axis=0) <= rad[1:] + rad[:-1]
             bad = np.zeros_like(rad, dtype=bool)
@@ -426,7 +477,7 @@ def _newton(c: np.ndarray, cn: np.ndarray, mu: np.ndarray) -> np.ndarray:
     return num
 
 
-def _radius(c, cbar, cx, mu, g, dx, du):
+def _radius(c, cbar, cd, cdbar, mu, g, dx):
     """A disc about each root estimate that holds exactly one root of :math:`P(x, \\cdot)`.
 
     Newton-Kantorovich (Ortega and Rheinboldt 1970, 12.6.2) at the computed x: with
@@ -435,31 +486,46 @@ def _radius(c, cbar, cx, mu, g, dx, du):
     :math:`K \\ge |P_{\\mu\\mu}|` on the disc of radius :math:`2\\eta` (second derivative of
     the bar polynomial at :math:`|\\mu| + 2\\eta`), :math:`h = K \\eta / D \\le 1/2` puts one
     root within :math:`2\\eta` and no other there. The rounding of x itself (``dx``
-    relative) moves the root by :math:`|x P_x / P_\\mu|\\, dx` to first order, taken twice.
+    absolute) moves the root by :math:`|P_x / P_\\mu|\\, dx` to first order, taken twice.
     Disjoint discs (checked by the caller) then hold all roots, one each. Inf where
     D <= 0 or h > 0.45.
     """
     a = np.abs(mu)
-    p, dp = _horner_mu(c, mu)
-    pb, dpb = _horner_mu(cbar, a)
-    px = _horner_mu(cx, mu, deriv=False)[0]
+    # one Horner loop: P, P_mu at mu; the bars and their first two derivatives at |mu|;
+    # P_x and its bar
+    p = np.empty_like(mu)
+    p[:] = c[-1]
+    pb = np.empty_like(mu)
+    pb[:] = cbar[-1]
+    px = np.empty_like(mu)
+    px[:] = cd[-1]
+    pxb = np.empty_like(mu)
+    pxb[:] = cdbar[-1]
+    dp = np.zeros_like(mu)
+    dpb = np.zeros_like(mu)
+    d2pb = np.zeros_like(mu)
+    for j in range(c.shape[0] - 2, -1, -1):
+        dp *= mu
+        dp += p
+        p *= mu
+        p += c[j]
+        d2pb *= a
+        d2pb += dpb
+        dpb *= a
+        dpb += pb
+        pb *= a
+        pb += cbar[j]
+        px *= mu
+        px += cd[j]
+        pxb *= a
+        pxb += cdbar[j]
     D = np.abs(dp) - g * dpb
     eta = (np.abs(p) + g * pb) / D
-    b = a + 2 * eta
-    b0 = np.empty_like(mu)
-    b0[:] = cbar[-1]
-    b1 = np.zeros_like(mu)
-    b2 = np.zeros_like(mu)
-    for j in range(c.shape[0] - 2, -1, -1):
-        b2 *= b
-        b2 += b1
-        b1 *= b
-        b1 += b0
-        b0 *= b
-        b0 += cbar[j]
-    K = 2 * b2 * (1 + 4 * g)   # |c_j| <= (1 + g) bar_j, and the rounding of this sum
+    # |P''| on the disc: the bars' second derivative at |mu| + 2 eta <= its value at |mu|
+    # times (1 + 2 eta / |mu|)^(dm - 2) (nonnegative coefficients); |c_j| <= (1 + g) bar_j
+    K = 2 * d2pb * (1 + 2 * eta / a) ** max(c.shape[0] - 3, 0) * (1 + 4 * g)
     h = K * eta / D
-    rad = 2 * eta + 2 * dx * (np.abs(px) + g * du * pb) / D
+    rad = 2 * eta + 2 * dx * (np.abs(px) + g * pxb) / D
     rad[~(D > 0) | ~(h <= 0.45) | ~np.isfinite(mu) | ~np.isfinite(rad)] = np.inf
     return rad
 

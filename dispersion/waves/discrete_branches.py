@@ -198,6 +198,12 @@ def discrete_branches(patch: PlatePatch, nu: float, kappa, chunk: int = 20000,
     nu = float(check_nu(nu))
     kappa = check_wavenumbers(kappa)
     chunk = check_positive_int("chunk", chunk)
+    workers = min(THREADS, os.cpu_count() or 1)
+    if workers > 1 and kappa.size >= 2 * MIN_SHARE:
+        # equal chunks, a multiple of the workers in number: no core idles at the end
+        count = -(-kappa.size // chunk)
+        count = -(-count // workers) * workers
+        chunk = -(-kappa.size // count)
     zone = math.pi / float(patch.r) if patch.model == "bloch" else None
     plan = _plan(patch, nu)
     failures = []
@@ -206,7 +212,7 @@ def discrete_branches(patch: PlatePatch, nu: float, kappa, chunk: int = 20000,
     def work(lo):
         return _branches_block(patch, nu, kappa[lo:lo + chunk], group, plan, failures)
 
-    workers = min(THREADS, len(starts), os.cpu_count() or 1)
+    workers = min(workers, len(starts))
     if workers > 1:  # numpy releases the GIL in its loops: chunks run on both cores
         from concurrent.futures import ThreadPoolExecutor
 
@@ -249,6 +255,8 @@ CERTIFIED_RTOL = 1e-10
 GROUP_RTOL = 1e-12
 #: Worker threads over the kappa chunks (the machine this was tuned on has two cores).
 THREADS = 2
+#: Fewest kappa per thread: below it the threads' start-up costs more than they save.
+MIN_SHARE = 2048
 #: Anchors of the root guesses: every ANCHOR_STRIDE-th kappa (sorted) is solved by the float
 #: eigen-solver; guesses between anchors are interpolated, then polished and certified.
 ANCHOR_STRIDE = 16
@@ -336,18 +344,24 @@ def _solve_block(patch, nu, kappa, block: _Block, group: bool, failures: list):
             ok = np.all((mu > 0) & (rad <= 2 * CERTIFIED_RTOL * mu), axis=1)
         redo = np.flatnonzero(~ok)
         if redo.size:
-            # guesses that fell to the wrong root (close roots) or radii too wide: guesses
-            # from the float eigen-solver at those kappa, the same polishing and certificate;
-            # a root whose radius stays too wide may still be certified by the eigen-solver's
-            # own bound (large roots, where float eigenvalues are accurate)
+            # guesses that fell to the wrong root (close roots) or radii too wide: the float
+            # eigen-solver at those kappa; a root whose radius stays too wide may still be
+            # certified by the eigen-solver's own bound (large roots, where float
+            # eigenvalues are accurate)
             if anchors.size == n:  # every kappa is an anchor: its eigenvalues are at hand
                 Wr = np.empty_like(Wa)
                 Wr[anchors] = Wa
                 Wr = Wr[redo]
             else:
                 Wr = _eigen_block(patch, nu, kappa[redo], block, False)[0]
-            m2, r2 = pp.certified_roots(poly, u[redo], None if v is None else v[redo],
-                                        Wr**2 * mx[redo], 2 * CERTIFIED_RTOL)
+            # where every disc is finite (hence disjoint: one root each, all roots found) the
+            # roots are the right ones, only some too loosely enclosed: no second polish
+            m2, r2 = mu[redo], rad[redo]
+            lost = np.flatnonzero(np.any(~np.isfinite(r2), axis=1))
+            if lost.size:
+                at = redo[lost]
+                m2[lost], r2[lost] = pp.certified_roots(poly, u[at], None if v is None else v[at],
+                                                        Wr[lost]**2 * mx[at], 2 * CERTIFIED_RTOL)
             with np.errstate(all="ignore"):
                 by_poly = (m2 > 0) & (r2 <= 2 * CERTIFIED_RTOL * m2)
                 by_eig = eigenvalue_error(Wr**2) <= 2 * CERTIFIED_RTOL

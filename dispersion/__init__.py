@@ -53,6 +53,7 @@ _MODULES = {
     "mode_table": "waves.mode_table",
     "mass_rule": "symbolic.mass_rule", "timestep": "waves.timestep",
     "fully_discrete": "waves.fully_discrete", "cost_accuracy": "studies.cost_accuracy",
+    "discrete_error": "waves.discrete_error", "pencil_frequencies": "waves.pencil_frequencies",
 }
 _SUBMODULES = tuple(_MODULES)
 

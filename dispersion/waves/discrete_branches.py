@@ -92,6 +92,14 @@ class DiscreteBranches(BranchViews):
     #: in ``omega``) or a group velocity (``"group"``, value kept) is not certified to
     #: :data:`RTOL` (frequencies) or :data:`GROUP_RTOL` (slopes). Never silently dropped.
     failures: list[tuple[str, float, str]] = field(default_factory=list)
+    #: Kappa points per route (:data:`ROUTES`), each counted once by the costliest route
+    #: any of its blocks took: the certified polynomial, the float eigen-solver's own bound,
+    #: the extended-precision solve, the power law below :data:`KAPPA_TINY`.
+    routes: dict[str, int] = field(default_factory=dict)
+
+
+#: The routes of :attr:`DiscreteBranches.routes`, cheapest first.
+ROUTES = ("polynomial", "float eigen-solver", "extended precision", "power law")
 
 
 RTOL = 1e-11
@@ -230,8 +238,10 @@ def discrete_branches(patch: PlatePatch, nu: float, kappa, chunk: int = 20000,
                 progress(min(chunk, kappa.size - lo))
     failures.sort(key=lambda f: (f[1], f[0], f[2]))
     symmetry = {}
-    for _, sym, _ in parts:
-        symmetry.update(sym)
+    for part in parts:
+        symmetry.update(part[1])
+    route = np.concatenate([part[3] for part in parts])
+    routes = {name: int(np.count_nonzero(route == i)) for i, name in enumerate(ROUTES)}
     sizes = [min(chunk, kappa.size - lo) for lo in range(0, kappa.size, chunk)]
 
     def join(i):
@@ -239,7 +249,7 @@ def discrete_branches(patch: PlatePatch, nu: float, kappa, chunk: int = 20000,
                                      for part, m in zip(parts, sizes)]) for lab in symmetry}
 
     return DiscreteBranches(kappa, join(0), symmetry, zone, join(2) if group else None,
-                            failures)
+                            failures, routes)
 
 
 #: Below this kappa every branch is its leading power law: :math:`\\Omega = a\\kappa^e (1 +
@@ -318,13 +328,15 @@ def _parity_from_vectors(patch, X):
 
 
 def _solve_block(patch, nu, kappa, block: _Block, group: bool, failures: list):
-    """``(W, G, share)`` of one block at kappa (no tiny kappa here): W ascending per row."""
+    """``(W, G, share, route)`` of one block at kappa (no tiny kappa here): W ascending per
+    row, route the index in :data:`ROUTES` of each kappa."""
     from dispersion.waves import pencil_polynomial as pp
 
     n = kappa.size
     mixed = block.kind is None
     W = G = share = None
     todo = np.arange(n)
+    route = np.zeros(n, dtype=np.int8)
     poly = block.poly
     if poly is not None:
         r = None if patch.model != "bloch" else float(patch.r)
@@ -368,6 +380,7 @@ def _solve_block(patch, nu, kappa, block: _Block, group: bool, failures: list):
             m2 = np.where(by_poly, m2, Wr**2 * mx[redo])
             mu[redo], rad[redo] = m2, np.where(by_poly, r2, 0.0)
             ok[redo] = np.all(by_poly | by_eig, axis=1)
+            route[redo[~np.all(by_poly, axis=1)]] = 1
         with np.errstate(all="ignore"):
             W = np.sqrt(mu / mx)
         if group:
@@ -386,14 +399,15 @@ def _solve_block(patch, nu, kappa, block: _Block, group: bool, failures: list):
         todo = np.flatnonzero(~ok)
     if todo.size:
         W, G, share = _eigen_fallback(patch, nu, kappa, block, group, todo, W, G, share,
-                                      failures)
-    return W, G, share
+                                      failures, route)
+    return W, G, share, route
 
 
-def _eigen_fallback(patch, nu, kappa, block, group, idx, W, G, share, failures):
+def _eigen_fallback(patch, nu, kappa, block, group, idx, W, G, share, failures, route):
     """The float eigen-solver (and extended precision where it is not accurate) at ``idx``."""
     mixed = block.kind is None
     k = kappa[idx]
+    route[idx] = 1
     try:
         Wf, X, M = _eigen_block(patch, nu, k, block, group or mixed)
     except (np.linalg.LinAlgError, InputError) as exc:
@@ -411,6 +425,8 @@ def _eigen_fallback(patch, nu, kappa, block, group, idx, W, G, share, failures):
             dK, dM = congruence(block.E.T, dK), congruence(block.E.T, dM)
         Gf = _slopes(Wf, X, dK, dM, M)
     basis = block.E
+    refine = np.any(eigenvalue_error(Wf**2) > RTOL, axis=1) & (k > 0)  # as _refine_small
+    route[idx[refine]] = 2
     Wf = _refine_small(patch, nu, k, Wf, basis, Gf, failures)
     if W is None:
         W = np.empty((kappa.size, Wf.shape[1]))
@@ -456,6 +472,7 @@ def _branches_block(patch: PlatePatch, nu: float, kappa: np.ndarray, group: bool
     ref = np.array([KAPPA_TINY, 2 * KAPPA_TINY])
     omega, symmetry, slopes = {}, {}, {}
     results = []
+    route = np.zeros(kappa.size, dtype=np.int8)
     for block in plan:
         parts = {}
         if main.size:
@@ -476,14 +493,16 @@ def _branches_block(patch: PlatePatch, nu: float, kappa: np.ndarray, group: bool
         Gf = np.empty_like(Wf) if group else None
         Sf = np.empty_like(Wf) if block.kind is None else None
         if main.size:
-            W, G, share = parts["main"]
+            W, G, share, r_main = parts["main"]
+            route[main] = np.maximum(route[main], r_main)
             Wf[main] = W
             if group:
                 Gf[main] = G
             if Sf is not None:
                 Sf[main] = share
         if np.any(tiny):
-            W, G, share = parts["ref"]
+            W, G, share, _ = parts["ref"]
+            route[tiny] = ROUTES.index("power law")
             Wt, Gt = _tiny(kappa[tiny], W[0], W[1], None if G is None else G[0],
                            None if G is None else G[1], failures)
             Wf[tiny] = Wt
@@ -519,7 +538,7 @@ def _branches_block(patch: PlatePatch, nu: float, kappa: np.ndarray, group: bool
                 omega[label], symmetry[label] = Wn[rows, col], "mixed"
                 if group:
                     slopes[label] = Gn[rows, col]
-    return omega, symmetry, slopes
+    return omega, symmetry, slopes, route
 
 
 def fundamental_branches(patch: PlatePatch, nu: float, kappa) -> dict[str, np.ndarray]:

@@ -249,7 +249,7 @@ def _certificate_holds(p, n, mass, nu, kappa, rel_shift):
         ref, u, v = _block_reference(patch, nu, kappa, block)
         # start off the root by rel_shift: the certificate may not rely on Newton converging
         mu, rad = pp.certified_roots(block.poly, u, v, (ref * (1 + rel_shift))[None, :],
-                                     iterations=0)
+                                     iterations=0, kappa=np.array([kappa]))
         finite = np.isfinite(rad[0])
         err = np.abs(mu[0] - ref)
         assert np.all(err[finite] <= rad[0][finite] + 8 * np.finfo(float).eps * ref[finite]), \
@@ -286,7 +286,8 @@ def _p3_values_are_right(kappa, mass):
     for i, kk in enumerate(kappa):
         if any(f[1] == kk and f[0] == "omega" for f in br.failures):
             continue
-        ref = np.array([float(v) for v in mp_frequencies(patch, 0.3, kk)])
+        dps = 40 + int(4 * max(0.0, -math.log10(kk))) if kk > 0 else 60  # as above
+        ref = np.array([float(v) for v in mp_frequencies(patch, 0.3, kk, dps)])
         got = _sorted_finite(br, i)
         scale = np.where(ref > 1e-20, ref, 1.0) if kk == 0 else ref
         assert got.size == ref.size and np.all(np.abs(got - ref) <= 1e-10 * scale), (kk, got, ref)

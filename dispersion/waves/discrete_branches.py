@@ -351,7 +351,7 @@ def _solve_block(patch, nu, kappa, block: _Block, group: bool, failures: list):
         mua = Wa**2 * mx[anchors]
         ua = u[anchors]
         guess = np.column_stack([np.interp(u, ua, mua[:, j]) for j in range(mua.shape[1])])
-        mu, rad = pp.certified_roots(poly, u, v, guess, 2 * CERTIFIED_RTOL)
+        mu, rad = pp.certified_roots(poly, u, v, guess, 2 * CERTIFIED_RTOL, kappa=kappa)
         with np.errstate(all="ignore"):
             ok = np.all((mu > 0) & (rad <= 2 * CERTIFIED_RTOL * mu), axis=1)
         redo = np.flatnonzero(~ok)
@@ -373,7 +373,8 @@ def _solve_block(patch, nu, kappa, block: _Block, group: bool, failures: list):
             if lost.size:
                 at = redo[lost]
                 m2[lost], r2[lost] = pp.certified_roots(poly, u[at], None if v is None else v[at],
-                                                        Wr[lost]**2 * mx[at], 2 * CERTIFIED_RTOL)
+                                                        Wr[lost]**2 * mx[at], 2 * CERTIFIED_RTOL,
+                                                        kappa=kappa[at])
             with np.errstate(all="ignore"):
                 by_poly = (m2 > 0) & (r2 <= 2 * CERTIFIED_RTOL * m2)
                 by_eig = eigenvalue_error(Wr**2) <= 2 * CERTIFIED_RTOL

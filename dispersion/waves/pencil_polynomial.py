@@ -100,9 +100,9 @@ def u_of_kappa(model: str, r: float | None, kappa: np.ndarray):
     """
     if model == "x-exact":
         return kappa * kappa, None, 2 * kappa
-    th = kappa * r
-    half, co = np.sin(0.5 * th), np.cos(0.5 * th)
-    return 2 * half * half, 2 * co * co, r * np.sin(th)
+    half = kappa * (0.5 * r)
+    s, co = np.sin(half), np.cos(half)
+    return 2 * s * s, 2 * co * co, (2 * r) * s * co   # du/dkappa = r sin(kappa r)
 
 
 def _cheb(L: int, kind: str):
@@ -354,12 +354,17 @@ def _horner_mu(c: np.ndarray, mu: np.ndarray, deriv: bool = True):
     return p, dp
 
 
-#: Error of the computed ``u`` and ``v`` of :func:`u_of_kappa`, relative, in units of eps:
-#: theta = kappa r (half an ulp), numpy's sin or cos (under one ulp), the square and the
-#: factor (half an ulp), the half angle doubling the first two: 4 (x-exact u = kappa^2:
-#: half an ulp). About a centre c, :math:`x = u - c` (c <= 1) or :math:`(2 - c) - v`
-#: (c > 1) is exact (Sterbenz), so its absolute error is that of u or v, at most 4 eps x 9/8.
-U_ULPS, X_ULPS = 4, 4.5
+#: Relative error of the computed ``u`` and ``v`` of :func:`u_of_kappa` in units of eps,
+#: for an exact half angle :math:`\\phi = \\kappa r / 2`: numpy's sin or cos (under one
+#: ulp), the square and the product (half an ulp each), the factor 2 exact: 4 (x-exact
+#: :math:`u = \\kappa^2`: half an ulp). The rounding of :math:`\\phi` itself (half an ulp)
+#: moves u and v by at most :math:`|dv/d\\phi|\\,\\epsilon|\\phi|/2 = 2 \\epsilon |\\phi|
+#: \\sqrt{uv}`, absolute (relative to v it is unbounded at the zone edge, where v -> 0).
+#: About a centre c, :math:`x = u - c` (c <= 1) or :math:`(2 - c) - v` (c > 1) is an exact
+#: subtraction (Sterbenz), so its error is that of u or v.
+U_ULPS = 4
+
+
 def taylor_centres(degree: int) -> int:
     """Taylor centres per unit of u for a table of ``degree`` in u: ``ceil(degree / 9)``.
 
@@ -376,13 +381,14 @@ def taylor_centres(degree: int) -> int:
     return max(1, -(-int(degree) // 9))
 
 
-def _tables(poly: PencilPolynomial, u: np.ndarray, v):
+def _tables(poly: PencilPolynomial, u: np.ndarray, v, kappa=None):
     """Coefficients of P in mu at every point, shape (J, points) each: :math:`c_j(x)`,
     :math:`\\sum_k |a_{jk}| |x|^k`, :math:`\\partial c_j / \\partial x` and
     :math:`\\sum_k k |a_{jk}| |x|^{k-1}`, and a bound on the absolute error of x (points).
 
     x = u - c about the nearest centre c = j / C (Bloch; x-exact: u = kappa^2 only);
-    each table is the exact Taylor shift of the same P.
+    each table is the exact Taylor shift of the same P. ``kappa`` (Bloch) bounds the half
+    angle of :data:`U_ULPS`; None: the first zone, :math:`\\phi \\le \\pi/2`.
     """
     def run(coef, x):
         J = coef.shape[0]
@@ -394,6 +400,9 @@ def _tables(poly: PencilPolynomial, u: np.ndarray, v):
 
     if v is None or poly.shifted is None:
         return (*run(poly.coef, u), 0.5 * _EPS * u)
+    phi = np.pi / 2 if kappa is None else np.abs(kappa) * (0.5 * poly.r)
+    arg = 2 * _EPS * phi * np.sqrt(u * v) * (1 + 4 * _EPS)
+    eu, ev = U_ULPS * _EPS * u + arg, U_ULPS * _EPS * v + arg
     C = poly.centres
     top = 2 * C
     j = np.clip(np.rint(u * C), 0, top).astype(int)
@@ -406,16 +415,16 @@ def _tables(poly: PencilPolynomial, u: np.ndarray, v):
         if not idx.size:
             continue
         if jj == 0:
-            coef, x, err = poly.coef, u[idx], U_ULPS * _EPS * u[idx]
+            coef, x, err = poly.coef, u[idx], eu[idx]
         elif jj == top:
-            coef, x, err = poly.shifted["P"], v[idx], U_ULPS * _EPS * v[idx]
+            coef, x, err = poly.shifted["P"], v[idx], ev[idx]
         else:
             coef = poly.shifted["P centred"][jj - 1]
             # u - c, from v past the middle (both exact subtractions)
             x = u[idx] - jj / C if 2 * jj <= top else (2 - jj / C) - v[idx]
-            err = X_ULPS * _EPS
+            err = eu[idx] if 2 * jj <= top else ev[idx]
         if idx.size == u.size:
-            return (*run(coef, x), np.broadcast_to(err, u.shape))
+            return (*run(coef, x), err)
         for o, val in zip(out, run(coef, x)):
             o[:, idx] = val
         dx[idx] = err
@@ -423,7 +432,7 @@ def _tables(poly: PencilPolynomial, u: np.ndarray, v):
 
 
 def certified_roots(poly: PencilPolynomial, u: np.ndarray, v, guess: np.ndarray,
-                    rtol: float = 2e-10, iterations: int = 8):
+                    rtol: float = 2e-10, iterations: int = 8, kappa=None):
     """Newton-polished roots ``mu`` (ascending, shape of ``guess`` = (points, R)) and radii.
 
     Newton's method runs until its step is below 1e-9 relative (the error is then about
@@ -431,8 +440,10 @@ def certified_roots(poly: PencilPolynomial, u: np.ndarray, v, guess: np.ndarray,
     (:func:`_radius`). The radius is ``inf`` where the certificate fails (a disc
     overlapping a neighbour, a derivative lost in its error bound, NaN). The certificate
     does not depend on ``rtol`` (kept for the callers, who compare the radius with it).
+    ``kappa`` (Bloch, same length as u) bounds the rounding of u and v (:data:`U_ULPS`);
+    None: kappa in the first zone.
     """
-    c, cbar, cd, cdbar, dx = _tables(poly, u, v)
+    c, cbar, cd, cdbar, dx = _tables(poly, u, v, kappa)
     du, dm = poly.coef.shape[1] - 1, poly.coef.shape[0] - 1
     # Higham 2002 (3.1, 5.1): coefficients rounded to floats (eps/2), Horner in x
     # (gamma_{2 du}), Horner in mu (gamma_{2 dm}); doubled for the second-order terms and
@@ -522,11 +533,13 @@ def _radius(c, cbar, cd, cdbar, mu, g, dx):
     D = np.abs(dp) - g * dpb
     eta = (np.abs(p) + g * pb) / D
     # |P''| on the disc: the bars' second derivative at |mu| + 2 eta <= its value at |mu|
-    # times (1 + 2 eta / |mu|)^(dm - 2) (nonnegative coefficients); |c_j| <= (1 + g) bar_j
-    K = 2 * d2pb * (1 + 2 * eta / a) ** max(c.shape[0] - 3, 0) * (1 + 4 * g)
+    # times (1 + t)^m <= 1 / (1 - m t), t = 2 eta / |mu|, m = dm - 2 (nonnegative
+    # coefficients; m t < 1 else the certificate fails); |c_j| <= (1 + g) bar_j
+    grow = 1 - max(c.shape[0] - 3, 0) * 2 * eta / a
+    K = 2 * d2pb * (1 + 4 * g) / grow
     h = K * eta / D
     rad = 2 * eta + 2 * dx * (np.abs(px) + g * pxb) / D
-    rad[~(D > 0) | ~(h <= 0.45) | ~np.isfinite(mu) | ~np.isfinite(rad)] = np.inf
+    rad[~(D > 0) | ~(grow > 0) | ~(h <= 0.45) | ~np.isfinite(mu) | ~np.isfinite(rad)] = np.inf
     return rad
 
 

@@ -15,6 +15,7 @@ from hypothesis import strategies as st
 from dispersion.symbolic.mass import MASS_VARIANTS
 from dispersion.symbolic.plate import dynamic_stiffness, mirror_bases, plate_patch
 from dispersion.waves import discrete_branches as db
+from dispersion.waves import certified_roots as cr
 from dispersion.waves import pencil_polynomial as pp
 from mp_pencil import mp_frequencies
 
@@ -248,7 +249,7 @@ def _certificate_holds(p, n, mass, nu, kappa, rel_shift):
             continue
         ref, u, v = _block_reference(patch, nu, kappa, block)
         # start off the root by rel_shift: the certificate may not rely on Newton converging
-        mu, rad = pp.certified_roots(block.poly, u, v, (ref * (1 + rel_shift))[None, :],
+        mu, rad = cr.certified_roots(block.poly, u, v, (ref * (1 + rel_shift))[None, :],
                                      iterations=0, kappa=np.array([kappa]))
         finite = np.isfinite(rad[0])
         err = np.abs(mu[0] - ref)
@@ -325,7 +326,7 @@ def test_taylor_tables_are_the_same_polynomial():
     rng = np.random.default_rng(1)
     u = rng.uniform(0, 2, 40)
     mu = rng.uniform(0, 50, (1, 40))
-    c = pp._tables(poly, u, 2 - u)[0]
+    c = cr._tables(poly, u, 2 - u)[0]
     p, _ = pp._horner_mu(c, mu)
     J, D = poly.coef.shape
     with mpmath.workdps(50):

@@ -331,6 +331,7 @@ def _solve_block(patch, nu, kappa, block: _Block, group: bool, failures: list):
     """``(W, G, share, route)`` of one block at kappa (no tiny kappa here): W ascending per
     row, route the index in :data:`ROUTES` of each kappa."""
     from dispersion.waves import pencil_polynomial as pp
+    from dispersion.waves.certified_roots import certified_roots
 
     n = kappa.size
     mixed = block.kind is None
@@ -351,7 +352,7 @@ def _solve_block(patch, nu, kappa, block: _Block, group: bool, failures: list):
         mua = Wa**2 * mx[anchors]
         ua = u[anchors]
         guess = np.column_stack([np.interp(u, ua, mua[:, j]) for j in range(mua.shape[1])])
-        mu, rad = pp.certified_roots(poly, u, v, guess, 2 * CERTIFIED_RTOL, kappa=kappa)
+        mu, rad = certified_roots(poly, u, v, guess, 2 * CERTIFIED_RTOL, kappa=kappa)
         with np.errstate(all="ignore"):
             ok = np.all((mu > 0) & (rad <= 2 * CERTIFIED_RTOL * mu), axis=1)
         redo = np.flatnonzero(~ok)
@@ -372,7 +373,7 @@ def _solve_block(patch, nu, kappa, block: _Block, group: bool, failures: list):
             lost = np.flatnonzero(np.any(~np.isfinite(r2), axis=1))
             if lost.size:
                 at = redo[lost]
-                m2[lost], r2[lost] = pp.certified_roots(poly, u[at], None if v is None else v[at],
+                m2[lost], r2[lost] = certified_roots(poly, u[at], None if v is None else v[at],
                                                         Wr[lost]**2 * mx[at], 2 * CERTIFIED_RTOL,
                                                         kappa=kappa[at])
             with np.errstate(all="ignore"):

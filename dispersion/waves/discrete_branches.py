@@ -268,8 +268,11 @@ THREADS = 2
 #: Fewest kappa per thread: below it the threads' start-up costs more than they save.
 MIN_SHARE = 2048
 #: Anchors of the root guesses: every ANCHOR_STRIDE-th kappa (sorted) is solved by the float
-#: eigen-solver; guesses between anchors are interpolated, then polished and certified.
-ANCHOR_STRIDE = 16
+#: eigen-solver; guesses between anchors are interpolated, then polished and certified
+#: (a guess that falls to the wrong root is caught by the disjoint discs and redone). 64:
+#: the anchors then cost under 2 % (measured, 100,000 kappa, p = 2 and 3: 5-10 % faster
+#: than 16, with the same fallback counts).
+ANCHOR_STRIDE = 64
 
 
 @dataclass(frozen=True)

@@ -48,21 +48,26 @@ _EPS = np.finfo(float).eps
 U_ULPS = 4
 
 
-def _tables(poly: PencilPolynomial, u: np.ndarray, v, kappa=None):
+def _tables(poly: PencilPolynomial, u: np.ndarray, v, kappa=None, running: bool = False):
     """Coefficients of P in mu at every point, shape (J, points) each: :math:`c_j(x)`,
     :math:`\\sum_k |a_{jk}| |x|^k`, :math:`\\partial c_j / \\partial x` and
     :math:`\\sum_k k |a_{jk}| |x|^{k-1}`, and a bound on the absolute error of x (points).
 
     x = u - c about the nearest centre c = j / C (Bloch; x-exact: u = kappa^2 only);
     each table is the exact Taylor shift of the same P. ``kappa`` (Bloch) bounds the half
-    angle of :data:`U_ULPS`; None: the first zone, :math:`\\phi \\le \\pi/2`.
+    angle of :data:`U_ULPS`; None: the first zone, :math:`\\phi \\le \\pi/2`. With
+    ``running``, the first table is followed by a running error bound of its evaluation
+    (:func:`_horner_running`) and the tuple has six entries.
     """
     def run(coef, x):
         J = coef.shape[0]
         dc = np.zeros_like(coef)   # d/dx, padded to the width of coef
         dc[:, :-1] = _derivative_u(coef)[:, :coef.shape[1] - 1]
-        both = np.concatenate([coef, dc])
-        val, bar = _horner_u(both, x), _horner_u(np.abs(both), np.abs(x))
+        bar = _horner_u(np.abs(np.concatenate([coef, dc])), np.abs(x))
+        if running:
+            val, err = _horner_running(coef, x)
+            return val, err, bar[:J], _horner_u(dc, x), bar[J:]
+        val = _horner_u(np.concatenate([coef, dc]), x)
         return val[:J], bar[:J], val[J:], bar[J:]
 
     if v is None or poly.shifted is None:
@@ -73,7 +78,7 @@ def _tables(poly: PencilPolynomial, u: np.ndarray, v, kappa=None):
     C = poly.centres
     top = 2 * C
     j = np.clip(np.rint(u * C), 0, top).astype(int)
-    out = [np.empty((poly.coef.shape[0], u.size)) for _ in range(4)]
+    out = [np.empty((poly.coef.shape[0], u.size)) for _ in range(5 if running else 4)]
     dx = np.empty(u.shape)
     order = np.argsort(j, kind="stable")
     bounds = np.searchsorted(j[order], np.arange(top + 2))
@@ -98,6 +103,23 @@ def _tables(poly: PencilPolynomial, u: np.ndarray, v, kappa=None):
     return (*out, dx)
 
 
+def _horner_running(coef: np.ndarray, x: np.ndarray):
+    """``sum_k coef[:, k] x^k`` and a bound on its rounding error (Higham 2002, Algorithm
+    5.1: the running error bound, :math:`\\epsilon \\mu` with
+    :math:`\\mu \\leftarrow |x| \\mu + |y_k|`), both of shape (rows, len(x))."""
+    out = np.empty((coef.shape[0], x.size))
+    out[:] = coef[:, -1:]
+    m = 0.5 * np.abs(out)
+    a = np.abs(x)
+    for k in range(coef.shape[1] - 2, -1, -1):
+        out *= x
+        out += coef[:, k:k + 1]
+        m *= a
+        m += np.abs(out)
+    m *= _EPS
+    return out, m
+
+
 def certified_roots(poly: PencilPolynomial, u: np.ndarray, v, guess: np.ndarray,
                     rtol: float = 2e-10, iterations: int = 8, kappa=None):
     """Newton-polished roots ``mu`` (ascending, shape of ``guess`` = (points, R)) and radii.
@@ -108,14 +130,15 @@ def certified_roots(poly: PencilPolynomial, u: np.ndarray, v, guess: np.ndarray,
     overlapping a neighbour, a derivative lost in its error bound, NaN). The certificate
     does not depend on ``rtol`` (kept for the callers, who compare the radius with it).
     ``kappa`` (Bloch, same length as u) bounds the rounding of u and v (:data:`U_ULPS`);
-    None: kappa in the first zone.
+    None: kappa in the first zone. The certificate takes a priori rounding bounds first
+    and, where a radius exceeds ``rtol`` relative, running error bounds (tighter, dearer).
     """
     c, cbar, cd, cdbar, dx = _tables(poly, u, v, kappa)
-    du, dm = poly.coef.shape[1] - 1, poly.coef.shape[0] - 1
-    # Higham 2002 (3.1, 5.1): coefficients rounded to floats (eps/2), Horner in x
-    # (gamma_{2 du}), Horner in mu (gamma_{2 dm}); doubled for the second-order terms and
-    # the rounding of the bars themselves
-    g = 2 * (du + dm + 1) * _EPS
+    du = poly.coef.shape[1] - 1
+    # a priori bound of the coefficients' errors (Higham 2002, 3.1 and 5.1): their rounding
+    # to floats (eps/2) and the Horner rule in x (gamma_{2 du}), doubled for second-order
+    # terms and the rounding of the bars themselves
+    gx = 2 * (du + 1) * _EPS
     # Newton in the form mu' = (mu P_mu - P) / P_mu, numerator by its own Horner rule:
     # near mu = 0 it is -c_0 / c_1 without the cancellation of mu - P / P_mu
     cn = c * (np.arange(c.shape[0]) - 1)[:, None]
@@ -138,7 +161,17 @@ def certified_roots(poly: PencilPolynomial, u: np.ndarray, v, guess: np.ndarray,
             again = again[np.any(~(np.abs(m - m0) <= 1e-9 * m), axis=0)]
         if mu.shape[0] > 1 and not np.all(mu[1:] >= mu[:-1]):
             mu = np.sort(mu, axis=0)
-        rad = _radius(c, cbar, cd, cdbar, mu, g, dx)
+        rad = _radius(c, cbar, cd, cdbar, mu, dx, gx)
+        loose = np.flatnonzero(np.any(~(rad <= rtol * mu), axis=0))
+        if loose.size:
+            k = None if kappa is None else np.asarray(kappa)[loose]
+            cl, E, cbl, cdl, cdbl, dxl = _tables(poly, u[loose], None if v is None else v[loose],
+                                                 k, running=True)
+            # x-Horner's running bound, the coefficients' own rounding (eps/2), and 1 %
+            # for the rounding of the bounds themselves
+            E = 1.01 * (E + 0.5 * _EPS * cbl)
+            rad[:, loose] = np.minimum(rad[:, loose],
+                                       _radius(cl, cbl, cdl, cdbl, mu[:, loose], dxl, gx, E))
         if mu.shape[0] > 1:
             clash = np.diff(mu, axis=0) <= rad[1:] + rad[:-1]
             bad = np.zeros_like(rad, dtype=bool)
@@ -155,22 +188,28 @@ def _newton(c: np.ndarray, cn: np.ndarray, mu: np.ndarray) -> np.ndarray:
     return num
 
 
-def _radius(c, cbar, cd, cdbar, mu, g, dx):
+def _radius(c, cbar, cd, cdbar, mu, dx, gx, E=None):
     """A disc about each root estimate that holds exactly one root of :math:`P(x, \\cdot)`.
 
     Newton-Kantorovich (Ortega and Rheinboldt 1970, 12.6.2) at the computed x: with
     :math:`F \\ge |P(\\mu)|` and :math:`D \\le |P_\\mu(\\mu)|` (values and their rounding
-    bounds :math:`g \\sum_{jk} |a_{jk}| x^k |\\mu|^j`), :math:`\\eta = F / D` and
-    :math:`K \\ge |P_{\\mu\\mu}|` on the disc of radius :math:`2\\eta` (second derivative of
-    the bar polynomial at :math:`|\\mu| + 2\\eta`), :math:`h = K \\eta / D \\le 1/2` puts one
-    root within :math:`2\\eta` and no other there. The rounding of x itself (``dx``
-    absolute) moves the root by :math:`|P_x / P_\\mu|\\, dx` to first order, taken twice.
-    Disjoint discs (checked by the caller) then hold all roots, one each. Inf where
-    D <= 0 or h > 0.45.
+    bounds), :math:`\\eta = F / D` and :math:`K \\ge |P_{\\mu\\mu}|` on the disc of radius
+    :math:`2\\eta` (second derivative of the bar polynomial at :math:`|\\mu| + 2\\eta`),
+    :math:`h = K \\eta / D \\le 1/2` puts one root within :math:`2\\eta` and no other
+    there. The rounding of x itself (``dx`` absolute) moves the root by
+    :math:`|P_x / P_\\mu|\\, dx` to first order, taken twice. Disjoint discs (checked by
+    the caller) then hold all roots, one each. Inf where D <= 0 or h > 0.45.
+
+    Rounding bounds (Higham 2002, 3.1 and 5.1): the coefficients :math:`c_j` are off by
+    ``E`` (None: the a priori ``gx`` times their bars :math:`\\sum_k |a_{jk}| |x|^k`, for
+    the x-Horner and the coefficients' rounding); the mu-Horner adds
+    :math:`\\gamma_{2 d}` times the bar of P (a priori), or with ``E`` its running bound,
+    each doubled.
     """
     a = np.abs(mu)
+    dm = c.shape[0] - 1
     # one Horner loop: P, P_mu at mu; the bars and their first two derivatives at |mu|;
-    # P_x and its bar
+    # P_x and its bar; with E, the errors' polynomial, its derivative and the running bound
     p = np.empty_like(mu)
     p[:] = c[-1]
     pb = np.empty_like(mu)
@@ -182,7 +221,12 @@ def _radius(c, cbar, cd, cdbar, mu, g, dx):
     dp = np.zeros_like(mu)
     dpb = np.zeros_like(mu)
     d2pb = np.zeros_like(mu)
-    for j in range(c.shape[0] - 2, -1, -1):
+    if E is not None:
+        pe = np.empty_like(mu)
+        pe[:] = E[-1]
+        dpe = np.zeros_like(mu)
+        run = 0.5 * np.abs(p)
+    for j in range(dm - 1, -1, -1):
         dp *= mu
         dp += p
         p *= mu
@@ -197,12 +241,26 @@ def _radius(c, cbar, cd, cdbar, mu, g, dx):
         px += cd[j]
         pxb *= a
         pxb += cdbar[j]
-    D = np.abs(dp) - g * dpb
-    eta = (np.abs(p) + g * pb) / D
+        if E is not None:
+            dpe *= a
+            dpe += pe
+            pe *= a
+            pe += E[j]
+            run *= a
+            run += np.abs(p)
+    gm = 2 * (2 * dm + 1) * _EPS   # gamma_{2 dm}, doubled (a priori mu-Horner)
+    g = gx + gm
+    if E is None:
+        F = np.abs(p) + g * pb
+        D = np.abs(dp) - g * dpb
+    else:
+        F = np.abs(p) + pe + 2.02 * _EPS * run
+        D = np.abs(dp) - dpe - gm * dpb
+    eta = F / D
     # |P''| on the disc: the bars' second derivative at |mu| + 2 eta <= its value at |mu|
     # times (1 + t)^m <= 1 / (1 - m t), t = 2 eta / |mu|, m = dm - 2 (nonnegative
     # coefficients; m t < 1 else the certificate fails); |c_j| <= (1 + g) bar_j
-    grow = 1 - max(c.shape[0] - 3, 0) * 2 * eta / a
+    grow = 1 - max(dm - 2, 0) * 2 * eta / a
     K = 2 * d2pb * (1 + 4 * g) / grow
     h = K * eta / D
     rad = 2 * eta + 2 * dx * (np.abs(px) + g * pxb) / D

@@ -36,7 +36,7 @@ from scipy.optimize import brentq
 from dispersion.studies.branch_study import discrete_speed
 from dispersion.waves.discrete_branches import discrete_branches
 from dispersion.symbolic.plate import numeric_pencil, plate_patch
-from dispersion.waves.rayleigh_lamb import numeric_frequency_function
+from dispersion.waves.numeric_frequency import numeric_frequency_function
 from dispersion.waves.exact_branches import mpmath_error, trace_branches, tracer_accuracy
 from dispersion.waves.units import ALUMINIUM, physical_branches
 from dispersion.waves.velocities import exact_velocities

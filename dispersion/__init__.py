@@ -37,6 +37,8 @@ _MODULES = {
     "bspline": "symbolic.bspline", "mass": "symbolic.mass", "plate": "symbolic.plate",
     "series_kernel": "symbolic.series_kernel", "power_balance": "symbolic.power_balance",
     "rayleigh_lamb": "waves.rayleigh_lamb", "exact_branches": "waves.exact_branches",
+    "numeric_frequency": "waves.numeric_frequency",
+    "deflated_frequency": "waves.deflated_frequency", "scaled_frequency": "waves.scaled_frequency",
     "discrete_branches": "waves.discrete_branches", "velocities": "waves.velocities",
     "units": "waves.units", "mode_shapes": "waves.mode_shapes",
     "bar_dispersion": "waves.bar_dispersion", "errata": "claims.errata",
@@ -46,6 +48,9 @@ _MODULES = {
     "table": "table", "branch_set": "waves.branch_set",
     "explicit": "claims.explicit", "limits": "claims.limits", "reader": "claims.reader",
     "schema": "claims.schema", "verify": "claims.verify", "cli": "cli", "staging": "staging",
+    "claim": "claims.claim", "claim_model": "claims.claim_model",
+    "claim_fields": "claims.claim_fields", "claims_file": "claims.claims_file",
+    "exact_model": "claims.exact_model", "bar_model": "claims.bar_model",
     "peers": "studies.peers", "spline_mass": "symbolic.spline_mass",
     "extended_pencil": "waves.extended_pencil", "pencil_polynomial": "waves.pencil_polynomial",
     "asymptotic_fit": "studies.asymptotic_fit",
@@ -54,7 +59,7 @@ _MODULES = {
     "mass_rule": "symbolic.mass_rule", "timestep": "waves.timestep",
     "fully_discrete": "waves.fully_discrete", "cost_accuracy": "studies.cost_accuracy",
     "discrete_error": "waves.discrete_error", "pencil_frequencies": "waves.pencil_frequencies",
-    "certified_roots": "waves.certified_roots",
+    "illinois": "waves.illinois", "certified_roots": "waves.certified_roots",
 }
 _SUBMODULES = tuple(_MODULES)
 

@@ -23,8 +23,12 @@ reads a default does not import sympy.
 """
 from __future__ import annotations
 
+from fractions import Fraction
+
 __all__ = ["P", "N", "MODELS", "MODEL", "R", "MASS", "CONTACT", "GAMMA_S", "GAMMA_S_FLOAT", "NU",  # noqa: F822
-           "NU_FLOAT", "FIGURE2_R"]  # GAMMA_S, NU, FIGURE2_R: module __getattr__
+           "NU_FLOAT", "FIGURE2_R", "MASS_VARIANTS", "TIME_SCHEMES", "TIMESTEP_MODELS", "CONTACT_SETS",
+           "REPORT_OUT", "REPORT_REFERENCE", "MAX_JOBS_PER_CPU", "P_MAX", "N_MAX",
+           "R_RANGE"]  # GAMMA_S, NU, FIGURE2_R: module __getattr__
 
 P = 2
 N = 3
@@ -35,6 +39,46 @@ MODEL = "bloch"
 R = 2
 MASS = "consistent"
 CONTACT = "top"
+#: Names of the registered mass rules, in the registry's order
+#: (:data:`dispersion.symbolic.mass_rule.RULE_NAMES` is built to equal it, tested): the
+#: command line offers them without importing the rules.
+MASS_VARIANTS = ("consistent", "lumped", "hrz", "nodal-greville", "nodal-lobatto", "singular",
+                 "singular-lumped")
+#: Named Newmark members of the fully discrete branches
+#: (:data:`dispersion.waves.fully_discrete.SCHEMES` holds their beta and gamma; tested equal).
+TIME_SCHEMES = ("central", "average-acceleration", "linear-acceleration", "fox-goodwin")
+#: Models of ``dispersion timestep`` (:data:`dispersion.waves.timestep.MODELS`; tested equal).
+TIMESTEP_MODELS = ("plate", "bar")
+#: ``dispersion reproduce``: where a user's run goes (untracked; listed in .gitignore) and the
+#: committed reference it is compared with (:mod:`dispersion.report.run`).
+REPORT_OUT = "reproduced"
+REPORT_REFERENCE = "reports"
+#: Most workers of :func:`dispersion.sweep.process_pool` per usable CPU. More only queue for
+#: the cores while each holds its own copy of the toolkit in memory (about 150 MB); 4 leaves
+#: room for workers that wait on I/O. :func:`dispersion.sweep.parallel_map` starts at most one
+#: per usable CPU: its calls are CPU-bound sweeps.
+MAX_JOBS_PER_CPU = 4
+#: Contact sets of a singular mass through the thickness (:mod:`dispersion.symbolic.mass`).
+CONTACT_SETS = ("top", "bottom", "both")
+
+# Limits of the plate patch (:mod:`dispersion.symbolic.plate` checks them; stated here so
+# that the command line states its ranges without importing sympy).
+#: Highest degree p through the thickness. The rule: the float pencil of the numeric branches
+#: keeps digits. The thickness Gram matrix Y_00 of one element (n = p + 1) has condition
+#: number 2.4e4 at p = 8, 1.2e9 at p = 16, 6.3e13 at p = 24 and 4.1e17 at p = 32 (measured,
+#: numpy.linalg.cond): beyond p = 24 a float64 solve keeps no correct digit.
+P_MAX = 24
+#: Most control points n through the thickness. The rule: the patch builds in about a minute.
+#: The singular mass is the dearest (sympy products of n x n matrices, growth n^3): p = 2,
+#: n = 80 2.1 s, n = 160 16.5 s (measured on the busy 2-core machine), so n = 200 takes
+#: about 30 s and n = 256 over a minute. Memory stays below 100 MiB.
+N_MAX = 200
+#: Valid aspect ratios r = b/h of the Bloch model, as exact fractions. Outside, the float
+#: pencil of the numeric branches loses its digits (the d-function is a difference of O(1)
+#: terms divided by r^2, and the S0 frequency at r = 1e-8 came out 100 % wrong), and exact
+#: rationals grow huge. (:data:`dispersion.symbolic.plate.R_RANGE`: the same as sympy
+#: Rationals.)
+R_RANGE = (Fraction(1, 1000), Fraction(1000))
 #: The exact defaults as (numerator, denominator): GAMMA_S, NU and FIGURE2_R (the aspect ratio
 #: r = b/h of Figure 2's caption, h/b = 2) are sympy Rationals made from these on first use.
 _RATIONAL = {"GAMMA_S": (1, 2), "NU": (3, 10), "FIGURE2_R": (1, 2)}

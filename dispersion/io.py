@@ -98,6 +98,18 @@ def _error(exc: OSError, path, option: str | None) -> DispersionError:
     return OutputError(f"cannot write {what}: {reason}; nothing was written")
 
 
+@contextlib.contextmanager
+def _named(path, option: str | None, errnos: frozenset | set | None = None):
+    """An ``OSError`` in the block becomes the one-line error about ``path`` (:func:`_error`);
+    with ``errnos``, only those (other errors are the caller's, passed on unchanged)."""
+    try:
+        yield
+    except OSError as exc:
+        if errnos is None or exc.errno in errnos:
+            raise _error(exc, path, option) from None
+        raise
+
+
 def _is_stream(st: os.stat_result) -> bool:
     return stat.S_ISCHR(st.st_mode) or stat.S_ISFIFO(st.st_mode) or stat.S_ISSOCK(st.st_mode)
 
@@ -181,41 +193,28 @@ def atomic_write(path, mode: str = "w", *, option: str | None = None, **kwargs):
         raise InputError(f"cannot write {option + ' ' if option else ''}{path}: "
                          "it is a dangling symbolic link")
     if st is not None and (_is_stream(st) or _through_dev(path)):
-        try:
+        with _named(path, option):
             fh = open(path, mode, **kwargs)
-        except OSError as exc:
-            raise _error(exc, path, option) from None
-        try:
-            with fh:
-                yield fh
-        except OSError as exc:
-            raise _error(exc, path, option) from None
+        with _named(path, option), fh:
+            yield fh
         return
     if st is not None and stat.S_ISDIR(st.st_mode):
         raise InputError(f"{option or 'output'} must name a file, but {path} is an existing folder")
     target = Path(os.path.realpath(path)) if path.is_symlink() else path
     perms = stat.S_IMODE(st.st_mode) if st is not None else 0o666 & ~umask()
     with Stage() as unit:
-        try:
+        with _named(target, option):
             tmp = unit.file(target)
             fh = open(tmp, mode, **kwargs)
-        except OSError as exc:
-            raise _error(exc, target, option) from None
-        try:
-            with fh:
-                yield fh
-                fh.flush()
-                os.fsync(fh.fileno())
-        except OSError as exc:
-            if exc.errno in _FULL_ERRORS:  # a full disk while writing; other errors are the body's
-                raise _error(exc, target, option) from None
-            raise
+        # a full disk while writing is ours to name; other errors are the body's
+        with _named(target, option, _FULL_ERRORS), fh:
+            yield fh
+            fh.flush()
+            os.fsync(fh.fileno())
         checkpoint()
-        try:
+        with _named(target, option):
             os.chmod(tmp, perms)
             unit.commit()
-        except OSError as exc:
-            raise _error(exc, target, option) from None
 
 
 def unit_target(path) -> Path | None:
@@ -459,18 +458,14 @@ def write_unit(files: Mapping[Path, str | bytes], *, option: str | None = None) 
                 raise InputError(f"{option or 'output'}: {target} is not a regular file; "
                                  "refusing to replace it")
             perms = stat.S_IMODE(st.st_mode) if st is not None else 0o666 & ~umask()
-            try:
+            with _named(target, option):
                 tmp = unit.file(target)
                 with open(tmp, "xb") as fh:
                     fh.write(data.encode() if isinstance(data, str) else bytes(data))
                     fh.flush()
                     os.fsync(fh.fileno())
                 os.chmod(tmp, perms)
-            except OSError as exc:
-                raise _error(exc, target, option) from None
             checkpoint()
-        try:
+        with _named(targets[0].parent, option):
             unit.commit()
-        except OSError as exc:
-            raise _error(exc, targets[0].parent, option) from None
     return targets

@@ -29,6 +29,7 @@ import threading
 from collections.abc import Callable, Iterable
 from typing import Any, TypeVar
 
+from dispersion import defaults
 from dispersion.errors import check_positive_int
 
 __all__ = ["parallel_map", "default_jobs", "process_pool", "die_with_parent",
@@ -40,11 +41,9 @@ T = TypeVar("T")
 R = TypeVar("R")
 
 
-#: Most workers of :func:`process_pool` per usable CPU. More only queue for the cores while
-#: each holds its own copy of the toolkit in memory (about 150 MB); 4 leaves room for
-#: workers that wait on I/O. :func:`parallel_map` starts at most one per usable CPU: its
-#: calls are CPU-bound sweeps.
-MAX_JOBS_PER_CPU = 4
+#: Most workers of :func:`process_pool` per usable CPU (the rule is stated with the value in
+#: :mod:`dispersion.defaults`, which the command line reads without this module).
+MAX_JOBS_PER_CPU = defaults.MAX_JOBS_PER_CPU
 
 
 def default_jobs() -> int:

@@ -357,7 +357,7 @@ TIMESTEP = [
     Cli("timestep", "--mass heavy", r"mass"),
     Cli("timestep", "--material unobtainium", r"material"),
     Cli("timestep", "--cl 6000", r"--cl"),
-    Cli("timestep", "--cl 100 --ct 5000", r"c_L"),
+    Cli("timestep", "--cl 100 --ct 5000", r"--cl must exceed --ct"),
     Cli("timestep", "--model bar --mass singular", r"singular|contact"),
     Cli("timestep", "--n 2", r"\bn\b|control points"),
     Cli("timestep", "--p 24 --n 200", r"\bn\b|control points"),

@@ -139,3 +139,38 @@ def test_order_tables_are_headed_by_the_patch_the_result_carries(small_study):
     rows = [ln for ln in text.splitlines()
             if ln.startswith("| singular (contact top, gamma_s = 0) | A0")]
     assert len(rows) == 1 and "none: no window" in rows[0] and "| empty |" in rows[0]
+
+
+def test_figure_titles_and_captions_state_the_stored_patches(small_study):
+    # issue 22 item 2: the mode-shape figure typed "p = 2, n = 3", the per-wavelength figure
+    # "Bloch" and no contact set, the Figure 2 caption "p = 2, n = 3" and "top surface". Here
+    # the stored patches carry values no code path types (p = 3, n = 5, r = 7/3, contact
+    # bottom, gamma_s = 1/5): every title and caption must state those and nothing else
+    from dispersion.plotting.branches import figure_per_wavelength, figure_shapes
+    from dispersion.report.branches import _figure2_patches, _figure2_title, _symmetry_note
+    from dispersion.symbolic.patch import Patch
+
+    odd = {"p": 3, "n": 5, "model": "bloch", "r": "7/3", "mass": "singular",
+           "contact": "bottom", "gamma_s": "1/5", "weights": None, "nu": None}
+    spec = Patch.from_dict(odd)
+
+    title = figure_shapes(dict(small_study["shapes"], patch=odd))._suptitle.get_text()
+    assert spec.title() in title and "p = 2" not in title
+
+    pw = dict(small_study["per_wavelength"],
+              curves=[dict(c, p=3, n=5, patch=odd) for c in small_study["per_wavelength"]["curves"]])
+    fig = figure_per_wavelength(pw, small_study["bar"])
+    assert all(ax.get_title().endswith("Bloch patch r = b/h = 7/3") for ax in fig.axes[:2])
+    labels = fig.axes[0].get_legend_handles_labels()[1]
+    assert "p = 3 (n = 5), singular mass (contact bottom, gamma_s = 1/5)" in labels
+
+    data = dict(small_study, discrete={
+        "consistent": dict(small_study["discrete"]["consistent"], patch=dict(odd, mass="consistent")),
+        "singular": dict(small_study["discrete"]["singular"], patch=odd)})
+    caption = _figure2_patches(data, 0.5) + "." + _symmetry_note(data)
+    assert ("patch Bloch r = b/h = 7/3, p = 3, n = 5 with consistent mass, singular mass "
+            "(contact bottom, gamma_s = 1/5)") in caption
+    assert "bottom surface" in caption and "top" not in caption
+    assert "p = 2" not in caption and "paper's Figure 2" not in caption
+    title = _figure2_title(data, 0.5)
+    assert spec.geometry_title() in title and spec.mass_title() in title and "1/2" not in title

@@ -17,7 +17,7 @@ from hypothesis import strategies as st
 from dispersion.claims import (ClaimResult, Verification, check_claim, describe_difference,
                                format_results, junit_xml, load_claims, parse_claims, plain,
                                verify_claims)
-from dispersion.claims.schema import MAX_FILE_BYTES, MAX_NESTING
+from dispersion.claims.claims_file import MAX_FILE_BYTES, MAX_NESTING
 from dispersion.cli import main
 from dispersion.errors import InputError
 from dispersion.testing import assert_series

@@ -9,6 +9,7 @@ anything else. ``max_examples`` is small in the default run; the ``slow`` tests 
 """
 from __future__ import annotations
 
+import operator
 import os
 from fractions import Fraction
 
@@ -154,61 +155,48 @@ def _node(children):
 TREES = st.recursive(LEAVES, _node, max_leaves=8)
 
 
-def value(t):
-    """The tree built directly in sympy: the reference of the round trip."""
+def fold(t, rules):
+    """Render tree ``t`` bottom-up by ``rules``, one function per kind of node: a leaf gets its
+    payload, ``pow`` its base rendered and the exponent, an operator its operands rendered;
+    ``"op"`` serves the binary operators without a rule of their own."""
     kind = t[0]
-    if kind == "int":
-        return sympy.Integer(t[1])
-    if kind == "frac":
-        return sympy.Rational(t[1].numerator, t[1].denominator)
-    if kind == "sym":
-        return {"nu": nu, "r": r, "kappa": kappa}[t[1]]
-    if kind == "neg":
-        return -value(t[1])
+    if kind in ("int", "frac", "sym"):
+        return rules[kind](t[1])
     if kind == "pow":
-        return value(t[1]) ** t[2]
-    if kind == "sqrt":
-        return sympy.sqrt(value(t[1]))
-    a, b = value(t[1]), value(t[2])
-    return {"+": a + b, "-": a - b, "*": a * b, "/": a / b}[kind]
+        return rules["pow"](fold(t[1], rules), t[2])
+    children = [fold(child, rules) for child in t[1:]]
+    return rules[kind](*children) if kind in rules else rules["op"](kind, *children)
+
+
+#: The tree built directly in sympy: the reference of the round trip.
+VALUE = {"int": sympy.Integer, "frac": lambda q: sympy.Rational(q.numerator, q.denominator),
+         "sym": {"nu": nu, "r": r, "kappa": kappa}.__getitem__, "neg": operator.neg,
+         "pow": operator.pow, "sqrt": sympy.sqrt, "+": operator.add, "-": operator.sub,
+         "*": operator.mul, "/": operator.truediv}
+#: The tree as sympy text.
+PLAIN = {"int": str, "frac": lambda q: f"({q.numerator}/{q.denominator})", "sym": str,
+         "neg": lambda a: f"-({a})",
+         "pow": lambda a, k: f"({a})^({k})" if k < 0 else f"({a})**{k}",
+         "sqrt": lambda a: f"sqrt({a})", "op": lambda kind, a, b: f"({a}) {kind} ({b})"}
+#: The tree as a paper prints it in LaTeX (products as juxtaposed groups).
+LATEX = {"int": str, "frac": lambda q: rf"\frac{{{q.numerator}}}{{{q.denominator}}}",
+         "sym": {"nu": r"\nu", "r": "r", "kappa": r"\kappa"}.__getitem__,
+         "neg": lambda a: rf"-\left({a}\right)", "pow": lambda a, k: rf"\left({a}\right)^{{{k}}}",
+         "sqrt": lambda a: rf"\sqrt{{{a}}}", "/": lambda a, b: rf"\frac{{{a}}}{{{b}}}",
+         "*": lambda a, b: rf"\left({a}\right)\left({b}\right)",
+         "op": lambda kind, a, b: rf"\left({a}\right) {kind} \left({b}\right)"}
+
+
+def value(t):
+    return fold(t, VALUE)
 
 
 def plain(t) -> str:
-    kind = t[0]
-    if kind == "int":
-        return str(t[1])
-    if kind == "frac":
-        return f"({t[1].numerator}/{t[1].denominator})"
-    if kind == "sym":
-        return t[1]
-    if kind == "neg":
-        return f"-({plain(t[1])})"
-    if kind == "pow":
-        return f"({plain(t[1])})^({t[2]})" if t[2] < 0 else f"({plain(t[1])})**{t[2]}"
-    if kind == "sqrt":
-        return f"sqrt({plain(t[1])})"
-    return f"({plain(t[1])}) {kind} ({plain(t[2])})"
+    return fold(t, PLAIN)
 
 
 def latex(t) -> str:
-    kind = t[0]
-    if kind == "int":
-        return str(t[1])
-    if kind == "frac":
-        return rf"\frac{{{t[1].numerator}}}{{{t[1].denominator}}}"
-    if kind == "sym":
-        return {"nu": r"\nu", "r": "r", "kappa": r"\kappa"}[t[1]]
-    if kind == "neg":
-        return rf"-\left({latex(t[1])}\right)"
-    if kind == "pow":
-        return rf"\left({latex(t[1])}\right)^{{{t[2]}}}"
-    if kind == "sqrt":
-        return rf"\sqrt{{{latex(t[1])}}}"
-    if kind == "/":
-        return rf"\frac{{{latex(t[1])}}}{{{latex(t[2])}}}"
-    if kind == "*":  # juxtaposition of groups, as papers write products
-        return rf"\left({latex(t[1])}\right)\left({latex(t[2])}\right)"
-    return rf"\left({latex(t[1])}\right) {kind} \left({latex(t[2])}\right)"
+    return fold(t, LATEX)
 
 
 SIZE_LIMITS = ("would reach", "would expand", "root of numbers", "nested", "tokens",

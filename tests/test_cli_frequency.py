@@ -151,7 +151,7 @@ def test_csv_never_has_nan_or_inf_over_random_plates():
     from hypothesis import given, settings
     from hypothesis import strategies as st
 
-    from dispersion.cli.frequency import render_csv
+    from dispersion.cli.outputs import csv_text as render_csv
 
     @settings(max_examples=25, deadline=None)
     @given(ct=st.floats(1000.0, 4000.0), ratio=st.floats(1.2, 3.0), d=st.floats(0.2, 10.0),

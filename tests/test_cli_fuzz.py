@@ -10,7 +10,6 @@ default run draws 6 cases per command, ``-m slow`` 40 (900 run by hand on an ear
 """
 from __future__ import annotations
 
-import hashlib
 import os
 from pathlib import Path
 
@@ -19,6 +18,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from dispersion.cli import main
+from helpers import snapshot
 
 _SETTINGS = dict(deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture,
                                                         HealthCheck.too_slow])
@@ -31,22 +31,6 @@ _PATHS = st.sampled_from([
     "", "-", ".", "..", "new_out", "sub/new_out", "user.txt", "userdir", "link_to_user",
     "dangling", "user.txt/inside", "ABS", "/proc/self/status", "ABS/new_abs", "ABS/user.txt",
     "new.png", "userdir/new.svg", "fig.pdf", "link_to_dir"])
-
-
-def snapshot(root: Path) -> dict:
-    """Every path under ``root`` with its kind and content (links: their target)."""
-    out = {}
-    for dirpath, dirnames, filenames in os.walk(root, followlinks=False):
-        for name in dirnames + filenames:
-            path = Path(dirpath) / name
-            rel = str(path.relative_to(root))
-            if path.is_symlink():
-                out[rel] = ("link", os.readlink(path))
-            elif path.is_dir():
-                out[rel] = ("dir", oct(path.stat().st_mode & 0o777))
-            else:
-                out[rel] = ("file", hashlib.sha256(path.read_bytes()).hexdigest())
-    return out
 
 
 def _sandbox(root: Path) -> None:

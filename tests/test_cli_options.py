@@ -103,14 +103,40 @@ def test_random_option_text_is_a_value_in_range_or_one_argparse_error(text):
 def test_reading_a_fraction_loads_no_sympy():
     # the options read rationals with the claims reader, which must stay light: the exact
     # series with --nu 3/10 prints from the flint kernel alone (cli/series.py's promise)
-    import subprocess
-    import sys
+    from helpers import lean_series
 
-    code = ("import sys, io, contextlib\n"
-            "from dispersion.cli.series import lean_main\n"
-            "buf = io.StringIO()\n"
-            "with contextlib.redirect_stdout(buf):\n"
-            "    rc = lean_main(['--exact', '--order', '4', '--nu', '3/10', '--format', 'json'])\n"
-            "print(rc, 'sympy' in sys.modules, '3/10' in buf.getvalue())\n")
-    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
-    assert proc.stdout.split() == ["0", "False", "True"], proc.stderr
+    rc, sympy_loaded, out = lean_series(["--exact", "--order", "4", "--nu", "3/10",
+                                         "--format", "json"])
+    assert (rc, sympy_loaded) == (0, False) and "3/10" in out
+
+
+# ------------------------------------------------------------------ one material parser
+_BRANCHES_FREQUENCY = ["branches", "--exact", "--frequency", "100", "--thickness", "1"]
+
+
+@pytest.mark.parametrize("material", [
+    ["--cl", "6000"], ["--ct", "3000"], ["--material", "steel", "--cl", "6000"],
+    ["--cl", "100", "--ct", "5000"], ["--cl", "6000", "--ct", "-3000"],
+])
+def test_timestep_and_branches_refuse_a_material_with_the_same_line(material, capsys):
+    # both commands read --material/--cl/--ct/--rho with options.material_from_args, so the
+    # same bad material is refused with the same words (before, timestep had its own parser)
+    lines = []
+    for argv in (["timestep", *material], [*_BRANCHES_FREQUENCY, *material]):
+        assert main(argv) == 2
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1
+        lines.append(err[0].split(": error: ", 1)[1])
+    assert lines[0] == lines[1] and "--" in lines[0]
+
+
+def test_timestep_and_branches_read_the_same_material():
+    from dispersion.cli.options import material_from_args
+    from dispersion.waves.materials import user_material
+
+    speeds = ["--cl", "6000", "--ct", "3000"]
+    a = material_from_args(_parse("timestep", *speeds), default="steel")
+    b = material_from_args(_parse("branches", *speeds))
+    assert a == b == user_material(c_L=6000.0, c_T=3000.0)
+    assert material_from_args(_parse("timestep"), default="steel").name == "steel"
+    assert material_from_args(_parse("branches")) is None

@@ -102,11 +102,7 @@ def test_csv_with_substituted_nu(capsys):
 
 
 def test_lean_entry_prints_the_exact_series_without_importing_sympy():
-    code = ("import sys, io, contextlib\n"
-            "from dispersion.cli.series import lean_main\n"
-            "buf = io.StringIO()\n"
-            "with contextlib.redirect_stdout(buf):\n"
-            "    rc = lean_main(['--exact', '--order', '6', '--format', 'json'])\n"
-            "print(rc, 'sympy' in sys.modules, buf.getvalue().count('coefficients'))\n")
-    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
-    assert proc.stdout.split() == ["0", "False", "2"], proc.stderr
+    from helpers import lean_series
+
+    rc, sympy_loaded, out = lean_series(["--exact", "--order", "6", "--format", "json"])
+    assert (rc, sympy_loaded, out.count("coefficients")) == (0, False, 2)

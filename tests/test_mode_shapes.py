@@ -13,7 +13,8 @@ from dispersion.waves.mode_shapes import (
     pair_by_shape,
 )
 from dispersion.symbolic.plate import plate_patch
-from dispersion.waves.rayleigh_lamb import numeric_frequency_function, speed_ratio_squared
+from dispersion.waves.numeric_frequency import numeric_frequency_function
+from dispersion.waves.rayleigh_lamb import speed_ratio_squared
 from dispersion.waves.exact_branches import trace_branches
 
 NU = 0.3

@@ -54,12 +54,17 @@ def test_branches_command_builds_the_default_patch():
     assert s["patch"] == DEFAULT
 
 
-def test_a_claims_entry_builds_the_default_patch():
-    from dispersion.claims import parse_claims
+@pytest.mark.parametrize("model_line", ["", 'model = "bloch"\n'])
+def test_a_claims_entry_builds_the_default_patch(tmp_path, model_line):
+    # through the real reader path: a file on disk, load_claims, the Patch the claim holds
+    from dispersion.claims import load_claims
 
-    claim = parse_claims('[[claim]]\nname = "a"\nbranch = "S0"\nmodel = "bloch"\n'
-                         'coefficients = {2 = "2/(1-nu)"}\n')[0]
-    assert Patch(**claim.model.patch_kwargs()) == DEFAULT
+    path = tmp_path / "c.toml"
+    path.write_text(f'[[claim]]\nname = "a"\nbranch = "S0"\n{model_line}'
+                    'coefficients = {2 = "2/(1-nu)"}\n')
+    model = load_claims(path)[0].model
+    assert isinstance(model, Patch) and model == DEFAULT == dispersion.patch()
+    assert model.label() == DEFAULT.label()
 
 
 def test_series_and_command_line_agree_on_the_same_request():
@@ -105,7 +110,21 @@ def test_round_trip_and_replace():
     (dict(p=0), "degree p"), (dict(model="fem"), "model"), (dict(mass="heavy"), "mass"),
     (dict(gamma_s=2), "gamma_s"), (dict(contact="left"), "contact"),
     (dict(model="x-exact", r=3), "Bloch model only"), (dict(r=0), "aspect ratio"),
+    (dict(mass="singular", contact="both"), "contact 'both' needs n >= 4"),
 ])
 def test_bad_fields_are_refused(fields, match):
     with pytest.raises(InputError, match=match):
         Patch(**fields)
+
+
+def test_coefficients_page_names_the_patches_its_claims_carry():
+    # the page typed "r = 2, p = 2, n = 3 ... contact on the top surface"; it now names the
+    # patch each claim's model carries (values here no code path types)
+    from dispersion.report.coefficients import _patches_text
+
+    claims = [{"model": "Rayleigh-Lamb (exact)"},
+              {"model": "bloch p=3 n=7 r=5/3, singular mass (bottom, gamma_s=1/5)"},
+              {"model": "bloch p=3 n=7 r=5/3, singular mass (bottom, gamma_s=1/5)"}]
+    text = _patches_text(claims)
+    assert text.count("p=3 n=7 r=5/3, singular mass (bottom, gamma_s=1/5)") == 1
+    assert "top" not in text and "p = 2" not in text and "Rayleigh" not in text

@@ -1,4 +1,5 @@
-"""Exact Rayleigh-Lamb branches: numeric twin, deflation, cut-offs, tracing accuracy."""
+"""Exact Rayleigh-Lamb branches: cut-offs, tracing accuracy (the float forms: test_deflated_frequency,
+test_scaled_frequency)."""
 from __future__ import annotations
 
 import math
@@ -6,13 +7,11 @@ import math
 import mpmath
 import numpy as np
 import pytest
+from mp_lamb import mp_F
 
 from dispersion.errors import InputError
 from dispersion.waves.rayleigh_lamb import (
     cutoff_frequencies,
-    deflated_frequency_function,
-    frequency_function,
-    numeric_frequency_function,
     speed_ratio_squared,
 )
 from dispersion.waves.exact_branches import trace_branches
@@ -26,20 +25,6 @@ def _forty_digits():
         yield
 
 
-def mp_C(z):
-    return mpmath.cos(mpmath.sqrt(z))
-
-
-def mp_S(z):
-    return mpmath.sinc(mpmath.sqrt(z))
-
-
-def mp_F(kind, kappa, Omega, nu):
-    """The defining equation (frequency_function) in 40-digit arithmetic."""
-    F = frequency_function(kind, mpmath.mpf(kappa) ** 2, Omega**2, mpmath.mpf(nu), mp_C, mp_S)
-    return mpmath.re(F)
-
-
 def mp_root(kind, kappa, Omega0, nu):
     """High-precision root of F/Omega^2 near Omega0 (independent of the float tracer)."""
     def f(W):
@@ -51,27 +36,6 @@ def mp_root(kind, kappa, Omega0, nu):
     # certify: a sign change within 1e-25 relative brackets the root
     assert f(r * (1 - mpmath.mpf("1e-25"))) * f(r * (1 + mpmath.mpf("1e-25"))) < 0
     return r
-
-
-@pytest.mark.parametrize("kind", ["S", "A"])
-def test_numeric_twin_and_deflation_match_the_definition(kind):
-    # Omega^2 G = F at points covering small/large kappa and evanescent P, Q < 0
-    rng = np.random.default_rng(1)
-    pts = list(zip(rng.uniform(0, 12, 25), rng.uniform(0, 8, 25))) + [(0.05, 0.002), (15, 0.1)]
-    for kappa, Omega in pts:
-        ref = mp_F(kind, kappa, mpmath.mpf(Omega), 0.3)
-        F = float(numeric_frequency_function(kind, kappa, Omega, 0.3))
-        G = float(deflated_frequency_function(kind, kappa, Omega, 0.3))
-        # rounding is relative to the size of the terms: |a|^2 + 4 k^2 (|P| + |Q|) times cosh^2
-        k2, W2 = kappa**2, Omega**2
-        terms = ((W2 - 2 * k2) ** 2 + 4 * k2 * 2 * (k2 + W2)) * math.cosh(math.sqrt(k2 + W2)) ** 2
-        assert abs(F - float(ref)) <= 1e-13 * terms
-        assert abs(W2 * G - float(ref)) <= 1e-13 * terms
-    # where deflation matters: near A0 at small kappa, G keeps full relative accuracy
-    for kappa, Omega in [(0.05, 0.002), (0.01, 1e-4), (0.2, 0.03)]:
-        ref = mp_F(kind, kappa, mpmath.mpf(Omega), 0.3) / mpmath.mpf(Omega) ** 2
-        G = float(deflated_frequency_function(kind, kappa, Omega, 0.3))
-        assert abs(G - float(ref)) <= 1e-13 * abs(float(ref))
 
 
 def test_cutoffs_closed_forms():

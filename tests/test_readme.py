@@ -82,7 +82,7 @@ def test_readme_generated_blocks_match_the_committed_reports():
     assert BLOCK.search(text), "the README quotes no generated block"
     assert render_readme(text, ROOT / "reports") == text, (
         "README blocks differ from reports/*.json: run "
-        "`dispersion reproduce --render --readme README.md`")
+        "`dispersion reproduce --render --update-reference`")
 
 
 def test_readme_python_examples_run():

@@ -224,6 +224,7 @@ def test_bad_input_is_one_line_exit_2(stubs, tmp_path, capsys):
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 4
     assert "jobs" in err[0] and "sections" in err[1] and "--quick" in err[2] and "*.json" in err[3]
+    assert f"--out {tmp_path / 'x'} " in err[3]  # the folder the user named, not a stage
     assert not (tmp_path / "x").exists()
 
 

@@ -74,3 +74,26 @@ def test_scene_history_has_no_typed_figures():
             study.Scenario).parameters)
     src = inspect.getsource(study)
     assert "-8.8" not in src and "-0.03," not in src
+
+
+def test_scheme_elements_and_step_are_rendered_from_the_rows():
+    # issue 22 item 2: "Kane's Newmark" and "20 elements" were typed into the page and the
+    # README block; here the stored rows say otherwise (values no code path types), and the
+    # text must follow them
+    data = {**DATA, "pair": {m: {"summary": {**v["summary"], "scheme": "standard"}}
+                             for m, v in DATA["pair"].items()},
+            "signorini": [{**r, "n_elements": 37, "dt": 0.0031} for r in DATA["signorini"]]}
+    text = ring.summary(data)
+    assert text.splitlines()[0].endswith("standard Newmark:") and "Kane" not in text
+    assert "(P1, 37 elements, dt 0.0031)" in text and "20 elements" not in text
+    assert ring._elements_text(DATA["signorini"]).endswith("not recorded (older record)")
+    legacy = {k: v for k, v in data.items() if k != "dt_spread"}
+    assert "standard Newmark" in ring.summary(legacy) and "Kane" not in ring.summary(legacy)
+
+
+def test_signorini_rows_store_their_element_count():
+    from dispersion.contact.signorini import signorini_1d
+
+    row = study._signorini((1, "singular", "kane", 0.1))
+    default = inspect.signature(signorini_1d).parameters["n_elements"].default
+    assert row["n_elements"] == default and row["p"] == 1  # the mesh the study runs

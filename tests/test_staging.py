@@ -9,7 +9,6 @@ if the kill came after the commit), and that nothing but our own stage was remov
 """
 from __future__ import annotations
 
-import hashlib
 import json
 import os
 import secrets
@@ -24,6 +23,7 @@ from hypothesis import strategies as st
 
 from dispersion import io, staging
 from dispersion.report.folder import MARKER, open_report
+from helpers import snapshot
 
 FAST = settings(max_examples=10, deadline=None, derandomize=True,
                 suppress_health_check=[HealthCheck.function_scoped_fixture,
@@ -33,21 +33,18 @@ SLOW = settings(max_examples=400, deadline=None,
                                        HealthCheck.too_slow])
 
 
-def snapshot(root: Path) -> dict:
-    """Every path under ``root`` with its kind and content (links: their target)."""
-    out = {}
-    for dirpath, dirnames, filenames in os.walk(root, followlinks=False):
-        for name in dirnames + filenames:
-            path = Path(dirpath) / name
-            rel = str(path.relative_to(root))
-            if path.is_symlink():
-                out[rel] = ("link", os.readlink(path))
-            elif path.is_dir():
-                out[rel] = ("dir", oct(path.stat().st_mode & 0o777))
-            else:
-                out[rel] = ("file", hashlib.sha256(path.read_bytes()).hexdigest(),
-                            oct(path.stat().st_mode & 0o777))
-    return out
+def _forged_stage(parent: Path, entries: list[dict]) -> Path:
+    """A stage folder whose name, marker and journal verify (its pid dead), holding an
+    attacker's file ``0``; ``STAGE`` in the journal's entries stands for its own path."""
+    token = secrets.token_hex(16)
+    stage = parent / f"{staging.STAGE_PREFIX}{token}"
+    stage.mkdir()
+    (stage / ".stage.json").write_text(json.dumps({"token": token, "pid": 4194300,
+                                                   "primary": str(stage)}))
+    (stage / "0").write_text("attacker")
+    entries = [{k: v.replace("STAGE", str(stage)) for k, v in e.items()} for e in entries]
+    (stage / ".journal.json").write_text(json.dumps({"token": token, "entries": entries}))
+    return stage
 
 
 # --- the issue's forged journal ------------------------------------------------------------
@@ -86,24 +83,11 @@ def test_stage_with_matching_token_but_escaping_entries_is_left_untouched(tmp_pa
                   {"stage": "STAGE", "k": "0", "name": "/abs", "kind": "file"},
                   {"stage": "STAGE", "k": "0", "name": "..", "kind": "file"},
                   {"stage": "STAGE", "k": "../../outside", "name": "a", "kind": "file"}):
-        token = secrets.token_hex(16)
-        stage = out / f"{staging.STAGE_PREFIX}{token}"
-        stage.mkdir()
-        (stage / ".stage.json").write_text(json.dumps({"token": token, "pid": 4194300,
-                                                       "primary": str(stage)}))
-        (stage / "0").write_text("attacker")
-        entry = {k: v.replace("STAGE", str(stage)) for k, v in entry.items()}
-        (stage / ".journal.json").write_text(json.dumps({"token": token, "entries": [entry]}))
+        _forged_stage(out, [entry])
     # a link named like a stage, to a folder whose marker and journal verify; a stage whose
     # marker is a link to a valid marker elsewhere
-    token = secrets.token_hex(16)
-    real = outside / f"{staging.STAGE_PREFIX}{token}"
-    real.mkdir()
-    (real / ".stage.json").write_text(json.dumps({"token": token, "pid": 4194300,
-                                                  "primary": str(real)}))
-    (real / "0").write_text("attacker")
-    (real / ".journal.json").write_text(json.dumps({"token": token, "entries": [
-        {"stage": str(real), "k": "0", "name": "victim.txt", "kind": "file"}]}))
+    real = _forged_stage(outside, [{"stage": "STAGE", "k": "0", "name": "victim.txt",
+                                    "kind": "file"}])
     (out / real.name).symlink_to(real)
     token2 = secrets.token_hex(16)
     linked = out / f"{staging.STAGE_PREFIX}{token2}"

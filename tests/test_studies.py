@@ -214,3 +214,54 @@ def test_exact_branch_against_an_independent_bracket_and_bisect():
             assert exact_fundamental(kind, [k], NU)[0] == pytest.approx(ref, rel=1e-11)
     with pytest.raises(InputError, match="kind"):
         exact_fundamental("X", [0.1], NU)
+
+
+def test_gamma_study_titles_state_the_patch_its_rows_stored():
+    # issue 22 item 2: "Singular mass (top contact)" and "quadratic splines, n = 3" were typed;
+    # rows whose stored patch says otherwise (p = 3, n = 6, r = 5/2, contact bottom: values no
+    # code path types) must be titled with those
+    from dispersion.plotting.studies import figure_gamma
+    from dispersion.report.studies import _markdown
+
+    patch = {"p": 3, "n": 6, "model": "bloch", "r": "5/2", "mass": "singular",
+             "contact": "bottom", "gamma_s": "0", "weights": None, "nu": None}
+    rows = [{"gamma_s": g, "patch": dict(patch, gamma_s=str(g)), "S0": {"4": -g},
+             "A0": {"6": g}, "S0_error": [0.1 + g], "A0_error": [0.2 + g]} for g in (0, 1)]
+    want = "singular mass (contact bottom), Bloch r = b/h = 5/2, p = 3, n = 6"
+    title = figure_gamma(rows, kappas=[0.5], nu=0.3, r=2)._suptitle.get_text()
+    assert title.startswith("S" + want[1:]) and "top" not in title and "r = b/h = 2" not in title
+    data = {"quick": True, "nu": NU, "r": 2, "kappas": [0.5], "gamma": rows, "orders": [],
+            "dt_crit": [], "tol": 1e-3, "kappa_grid": [], "radius": [], "bar": []}
+    md = _markdown(data)
+    head, a = md.split("### (b)")[0].split("### (a)")
+    assert "contact on the bottom surface" in head and "top" not in head
+    assert want in a and "top" not in a and "quadratic" not in a
+    bar = [{"scheme": "kane", "mass": "singular", "n_elements": 6, "p": 4, "courant": 0.35,
+            "energy_change_percent": 0.0, "force_oscillation": 0.0, "duration_error": 0.0,
+            "rebound_error": 0.0}]
+    md = _markdown(dict(data, bar=bar))
+    assert "B-spline bar of degree 4 at Courant number 0.35" in md
+    assert "quadratic" not in md and "0.5)" not in md
+    stored = studies._gamma_case(0.5, order=4, kappas=(0.25,))["patch"]
+    assert (stored["mass"], stored["contact"], stored["gamma_s"]) == ("singular", "top", "1/2")
+
+
+def test_order_and_time_step_tables_state_the_patch_each_row_stored():
+    # issue 22 item 2: the (b) and (c) tables named only the mass; a singular row must state
+    # the contact set and gamma_s its stored patch was computed with (values no code path
+    # types: contact bottom, gamma_s = 3/7)
+    from dispersion.report.studies import _markdown
+    from dispersion.symbolic.patch import Patch
+
+    spec = Patch(p=3, n=5, r=2, mass="singular", contact="bottom", gamma_s="3/7")
+    row = {"p": 3, "n": 5, "mass": "singular", "patch": spec.as_dict()}
+    data = {"quick": True, "nu": NU, "r": 2, "kappas": [0.5], "gamma": [],
+            "orders": [dict(row, order=6, S0_order=4, A0_order=None, S0={}, A0={})],
+            "dt_crit": [dict(row, dt_crit=0.25)], "tol": 1e-3, "kappa_grid": [],
+            "radius": [], "bar": []}
+    md = _markdown(data)
+    assert md.count("| 3 | 5 | singular (contact bottom, gamma_s = 3/7) |") == 2
+    assert "contact on the bottom surface" in md.split("### (a)")[0] and "top" not in md
+    stored = studies._order_case((2, 3, "singular"), order=4)["patch"]
+    assert Patch.from_dict(stored) == Patch(r=2, mass="singular", contact="top")
+    assert studies._dt_case((2, 3, "lumped"), n_theta=9)["patch"]["mass"] == "lumped"

@@ -22,10 +22,11 @@ Keys of a claim (``[defaults]`` may set any of them except ``name``):
     ``"series"`` (default), ``"error_order"`` or ``"value"``.
 ``model``
     ``"rayleigh-lamb"`` (the exact plate, eq 13 in its standard form) or a plate patch,
-    ``"bloch"`` or ``"x-exact"`` (:func:`dispersion.symbolic.plate.plate_patch`) with ``p``, ``n``,
-    ``r`` (number, ``"1/2"`` or ``"r"`` for the symbol), ``mass``, ``contact``, ``gamma_s``
-    and ``weights`` (a table ``{contact index: {neighbour index: weight}}``). Unset patch
-    keys take the toolkit's defaults (:mod:`dispersion.defaults`).
+    ``"bloch"`` or ``"x-exact"`` with ``p``, ``n``, ``r`` (number, ``"1/2"`` or ``"r"`` for
+    the symbol), ``mass``, ``contact``, ``gamma_s`` and ``weights`` (a table
+    ``{contact index: {neighbour index: weight}}``): the claim holds that
+    :class:`dispersion.symbolic.patch.Patch` (``claim.model``), its unset fields the
+    toolkit's defaults (:mod:`dispersion.defaults`).
 ``coefficients`` or ``series`` (series claims)
     Either a table power -> coefficient of :math:`\\Omega^2` (each power listed is claimed),
     or the whole expression in ``kappa``, e.g. ``"2/(1-nu)*kappa^2 + O(kappa^4)"``, a sum
@@ -79,7 +80,13 @@ changed term of the numerator, or the difference itself.
 'holds'
 
 The package is split by what each part holds: :mod:`~dispersion.claims.reader` (the
-expression reader) with :mod:`~dispersion.claims.limits` (its size rules), :mod:`~dispersion.claims.schema` (TOML to :class:`Claim` values),
+expression reader) with :mod:`~dispersion.claims.limits` (its size rules),
+:mod:`~dispersion.claims.claims_file` (the file as text and TOML, within limits),
+:mod:`~dispersion.claims.schema` (TOML to :class:`~dispersion.claims.claim.Claim` values,
+field by field, with :mod:`~dispersion.claims.claim_fields`),
+:mod:`~dispersion.claims.claim_model` (the model keys to one :class:`~dispersion.symbolic.patch.Patch`, or the
+:mod:`~dispersion.claims.exact_model` or the :mod:`~dispersion.claims.bar_model`),
+:mod:`~dispersion.claims.explicit` (the explicit-dynamics kinds),
 :mod:`~dispersion.claims.verify` (derivations, scheduling, verdicts),
 :mod:`~dispersion.claims.report` (text, Markdown, JUnit XML) and
 :mod:`~dispersion.claims.errata` (the paper's errata table).
@@ -95,9 +102,9 @@ import importlib
 #: Public names and the module of the package that holds each. They are imported on first
 #: use, so that ``dispersion.claims.reader`` (the CLI's number options) loads without sympy.
 _HOMES = {
-    "EXACT": "schema", "KINDS": "schema", "KAPPA": "schema", "Model": "schema",
-    "Claim": "schema", "parse_claims": "schema", "load_claims": "schema",
-    "paper_claims_path": "schema",
+    "EXACT": "exact_model", "ExactModel": "exact_model", "BarModel": "bar_model",
+    "KINDS": "schema", "KAPPA": "schema", "Claim": "claim", "parse_claims": "schema",
+    "load_claims": "schema", "paper_claims_path": "claims_file",
     "Term": "verify", "ClaimResult": "verify", "Verification": "verify",
     "check_claim": "verify", "verify_claims": "verify", "verify_file": "verify",
     "describe_difference": "verify", "MAX_JOBS": "verify", "check_jobs": "verify",

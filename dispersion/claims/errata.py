@@ -18,14 +18,16 @@ A. Tkachuk, M. Matzen, R. Kolman, M. Bischoff, eqs (13)-(20).
 """
 from __future__ import annotations
 
-import dataclasses
 import re
 from dataclasses import dataclass
 
 import sympy
 
 from dispersion import defaults
-from dispersion.claims.schema import Claim, load_claims, paper_claims_path
+from dispersion.claims.claim import Claim
+from dispersion.claims.claims_file import paper_claims_path
+from dispersion.claims.exact_model import ExactModel
+from dispersion.claims.schema import load_claims
 from dispersion.claims.verify import ClaimResult, _same, _series, verify_claims
 from dispersion.errors import InputError
 from dispersion.waves.exact_series import exact_leading_balance
@@ -33,11 +35,12 @@ from dispersion.waves.exact_series import exact_leading_balance
 __all__ = ["MODELS_TRIED", "ErrataRow", "PaperErrata", "paper_claims", "errata_table",
            "format_table", "errata_document", "eq13_note", "paper_errata"]
 
-#: candidate x-models, label -> Model fields; the claim's own model is derived first
+#: candidate x-models, label -> the fields of the claim's :class:`~dispersion.symbolic.patch.Patch`
+#: they replace; the claim's own patch is derived first
 MODELS_TRIED = {
-    "bloch r=2": dict(name="bloch", r=defaults.R),
-    "x-exact": dict(name="x-exact"),
-    "bloch r=1/2": dict(name="bloch", r=defaults.FIGURE2_R),
+    "bloch r=2": dict(model="bloch", r=defaults.R),
+    "x-exact": dict(model="x-exact", r=None),
+    "bloch r=1/2": dict(model="bloch", r=defaults.FIGURE2_R),
 }
 
 
@@ -111,12 +114,12 @@ def paper_claims(equations=None) -> list[Claim]:
 
 
 def _reproduced(claim: Claim, power: int, printed, models: dict) -> tuple[str, ...]:
-    if claim.model.exact:
+    if isinstance(claim.model, ExactModel):
         return ("exact",) if _same(_series(claim.model, claim.branch, claim.order)[power],
                                    printed) else ()
     hits = []
     for label, fields in models.items():
-        model = dataclasses.replace(claim.model, **fields)
+        model = claim.model.replace(**fields)
         if _same(_series(model, claim.branch, claim.order).get(power, 0), printed):
             hits.append(label)
     return tuple(hits)

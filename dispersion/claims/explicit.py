@@ -42,53 +42,18 @@ import re
 
 import sympy
 
-__all__ = ["KINDS", "KEYS", "parse", "task", "run", "verdict"]
+from dispersion.claims.bar_model import BarModel
+from dispersion.claims.claim import Claim
+from dispersion.claims.claim_fields import expression
+
+__all__ = ["KINDS", "KIND_FIELDS", "step_claim", "series_claim", "task", "run", "verdict"]
 
 KINDS = ("critical_step", "fully_discrete_series")
-KEYS = {"ratio", "omega_max", "scheme"}
+#: The keys of each kind (a claim of another kind refuses them,
+#: :data:`dispersion.claims.schema.KIND_FIELDS`).
+KIND_FIELDS = {"critical_step": ("ratio", "omega_max", "nu", "rtol"),
+               "fully_discrete_series": ("coefficients", "scheme", "nu", "syntax")}
 _KEY = re.compile(r"\s*kappa\^(\d{1,3})\s*(?:\*\s*tau\^(\d{1,3}))?\s*")
-_BAR = "bar"
-
-
-def parse(entry: dict, own: dict, common: dict, fail, model_of, read_expr):
-    """The :class:`~dispersion.claims.schema.Claim` of an explicit-dynamics claim.
-
-    ``model_of(entry, own, fail)`` builds the patch model, ``read_expr(text, key, syntax,
-    fail)`` reads an expression (the claims reader): one reader, one model builder.
-    """
-    from dispersion.claims.schema import Claim, Model
-    from dispersion.symbolic.mass_rule import get_rule
-
-    kind = common["kind"]
-    allowed = {"critical_step": {"ratio", "omega_max", "nu", "rtol"},
-               "fully_discrete_series": {"coefficients", "scheme", "nu", "syntax"}}[kind]
-    foreign = {"coefficients", "series", "error_order", "bound", "kappa", "omega", "ratio",
-               "omega_max", "scheme", "rtol"} - allowed
-    for key in sorted(foreign & set(own)):
-        fail(key, f"not a field of a {kind} claim")
-    if entry.get("model") == _BAR:
-        for key in ("n", "r", "contact", "gamma_s", "weights"):
-            if key in own:
-                fail(key, "not a setting of the periodic bar (p and mass only)")
-        p = entry.get("p", 2)
-        if isinstance(p, bool) or not isinstance(p, int) or not 1 <= p <= 24:
-            fail("p", f"must be an integer in [1, 24], got {p!r}")
-        mass = entry.get("mass", "consistent")
-        try:
-            rule = get_rule(mass)
-        except Exception as exc:  # InputError: name the field
-            fail("mass", str(exc))
-        if rule.redistributes:
-            fail("mass", f"{rule.name!r} needs a contact boundary, which the periodic bar has not")
-        model = Model(_BAR, p=p, mass=mass)
-    else:
-        model = model_of(entry, own, fail)
-        if model.exact:
-            fail("model", f"a {kind} claim needs a discretisation: a patch or 'bar'")
-    common = dict(common, model=model)
-    if kind == "critical_step":
-        return _step_claim(entry, common, fail, read_expr, Claim)
-    return _series_claim(entry, common, fail, read_expr, Claim)
 
 
 def _number(entry, key, fail, lo=0.0):
@@ -98,20 +63,21 @@ def _number(entry, key, fail, lo=0.0):
     return float(v)
 
 
-def _step_claim(entry, common, fail, read_expr, Claim):
+def step_claim(entry: dict, common: dict, fail) -> Claim:
+    """A ``critical_step`` claim (``common``: the fields every kind has, the model checked)."""
     given = [k for k in ("ratio", "omega_max") if k in entry]
     if len(given) != 1:
         fail("ratio", "a critical_step claim states exactly one of ratio, omega_max")
     rtol = _number(entry, "rtol", fail) if "rtol" in entry else 1e-9
     nu = None
-    if common["model"].name != _BAR:
+    if not isinstance(common["model"], BarModel):
         nu = _number(entry, "nu", fail, lo=-1.0)
         if not nu < 0.5:
             fail("nu", f"must lie in (-1, 0.5), got {nu}")
     elif "nu" in entry:
         fail("nu", "not a setting of the periodic bar")
     key = given[0]
-    value = read_expr(entry[key], key, "sympy", fail) if key == "omega_max" else \
+    value = expression(entry[key], key, "sympy", fail) if key == "omega_max" else \
         sympy.Float(repr(_number(entry, key, fail)), 17)
     if not value.is_number or not value.is_positive:
         fail(key, f"must be a positive number, got {entry[key]!r}")
@@ -119,13 +85,14 @@ def _step_claim(entry, common, fail, read_expr, Claim):
                  written=f"{key} = {entry[key]}")
 
 
-def _series_claim(entry, common, fail, read_expr, Claim):
+def series_claim(entry: dict, common: dict, fail) -> Claim:
+    """A ``fully_discrete_series`` claim (``common`` as in :func:`step_claim`)."""
     from dispersion.waves.fully_discrete import SCHEMES
 
     scheme = entry.get("scheme", "central")
     if scheme not in SCHEMES:
         fail("scheme", f"must be one of {', '.join(SCHEMES)}, got {scheme!r}")
-    if common["model"].name != _BAR and common["branch"] not in ("S0", "A0"):
+    if not isinstance(common["model"], BarModel) and common["branch"] not in ("S0", "A0"):
         fail("branch", f"must be S0 or A0, got {common['branch']!r}")
     coeffs = entry.get("coefficients")
     if not isinstance(coeffs, dict) or not coeffs:
@@ -139,10 +106,10 @@ def _series_claim(entry, common, fail, read_expr, Claim):
         i, j = int(m.group(1)), int(m.group(2) or 0)
         if i % 2 or j % 2:
             fail(str(key), "powers of kappa and tau are even in Omega^2")
-        printed.append(((i, j), read_expr(text, str(key), syntax, fail)))
+        printed.append(((i, j), expression(text, str(key), syntax, fail)))
     nu = entry.get("nu")
     if nu is not None:
-        nu = read_expr(nu, "nu", "sympy", fail)
+        nu = expression(nu, "nu", "sympy", fail)
         if not (nu.is_Rational and -1 < nu < sympy.Rational(1, 2)):
             fail("nu", f"must be a rational number in (-1, 0.5), got {entry['nu']!r}")
     written = " + ".join(f"({c})*kappa^{i}*tau^{j}" for (i, j), c in printed)
@@ -164,29 +131,22 @@ def run(t: tuple):
 
     model = t[1]
     if t[0] == "critical_step":
-        if model.name == _BAR:
+        if isinstance(model, BarModel):
             cs = timestep.critical_step(model.mass, model.p, model="bar", wave_speed=1.0)
-        else:
-            from dispersion.symbolic.plate import plate_patch
-
-            kw = model.patch_kwargs()
-            patch = plate_patch(**kw)
-            w, exact, _, _ = timestep.patch_omega_max(patch, t[2])
-            ref = timestep.patch_omega_max(plate_patch(**dict(kw, mass="consistent")), t[2])[0]
-            return (exact if exact is not None else w, ref / w)
-        return (cs.omega_max_exact, cs.ratio)
+            return (cs.omega_max_exact, cs.ratio)
+        w, exact, _, _ = timestep.patch_omega_max(model.plate, t[2])
+        ref = timestep.patch_omega_max(model.replace(mass="consistent").plate, t[2])[0]
+        return (exact if exact is not None else w, ref / w)
     from dispersion.waves.fully_discrete import SCHEMES, fully_discrete_series
 
     _, _, branch, scheme, order, nu = t
-    if model.name == _BAR:
+    if isinstance(model, BarModel):
         z, k = sympy.Symbol("z"), sympy.Symbol("kappa")
         f = timestep.bar_omega_squared(model.mass, model.p).subs(z, sympy.cos(k))
         ser = sympy.series(f, k, 0, order + 1).removeO()
         semi = {i: ser.coeff(k, i) for i in range(1, order + 1)}
     else:
-        from dispersion.symbolic.power_balance import discrete_series
-
-        semi = discrete_series(branch, order, **model.patch_kwargs(), nu=nu)
+        semi = model.series(branch, order, nu=nu)
     poly = sympy.Poly(fully_discrete_series(semi, order, SCHEMES[scheme][0]),
                       sympy.Symbol("kappa"), sympy.Symbol("tau"))
     return {m: c for m, c in zip(poly.monoms(), poly.coeffs())}

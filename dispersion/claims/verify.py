@@ -1,9 +1,10 @@
 """Claims checked: the derivations a claim needs, their scheduling, and the verdicts.
 
 Each kind of claim is one entry of :data:`KIND_RULES`: the derivations it needs
-(``tasks``) and how it compares them with what was printed (``verdict``). A new kind (say a
-critical time step) adds its parsing in :mod:`dispersion.claims.schema` (``KINDS``,
-``KIND_FIELDS``, ``KIND_PARSERS``) and one entry here.
+(``tasks``) and how it compares them with what was printed (``verdict``, which returns the
+:class:`ClaimResult` through :func:`verdict`). A new kind adds its parsing in
+:mod:`dispersion.claims.schema` (``KINDS``, ``KIND_FIELDS``, ``KIND_PARSERS``; the
+explicit-dynamics kinds in :mod:`dispersion.claims.explicit`) and one entry here.
 """
 from __future__ import annotations
 
@@ -14,20 +15,21 @@ from typing import Callable
 
 import sympy
 
+from dispersion.claims import explicit
+from dispersion.claims.claim import Claim
+from dispersion.claims.claim_model import ClaimModel
+from dispersion.claims.claims_file import paper_claims_path
+from dispersion.claims.exact_model import ExactModel
+from dispersion.claims.limits import MAX_JOBS
 from dispersion.claims.report import readable
-from dispersion.claims.schema import (EXACT, EXPLICIT_KINDS, Claim, Model, load_claims,
-                                      paper_claims_path)
+from dispersion.claims.schema import load_claims
 from dispersion.errors import DispersionError, InputError, check_int_in_range
 from dispersion.symbolic.power_balance import NU
 
-__all__ = ["MAX_JOBS", "MAX_DERIVATIONS", "Term", "ClaimResult", "Verification", "KIND_RULES", "describe_difference",
-           "check_claim", "check_jobs", "verify_claims", "verify_file"]
+__all__ = ["MAX_JOBS", "MAX_DERIVATIONS", "Term", "ClaimResult", "Verification", "KIND_RULES",
+           "verdict", "describe_difference", "check_claim", "check_jobs", "verify_claims",
+           "verify_file"]
 
-#: Most worker processes :func:`verify_claims` starts. A worker is a Python process holding
-#: sympy and its caches: ``verify --paper`` in one process peaks at 110 MiB resident, so 64
-#: workers stay under a third of this machine's 24 GiB, and on its 2 cores more workers than
-#: derivations or cores only add start-up time.
-MAX_JOBS = 64
 #: Most distinct derivations one verification runs. Each is bounded by the engine's own
 #: limits (about a minute at worst, :func:`dispersion.symbolic.power_balance.check_request`);
 #: the paper's file needs 8 and a series to kappa^8 takes ~0.1 s, so 100 cheap ones take
@@ -88,27 +90,23 @@ class Verification:
 # --------------------------------------------------------------------------- deriving
 
 @functools.lru_cache(maxsize=64)
-def _series(model: Model, branch: str, order: int) -> dict[int, sympy.Expr]:
+def _series(model: ClaimModel, branch: str, order: int) -> dict[int, sympy.Expr]:
     """Derived series of ``branch`` of ``model`` to kappa^order (cached per process)."""
-    from dispersion.symbolic.power_balance import discrete_series
-    from dispersion.waves.exact_series import exact_series
+    if isinstance(model, ExactModel):
+        from dispersion.waves.exact_series import exact_series
 
-    if model.exact:
         return exact_series(branch, order)
-    return discrete_series(branch, order, **model.patch_kwargs())
+    return model.series(branch, order)
 
 
-def _omega(model: Model, branch: str, kappa: float, nu: float, guess: float) -> float:
+def _omega(model: ClaimModel, branch: str, kappa: float, nu: float, guess: float) -> float:
     """Omega of ``branch`` at one kappa (NaN if it does not exist below 2 guess + 1)."""
-    if model.exact:
+    if isinstance(model, ExactModel):
         from dispersion.waves.exact_branches import trace_branches
 
         br = trace_branches(nu, [kappa], 2 * guess + 1)
     else:
-        from dispersion.symbolic.plate import plate_patch
-        from dispersion.waves.discrete_branches import discrete_branches
-
-        br = discrete_branches(plate_patch(**model.patch_kwargs()), nu, [kappa])
+        br = model.branches([kappa], nu)
     return float(br.omega[branch][0]) if branch in br.omega else float("nan")
 
 
@@ -118,9 +116,7 @@ def _key(task: tuple) -> tuple:
 
 
 def _run_task(task: tuple):
-    if task[0] in EXPLICIT_KINDS:
-        from dispersion.claims import explicit
-
+    if task[0] in explicit.KINDS:
         return explicit.run(task)
     if task[0] == "series":
         return _series(*task[1:])
@@ -219,24 +215,32 @@ def describe_difference(printed, derived) -> str:
     return f"difference printed - derived = {readable(diff)}"
 
 
-@dataclass(frozen=True)
-class Verdict:
-    """What a kind's comparison found: the texts shown and whether the claim holds."""
-
-    holds: bool
-    printed: str
-    derived: str
-    difference: str
-    terms: tuple[Term, ...] = ()
-    printed_latex: str = ""
-    derived_latex: str = ""
+def verdict(claim: Claim, holds: bool, printed: str, derived: str, difference: str,
+            terms: tuple[Term, ...] = (), printed_latex: str = "", derived_latex: str = "",
+            *, error: bool = False) -> ClaimResult:
+    """The result of ``claim`` from what its comparison found (``holds`` and the texts shown);
+    ``status`` and ``passed`` follow from ``holds`` and what the claim expects, or ``error``
+    (a derivation or a comparison that failed, ``difference`` says which)."""
+    expected = claim.expect == "holds"
+    if error:
+        status = "error"
+    else:
+        status = {(True, True): "holds", (False, True): "differs",
+                  (False, False): "differs (expected)", (True, False): "holds (unexpected)"}[
+            (holds, expected)]
+        if status == "holds (unexpected)":
+            difference = "recorded as not holding (expect = 'differs'), but it holds"
+    return ClaimResult(claim.name, claim.source, claim.kind, claim.branch, claim.model.label(),
+                       claim.file, claim.line, printed, derived, status,
+                       not error and holds == expected, difference, tuple(terms),
+                       printed_latex, derived_latex, claim.note)
 
 
 def _series_tasks(claim: Claim) -> list[tuple]:
     return [("series", claim.model, claim.branch, claim.order)]
 
 
-def _series_verdict(claim: Claim, derived: dict) -> Verdict:
+def _series_verdict(claim: Claim, derived: dict) -> ClaimResult:
     terms = []
     for power, printed in claim.printed:
         ours = derived.get(power, sympy.Integer(0))
@@ -252,8 +256,8 @@ def _series_verdict(claim: Claim, derived: dict) -> Verdict:
             holds = diff == ""
         terms.append(Term(power, printed, ours, holds, diff))
     text = "; ".join(f"kappa^{t.power}: {t.difference}" for t in terms if not t.holds)
-    return Verdict(
-        all(t.holds for t in terms),
+    return verdict(
+        claim, all(t.holds for t in terms),
         " + ".join(f"({t.printed})*kappa^{t.power}" for t in terms),
         " + ".join(f"({t.derived})*kappa^{t.power}" for t in terms),
         text, tuple(terms),
@@ -263,10 +267,10 @@ def _series_verdict(claim: Claim, derived: dict) -> Verdict:
 
 def _error_order_tasks(claim: Claim) -> list[tuple]:
     return [("series", claim.model, claim.branch, claim.order),
-            ("series", Model(EXACT), claim.branch, claim.order)]
+            ("series", ExactModel(), claim.branch, claim.order)]
 
 
-def _error_order_verdict(claim: Claim, patch: dict, exact: dict) -> Verdict:
+def _error_order_verdict(claim: Claim, patch: dict, exact: dict) -> ClaimResult:
     from dispersion.symbolic.power_balance import first_difference
 
     lead = first_difference(patch, exact, upto=claim.order)
@@ -274,7 +278,7 @@ def _error_order_verdict(claim: Claim, patch: dict, exact: dict) -> Verdict:
     holds = lead is not None and (lead >= m if claim.bound else lead == m) or (
         lead is None and claim.bound)
     shown = f"O(kappa^{lead})" if lead is not None else f"beyond kappa^{claim.order}"
-    return Verdict(holds, ("at least " if claim.bound else "") + f"O(kappa^{m})",
+    return verdict(claim, holds, ("at least " if claim.bound else "") + f"O(kappa^{m})",
                    f"O(kappa^{lead})" if lead is not None else f"zero to kappa^{claim.order}",
                    "" if holds else f"leading error {shown}, claimed O(kappa^{m})")
 
@@ -283,12 +287,12 @@ def _value_tasks(claim: Claim) -> list[tuple]:
     return [("value", claim.model, claim.branch, claim.kappa, claim.nu, claim.omega)]
 
 
-def _value_verdict(claim: Claim, derived: float) -> Verdict:
+def _value_verdict(claim: Claim, derived: float) -> ClaimResult:
     ok = derived == derived  # NaN: no such branch
     err = abs(derived - claim.omega) / claim.omega if ok else float("nan")
     holds = ok and err <= claim.rtol
     shown = f"Omega = {derived:.12g}" if ok else "no such branch there"
-    return Verdict(holds, f"Omega = {claim.omega:.12g} (rtol {claim.rtol:g})", shown,
+    return verdict(claim, holds, f"Omega = {claim.omega:.12g} (rtol {claim.rtol:g})", shown,
                    "" if holds else (f"relative difference {err:.3g} > {claim.rtol:g}" if ok
                                      else shown))
 
@@ -298,19 +302,15 @@ class KindRule:
     """How one kind of claim is checked: its derivations and its comparison."""
 
     tasks: Callable[[Claim], list[tuple]]
-    verdict: Callable[..., Verdict]
+    verdict: Callable[..., ClaimResult]
 
 
 def _explicit_tasks(claim: Claim) -> list[tuple]:
-    from dispersion.claims import explicit
-
     return [explicit.task(claim)]
 
 
-def _explicit_verdict(claim: Claim, derived) -> Verdict:
-    from dispersion.claims import explicit
-
-    return Verdict(*explicit.verdict(claim, derived))
+def _explicit_verdict(claim: Claim, derived) -> ClaimResult:
+    return verdict(claim, *explicit.verdict(claim, derived))
 
 
 #: One entry per kind of claim (the keys are :data:`dispersion.claims.schema.KINDS`).
@@ -349,17 +349,7 @@ def check_claim(claim: Claim, *derived) -> ClaimResult:
     tasks = _task(claim)
     got = list(derived) + [None] * (len(tasks) - len(derived))
     got = [_run_task(t) if g is None else g for t, g in zip(tasks, got)]
-    v = KIND_RULES[claim.kind].verdict(claim, *got)
-    expected = claim.expect == "holds"
-    status = {(True, True): "holds", (False, True): "differs",
-              (False, False): "differs (expected)", (True, False): "holds (unexpected)"}[
-        (v.holds, expected)]
-    diff = v.difference
-    if status == "holds (unexpected)":
-        diff = "recorded as not holding (expect = 'differs'), but it holds"
-    return ClaimResult(claim.name, claim.source, claim.kind, claim.branch, claim.model.label(),
-                       claim.file, claim.line, v.printed, v.derived, status, v.holds == expected,
-                       diff, v.terms, v.printed_latex, v.derived_latex, claim.note)
+    return KIND_RULES[claim.kind].verdict(claim, *got)
 
 
 # --------------------------------------------------------------------------- scheduling
@@ -416,9 +406,7 @@ def verify_claims(claims: list[Claim], *, executor=None, jobs: int | None = None
         got = [done[_key(t)] for t in _task(claim)]
         failure = next((g for g in got if isinstance(g, str)), None)
         if failure is not None:
-            results.append(ClaimResult(claim.name, claim.source, claim.kind, claim.branch,
-                                       claim.model.label(), claim.file, claim.line, claim.written,
-                                       "", "error", False, failure, note=claim.note))
+            results.append(verdict(claim, False, claim.written, "", failure, error=True))
         else:
             results.append(_checked(claim, got))
     files = tuple(dict.fromkeys(c.file for c in claims))
@@ -431,10 +419,8 @@ def _checked(claim: Claim, got: list) -> ClaimResult:
     try:
         return check_claim(claim, *got)
     except Exception as exc:  # noqa: BLE001 - reported per claim, the run goes on
-        return ClaimResult(claim.name, claim.source, claim.kind, claim.branch,
-                           claim.model.label(), claim.file, claim.line, claim.written, "",
-                           "error", False, f"the comparison failed: {type(exc).__name__}: "
-                           f"{str(exc)[:200]}", note=claim.note)
+        return verdict(claim, False, claim.written, "", f"the comparison failed: "
+                       f"{type(exc).__name__}: {str(exc)[:200]}", error=True)
 
 
 def verify_file(*paths, quick: bool = False, executor=None, jobs: int | None = None

@@ -15,22 +15,21 @@ with ``#`` lines naming its inputs and the package version; JSON carries them as
 from __future__ import annotations
 
 import argparse
-import csv
 import io
 import math
 import os
 import sys
-
-import numpy as np
+from typing import TYPE_CHECKING
 
 from dispersion import defaults
+from dispersion.defaults import CONTACT_SETS, MASS_VARIANTS, MODELS, N_MAX, P_MAX, R_RANGE
 from dispersion.errors import InputError
-from dispersion.io import check_output_file, unit_target, write_bytes, write_text, write_unit
-from dispersion.symbolic.mass import CONTACT_SETS, MASS_VARIANTS
-from dispersion.symbolic.plate import MODELS, N_MAX, P_MAX, R_RANGE
-from dispersion.waves.exact_branches import check_samples
+from dispersion.io import check_output_file, unit_target, write_bytes, write_unit
 from dispersion.cli import frequency as _frequency
 from dispersion.cli.options import integer, number, real
+
+if TYPE_CHECKING:  # numpy and the tracer are imported where used: --help stays light
+    import numpy as np
 
 #: Up-front bounds (issue 11); the exact tracer's scan is bounded by
 #: :data:`dispersion.waves.exact_branches.MAX_SAMPLES` (count * (omega-max / 0.05 + 1)).
@@ -42,7 +41,6 @@ MAX_OMEGA = 200.0
 #: 3.4 s, n = 20 in 48 s, n = 30 in 180 s (grows like n^3); n = 3 with 200000 points: ~1e7.
 #: Work bound of the numeric branches: 400 kappa of two masses at n = 24 (about a minute).
 MAX_DISCRETE_WORK = 2 * 400 * 24**3
-FIGURE_SUFFIXES = (".png", ".pdf", ".svg")
 
 
 def register(sub) -> None:
@@ -59,7 +57,7 @@ def register(sub) -> None:
                    help=f"contact set of a singular mass (default: {defaults.CONTACT})")
     p.add_argument("--gamma-s", type=real("gamma_s", 0, 1), default=None,
                    help="share of a contact shape function sent to the second neighbour, "
-                        f"singular masses only (default: {defaults.GAMMA_S})")
+                        f"singular masses only (default: {defaults.text('GAMMA_S')})")
     p.add_argument("--model", choices=MODELS, default=None,
                    help=f"patch model along x (default: {defaults.MODEL})")
     p.add_argument("--r", type=real("r", *R_RANGE), default=None,
@@ -110,13 +108,11 @@ def register(sub) -> None:
 
 
 def _schemes():
-    from dispersion.waves.fully_discrete import SCHEMES
-
-    return tuple(SCHEMES)
+    return defaults.TIME_SCHEMES
 
 
 def _materials():
-    from dispersion.waves.units import MATERIALS
+    from dispersion.waves.materials import MATERIALS
 
     return MATERIALS
 
@@ -130,11 +126,15 @@ def kappa_grid(kmin: float, kmax: float, count: int) -> np.ndarray:
                          f"[{kmin}, {kmax}]")
     if isinstance(count, bool) or not 2 <= count <= MAX_COUNT:
         raise InputError(f"count must be an integer in [2, {MAX_COUNT}], got {count}")
+    import numpy as np
+
     return np.linspace(kmin, kmax, count)
 
 
 def _material(args):
-    mat = _frequency.material_from_args(args)
+    from dispersion.cli.options import material_from_args
+
+    mat = material_from_args(args)
     if mat is not None and args.thickness is None:
         raise InputError("a material needs --thickness (plate thickness d = 2h in mm)")
     if mat is None and args.thickness is not None:
@@ -198,23 +198,20 @@ def _settings(args) -> dict:
     kappa = kappa_grid(args.kappa_min, args.kappa_max, args.count)
     if not (math.isfinite(args.omega_max) and 0 < args.omega_max <= MAX_OMEGA):
         raise InputError(f"omega-max must be in (0, {MAX_OMEGA:g}], got {args.omega_max}")
+    from dispersion.waves.exact_branches import check_samples
+
     check_samples(args.count, args.omega_max, what="count * (omega-max / 0.05 + 1)")
     if args.csv is not None:
         check_output_file(args.csv, option="--csv")
     if args.figure is not None:
-        if not args.figure.lower().endswith(FIGURE_SUFFIXES):
-            raise InputError(f"--figure must name a file ending in one of "
-                             f"{', '.join(FIGURE_SUFFIXES)}, got {args.figure!r}")
-        check_output_file(args.figure, option="--figure", allow_stdout=False,
-                          suffixes=FIGURE_SUFFIXES)
+        from dispersion.cli.outputs import check_figure
+
+        check_figure(args.figure, "branches")
         if args.csv not in (None, "-") and unit_target(args.csv) is not None and \
                 os.path.abspath(unit_target(args.csv)) == os.path.abspath(unit_target(args.figure)
                                                                           or args.figure):
             raise InputError(f"--csv and --figure must name two different files, got "
                              f"{args.csv!r} and {args.figure!r}")
-        from dispersion.plotting import require_matplotlib
-
-        require_matplotlib("branches --figure")
     _check_scheme(args, masses)
     return {
         "nu": nu, "kappa": kappa, "masses": masses, "material": material, "patch": base,
@@ -280,6 +277,8 @@ def _inputs(args, s) -> dict:
 
 def _rows(kappa, omega, group, symmetry, source, material, thickness, omega_max, nu):
     """Row dicts of one branch set (finite Omega <= omega_max) computed at ``nu``."""
+    import numpy as np
+
     from dispersion.waves.units import physical_branches
     from dispersion.waves.velocities import phase_velocity
 
@@ -304,17 +303,10 @@ def _rows(kappa, omega, group, symmetry, source, material, thickness, omega_max,
 
 
 def _csv(rows, inputs) -> str:
-    buf = io.StringIO()
-    for key, val in inputs.items():
-        buf.write(f"# {key}: {val}\n")
-    buf.write(f"# {_frequency.EMPTY_NOTE}\n")
-    if not rows:
-        return buf.getvalue()
-    w = csv.DictWriter(buf, fieldnames=list(rows[0]), lineterminator="\n")
-    w.writeheader()
-    for row in rows:
-        w.writerow({k: _frequency._cell(v) for k, v in row.items()})
-    return buf.getvalue()
+    from dispersion.cli.outputs import EMPTY_NOTE, csv_text
+
+    return csv_text(rows, [f"# {key}: {val}" for key, val in inputs.items()]
+                    + [f"# {EMPTY_NOTE}"])
 
 
 def _text(rows, inputs) -> str:
@@ -328,14 +320,10 @@ def _text(rows, inputs) -> str:
     return "\n".join(lines) + "\n"
 
 
-def _emit(path: str, text: str) -> None:
-    if path == "-":
-        sys.stdout.write(text)
-    else:
-        write_text(path, text)
-
-
 def run(args) -> int:
+    import numpy as np
+
+    from dispersion.cli.outputs import emit
     from dispersion.waves.discrete_branches import discrete_branches
     from dispersion.symbolic.plate import plate_patch
     from dispersion.waves.exact_branches import trace_branches
@@ -399,9 +387,9 @@ def run(args) -> int:
                       args.thickness, args.omega_max, nu)
     if not args.csv and not args.figure:
         if args.format == "csv":
-            _emit("-", _csv(rows, inputs))
+            emit("-", _csv(rows, inputs))
         elif args.format == "text":
-            _emit("-", _text(rows, inputs))
+            emit("-", _text(rows, inputs))
         else:
             from dispersion.results import dumps, envelope
 
@@ -409,7 +397,7 @@ def run(args) -> int:
                                         "failures": [list(f) for f in exact.failures],
                                         "velocity_uncertain": [list(u) for u in vel.uncertain]},
                            inputs=inputs)
-            _emit("-", dumps(env))
+            emit("-", dumps(env))
     if args.figure and s["material"] is not None:
         fig = _physical_figure(kappa, exact, vel, s["material"], args.thickness, args.omega_max)
     elif args.figure:
@@ -441,7 +429,7 @@ def run(args) -> int:
         if unit_target(path) is not None:
             continue
         if isinstance(data, str):
-            _emit(path, data)
+            emit(path, data)
         else:
             write_bytes(path, data)
     return 0

@@ -13,22 +13,23 @@ Frequencies: ``200`` (kHz), ``200kHz``, ``0.2MHz``, ``2e5Hz``; lists ``100,200,3
 from __future__ import annotations
 
 import argparse
-import csv
-import io
 import math
 import re
 import sys
+from typing import TYPE_CHECKING
 
-import numpy as np
-
+from dispersion.cli.options import material_from_args, real
+from dispersion.cli.outputs import EMPTY_NOTE, cell, check_figure, csv_text, emit
 from dispersion.errors import InputError
+
+if TYPE_CHECKING:  # numpy is imported where used: the parser (and --help) stays light
+    import numpy as np
 
 #: Most frequencies of one request (a grid's COUNT included); the scan bound of
 #: :data:`dispersion.waves.frequency.MAX_SCAN_SAMPLES` applies as well.
 MAX_FREQUENCIES = 100_000
 _UNITS = {"hz": 1e-3, "khz": 1.0, "mhz": 1e3}
 _NUMBER = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*([a-zA-Z]*)\s*$")
-EMPTY_NOTE = "empty cell: not defined (no value is written as nan or inf)"
 
 
 def _value(text: str, option: str, units: dict | None) -> float:
@@ -49,6 +50,8 @@ def parse_values(text: str, option: str, units: dict | None = _UNITS) -> np.ndar
     >>> parse_values("10kHz:1MHz:3", "--frequency").tolist()
     [10.0, 505.0, 1000.0]
     """
+    import numpy as np
+
     out = []
     for token in str(text).split(","):
         parts = token.split(":")
@@ -92,9 +95,10 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--mode-shape", metavar="MODE",
                    help="with one --frequency/--fd: displacements and stresses through the "
                         "thickness of MODE (e.g. S0, A1, SH0) instead of the mode table")
-    p.add_argument("--rho", type=float, default=None,
+    p.add_argument("--rho", type=real("rho", 0, lo_open=True), default=None,
                    help="density in kg/m^3 (with --cl/--ct, or with --youngs-modulus and --nu)")
-    p.add_argument("--youngs-modulus", type=float, default=None, metavar="E",
+    p.add_argument("--youngs-modulus", type=real("youngs-modulus", 0, lo_open=True),
+                   default=None, metavar="E",
                    help="Young's modulus E in GPa (with --nu and --rho: a user material)")
     p.add_argument("--json", help="with --frequency/--fd: write the table as JSON to FILE "
                                   "('-': stdout)")
@@ -102,35 +106,6 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 def requested(args) -> bool:
     return args.frequency is not None or args.fd is not None
-
-
-def material_from_args(args):
-    """The material of ``--material``, ``--cl/--ct[/--rho]`` or ``--youngs-modulus/--nu/--rho``
-    (None without any); other combinations are refused naming the options."""
-    from dispersion.waves.materials import material, user_material
-
-    user = {"--cl": args.cl, "--ct": args.ct, "--rho": args.rho,
-            "--youngs-modulus": args.youngs_modulus}
-    given = [k for k, v in user.items() if v is not None]
-    if args.youngs_modulus is not None and args.nu is not None:
-        given.append("--nu")
-    if args.material:
-        if given:
-            raise InputError(f"--material must not be combined with user values "
-                             f"({', '.join(given)})")
-        return material(args.material)
-    if not given:
-        return None
-    E = None if args.youngs_modulus is None else args.youngs_modulus * 1e9
-    nu = args.nu if args.youngs_modulus is not None else None
-    try:
-        return user_material(E=E, nu=nu, rho=args.rho, c_L=args.cl, c_T=args.ct)
-    except InputError as exc:
-        names = {"c_L": "--cl", "c_T": "--ct", "E": "--youngs-modulus", "rho": "--rho"}
-        msg = str(exc)
-        for k, v in names.items():
-            msg = re.sub(rf"\b{k}\b", v, msg)
-        raise InputError(msg) from None
 
 
 def _check(args):
@@ -156,23 +131,11 @@ def _check(args):
         if path is not None:
             check_output_file(path, option=opt)
     if args.figure is not None:
-        from dispersion.cli.branches import FIGURE_SUFFIXES
-
-        if not args.figure.lower().endswith(FIGURE_SUFFIXES):
-            raise InputError(f"--figure must name a file ending in one of "
-                             f"{', '.join(FIGURE_SUFFIXES)}, got {args.figure!r}")
-        check_output_file(args.figure, option="--figure", allow_stdout=False,
-                          suffixes=FIGURE_SUFFIXES)
+        check_figure(args.figure, "branches")
     if args.fd is not None:
         values = parse_values(args.fd, "--fd", units=None)
         return mat, None, values
     return mat, parse_values(args.frequency, "--frequency"), None
-
-
-def _cell(v) -> str:
-    if isinstance(v, float):
-        return repr(v) if math.isfinite(v) else ""
-    return "" if v is None else str(v)
 
 
 def _header(table, extra: dict) -> list[str]:
@@ -193,18 +156,6 @@ def _header(table, extra: dict) -> list[str]:
     return lines
 
 
-def render_csv(rows: list[dict], header: list[str]) -> str:
-    buf = io.StringIO()
-    for line in header:
-        buf.write(line + "\n")
-    if rows:
-        w = csv.DictWriter(buf, fieldnames=list(rows[0]), lineterminator="\n")
-        w.writeheader()
-        for row in rows:
-            w.writerow({k: _cell(v) for k, v in row.items()})
-    return buf.getvalue()
-
-
 def render_text(rows: list[dict], header: list[str]) -> str:
     lines = list(header)
     if rows:
@@ -214,12 +165,14 @@ def render_text(rows: list[dict], header: list[str]) -> str:
         for row in rows:
             lines.append("  ".join(
                 f"{v:>{w}.7g}" if isinstance(v, float) and math.isfinite(v)
-                else f"{_cell(v):>{w}}" for v, w in zip(row.values(), width)))
+                else f"{cell(v):>{w}}" for v, w in zip(row.values(), width)))
     return "\n".join(lines) + "\n"
 
 
 def _fields(table, label: str):
     """Through-thickness fields of every root labelled ``label`` (one frequency)."""
+    import numpy as np
+
     from dispersion.waves.mode_shapes import exact_mode_fields
     from dispersion.waves.sh import sh_mode_shape
 
@@ -253,15 +206,6 @@ def _field_rows(fields) -> list[dict]:
             row.update({k: float(fl[k][j]) for k in keys})
             rows.append(row)
     return rows
-
-
-def _emit(path: str, text: str) -> None:
-    from dispersion.io import write_text
-
-    if path == "-":
-        sys.stdout.write(text)
-    else:
-        write_text(path, text)
 
 
 def run(args) -> int:
@@ -306,18 +250,18 @@ def run(args) -> int:
         env = envelope("branches", {"rows": rows, "cutoffs [kHz]": table.cutoffs_khz(),
                                     "zgv": table.zgv(), "failures": table.failures()},
                        inputs=table.inputs())
-        _emit(args.json, dumps(env))
+        emit(args.json, dumps(env))
     if args.csv:
-        _emit(args.csv, render_csv(rows, header))
+        emit(args.csv, csv_text(rows, header))
     if not (args.csv or args.json or args.figure):
         if args.format == "json":
             from dispersion.results import dumps, envelope
 
-            _emit("-", dumps(envelope("branches", {
+            emit("-", dumps(envelope("branches", {
                 "rows": rows, "cutoffs [kHz]": table.cutoffs_khz(), "zgv": table.zgv(),
                 "failures": table.failures()}, inputs=table.inputs())))
         elif args.format == "text":
-            _emit("-", render_text(rows, header))
+            emit("-", render_text(rows, header))
         else:
-            _emit("-", render_csv(rows, header))
+            emit("-", csv_text(rows, header))
     return 0

@@ -11,11 +11,10 @@ import argparse
 import sys
 
 from dispersion.errors import InputError
-from dispersion.symbolic.mass import MASS_VARIANTS
+from dispersion.defaults import MASS_VARIANTS
 from dispersion.cli.options import number
 
 SCENES = ("signorini-1d",)
-FIGURE_SUFFIXES = (".png", ".pdf", ".svg")
 
 
 def _stability_note() -> str:
@@ -76,15 +75,9 @@ def run(args) -> int:
 
     out = None if args.out is None else check_output_dir(args.out, option="--out")
     if args.figure is not None:
-        from dispersion.io import check_output_file
-        from dispersion.plotting import require_matplotlib
+        from dispersion.cli.outputs import check_figure
 
-        if not args.figure.lower().endswith(FIGURE_SUFFIXES):
-            raise InputError(f"--figure must name a file ending in one of "
-                             f"{', '.join(FIGURE_SUFFIXES)}, got {args.figure!r}")
-        check_output_file(args.figure, option="--figure", allow_stdout=False,
-                          suffixes=FIGURE_SUFFIXES)
-        require_matplotlib("impact --figure")
+        check_figure(args.figure, "impact")
     if args.p < 1 or args.p > 6:
         raise InputError(f"p must be an integer in [1, 6], got {args.p}")
     if args.elements < 1 or args.elements > 100_000:

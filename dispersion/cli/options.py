@@ -7,6 +7,10 @@ bounded before any arithmetic (at most 60 digits and a decimal exponent of at mo
 ``--nu 1e-999999999`` is refused at once). On failure the message names the option and its
 range, and argparse prints it on one line with exit status 2.
 
+A material is read here too, once for every command (:func:`material_from_args`): a table
+name, the bulk speeds, or Young's modulus, Poisson's ratio and density, with errors naming the
+options.
+
 >>> rational("nu", -1, 0.5, lo_open=True, hi_open=True)("3/10")
 Fraction(3, 10)
 >>> real("omega-max", 0, 200, lo_open=True)("1/2")
@@ -24,7 +28,7 @@ from fractions import Fraction
 
 from dispersion.errors import InputError
 
-__all__ = ["rational", "real", "integer", "number", "span"]
+__all__ = ["rational", "real", "integer", "number", "span", "material_from_args"]
 
 #: Most digits of an integer option (the largest meaningful count has 7).
 MAX_INT_DIGITS = 18
@@ -131,3 +135,57 @@ def number(name: str, convert=float):
     """argparse ``type`` of the older form ``number(name, int | float)``: see :func:`integer`
     and :func:`real` (same grammar; kept for callers not yet moved)."""
     return integer(name) if convert is int else real(name)
+
+
+#: Option of each input of :func:`dispersion.waves.materials.user_material` (E in GPa there).
+MATERIAL_OPTIONS = {"c_L": "--cl", "c_T": "--ct", "rho": "--rho", "E": "--youngs-modulus",
+                    "nu": "--nu"}
+
+
+def material_from_args(args: argparse.Namespace, default: str | None = None):
+    """The :class:`~dispersion.waves.materials.Material` of a command's options.
+
+    ``--material NAME`` (a row of :data:`dispersion.waves.materials.MATERIALS`), or user values
+    ``--cl/--ct[/--rho]`` (m/s, kg/m^3) or ``--youngs-modulus/--nu/--rho`` (GPa, -, kg/m^3);
+    ``--nu`` counts as a material input only beside ``--youngs-modulus`` (elsewhere it is the
+    dimensionless Poisson's ratio of the run). A command without some of these options simply
+    lacks them. Nothing given: the table's ``default`` (None: no material). A name with user
+    values, or user values that do not fix one material, are refused naming the options.
+
+    >>> args = argparse.Namespace(material=None, cl=6000.0, ct=3000.0)
+    >>> material_from_args(args).nu
+    0.3333333333333333
+    >>> material_from_args(argparse.Namespace(material="steel", cl=6000.0))
+    Traceback (most recent call last):
+    ...
+    dispersion.errors.InputError: --material must not be combined with user values (--cl)
+    >>> material_from_args(argparse.Namespace(cl=6000.0))
+    Traceback (most recent call last):
+    ...
+    dispersion.errors.InputError: material inputs (--cl) do not form one of (--youngs-modulus, nu, --rho), (--cl, --ct), (--cl, --ct, --rho)
+    """
+    from dispersion.waves.materials import material, user_material
+
+    values = {key: getattr(args, opt[2:].replace("-", "_"), None)
+              for key, opt in MATERIAL_OPTIONS.items()}
+    if values["E"] is None:
+        values["nu"] = None  # Poisson's ratio of a dimensionless run, not a material input
+    given = [MATERIAL_OPTIONS[k] for k, v in values.items() if v is not None]
+    name = getattr(args, "material", None)
+    if name:
+        if given:
+            raise InputError(f"--material must not be combined with user values "
+                             f"({', '.join(given)})")
+        return material(name)
+    if not given:
+        return None if default is None else material(default)
+    if values["E"] is not None:
+        values["E"] = values["E"] * 1e9  # GPa on the command line, Pa in the API
+    try:
+        return user_material(**values)
+    except InputError as exc:
+        msg = str(exc)
+        for key, opt in MATERIAL_OPTIONS.items():
+            if key != "nu":  # "nu" in a message is Poisson's ratio, whichever input fixed it
+                msg = re.sub(rf"\b{key}\b", opt, msg)
+        raise InputError(msg) from None

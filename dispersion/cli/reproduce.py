@@ -23,11 +23,23 @@ import shlex
 from pathlib import Path
 
 from dispersion.cli.options import number
+from dispersion.defaults import MAX_JOBS_PER_CPU
+from dispersion.defaults import REPORT_OUT as DEFAULT_OUT
+from dispersion.defaults import REPORT_REFERENCE as DEFAULT_REFERENCE
 from dispersion.report import SECTIONS
-from dispersion.report.run import (DEFAULT_OUT, DEFAULT_REFERENCE, MAX_JOBS_PER_CPU,
-                                   measure_sections, render_folder, reproduce)
 
-__all__ = ["register", "handler", "measure_sections", "render_folder", "MAX_JOBS_PER_CPU"]
+__all__ = ["register", "handler", "measure_sections", "render_folder",  # noqa: F822
+           "MAX_JOBS_PER_CPU"]  # measure_sections, render_folder: module __getattr__
+
+
+def __getattr__(name: str):
+    # the orchestration (report.run: process pools, comparison) is imported when used, so
+    # that the parser, built for every --help, stays light
+    if name in ("measure_sections", "render_folder", "reproduce"):
+        from dispersion.report import run
+
+        return getattr(run, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def register(subparsers) -> None:
@@ -85,6 +97,8 @@ def _command(args: argparse.Namespace) -> str:
 
 
 def handler(args: argparse.Namespace) -> int:
+    from dispersion.report.run import reproduce
+
     explicit_reference = args.reference != DEFAULT_REFERENCE
     run = reproduce(
         args.out, sections=args.sections.split(","), quick=args.quick, jobs=args.jobs,

@@ -13,7 +13,7 @@ from dataclasses import replace
 
 from dispersion.contact.scenario import MAX_STEPS, Scenario
 from dispersion.errors import InputError
-from dispersion.symbolic.mass import MASS_VARIANTS
+from dispersion.defaults import MASS_VARIANTS
 from dispersion.cli.options import integer, number
 
 DEFAULT = Scenario()

@@ -61,13 +61,13 @@ def _order_range() -> str:
 
 
 def _degree_range() -> str:
-    from dispersion.symbolic.plate import P_MAX
+    from dispersion.defaults import P_MAX
 
     return f"in [1, {P_MAX}]"
 
 
 def _points_range() -> str:
-    from dispersion.symbolic.plate import N_MAX
+    from dispersion.defaults import N_MAX
 
     return f"in [p + 1, {N_MAX}]"
 

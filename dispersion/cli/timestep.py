@@ -10,13 +10,15 @@ from __future__ import annotations
 import argparse
 
 from dispersion.cli import number
+from dispersion.cli.options import material_from_args
 from dispersion.errors import InputError
 
 
 def register(sub) -> None:
-    from dispersion.symbolic.mass import CONTACT_SETS
-    from dispersion.symbolic.mass_rule import RULE_NAMES
-    from dispersion.waves.timestep import MATERIALS, MODELS
+    # light modules only: --help builds this parser without numpy or sympy
+    from dispersion.defaults import CONTACT_SETS, TIMESTEP_MODELS as MODELS
+    from dispersion.defaults import MASS_VARIANTS as RULE_NAMES
+    from dispersion.waves.materials import MATERIALS
 
     p = sub.add_parser(
         "timestep", help="critical time step of central differences for mass rules",
@@ -50,19 +52,6 @@ def register(sub) -> None:
     p.set_defaults(func=run)
 
 
-def _material(args):
-    from dispersion.waves.timestep import MATERIALS
-    from dispersion.waves.materials import Material
-
-    if args.material and (args.cl is not None or args.ct is not None):
-        raise InputError("give --material or --cl/--ct, not both")
-    if (args.cl is None) != (args.ct is None):
-        raise InputError("--cl and --ct must be given together (bulk speeds in m/s)")
-    if args.cl is not None:
-        return Material(args.cl, args.ct)
-    return MATERIALS[args.material or "steel"]
-
-
 def run(args: argparse.Namespace) -> int:
     from dispersion.symbolic.mass_rule import RULE_NAMES, rule_from_toml
     from dispersion.waves.timestep import critical_step
@@ -73,7 +62,7 @@ def run(args: argparse.Namespace) -> int:
         raise InputError("--n applies to --model plate only")
     if args.certify and args.model != "plate":
         raise InputError("--certify applies to --model plate only (the bar's maximum is exact)")
-    material = _material(args)
+    material = material_from_args(args, default="steel")
     rules = list(args.mass or ([] if args.mass_rule else RULE_NAMES))
     rules += [rule_from_toml(path) for path in args.mass_rule]
     if args.model == "bar":

@@ -17,7 +17,7 @@ from dispersion.errors import InputError
 from dispersion.io import check_output_file, write_text
 
 def register(sub) -> None:
-    from dispersion.claims.verify import MAX_JOBS  # the command needs sympy anyway
+    from dispersion.claims.limits import MAX_JOBS  # light: --help loads no sympy
 
     p = sub.add_parser("verify", help="check claimed series/values against the derivation",
                        description="Derive every claim of the claims files (TOML, see "

@@ -174,8 +174,8 @@ def _signorini(args):
     p, mass, scheme, t_end = args
     r = signorini_1d(p=p, mass=mass, scheme=scheme, dt=0.002 if p == 1 else 0.001,
                      t_end=t_end)
-    return {"p": p, "mass": mass, "scheme": scheme, "dt": r.dt, "t_end": t_end,
-            "seconds": r.seconds, **r.errors}
+    return {"p": p, "n_elements": r.n_elements, "mass": mass, "scheme": scheme, "dt": r.dt,
+            "t_end": t_end, "seconds": r.seconds, **r.errors}
 
 
 def measure(quick: bool = False, executor=None) -> RingStudy:

@@ -304,6 +304,33 @@ def _sign_legend(ax):
 _MASS_ORDER = {"lumped": 0, "consistent": 1, "singular-lumped": 2, "singular": 3}
 
 
+def _spec(stored: Mapping | None):
+    """The :class:`~dispersion.symbolic.patch.Patch` a result stored (None in older records)."""
+    if not stored:
+        return None
+    from dispersion.symbolic.patch import Patch
+
+    return Patch.from_dict(stored)
+
+
+def _curve_label(c: Mapping) -> str:
+    """Legend entry of a per-wavelength curve: its degree and size, and its mass with the
+    contact set and gamma_s where they apply (from the stored patch when there is one)."""
+    spec = _spec(c.get("patch"))
+    mass = spec.mass_title() if spec is not None else c["mass"]
+    return f"p = {c['p']} (n = {c['n']}), {mass}"
+
+
+def _plate_geometry(curves: Sequence[Mapping], r) -> str:
+    """The model and aspect ratio the curves share, from their stored patches."""
+    specs = [_spec(c.get("patch")) for c in curves]
+    if specs and all(specs):
+        names = dict.fromkeys(f"Bloch patch r = b/h = {sp.r}" if sp.model == "bloch"
+                              else f"{sp.model} patch" for sp in specs)
+        return " / ".join(names)
+    return f"Bloch patch r = b/h = {r:g}"  # an older record: its stored r
+
+
 def figure_per_wavelength(per_wavelength: Mapping, bar: Mapping, nu: float | None = None):
     """|Relative phase-velocity error| against elements per wavelength on log-log axes, its
     sign by line style: plate S0, A0 and the 1D bar. Colour: mass; marker: degree p."""
@@ -316,10 +343,10 @@ def figure_per_wavelength(per_wavelength: Mapping, bar: Mapping, nu: float | Non
             if c["branch"] == branch:
                 _plot_signed_log(ax, epw, c["error"], _colour(c["mass"]),
                                  _DEGREE_MARKERS.get(c["p"], "d"),
-                                 f"p = {c['p']} (n = {c['n']}), {c['mass']}",
+                                 _curve_label(c),
                                  offset=3 * _MASS_ORDER.get(c["mass"], 0) + c["p"],
                                  zorder=2 + _MASS_ORDER.get(c["mass"], 0))
-        ax.set_title(f"plate {branch}, Bloch patch r = b/h = {per_wavelength['r']:g}",
+        ax.set_title(f"plate {branch}, {_plate_geometry(curves, per_wavelength['r'])}",
                      fontsize="small")
     keys = sorted(bar["error"], key=lambda k: _MASS_ORDER.get(k.split()[1], 9))
     for key in keys:
@@ -358,9 +385,11 @@ def figure_shapes(shapes: Mapping):
         ax.set_xlabel("displacement (unit norm)")
     fig.axes[0].set_ylabel("$y / h$")
     fig.axes[0].legend(fontsize="xx-small")
-    fig.suptitle(f"mode shapes at $\\kappa$ = {shapes['kappa']:g}: exact (lines) and the "
-                 "consistent-mass patch, p = 2, n = 3 (markers; its Omega in brackets)",
-                 fontsize="small")
+    spec = _spec(shapes.get("patch"))
+    patch = (f"the patch {spec.title()}" if spec is not None
+             else "the discrete patch (not recorded in this older result)")
+    fig.suptitle(f"mode shapes at $\\kappa$ = {shapes['kappa']:g}: exact (lines) and {patch} "
+                 "(markers; its Omega in brackets)", fontsize="small")
     return fig
 
 

@@ -72,11 +72,27 @@ def figure_gamma(rows: Sequence[dict], kappas: Sequence[float], exact: dict | No
     left, right = fig.subplots(1, 2)
     plot_gamma_coefficients(rows, ax=left, exact=exact)
     plot_gamma_errors(rows, kappas, ax=right)
+    what = gamma_patch_text(rows)
     where = ", ".join(x for x in (f"nu = {nu:g}" if nu is not None else "",
-                                  f"Bloch r = b/h = {r:g}" if r is not None else "") if x)
-    fig.suptitle(r"Singular mass (top contact): effect of the redistribution weight $\gamma_s$"
-                 + (f" ({where})" if where else ""))
+                                  f"Bloch r = b/h = {r:g}" if r is not None and what is None
+                                  else "") if x)
+    what = what or "singular mass (patch not recorded in this older result)"
+    fig.suptitle(what[:1].upper() + what[1:]
+                 + r": effect of the redistribution weight $\gamma_s$"
+                 + (f" ({where})" if where else ""), fontsize="medium")
     return fig
+
+
+def gamma_patch_text(rows: Sequence[dict]) -> str | None:
+    """The patch of the gamma_s study but its weight, from the patches its rows stored:
+    ``singular mass (contact top), Bloch r = b/h = 2, p = 2, n = 3`` (None in older records)."""
+    if not rows or not all(row.get("patch") for row in rows):
+        return None
+    from dispersion.symbolic.patch import Patch
+
+    specs = [Patch.from_dict(row["patch"]) for row in rows]
+    return " / ".join(dict.fromkeys(f"{sp.mass_name} mass (contact {sp.contact}), "
+                                    f"{sp.geometry_title()}" for sp in specs))
 
 
 def plot_series_departure(data: dict, branch: str, ax=None):

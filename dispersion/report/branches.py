@@ -155,13 +155,11 @@ def render(data: dict, out: Path) -> str:
         lines += ["*Quick subset: coarser kappa grids, fewer solver settings.*", ""]
     lines += [
         "![Figure 2](figure2.png)", "",
-        f"Exact Rayleigh-Lamb branches (nu = {data['nu']}) and the discrete branches of the "
-        f"p = 2, n = 3 patch, Bloch model with the paper's aspect ratio h/b = 2 (r = {r:g}), "
+        f"Exact Rayleigh-Lamb branches (nu = {data['nu']}) and {_figure2_patches(data, r)}, "
         f"{len(data['kappa'])} kappa points. Right: the signed relative error of each exact "
         "branch against the discrete mode of the same through-thickness shape (modal assurance "
-        "criterion >= 0.5), not against the discrete mode of the same index. With contact on "
-        "the top surface the singular mass breaks the mirror symmetry; its higher modes "
-        "resemble no exact branch (MAC < 0.5) and get no error curve.", "",
+        "criterion >= 0.5), not against the discrete mode of the same index."
+        + _symmetry_note(data), "",
         f"Traced roots against 40-digit mpmath ({data['mpmath_points']} random roots): max "
         f"relative error {data['mpmath_error']:.1e}; tracer failures reported: "
         f"{len(data['exact_failures'])}.", "",
@@ -228,14 +226,43 @@ def summary(data: dict) -> str:
     return "\n".join(lines).rstrip("\n") + "\n"
 
 
-def _figure2_title(data, r) -> str:
-    """The title of Figure 2 from the patches the study stored (geometry once, each mass with
-    its contact set and gamma_s); older records without patches keep their stored r."""
+def _figure2_specs(data) -> list:
+    """The patches of Figure 2 as the study stored them ([] in records from before)."""
     from dispersion.symbolic.patch import Patch
 
     stored = [d.get("patch") for d in data["discrete"].values()]
-    if stored and all(stored):
-        specs = [Patch.from_dict(p) for p in stored]
+    return [Patch.from_dict(p) for p in stored] if stored and all(stored) else []
+
+
+def _figure2_patches(data, r) -> str:
+    """The discrete side of Figure 2's caption: geometry once, then each mass, as stored."""
+    from dispersion import defaults
+
+    specs = _figure2_specs(data)
+    if not specs:
+        return f"the discrete branches of the Bloch model with r = b/h = {r:g}"
+    paper = (" (the aspect ratio of the paper's Figure 2)"
+             if specs[0].r == defaults.FIGURE2_R else "")
+    return (f"the discrete branches of the patch {specs[0].geometry_title()}{paper} with "
+            + ", ".join(sp.mass_title() for sp in specs))
+
+
+def _symmetry_note(data) -> str:
+    """Why some singular modes get no error curve, for the contact set the run used."""
+    sides = dict.fromkeys(sp.contact for sp in _figure2_specs(data)
+                          if sp.singular and sp.weights is None and sp.contact != "both")
+    if not sides:
+        return ""
+    return (f" With contact on the {' / '.join(sides)} surface the singular mass breaks the "
+            "mirror symmetry; its higher modes resemble no exact branch (MAC < 0.5) and get "
+            "no error curve.")
+
+
+def _figure2_title(data, r) -> str:
+    """The title of Figure 2 from the patches the study stored (geometry once, each mass with
+    its contact set and gamma_s); older records without patches keep their stored r."""
+    specs = _figure2_specs(data)
+    if specs:
         return (f"nu = {data['nu']}, {specs[0].geometry_title()}; "
                 + ", ".join(sp.mass_title() for sp in specs))
     return f"nu = {data['nu']}, Bloch model, r = b/h = {r:g}"

@@ -129,6 +129,49 @@ def _flag_cell(r: dict) -> str:
     return "UNSTABLE: " + r["energy_flag"] if r["energy_flag"] else "ok"
 
 
+#: How the pages name the time integrators the runs store by name.
+SCHEME_TEXT = {"kane": "Kane's contact-modified Newmark", "standard": "standard Newmark",
+               "explicit": "explicit central differences"}
+
+
+def _scheme_text(data: dict) -> str:
+    """The integrator of the shown scene, from the pair's stored summaries."""
+    names = dict.fromkeys(data["pair"][m]["summary"].get("scheme") for m in ("lumped", "singular"))
+    return " / ".join(SCHEME_TEXT.get(n, str(n)) for n in names if n) or "scheme not recorded"
+
+
+def _elements_text(rows: list) -> str:
+    """The element counts of the Signorini rows, as stored (older records did not store it)."""
+    counts = sorted({r["n_elements"] for r in rows if "n_elements" in r})
+    if not counts:
+        return "element count not recorded (older record)"
+    return " / ".join(str(c) for c in counts) + " elements"
+
+
+def _pair_lines(data: dict) -> list[str]:
+    """The README's lines on the shown scene: its size and step, and each mass's energy
+    change with the spread of its round-off runs."""
+    pair, spread, sc = data["pair"], data["spread"], data["scenario"]
+    lines = [f"Ring scene r = {sc['r_inner']:g}-{sc['r_outer']:g} m, dt = {sc['dt']:g} s "
+             f"({data['steps_per_impact']:.0f} steps per impact), {_scheme_text(data)}:"]
+    for m in ("lumped", "singular"):
+        s, sp = pair[m]["summary"], spread[m]
+        if not s.get("converged"):
+            lines.append(f"- {m} mass: Newton failed.")
+            continue
+        lines.append(f"- {m} mass: energy change {s['energy_change_percent']:+.4g} % "
+                     f"({sp['runs']} runs with round-off perturbations: "
+                     f"{sp['energy_min']:+.4g} .. {sp['energy_max']:+.4g} %), "
+                     f"{sp['events_min']}-{sp['events_max']} contact events "
+                     f"(paper: {data['paper'][m]:+g} %).")
+    return lines
+
+
+def _sweep_line(data: dict) -> str:
+    return (f"- singular mass, the default scene scaled by {data['sweep_scale']:g}: "
+            f"{_rate_text(data['dt_fit'])}.")
+
+
 def render(data: dict, out: Path) -> str:
     """Write ``figure4.png`` and ``ring_grid.png`` into ``out``; return the Markdown."""
     from dispersion.plotting.ring import figure4, plot_grid
@@ -144,7 +187,8 @@ def render(data: dict, out: Path) -> str:
         _rule_check(data),
         "",
         "Every earlier default scene of `dispersion/contact/scenario.py` (its git history), "
-        "run again by this study with Kane's Newmark: energy change in % (contact events).",
+        f"run again by this study with {_scheme_text(data)}: energy change in % (contact "
+        "events).",
         "",
         "| scene | note | steps per impact | lumped | singular |",
         "|---|---|---|---|---|",
@@ -166,7 +210,7 @@ def render(data: dict, out: Path) -> str:
          f"v0/c_T = {sc['v0_over_cT']:g}), nu = {sc['nu']:g}, rho = {sc['rho']:g} kg/m^3, "
          f"v0 = {sc['v0']:g} m/s, {sc['n_xi_elements']} x {sc['n_eta_elements']} quadratic "
          f"NURBS elements, dt = {sc['dt']:g} s, t_end = {sc['t_end']:g} s, "
-         f"{data['steps_per_impact']:.1f} steps per impact; Kane's contact-modified Newmark."),
+         f"{data['steps_per_impact']:.1f} steps per impact; {_scheme_text(data)}."),
         "",
     ]
     if pair["lumped"]["series"] and pair["singular"]["series"]:
@@ -254,7 +298,8 @@ def render(data: dict, out: Path) -> str:
         ("; ".join(f"p = {p}: dt {dt:g}, schemes " + ", ".join(
             dict.fromkeys(r["scheme"] for r in data["signorini"] if r["p"] == p))
             for p, dt in sorted({(r["p"], r["dt"]) for r in data["signorini"]}))
-         + f"; 20 elements, T = {data['signorini'][0]['t_end']:g}. Every scheme is shown on its "
+         + f"; {_elements_text(data['signorini'])}, T = {data['signorini'][0]['t_end']:g}. "
+         "Every scheme is shown on its "
          "own row (no best-of). Energy drift: largest change of the total energy after t = 0 "
          "(% of 1/8); initial state: energy the consistent initial state changed (massless "
          "DOF in equilibrium, % of 1/8); errors: relative L2-in-time errors at x = 0 against "
@@ -278,32 +323,20 @@ def render(data: dict, out: Path) -> str:
     return "\n".join(lines)
 
 
+#: The degree of the Signorini rows the README block quotes (the selection names its label).
+SUMMARY_P = 1
+
+
 def _legacy_summary(data: dict) -> str:
     """A record from before the per-scheme figures and the dt spread (no ``dt_spread``)
     renders as it was stored; ``dispersion reproduce`` replaces it."""
-    pair, spread, sc = data["pair"], data["spread"], data["scenario"]
-    cells = []
-    for m in ("lumped", "singular"):
-        s, sp = pair[m]["summary"], spread[m]
-        if not s.get("converged"):
-            cells.append(f"- {m} mass: Newton failed.")
-            continue
-        cells.append(f"- {m} mass: energy change {s['energy_change_percent']:+.4g} % "
-                     f"({sp['runs']} runs with round-off perturbations: "
-                     f"{sp['energy_min']:+.4g} .. {sp['energy_max']:+.4g} %), "
-                     f"{sp['events_min']}-{sp['events_max']} contact events "
-                     f"(paper: {data['paper'][m]:+g} %).")
-    sig = [r for r in data["signorini"] if r["p"] == 1]
+    sig = [r for r in data["signorini"] if r["p"] == SUMMARY_P]
     best = {m: min(r["stress_rel_l2"] for r in sig if r["mass"] == m)
             for m in ("lumped", "consistent", "singular")}
-    fit = data["dt_fit"]
-    rate = _rate_text(fit)
     return "\n".join([
-        f"Ring scene r = {sc['r_inner']:g}-{sc['r_outer']:g} m, dt = {sc['dt']:g} s "
-        f"({data['steps_per_impact']:.0f} steps per impact), Kane's Newmark:",
-        *cells,
-        f"- singular mass, the default scene scaled by {data['sweep_scale']:g}: {rate}.",
-        f"- 1D Signorini bar (P1): relative L2 error of the contact stress lumped "
+        *_pair_lines(data),
+        _sweep_line(data),
+        f"- 1D Signorini bar (P{SUMMARY_P}): relative L2 error of the contact stress lumped "
         f"{best['lumped']:.3f}, consistent {best['consistent']:.3f}, singular "
         f"{best['singular']:.3f}.",
     ]) + "\n"
@@ -313,43 +346,28 @@ def summary(data: dict) -> str:
     """The README's ring block: the shown scene's energy figures with their spread."""
     if "dt_spread" not in data:
         return _legacy_summary(data)
-    pair, spread, sc = data["pair"], data["spread"], data["scenario"]
     cells = []
     for m in ("lumped", "singular"):
-        s, sp = pair[m]["summary"], spread[m]
-        if not s.get("converged"):
-            cells.append(f"- {m} mass: Newton failed.")
-            continue
-        cells.append(f"- {m} mass: energy change {s['energy_change_percent']:+.4g} % "
-                     f"({sp['runs']} runs with round-off perturbations: "
-                     f"{sp['energy_min']:+.4g} .. {sp['energy_max']:+.4g} %), "
-                     f"{sp['events_min']}-{sp['events_max']} contact events "
-                     f"(paper: {data['paper'][m]:+g} %).")
-    ds = data.get("dt_spread")
-    if ds:
-        for m in ("lumped", "singular"):
-            d = ds[m]
-            cells.append(f"- {m} mass over dt = " + ", ".join(f"{r['dt']:g}" for r in d["runs"])
-                         + f" s and the round-off runs ({d['all_runs']} runs): "
-                         f"{d['energy_min']:+.4g} .. {d['energy_max']:+.4g} %, "
-                         f"{d['events_min']}-{d['events_max']} contact events.")
-    sig = [r for r in data["signorini"] if r["p"] == 1]
-    schemes = list(dict.fromkeys(r["scheme"] for r in sig))
+        d = data["dt_spread"][m]
+        cells.append(f"- {m} mass over dt = " + ", ".join(f"{r['dt']:g}" for r in d["runs"])
+                     + f" s and the round-off runs ({d['all_runs']} runs): "
+                     f"{d['energy_min']:+.4g} .. {d['energy_max']:+.4g} %, "
+                     f"{d['events_min']}-{d['events_max']} contact events.")
+    sig = [r for r in data["signorini"] if r["p"] == SUMMARY_P]
     per_scheme = []
-    for scheme in schemes:
+    for scheme in dict.fromkeys(r["scheme"] for r in sig):
         rows = {r["mass"]: r for r in sig if r["scheme"] == scheme}
         text = ", ".join(f"{m} {rows[m]['stress_rel_l2']:.3f}"
                          + (" (UNSTABLE: not a result)" if rows[m].get("energy_flag") else "")
                          for m in ("lumped", "consistent", "singular") if m in rows)
         per_scheme.append(f"  - {scheme}: {text}")
-    fit = data["dt_fit"]
-    rate = _rate_text(fit)
+    steps = ", ".join(f"dt {dt:g}" for dt in dict.fromkeys(r["dt"] for r in sig))
     return "\n".join([
-        f"Ring scene r = {sc['r_inner']:g}-{sc['r_outer']:g} m, dt = {sc['dt']:g} s "
-        f"({data['steps_per_impact']:.0f} steps per impact), Kane's Newmark:",
+        *_pair_lines(data),
         *cells,
-        f"- singular mass, the default scene scaled by {data['sweep_scale']:g}: {rate}.",
-        "- 1D Signorini bar (P1, 20 elements, dt 0.002): relative L2 error of the contact "
-        "stress, per scheme:",
+        _sweep_line(data),
+        f"- 1D Signorini bar (P{SUMMARY_P}, {_elements_text(sig)}, {steps}): relative L2 "
+        "error of the "
+        "contact stress, per scheme:",
         *per_scheme,
     ]) + "\n"

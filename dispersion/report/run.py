@@ -28,7 +28,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
-from dispersion import results
+from dispersion import defaults, results
 from dispersion.errors import InputError, check_int_in_range
 from dispersion.io import write_text
 from dispersion.report import SECTIONS, section_module
@@ -40,10 +40,10 @@ from dispersion.sweep import MAX_JOBS_PER_CPU, default_jobs, process_pool, progr
 __all__ = ["DEFAULT_OUT", "DEFAULT_REFERENCE", "MAX_JOBS_PER_CPU", "ReproduceRun",
            "reproduce", "measure_sections", "render_folder", "check_sections"]
 
-#: Where a user's run goes (untracked; listed in .gitignore).
-DEFAULT_OUT = "reproduced"
-#: The committed reference a run is compared with.
-DEFAULT_REFERENCE = "reports"
+#: Where a user's run goes, and the committed reference it is compared with (stated in
+#: :mod:`dispersion.defaults`, which the command line reads without this module).
+DEFAULT_OUT = defaults.REPORT_OUT
+DEFAULT_REFERENCE = defaults.REPORT_REFERENCE
 #: Sections whose renderer draws no figure; every other one needs matplotlib (``plots``).
 _NO_FIGURES = ("coefficients",)
 
@@ -105,8 +105,11 @@ def measure_sections(
     return seconds
 
 
-def render_folder(folder: Path) -> list[SectionResult]:
-    """Render every section whose JSON is in ``folder`` and write ``index.md``; measure nothing."""
+def render_folder(folder: Path, shown: Path | None = None) -> list[SectionResult]:
+    """Render every section whose JSON is in ``folder`` and write ``index.md``; measure nothing.
+
+    ``shown`` is the folder the user named, for the error message (``folder`` may be a stage).
+    """
     folder = Path(folder)
     parts, envelopes = [], []
     for name in SECTIONS:
@@ -118,7 +121,7 @@ def render_folder(folder: Path) -> list[SectionResult]:
         parts.append(SectionResult(name, markdown, env.get("seconds") or 0.0))
         envelopes.append(env)
     if not parts:
-        raise InputError(f"--out {folder} holds no section results (*.json) to render")
+        raise InputError(f"--out {shown or folder} holds no section results (*.json) to render")
     write_text(folder / "index.md", render_index(parts, envelopes))
     return parts
 
@@ -235,7 +238,7 @@ def reproduce(
                                  progress=show)
             finally:
                 pool.shutdown(wait=True, cancel_futures=True)
-        parts = render_folder(staged)
+        parts = render_folder(staged, shown=target)
         compared = [p.name for p in parts] if render else names
         verdict = _verdict(reference, ref_envs, staged, compared)
         if not update_reference:

@@ -56,16 +56,46 @@ def _fmt(x, digits: int = 4) -> str:
     return "-" if x is None else f"{x:.{digits}g}"
 
 
+def _bar_text(rows: list) -> str:
+    """The bar of study (c) as its rows stored it (degree and Courant number)."""
+    kinds = dict.fromkeys((r["p"], r["courant"]) for r in rows if "p" in r and "courant" in r)
+    if not kinds:
+        return "a B-spline bar (degree and step not recorded in this older result)"
+    return " / ".join(f"a B-spline bar of degree {p} at Courant number {c:g}" for p, c in kinds)
+
+
+def _contact_text(d: dict) -> str:
+    """The contact set of the singular masses, as the studies' patches stored it."""
+    from dispersion.symbolic.patch import Patch
+
+    rows = [row for key in ("gamma", "orders", "dt_crit", "radius") for row in d.get(key, ())]
+    specs = [Patch.from_dict(row["patch"]) for row in rows if row.get("patch")]
+    sides = dict.fromkeys(sp.contact for sp in specs if sp.singular)
+    return f", contact on the {' / '.join(sides)} surface" if sides else ""
+
+
+def _mass_cell(row: dict) -> str:
+    """The row's mass as its stored patch states it (contact and gamma_s for a singular one)."""
+    if not row.get("patch"):
+        return row["mass"]  # an older record: the mass name only
+    from dispersion.symbolic.patch import Patch
+
+    return Patch.from_dict(row["patch"]).mass_title().replace(" mass", "", 1)
+
+
 def _markdown(d: dict) -> str:
+    from dispersion.plotting.studies import gamma_patch_text
+
     quick = d["quick"]
     nu, r = d["nu"], d["r"]
     lines = ["## Studies beyond the paper", ""]
     lines += [
-        f"Bloch patch with square elements (r = b/h = {r}), nu = {nu}, contact on the top "
-        "surface; all data in [studies.json](studies.json).", "",
+        f"Bloch patch with square elements (r = b/h = {r}), nu = {nu}{_contact_text(d)}; all "
+        "data in [studies.json](studies.json).", "",
         "### (a) The redistribution weight gamma_s", "",
-        "The paper uses one weight and leaves others open. Singular mass, quadratic splines, "
-        "n = 3: the coefficients of Omega^2 and the relative error of Omega against the exact "
+        "The paper uses one weight and leaves others open. Patch: "
+        + (gamma_patch_text(d["gamma"]) or "singular mass (not recorded in this older result)")
+        + ": the coefficients of Omega^2 and the relative error of Omega against the exact "
         "Rayleigh-Lamb branch, at each gamma_s.", "",
         "![gamma_s study](studies_gamma.png)", "",
     ]
@@ -101,7 +131,7 @@ def _markdown(d: dict) -> str:
     for row in d["orders"]:
         s0, a0 = (f"> {row['order']}" if row[f"{b}_order"] is None else row[f"{b}_order"]
                   for b in ("S0", "A0"))
-        lines.append(f"| {row['p']} | {row['n']} | {row['mass']} | {s0} | {a0} | "
+        lines.append(f"| {row['p']} | {row['n']} | {_mass_cell(row)} | {s0} | {a0} | "
                      f"{_fmt(row['S0'].get('4'))} | "
                      f"{_fmt(row['A0'].get('6'))} |")
     lines += ["", "### (c) Where the methods fail", "",
@@ -109,7 +139,7 @@ def _markdown(d: dict) -> str:
               "over the Brillouin zone, in units h/c_T (massless DOFs condensed):", "",
               "| p | n | mass | dt_crit |", "|---|---|---|---|"]
     for row in d["dt_crit"]:
-        lines.append(f"| {row['p']} | {row['n']} | {row['mass']} | {row['dt_crit']:.4f} |")
+        lines.append(f"| {row['p']} | {row['n']} | {_mass_cell(row)} | {row['dt_crit']:.4f} |")
     lines += ["", f"Radius of validity of the truncated series: the smallest kappa at which "
               f"Omega from the series departs from the numeric branch (exact Rayleigh-Lamb "
               f"root, or the discrete patch's own eigenvalue) by more than "
@@ -122,8 +152,8 @@ def _markdown(d: dict) -> str:
                      f"{_fmt(row['kappa_star'], 3)} |")
     lines += ["", "Newmark (beta = 1/4, gamma = 1/2) with and without the contact "
               "modification of Kane et al. (paper eqs 6-10; 'standard': plain Newmark with "
-              "the contact force treated like any other force): quadratic B-spline bar hitting a rigid wall "
-              "(dispersion.contact.bar, Courant number 0.5), whose exact solution conserves "
+              f"the contact force treated like any other force): {_bar_text(d['bar'])} hitting a "
+              "rigid wall (dispersion.contact.bar), whose exact solution conserves "
               "energy and keeps a constant contact stress. Oscillation = standard deviation of "
               "the contact force over the middle of the contact, over rho c v0.", "",
               "| scheme | mass | elements | energy change % | force oscillation | "

@@ -136,6 +136,7 @@ def _per_wavelength(nu: float, quick: bool) -> dict:
             disc = fundamental_branches(patch, nu, kappa)
             for b in ("S0", "A0"):
                 curves.append({"p": p, "n": n, "mass": mass, "branch": b,
+                               "patch": patch.spec.as_dict(),
                                "error": _arr(disc[b] / exact[b] - 1)})
     return {"r": _R_SQUARE, "elements_per_wavelength": _arr(epw), "curves": curves}
 
@@ -145,7 +146,7 @@ def _shapes(nu: float, kappa: float = 1.0) -> dict:
     exact = trace_branches(nu, [kappa], 4.0)
     patch = plate_patch(model="bloch", r=_R_FIG2, mass="consistent")
     W, X = discrete_modes(patch, nu, [kappa])
-    out = {"kappa": kappa, "y": _arr(y), "modes": []}
+    out = {"kappa": kappa, "patch": patch.spec.as_dict(), "y": _arr(y), "modes": []}
     for label in ("S0", "A0", "A1", "S1"):
         w = float(exact.omega[label][0])
         ex = exact_mode_shape(label[0], kappa, w, nu, y)

@@ -49,6 +49,7 @@ import sympy
 
 from dispersion.waves.discrete_branches import fundamental_branches
 from dispersion.waves.timestep import critical_time_step
+from dispersion.symbolic.patch import as_patch
 from dispersion.symbolic.plate import plate_patch
 from dispersion.sweep import parallel_map
 from dispersion.waves.exact_branches import exact_fundamental
@@ -66,6 +67,8 @@ __all__ = [
 NU = sympy.Rational(3, 10)  #: Poisson's ratio of the studies (the paper's Figure 2)
 R_ASPECT = 2  #: aspect ratio b/h of the Bloch patch (square elements, b = 2h)
 _MODEL = {"model": "bloch", "r": R_ASPECT}
+BAR_P = 2  #: degree of the B-spline bar of study (c)
+BAR_COURANT = 0.5  #: its time step over the element's transit time h / c
 
 
 @dataclass(frozen=True)
@@ -138,10 +141,11 @@ def _gamma_case(gamma, order: int, kappas: tuple[float, ...]) -> dict:
     """Study (a) at one gamma_s: series and signed branch errors of the singular mass."""
     g = sympy.nsimplify(gamma)
     kw = dict(_MODEL, mass="singular", contact="top", gamma_s=g)
-    out = {"gamma_s": float(g)}
+    patch = plate_patch(**kw)
+    out = {"gamma_s": float(g), "patch": patch.spec.as_dict()}
     for branch in ("S0", "A0"):
         out[branch] = {str(j): float(v) for j, v in _discrete(branch, order, NU, **kw).items()}
-    num = fundamental_branches(plate_patch(**kw), float(NU), kappas)
+    num = fundamental_branches(patch, float(NU), kappas)
     for branch in ("S0", "A0"):
         ref = exact_fundamental(branch[0], kappas, float(NU))
         out[f"{branch}_error"] = [float(e) for e in (num[branch] - ref) / ref]
@@ -151,9 +155,10 @@ def _gamma_case(gamma, order: int, kappas: tuple[float, ...]) -> dict:
 def _order_case(case: tuple[int, int, str], order: int) -> dict:
     """Study (b) for one (p, n, mass): series and orders."""
     p, n, mass = case
-    out = {"p": p, "n": n, "mass": mass, "order": order}
+    spec = as_patch(p=p, n=n, mass=mass, contact="top", **_MODEL)
+    out = {"p": p, "n": n, "mass": mass, "order": order, "patch": spec.as_dict()}
     for branch in ("S0", "A0"):
-        disc = _discrete(branch, order, NU, p=p, n=n, mass=mass, contact="top", **_MODEL)
+        disc = _discrete(branch, order, NU, patch=spec)
         ex = _exact(branch, order, NU)
         out[branch] = {str(j): float(v) for j, v in disc.items()}
         out[f"{branch}_order"] = order_of_accuracy(disc, ex)
@@ -163,23 +168,25 @@ def _order_case(case: tuple[int, int, str], order: int) -> dict:
 def _dt_case(case: tuple[int, int, str], n_theta: int) -> dict:
     p, n, mass = case
     patch = plate_patch(p, n, "bloch", R_ASPECT, mass=mass, contact="top")
-    return {"p": p, "n": n, "mass": mass,
+    return {"p": p, "n": n, "mass": mass, "patch": patch.spec.as_dict(),
             "dt_crit": critical_time_step(patch, float(NU), n_theta=n_theta)}
 
 
 def _radius_case(case: tuple[str, str, int], kappa: np.ndarray, tol: float) -> dict:
     """Study (c): truncated series against the numeric branch on a kappa grid."""
     mass, branch, order = case
+    spec = None
     if mass == "exact":
         coeffs = _exact(branch, order, NU)
         ref = exact_fundamental(branch[0], kappa, float(NU))
     else:
-        coeffs = _discrete(branch, order, NU, mass=mass, contact="top", **_MODEL)
-        ref = fundamental_branches(plate_patch(mass=mass, contact="top", **_MODEL), float(NU),
-                                   kappa)[branch]
+        spec = as_patch(mass=mass, contact="top", **_MODEL)
+        coeffs = _discrete(branch, order, NU, patch=spec)
+        ref = fundamental_branches(plate_patch(spec), float(NU), kappa)[branch]
     approx = series_frequency(coeffs, kappa)
     return {
         "mass": mass, "branch": branch, "order": order,
+        "patch": None if spec is None else spec.as_dict(),
         "kappa_star": departure_kappa(kappa, ref, approx, tol),
         "deviation": (np.abs(approx - ref) / ref).tolist(),
     }
@@ -190,10 +197,11 @@ def _bar_case(case: tuple[str, str], n_elements: int) -> dict:
     from dispersion.contact.bar import simulate_bar
 
     scheme, mass = case
-    m = simulate_bar(n_elements=n_elements, mass=mass, scheme=scheme).metrics
+    m = simulate_bar(n_elements=n_elements, p=BAR_P, mass=mass, scheme=scheme,
+                     courant=BAR_COURANT).metrics
     keys = ("energy_change_percent", "force_oscillation", "duration_error", "rebound_error")
-    return {"scheme": scheme, "mass": mass, "n_elements": n_elements,
-            **{k: float(m[k]) for k in keys}}
+    return {"scheme": scheme, "mass": mass, "n_elements": n_elements, "p": BAR_P,
+            "courant": BAR_COURANT, **{k: float(m[k]) for k in keys}}
 
 
 def measure_studies(quick: bool = False, executor: Executor | None = None) -> Studies:

@@ -16,11 +16,13 @@ keep the translational mass; weights in [0, 1] keep the lumped form non-negative
 The paper's quadratic element (eqs 2-4) with contact at node 3 sends :math:`\\gamma_s` of
 :math:`N_3` to the far node 1 and :math:`1-\\gamma_s` to the neighbour node 2:
 
+>>> import sympy
 >>> R = redistribution_matrix(3, contact_weights(3, "top", sympy.Rational(1, 2)))
 >>> R.tolist()
 [[1, 0, 0], [0, 1, 0], [1/2, 1/2, 0]]
 
-Works on sympy matrices (exact) and on numpy / scipy.sparse arrays alike.
+Works on sympy matrices (exact) and on numpy / scipy.sparse arrays alike; sympy and scipy
+are imported only where such a matrix is made or met, so a numeric scene runs on numpy alone.
 
 References
 ----------
@@ -32,12 +34,17 @@ from __future__ import annotations
 import warnings
 from collections.abc import Mapping
 
-import numpy as np
-import sympy
+from typing import TYPE_CHECKING
 
+import numpy as np
+
+from dispersion import defaults
 from dispersion.errors import (IndefiniteMassWarning, InputError, as_real, check_choice,
                      check_positive_int, check_real_in_range)
-from dispersion.symbolic.mass_rule import RULE_NAMES
+from dispersion.symbolic.mass_rule import is_exact, is_sparse
+
+if TYPE_CHECKING:
+    import sympy
 
 __all__ = [
     "MASS_VARIANTS",
@@ -50,8 +57,8 @@ __all__ = [
 ]
 
 #: Names of the registered mass rules (:mod:`dispersion.symbolic.mass_rule`).
-MASS_VARIANTS = RULE_NAMES
-CONTACT_SETS = ("top", "bottom", "both")
+MASS_VARIANTS = defaults.MASS_VARIANTS
+CONTACT_SETS = defaults.CONTACT_SETS
 
 
 def contact_weights(n: int, contact: str = "top", gamma_s=0) -> dict[int, dict[int, object]]:
@@ -92,6 +99,8 @@ def redistribution_matrix(
         Weights outside [0, 1] raise :class:`InputError` unless this is set; then they give
         an :class:`IndefiniteMassWarning` (the lumped singular mass loses definiteness).
     """
+    import sympy
+
     n = check_positive_int("n (number of basis functions)", n, minimum=2)
     check_real_in_range("tol", tol, 0, 1)
     if not isinstance(weights, Mapping) or not all(isinstance(ws, Mapping)
@@ -138,24 +147,26 @@ def redistribution_matrix(
 
 def row_sum_lump(M):
     """Diagonal matrix of row sums of ``M`` (sympy, numpy or scipy.sparse in, same kind out)."""
-    if isinstance(M, sympy.MatrixBase):
-        return sympy.diag(*[sum(M.row(i)) for i in range(M.rows)])
-    import scipy.sparse as sp
+    if is_exact(M):
+        import sympy
 
-    if sp.issparse(M):
+        return sympy.diag(*[sum(M.row(i)) for i in range(M.rows)])
+    if is_sparse(M):
+        import scipy.sparse as sp
+
         return sp.diags(np.asarray(M.sum(axis=1)).ravel()).tocsr()
     return np.diag(np.asarray(M).sum(axis=1))
 
 
 def redistributed_mass(M, R, lumped: bool = False):
     """:math:`R^T M R` (eq 1 left), or its row sums with ``lumped=True`` (eq 1 right)."""
-    if isinstance(M, sympy.MatrixBase):
+    if is_exact(M):
+        import sympy
+
         R = sympy.Matrix(R)
         Mm = R.T * M * R
     else:
-        import scipy.sparse as sp
-
-        if not sp.issparse(R):
+        if not is_sparse(R):
             R = np.asarray(R, dtype=float)
         Mm = R.T @ M @ R
     return row_sum_lump(Mm) if lumped else Mm

@@ -49,23 +49,23 @@ CMAME 195 (2006) 5257-5296 (lumped IGA masses). M. Abramowitz, I. Stegun, 25.4.3
 from __future__ import annotations
 
 import math
+import sys
 import warnings
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, fields
 from fractions import Fraction
 from functools import lru_cache
+from typing import TYPE_CHECKING
 
 import numpy as np
-import sympy
 
 from dispersion.errors import IndefiniteMassWarning, InputError, check_positive_int
-from dispersion.symbolic.spline_mass import (
-    PERIODIC_ROWS,
-    gram_matrix,
-    greville_matrix,
-    hrz_matrix,
-    lobatto_matrix,
-)
+
+if TYPE_CHECKING:
+    import sympy
+
+# sympy (exact matrices, symbolic/spline_mass) and scipy (sparse matrices) are imported
+# where such a matrix is made: a float bar builds and checks its mass on numpy alone.
 
 __all__ = [
     "MassProperties",
@@ -83,7 +83,21 @@ __all__ = [
     "user_rule",
     "rule_from_toml",
     "x_mass_coefficients",
+    "is_exact",
+    "is_sparse",
 ]
+
+
+def is_exact(M) -> bool:
+    """True for a sympy matrix; never imports sympy (such a matrix means it is loaded)."""
+    sympy = sys.modules.get("sympy")
+    return sympy is not None and isinstance(M, sympy.MatrixBase)
+
+
+def is_sparse(M) -> bool:
+    """True for a scipy.sparse matrix; never imports scipy (such a matrix means it is loaded)."""
+    sp = sys.modules.get("scipy.sparse")
+    return sp is not None and sp.issparse(M)
 
 
 class TranslationalMassWarning(UserWarning):
@@ -129,7 +143,7 @@ class MassSpace:
 
     @property
     def exact(self) -> bool:
-        return isinstance(self.M, sympy.MatrixBase)
+        return is_exact(self.M)
 
 
 @dataclass(frozen=True)
@@ -163,17 +177,15 @@ class MassRule:
 
 
 def _total(M):
-    if isinstance(M, sympy.MatrixBase):
+    if is_exact(M):
         return sum(M)
     return float(np.asarray(M.sum()))
 
 
 def _dense(M) -> np.ndarray:
-    if isinstance(M, sympy.MatrixBase):
+    if is_exact(M):
         return np.array(M.tolist(), dtype=float)
-    import scipy.sparse as sp
-
-    return M.toarray() if sp.issparse(M) else np.asarray(M, dtype=float)
+    return M.toarray() if is_sparse(M) else np.asarray(M, dtype=float)
 
 
 def _like(A_exact: sympy.Matrix, space: MassSpace, reference_exact: sympy.Matrix):
@@ -184,11 +196,13 @@ def _like(A_exact: sympy.Matrix, space: MassSpace, reference_exact: sympy.Matrix
     """
     if space.exact:
         return A_exact
-    import scipy.sparse as sp
-
     scale = _total(space.M) / float(sum(reference_exact))
     A = scale * np.array(A_exact.tolist(), dtype=float)
-    return sp.csr_matrix(A) if sp.issparse(space.M) else A
+    if is_sparse(space.M):
+        import scipy.sparse as sp
+
+        return sp.csr_matrix(A)
+    return A
 
 
 def _row_sum(M):
@@ -223,24 +237,32 @@ def _build_singular(space, lump: bool = False):
 
 def _build_hrz(space):
     if space.kv is not None and (space.exact or space.elements is None):
+        from dispersion.symbolic.spline_mass import gram_matrix, hrz_matrix
+
         return _like(hrz_matrix(space.kv), space, gram_matrix(space.kv))
     if space.elements is None:
         _need_kv(space, "hrz")
     conn, Me = space.elements
-    import scipy.sparse as sp
-
     diag = np.einsum("eii->ei", Me)
     diag = diag * (Me.sum(axis=(1, 2)) / diag.sum(axis=1))[:, None]
     d = np.bincount(np.asarray(conn).ravel(), diag.ravel(), minlength=space.n)
-    return sp.diags(d).tocsr() if sp.issparse(space.M) else np.diag(d)
+    if is_sparse(space.M):
+        import scipy.sparse as sp
+
+        return sp.diags(d).tocsr()
+    return np.diag(d)
 
 
 def _build_greville(space):
+    from dispersion.symbolic.spline_mass import gram_matrix, greville_matrix
+
     kv = _need_kv(space, "nodal-greville")
     return _like(greville_matrix(kv), space, gram_matrix(kv))
 
 
 def _build_lobatto(space):
+    from dispersion.symbolic.spline_mass import gram_matrix, lobatto_matrix
+
     kv = _need_kv(space, "nodal-lobatto")
     return _like(lobatto_matrix(kv), space, gram_matrix(kv))
 
@@ -287,6 +309,10 @@ def get_rule(mass) -> MassRule:
 
 def gram_space(kv, R=None) -> MassSpace:
     """The exact :class:`MassSpace` of knot vector ``kv``: its Gram matrix :math:`\\int N N^T`."""
+    import sympy
+
+    from dispersion.symbolic.spline_mass import gram_matrix
+
     return MassSpace(sympy.Matrix(gram_matrix(kv)), kv, None, R)
 
 
@@ -307,7 +333,9 @@ def check_mass(rule: MassRule, Mv, M, tol: float = 1e-10) -> MassCheck:
     (the warning says if the rule stated otherwise). ``tol`` is relative to the largest entry (float matrices; exact ones compare
     exactly, except the eigenvalues).
     """
-    exact = isinstance(Mv, sympy.MatrixBase)
+    exact = is_exact(Mv)
+    if exact:
+        import sympy
     if not exact and Mv.shape[0] > DENSE_CHECK_MAX:
         return _check_large(rule, Mv, M, tol)
     A = _dense(Mv)
@@ -323,7 +351,7 @@ def check_mass(rule: MassRule, Mv, M, tol: float = 1e-10) -> MassCheck:
         diagonal = Mv.is_diagonal()
         zero = [i for i in range(n) if all(v == 0 for v in Mv.row(i))]
         translational = sympy.expand(sum(Mv) - sum(sympy.Matrix(M))) == 0 \
-            if isinstance(M, sympy.MatrixBase) else abs(float(sum(Mv)) - _total(M)) <= tol * scale * n
+            if is_exact(M) else abs(float(sum(Mv)) - _total(M)) <= tol * scale * n
     else:
         symmetric = bool(np.allclose(A, A.T, rtol=0, atol=tol * scale))
         diagonal = bool(np.all(np.abs(A - np.diag(np.diag(A))) <= tol * scale))
@@ -428,7 +456,9 @@ def mass_matrix(mass, space: MassSpace, *, check: bool = True):
     Mv = rule.build(space)
     if isinstance(Mv, (list, tuple)):
         Mv = np.asarray(Mv, dtype=float)
-    if space.exact and not isinstance(Mv, sympy.MatrixBase):
+    if space.exact and not is_exact(Mv):
+        import sympy
+
         Mv = sympy.Matrix(Mv)
     if check:
         result = check_mass(rule, Mv, space.M)
@@ -563,7 +593,10 @@ def x_mass_coefficients(rule, p: int) -> tuple[tuple[int, sympy.Rational], ...]:
     >>> x_mass_coefficients("nodal-greville", 2)   # N = 3/4 at its Greville point, 1/8 beside
     ((-2, 1/64), (-1, 3/16), (0, 19/32), (1, 3/16), (2, 1/64))
     """
+    import sympy
+
     from dispersion.symbolic.bspline import open_knot_vector
+    from dispersion.symbolic.spline_mass import PERIODIC_ROWS
 
     rule = get_rule(rule)
     if rule.redistributes:

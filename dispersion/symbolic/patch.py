@@ -112,6 +112,13 @@ class Patch:
         if self.contact not in CONTACT_SETS:
             raise InputError(f"contact must be one of {', '.join(CONTACT_SETS)}; "
                              f"got {self.contact!r}")
+        if (self.contact == "both" and n < 4 and weights is None and gamma_s != 0
+                and get_rule(self.mass).redistributes):
+            # each surface sends gamma_s to its second neighbour inward (paper eqs 2-3): with
+            # three points that is the other surface, itself in contact
+            raise InputError(f"contact 'both' needs n >= 4 control points or gamma_s = 0 (with "
+                             f"n = {n} each surface's second neighbour is the other surface); "
+                             f"got n = {n}, gamma_s = {gamma_s}")
         nu = self.nu
         if nu is not None:
             from dispersion.errors import check_nu

@@ -75,19 +75,10 @@ __all__ = [
     "x_taylor",
 ]
 
-from dispersion.defaults import MODELS  # noqa: E402 - stated with the defaults
+# stated with the defaults (a light module the command line reads without sympy)
+from dispersion import defaults as _defaults  # noqa: E402
+from dispersion.defaults import MODELS, N_MAX, P_MAX  # noqa: E402
 _y = sympy.Symbol("y")
-
-#: Highest degree p through the thickness. The rule: the float pencil of the numeric branches
-#: keeps digits. The thickness Gram matrix Y_00 of one element (n = p + 1) has condition
-#: number 2.4e4 at p = 8, 1.2e9 at p = 16, 6.3e13 at p = 24 and 4.1e17 at p = 32 (measured,
-#: numpy.linalg.cond): beyond p = 24 a float64 solve keeps no correct digit.
-P_MAX = 24
-#: Most control points n through the thickness. The rule: the patch builds in about a minute.
-#: The singular mass is the dearest (sympy products of n x n matrices, growth n^3): p = 2,
-#: n = 80 2.1 s, n = 160 16.5 s (measured on the busy 2-core machine), so n = 200 takes
-#: about 30 s and n = 256 over a minute. Memory stays below 100 MiB.
-N_MAX = 200
 
 
 def check_size(p, n) -> tuple[int, int]:
@@ -261,10 +252,9 @@ def _build(spec, allow_negative: bool) -> PlatePatch:
                       rule=rule)
 
 
-#: Valid aspect ratios r = b/h of the Bloch model. Outside, the float pencil of the numeric
-#: branches loses its digits (the d-function is a difference of O(1) terms divided by r^2,
-#: and the S0 frequency at r = 1e-8 came out 100 % wrong), and exact rationals grow huge.
-R_RANGE = (sympy.Rational(1, 1000), sympy.Integer(1000))
+#: Valid aspect ratios r = b/h of the Bloch model (:data:`dispersion.defaults.R_RANGE`, the
+#: rule stated there) as sympy Rationals.
+R_RANGE = tuple(sympy.Rational(r.numerator, r.denominator) for r in _defaults.R_RANGE)
 
 
 def _rational(name: str, value) -> sympy.Rational:

@@ -71,6 +71,12 @@ class BranchViews:
     def __repr__(self) -> str:
         return f"{type(self).__name__}({', '.join(self._facts())})"
 
+    def _symmetry_of(self, label: str) -> str:
+        """The symmetry of branch ``label``: discrete sets store a dict, exact ones a rule."""
+        if isinstance(self.symmetry, dict):
+            return self.symmetry.get(label, "")
+        return self.symmetry(label)
+
     def _repr_html_(self) -> str:
         import html
 
@@ -78,8 +84,7 @@ class BranchViews:
         for label, w in self.omega.items():
             w = np.asarray(w, dtype=float)
             ok = np.isfinite(w)
-            sym = self.symmetry.get(label, "") if isinstance(self.symmetry, dict) else (
-                self.symmetry(label))
+            sym = self._symmetry_of(label)
             lo, hi = (_g(float(w[ok].min())), _g(float(w[ok].max()))) if ok.any() else ("-", "-")
             rows.append(f"<tr><td>{html.escape(label)}</td><td>{html.escape(sym)}</td>"
                         f"<td>{int(ok.sum())}</td><td>{lo}</td><td>{hi}</td></tr>")
@@ -97,8 +102,7 @@ class BranchViews:
         for label, w in self.omega.items():
             w = np.asarray(w, dtype=float)
             ok = np.isfinite(w)
-            sym = self.symmetry.get(label, "") if isinstance(self.symmetry, dict) else (
-                self.symmetry(label))
+            sym = self._symmetry_of(label)
             cols = {"kappa": kappa[ok], "branch": label, "symmetry": sym, "Omega": w[ok]}
             if group:
                 g = np.asarray(group.get(label, np.full(kappa.shape, np.nan)), dtype=float)

@@ -4,15 +4,15 @@ For real :math:`\\kappa` each symmetry class is a self-adjoint eigenproblem in
 :math:`\\Omega^2`: its branches never cross (they veer), so the j-th root in increasing
 :math:`\\Omega` *is* branch :math:`S_j` (or :math:`A_j`) once no root is skipped and none is
 counted twice. The count is exact, not scanned: the scaled function
-:func:`dispersion.waves.rayleigh_lamb.scaled_frequency_function` decreases strictly between
-consecutive *Mindlin bounds* (:func:`dispersion.waves.rayleigh_lamb.mindlin_bounds`, the
+:func:`dispersion.waves.scaled_frequency.scaled_frequency_function` decreases strictly between
+consecutive *Mindlin bounds* (:func:`dispersion.waves.scaled_frequency.mindlin_bounds`, the
 closed-form frequencies of the plate with mixed faces) from :math:`+\\infty` to
 :math:`-\\infty`, so for :math:`\\kappa > 0` exactly one root lies in each interval between
 bounds (in the first, between 0 and the first bound). The tracer solves one bracketed,
 monotone problem per interval (Illinois on :math:`\\arctan R`, which is bounded and smooth
 across the poles) and then *certifies* each root: at :math:`\\Omega (1 \\pm 5\\cdot10^{-13})`
 (or at the bounding pole itself, whose sign is known) the function must have the expected sign
-above its rounding bound (:func:`dispersion.waves.rayleigh_lamb.scaled_with_noise`). A root that
+above its rounding bound (:func:`dispersion.waves.scaled_frequency.scaled_with_noise`). A root that
 cannot be certified to ``CERTIFY_RTOL`` is still returned (the best float answer) and its kappa
 is listed in ``failures`` with the reason; nothing is dropped silently. Near-double roots
 (veering pairs, coincident cut-offs) are separated by a bound between them, so they are
@@ -57,12 +57,9 @@ from dispersion.errors import (
     check_real_in_range,
     check_wavenumbers,
 )
-from dispersion.waves.rayleigh_lamb import (
-    OMEGA_MAX,
-    cutoff_frequencies,
-    scaled_with_noise,
-    speed_ratio_squared,
-)
+from dispersion.waves.illinois import illinois
+from dispersion.waves.rayleigh_lamb import OMEGA_MAX, cutoff_frequencies
+from dispersion.waves.scaled_frequency import bound_table, removable_bound, scaled_with_noise
 
 __all__ = [
     "CERTIFY_RTOL", "KAPPA_MAX", "MAX_SAMPLES", "SERIES_RTOL", "TINY_KAPPA", "check_samples",
@@ -249,55 +246,6 @@ def _check_grid(kappa) -> np.ndarray:
     return kappa
 
 
-def _illinois(f, a, b, fa, fb, rtol: float, max_iter: int):
-    """Vectorised Illinois (modified regula falsi) on brackets with ``fa > 0 > fb``.
-
-    Returns the midpoints of the final brackets, the brackets, and the rows still open.
-    """
-    a, b, fa, fb = a.copy(), b.copy(), fa.copy(), fb.copy()
-    side = np.zeros(a.shape, dtype=int)
-    active = b > np.nextafter(a, np.inf)
-    for _ in range(max_iter):
-        idx = np.flatnonzero(active)
-        if idx.size == 0:
-            break
-        A, B, FA, FB = a[idx], b[idx], fa[idx], fb[idx]
-        c = (A * FB - B * FA) / (FB - FA)
-        bad = ~((c > A) & (c < B))
-        c = np.where(bad, 0.5 * (A + B), c)
-        fc = f(idx, c)
-        left = fc > 0          # the root lies right of c
-        zero = fc == 0
-        new_a, new_fa = np.where(left, c, A), np.where(left, fc, FA)
-        new_b, new_fb = np.where(left, B, c), np.where(left, FB, fc)
-        sd = side[idx]
-        # Illinois: the end kept twice in a row has its value halved
-        new_fb = np.where(left & (sd == 1), 0.5 * new_fb, new_fb)
-        new_fa = np.where(~left & (sd == -1), 0.5 * new_fa, new_fa)
-        side[idx] = np.where(left, 1, -1)
-        new_a, new_b = np.where(zero, c, new_a), np.where(zero, c, new_b)
-        a[idx], b[idx], fa[idx], fb[idx] = new_a, new_b, new_fa, new_fb
-        done = (new_b - new_a <= rtol * c) | zero
-        done |= np.nextafter(new_a, np.inf) >= new_b   # no float strictly inside
-        active[idx[done]] = False
-    return 0.5 * (a + b), a, b, active
-
-
-def _bounds(kind: str, kappa: np.ndarray, nu: float, top: float, first_p: int = 0) -> np.ndarray:
-    """Mindlin bounds (poles of the scaled function) per kappa, sorted, shape (m, n): at least
-    one above ``top`` in every row (:func:`dispersion.waves.rayleigh_lamb.mindlin_bounds`)."""
-    s = speed_ratio_squared(nu)
-    off = 0.0 if kind == "S" else 0.5
-    k2 = kappa[:, None] ** 2
-    nP = int(math.sqrt(s) * top / math.pi + off) + 2
-    nQ = int(top / math.pi + off) + 2
-    jP = np.arange(first_p, nP + first_p) + off           # P = (j pi)^2, j >= 0 (+ 1/2 for A)
-    jQ = np.arange(1 if kind == "S" else 0, nQ + 1) + off  # Q = (j pi)^2, j >= 1 for S
-    wP = np.sqrt((k2 + (jP * math.pi) ** 2) / s)
-    wQ = np.sqrt(k2 + (jQ * math.pi) ** 2)
-    return np.sort(np.concatenate([wP, wQ], axis=1), axis=1)
-
-
 def _scaled(kind, kappa, omega, nu):
     return scaled_with_noise(kind, kappa, omega, nu)
 
@@ -325,11 +273,9 @@ def _certify(kind, kk, roots, lo, hi, nu):
 def _trace_class(kind, kappa, nu, omega_max, rtol, max_iter):
     """Roots of one symmetry class at kappa > TINY_KAPPA: (m, n) array (NaN padded), failures."""
     m = kappa.size
-    # nu = 0 (any nu whose (c_T/c_L)^2 rounds to 1/2): the bound P = 0 (Omega^2 = 2 kappa^2) is itself the root S0 (u_x uniform,
-    # sigma_yy = lambda div u = 0): a removable pole, so S0 is that bound and the function is
-    # continuous across it, with one root (S1) between 0 and the next bound.
-    removable = kind == "S" and speed_ratio_squared(nu) == 0.5   # nu = 0 in floating point
-    poles = _bounds(kind, kappa, nu, omega_max, first_p=1 if removable else 0)
+    # nu = 0: S0 is the removable bound P = 0, with one root (S1) between 0 and the next bound
+    removable = removable_bound(kind, nu)
+    poles = bound_table(kind, kappa, nu, omega_max, first_p=1 if removable else 0)
     s0 = kappa * math.sqrt(2.0)
     count = np.sum(poles < omega_max, axis=1)         # intervals 0..count hold roots <= top
     n_int = int(count.max()) + 1
@@ -368,7 +314,7 @@ def _trace_class(kind, kappa, nu, omega_max, rtol, max_iter):
     def g(idx, x):
         return np.arctan(_scaled(kind, kk[idx], x, nu)[0])
 
-    w, A, B, open_ = _illinois(g, a, b, fa, fb, rtol, max_iter)
+    w, _, _, open_ = illinois(g, a, b, fa, fb, rtol, max_iter)
     ok = _certify(kind, kk, w, lo[ki, ji], hi[ki, ji], nu)
     roots[ki, ji] = w
     for r in np.flatnonzero(open_ | ~ok):
@@ -475,7 +421,7 @@ def trace_branches(
 
 def mpmath_error(exact: ExactBranches, count: int = 20, dps: int = 40, seed: int = 0) -> float:
     """Largest relative error of ``count`` random traced roots (kappa > 0) against roots of the
-    defining equation (:func:`dispersion.waves.rayleigh_lamb.frequency_function`) found by mpmath
+    defining equation (:func:`dispersion.waves.rayleigh_lamb.mpmath_frequency_function`) found by mpmath
     in ``dps`` digits (:func:`mpmath.workdps`, the global precision is left alone).
 
     >>> mpmath_error(trace_branches(0.3, [0.5, 2.0], 4.0), count=3) < 1e-14
@@ -483,7 +429,7 @@ def mpmath_error(exact: ExactBranches, count: int = 20, dps: int = 40, seed: int
     """
     import mpmath
 
-    from dispersion.waves.rayleigh_lamb import frequency_function
+    from dispersion.waves.rayleigh_lamb import mpmath_frequency_function
 
     rng = np.random.default_rng(seed)
     pts = [(lab, i) for lab, w in exact.omega.items() for i in np.flatnonzero(np.isfinite(w))
@@ -493,12 +439,10 @@ def mpmath_error(exact: ExactBranches, count: int = 20, dps: int = 40, seed: int
         nu = mpmath.mpf(exact.nu)
         for j in rng.choice(len(pts), size=min(count, len(pts)), replace=False):
             lab, i = pts[j]
-            k2, w0 = mpmath.mpf(exact.kappa[i]) ** 2, mpmath.mpf(exact.omega[lab][i])
+            k, w0 = mpmath.mpf(exact.kappa[i]), mpmath.mpf(exact.omega[lab][i])
 
-            def f(W, lab=lab, k2=k2):
-                F = frequency_function(lab[0], k2, W**2, nu, lambda z: mpmath.cos(mpmath.sqrt(z)),
-                                       lambda z: mpmath.sinc(mpmath.sqrt(z)))
-                return mpmath.re(F) / W**2
+            def f(W, lab=lab, k=k):
+                return mpmath_frequency_function(lab[0], k, W, nu) / W**2
 
             eps = mpmath.mpf("1e-9")
             root = mpmath.findroot(f, (w0 * (1 - eps), w0 * (1 + eps)), solver="anderson",

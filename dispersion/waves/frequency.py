@@ -2,7 +2,7 @@
 
 At a fixed :math:`\\Omega = \\omega h / c_T` the real wavenumbers :math:`\\kappa = kh \\ge 0` of
 each symmetry class are the roots of the deflated Rayleigh-Lamb function
-:math:`G(\\kappa, \\Omega)` (:func:`dispersion.waves.rayleigh_lamb.deflated_with_noise`,
+:math:`G(\\kappa, \\Omega)` (:func:`dispersion.waves.deflated_frequency.deflated_with_noise`,
 sampled with a bound on its rounding error). They are found and *counted* by the argument of
 the kappa tracer (:mod:`dispersion.waves.exact_branches`), turned on its side:
 
@@ -26,7 +26,7 @@ the kappa tracer (:mod:`dispersion.waves.exact_branches`), turned on its side:
    :math:`N(\\kappa_{hi}) = 0`. Whatever does not add up is listed in ``failures``.
 
 Roots are closed by the Illinois method to ``rtol`` and, where :math:`P < 0` makes G
-cosh-sized, polished on :func:`~dispersion.waves.rayleigh_lamb.evanescent_frequency_function`.
+cosh-sized, polished on :func:`~dispersion.waves.deflated_frequency.evanescent_frequency_function`.
 SH modes come in closed form (:mod:`dispersion.waves.sh`).
 
 >>> r = modes_at_frequency(0.3, [1.0])
@@ -47,13 +47,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from dispersion.errors import InputError, check_nu, check_positive
-from dispersion.waves.rayleigh_lamb import (
-    cutoff_frequencies,
-    deflated_with_noise,
-    evanescent_frequency_function,
-    frequency_slope,
-    speed_ratio_squared,
-)
+from dispersion.waves.deflated_frequency import deflated_with_noise, evanescent_frequency_function
+from dispersion.waves.illinois import illinois
+from dispersion.waves.numeric_frequency import frequency_slope
+from dispersion.waves.rayleigh_lamb import (cutoff_frequencies, mpmath_frequency_function,
+                                            speed_ratio_squared)
 
 __all__ = ["FREQUENCY_OMEGA_MAX", "FREQUENCY_OMEGA_MIN", "MAX_SCAN_SAMPLES", "SLOPE_OMEGA",
            "FrequencyRoots", "modes_at_frequency", "zgv_points"]
@@ -142,35 +140,6 @@ def _kappa_hi(kind: str, nu: float, omega: np.ndarray, start: np.ndarray):
                for i in todo]
 
 
-def _illinois(f, a, b, fa, fb, rtol: float, max_iter: int = 200):
-    """Vectorised Illinois (regula falsi with halving of the stale end) on sign changes."""
-    a, b, fa, fb = a.copy(), b.copy(), fa.copy(), fb.copy()
-    side = np.zeros(a.size, dtype=int)
-    active = np.ones(a.size, dtype=bool)
-    for _ in range(max_iter):
-        idx = np.flatnonzero(active)
-        if idx.size == 0:
-            break
-        A, B, FA, FB = a[idx], b[idx], fa[idx], fb[idx]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            c = (A * FB - B * FA) / (FB - FA)
-        c = np.where((c > np.minimum(A, B)) & (c < np.maximum(A, B)), c, 0.5 * (A + B))
-        fc = f(idx, c)
-        left = np.sign(fc) == np.sign(FA)
-        sd = side[idx]
-        nA, nFA = np.where(left, c, A), np.where(left, fc, FA)
-        nB, nFB = np.where(left, B, c), np.where(left, FB, fc)
-        nFB = np.where(left & (sd == 1), 0.5 * nFB, nFB)
-        nFA = np.where(~left & (sd == -1), 0.5 * nFA, nFA)
-        side[idx] = np.where(left, 1, -1)
-        a[idx], b[idx], fa[idx], fb[idx] = nA, nB, nFA, nFB
-        done = (np.abs(nB - nA) <= rtol * np.abs(c)) | (fc == 0)
-        done |= np.nextafter(np.minimum(nA, nB), np.inf) >= np.maximum(nA, nB)
-        a[idx[done]] = b[idx[done]] = c[done]
-        active[idx[done]] = False
-    return 0.5 * (a + b), active
-
-
 class _Scan:
     """Samples (frequency index, kappa, G, rounding bound), sorted by (index, kappa)."""
 
@@ -237,8 +206,9 @@ def _polish(kind, kappa, omega, nu, width: float = 1e-9):
     if not np.any(ok):
         return kappa
     wo = w[ok]
-    roots, active = _illinois(lambda idx, x: evanescent_frequency_function(kind, x, wo[idx], nu),
-                              a[ok], b[ok], fa[ok], fb[ok], 1e-17)
+    roots, _, _, active = illinois(
+        lambda idx, x: evanescent_frequency_function(kind, x, wo[idx], nu),
+        a[ok], b[ok], fa[ok], fb[ok], 1e-17)
     sub = k.copy()
     sub[ok] = np.where(active, sub[ok], roots)
     out = kappa.copy()
@@ -246,7 +216,7 @@ def _polish(kind, kappa, omega, nu, width: float = 1e-9):
     return out
 
 
-#: Below this Omega the float slope :func:`~dispersion.waves.rayleigh_lamb.frequency_slope`
+#: Below this Omega the float slope :func:`~dispersion.waves.numeric_frequency.frequency_slope`
 #: loses about eps / Omega^2 to the trivial root of F at Omega = 0 (measured against mpmath:
 #: 2e-11 at Omega = 2e-3, 3e-12 at 1e-2, 4e-14 at 0.1); rule: where eps / Omega^2 > 1e-13
 #: the slope is taken in 30-digit arithmetic instead.
@@ -257,16 +227,12 @@ def _slope_mp(kind, kappa, omega, nu) -> np.ndarray:
     """:math:`d\\Omega/d\\kappa = -F_\\kappa / F_\\Omega` of the frequency function in mpmath."""
     import mpmath
 
-    from dispersion.waves.rayleigh_lamb import frequency_function
-
     out = np.empty(kappa.size)
     with mpmath.workdps(30):
         m_nu = mpmath.mpf(nu)
 
         def F(k, W):
-            return mpmath.re(frequency_function(
-                kind, k**2, W**2, m_nu, lambda z: mpmath.cos(mpmath.sqrt(z)),
-                lambda z: mpmath.sinc(mpmath.sqrt(z))))
+            return mpmath_frequency_function(kind, k, W, m_nu)
 
         for i, (k, W) in enumerate(zip(kappa, omega)):
             k, W = mpmath.mpf(float(k)), mpmath.mpf(float(W))
@@ -322,7 +288,7 @@ def _class_roots(kind, nu, omega, step, rtol, max_depth, zgv_kappa):
     def f(idx, x):
         return deflated_with_noise(kind, x, omega[rf[idx]], nu)[0]
 
-    roots, unconverged = _illinois(f, sk[j], sk[j + 1], sg[j], sg[j + 1], rtol)
+    roots, _, _, unconverged = illinois(f, sk[j], sk[j + 1], sg[j], sg[j + 1], rtol)
     for i in np.flatnonzero(unconverged):
         failures.append((float(omega[rf[i]]), kind, "root refinement did not converge"))
     roots = _polish(kind, roots, omega[rf], nu)
@@ -362,65 +328,20 @@ def _class_roots(kind, nu, omega, step, rtol, max_depth, zgv_kappa):
     return rf, labels, roots, group, failures
 
 
-def _scalar_root(f, a: float, b: float, rtol: float) -> float:
-    """Root of a scalar function with a sign change on [a, b] (Illinois; no scipy import)."""
-    fa, fb = f(a), f(b)
-    if not fa * fb < 0:
-        raise ValueError("no sign change")
-    root, active = _illinois(lambda idx, x: np.array([f(float(x[0]))]), np.array([a]),
-                             np.array([b]), np.array([fa]), np.array([fb]), rtol)
-    if active[0]:
-        raise ValueError("did not converge")
-    return float(root[0])
-
-
 def zgv_points(nu: float, omega_top: float, per_unit: float = 40.0):
     """Zero-group-velocity points of the exact branches with :math:`\\Omega \\le` omega_top.
 
-    The branches are traced (:func:`~dispersion.waves.exact_branches.trace_branches`) on
-    ``per_unit`` kappa samples per unit of kappa up to omega_top (a ZGV point has
-    :math:`c_p > c_T`, so :math:`\\kappa < \\Omega`); where the slope
-    :func:`~dispersion.waves.rayleigh_lamb.frequency_slope` changes sign along a branch, the
-    Illinois method finds the kappa of zero slope, the branch solved for Omega at each kappa.
-    The same points as :func:`dispersion.waves.velocities.zgv_points`, without the series of
-    S0 and A0 (which have no ZGV point), so no symbolic algebra is loaded.
+    :func:`dispersion.waves.velocities.zgv_points` on ``per_unit`` kappa samples per unit of
+    kappa up to omega_top (120 to 4000 samples): a ZGV point has :math:`c_p > c_T`, so
+    :math:`\\kappa < \\Omega`.
 
     >>> [(p.label, round(p.kappa, 6), round(p.omega, 6)) for p in zgv_points(0.3, 3.0)]
     [('S1', 0.838288, 2.730307)]
     """
-    from dispersion.waves.exact_branches import trace_branches
-    from dispersion.waves.velocities import ZGVPoint
+    from dispersion.waves.velocities import zgv_points as zgv_on_grid
 
     count = int(min(max(per_unit * omega_top, 120), 4000))
-    kappa = np.linspace(omega_top / count, omega_top, count)
-    tr = trace_branches(nu, kappa, omega_top)
-    h = kappa[1] - kappa[0]
-    out = []
-    for label, w in tr.omega.items():
-        if label[1:] == "0":
-            continue  # S0 and A0 rise monotonically
-        kind = label[0]
-        ok = np.isfinite(w)
-        g = np.full(w.shape, np.nan)
-        g[ok] = frequency_slope(kind, kappa[ok], w[ok], nu)
-        change = np.flatnonzero(np.isfinite(g[1:]) & np.isfinite(g[:-1])
-                                & (np.sign(g[1:]) != np.sign(g[:-1])))
-        for i in change:
-            width = 4 * h * (abs(g[i]) + abs(g[i + 1])) + 1e-3
-
-            def branch(kk, i=i, kind=kind, w=w, width=width):
-                t = (kk - kappa[i]) / h
-                guess = (1 - t) * w[i] + t * w[i + 1]
-                return _scalar_root(lambda W: float(deflated_with_noise(kind, kk, W, nu)[0]),
-                                    guess - width, guess + width, 1e-15)
-
-            try:
-                kz = _scalar_root(lambda kk: float(frequency_slope(kind, kk, branch(kk), nu)),
-                                  kappa[i], kappa[i + 1], 1e-14)
-                out.append(ZGVPoint(label, float(kz), float(branch(kz))))
-            except ValueError:  # no single bracketed root near the guess: not a ZGV point
-                continue
-    return sorted(out, key=lambda p: (p.omega, p.label))
+    return zgv_on_grid(nu, omega_top, omega_top, count + 1)
 
 
 def modes_at_frequency(nu: float, omega, *, kinds=("S", "A", "SH"), step: float = 0.02,

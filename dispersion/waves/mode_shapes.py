@@ -45,7 +45,8 @@ import numpy as np
 from dispersion.symbolic.bspline import SplineBasis1D, open_knot_vector
 from dispersion.errors import InputError, check_nu
 from dispersion.symbolic.plate import PlatePatch, numeric_pencil
-from dispersion.waves.rayleigh_lamb import cos_sqrt, sinc_sqrt, speed_ratio_squared
+from dispersion.waves.numeric_frequency import cos_sqrt, sinc_sqrt
+from dispersion.waves.rayleigh_lamb import speed_ratio_squared
 
 __all__ = [
     "PairedBranches",
@@ -197,7 +198,8 @@ def discrete_modes(patch: PlatePatch, nu: float, kappa) -> tuple[np.ndarray, np.
     Frequencies where float round-off would blur them are recomputed in extended precision
     (as in :func:`dispersion.waves.discrete_branches.discrete_branches`).
     """
-    from dispersion.waves.discrete_branches import _refine_small, pencil_frequencies
+    from dispersion.waves.discrete_branches import _refine_small
+    from dispersion.waves.pencil_frequencies import pencil_frequencies
 
     kappa = np.atleast_1d(np.asarray(kappa, dtype=float))
     K, M = numeric_pencil(patch, nu, kappa)

@@ -5,7 +5,7 @@ Dimensionless, in units of the shear speed :math:`c_T`: the phase velocity is
 
 - Exact branches: implicit differentiation of the scaled Rayleigh-Lamb function,
   :math:`d\\Omega/d\\kappa = -R_\\kappa / R_\\Omega` by the complex step
-  (:func:`dispersion.waves.rayleigh_lamb.scaled_slope`); S0 and A0 below
+  (:func:`dispersion.waves.scaled_frequency.scaled_slope`); S0 and A0 below
   :func:`dispersion.waves.exact_branches.series_switch` (where the series' own error estimate
   of the slope reaches 1e-14) from the derivative of their series. Each slope carries an error
   estimate: its sensitivity to the rounding of :math:`\\Omega` (large where a root sits
@@ -52,8 +52,10 @@ import numpy as np
 from dispersion.errors import InputError
 from dispersion.waves.exact_branches import (ExactBranches, fundamental_series, series_region,
                                              trace_branches)
-from dispersion.waves.rayleigh_lamb import (deflated_frequency_function,
-                                            scaled_slope, speed_ratio_squared)
+from dispersion.waves.deflated_frequency import deflated_frequency_function
+from dispersion.waves.illinois import scalar_root
+from dispersion.waves.numeric_frequency import frequency_slope
+from dispersion.waves.scaled_frequency import bound_table, removable_bound, scaled_slope
 
 __all__ = ["EXTENDED_DPS", "VELOCITY_ATOL", "VELOCITY_RTOL", "Velocities", "ZGVPoint",
            "exact_velocities", "phase_velocity", "slope_extended", "zgv_points"]
@@ -101,13 +103,8 @@ def phase_velocity(kappa, omega) -> np.ndarray:
         return np.where(kappa > 0, omega / np.where(kappa > 0, kappa, 1.0), np.nan)
 
 
-def _removable(kind: str, nu: float) -> bool:
-    """S at nu = 0 (in floating point): S0 = sqrt(2) kappa is the removable Mindlin bound P = 0."""
-    return kind == "S" and speed_ratio_squared(nu) == 0.5
-
-
 def _mp_scaled(kind: str, kappa, W, nu, mp):
-    """The scaled function of :func:`dispersion.waves.rayleigh_lamb.scaled_frequency_function`
+    """The scaled function of :func:`dispersion.waves.scaled_frequency.scaled_frequency_function`
     in its quotient form, in mpmath arithmetic (cot, tan of complex square roots)."""
     s = (1 - 2 * nu) / (2 * (1 - nu))
     k2, W2 = kappa**2, W**2
@@ -124,7 +121,7 @@ def slope_extended(kind: str, kappa: float, omega: float, nu: float, label_index
     """Root and group velocity of branch ``kind + label_index`` at ``kappa`` in mpmath.
 
     The root is bracketed between its two Mindlin bounds (computed in the same precision:
-    the j-th interval of :func:`dispersion.waves.rayleigh_lamb.mindlin_bounds`, 0 below the
+    the j-th interval of :func:`dispersion.waves.scaled_frequency.mindlin_bounds`, 0 below the
     first) narrowed to :math:`\\Omega (1 \\pm 10^{-10})`, closed by the Anderson-Bjorck method,
     and the slope is :math:`-R_\\kappa/R_\\Omega` by mpmath's differentiation. Returns
     ``(Omega, c_g, reason)``, ``reason`` None when certified (the bracket holds one sign change).
@@ -142,7 +139,7 @@ def slope_extended(kind: str, kappa: float, omega: float, nu: float, label_index
         off = 0 if kind == "S" else mp.mpf(1) / 2
         top = mp.mpf(omega) * 2 + 10
         bounds = []
-        for scale, first in ((s, 1 if _removable(kind, nu) else 0),
+        for scale, first in ((s, 1 if removable_bound(kind, nu) else 0),
                              (mp.mpf(1), 1 if kind == "S" else 0)):
             j = first
             while True:
@@ -152,7 +149,7 @@ def slope_extended(kind: str, kappa: float, omega: float, nu: float, label_index
                     break
                 j += 1
         bounds.sort()
-        if _removable(kind, nu):
+        if removable_bound(kind, nu):
             s0 = k * mp.sqrt(2)
             if abs(s0 - omega) <= 1e-15 * s0:
                 return float(s0), math.sqrt(2.0), None
@@ -195,9 +192,7 @@ def _slope_error(kind, kappa, omega, nu, cg):
     of the distance to the nearest Mindlin bound if that is less (the slope varies on that
     scale); a root within 1e-10 of a bound gets no float estimate (infinite error).
     """
-    from dispersion.waves.exact_branches import _bounds
-
-    bounds = _bounds(kind, kappa, nu, 2 * float(omega.max()) + 10)
+    bounds = bound_table(kind, kappa, nu, 2 * float(omega.max()) + 10)
     dist = np.min(np.abs(bounds - omega[:, None]), axis=1) / omega
     delta = np.minimum(1e-9, 0.01 * dist) * omega
     up = scaled_slope(kind, kappa, omega + delta, nu)
@@ -219,7 +214,7 @@ def exact_velocities(exact: ExactBranches) -> Velocities:
         g = np.full(k.shape, np.nan)
         ok = np.isfinite(w) & (k > 0)
         series = np.zeros(k.shape, bool)
-        if j == 0 and not _removable(kind, nu):
+        if j == 0 and not removable_bound(kind, nu):
             series = ok & series_region(label, nu, k)
             if np.any(series):
                 g[series] = fundamental_series(label, nu, k[series])[1]
@@ -227,7 +222,7 @@ def exact_velocities(exact: ExactBranches) -> Velocities:
             g[k == 0] = math.sqrt(2 / (1 - nu)) if kind == "S" else 0.0
         else:
             g[(k == 0) & np.isfinite(w)] = 0.0  # cut-offs: Omega is even in kappa
-            if _removable(kind, nu):
+            if removable_bound(kind, nu):
                 g[(k == 0) & (w == 0)] = math.sqrt(2.0)
         rest = np.flatnonzero(ok & ~series)
         if rest.size:
@@ -246,54 +241,50 @@ def exact_velocities(exact: ExactBranches) -> Velocities:
     return Velocities(k, phase, group, tuple(uncertain))
 
 
-def _branch_omega(kind: str, kappa: float, guess: float, nu: float, width: float) -> float:
-    from scipy.optimize import brentq
-
-    def g(w):
-        return float(deflated_frequency_function(kind, kappa, w, nu))
-
-    lo, hi = guess - width, guess + width
-    if g(lo) * g(hi) > 0:
-        raise InputError(f"no single root of the {kind} branch near Omega={guess:.6g} at "
-                         f"kappa={kappa:.6g}")
-    return brentq(g, lo, hi, xtol=1e-15, rtol=4 * np.finfo(float).eps)
-
-
 def zgv_points(nu: float, kappa_max: float, omega_max: float, count: int = 400) -> list[ZGVPoint]:
     """Zero-group-velocity points of the exact branches with :math:`0 < \\kappa \\le` kappa_max.
 
-    Sign changes of :math:`d\\Omega/d\\kappa` along each traced branch are closed by Brent's
-    method in kappa, the branch followed by a bracketed root solve at each kappa. ZGV
-    points are where a backward wave (e.g. S1 for most nu) turns; the points at
-    :math:`\\kappa = 0` (cut-offs, slope zero by symmetry) are not listed.
+    The branches are traced (:func:`~dispersion.waves.exact_branches.trace_branches`) on
+    ``count`` evenly spaced kappa in [0, kappa_max] (0 left out); where the slope
+    :func:`~dispersion.waves.numeric_frequency.frequency_slope` changes sign along a branch
+    the Illinois method (:func:`~dispersion.waves.illinois.scalar_root`) finds the kappa of
+    zero slope, the branch solved for Omega at each kappa on the deflated function
+    (:func:`~dispersion.waves.deflated_frequency.deflated_frequency_function`). ZGV points are
+    where a backward wave (e.g. S1 for most nu) turns; S0 and A0 rise monotonically, and the
+    points at :math:`\\kappa = 0` (cut-offs, slope zero by symmetry) are not listed. The one
+    implementation behind :func:`dispersion.waves.frequency.zgv_points` too.
 
     >>> [(p.label, round(p.kappa, 4), round(p.omega, 4)) for p in zgv_points(0.3, 2.0, 4.0)]
     [('S1', 0.8383, 2.7303)]
     """
-    from scipy.optimize import brentq
-
-    kappa = np.linspace(0.0, kappa_max, count)[1:]
-    exact = trace_branches(nu, kappa, omega_max)
-    v = exact_velocities(exact)
+    if count < 3:
+        raise InputError(f"count must be an integer >= 3, got {count!r}")
+    kappa = np.linspace(0.0, kappa_max, int(count))[1:]
+    tr = trace_branches(nu, kappa, omega_max)
     h = kappa[1] - kappa[0]
     out = []
-    for label, g in v.group.items():
-        w = exact.omega[label]
-        change = np.flatnonzero(np.isfinite(g[1:]) & np.isfinite(g[:-1]) & (np.sign(g[1:]) != np.sign(g[:-1])))
+    for label, w in tr.omega.items():
+        if label[1:] == "0":
+            continue  # S0 and A0 rise monotonically
+        kind = label[0]
+        ok = np.isfinite(w)
+        g = np.full(w.shape, np.nan)
+        g[ok] = frequency_slope(kind, kappa[ok], w[ok], nu)
+        change = np.flatnonzero(np.isfinite(g[1:]) & np.isfinite(g[:-1])
+                                & (np.sign(g[1:]) != np.sign(g[:-1])))
         for i in change:
             width = 4 * h * (abs(g[i]) + abs(g[i + 1])) + 1e-3
 
-            def slope(kk, i=i, label=label, width=width):
+            def branch(kk, i=i, kind=kind, w=w, width=width):
                 t = (kk - kappa[i]) / h
                 guess = (1 - t) * w[i] + t * w[i + 1]
-                om = _branch_omega(label[0], kk, guess, nu, width)
-                return float(scaled_slope(label[0], kk, om, nu))
+                return scalar_root(lambda W: float(deflated_frequency_function(kind, kk, W, nu)),
+                                   guess - width, guess + width, 1e-15)
 
             try:
-                kz = brentq(slope, kappa[i], kappa[i + 1], xtol=1e-14)
-                t = (kz - kappa[i]) / h
-                om = _branch_omega(label[0], kz, (1 - t) * w[i] + t * w[i + 1], nu, width)
-            except (InputError, ValueError):
+                kz = scalar_root(lambda kk: float(frequency_slope(kind, kk, branch(kk), nu)),
+                                 kappa[i], kappa[i + 1], 1e-14)
+                out.append(ZGVPoint(label, float(kz), float(branch(kz))))
+            except ValueError:  # no single bracketed root near the guess: not a ZGV point
                 continue
-            out.append(ZGVPoint(label, float(kz), float(om)))
     return sorted(out, key=lambda p: (p.omega, p.label))

@@ -1,0 +1,44 @@
+"""Helpers shared by several test modules (imported as ``from helpers import ...``; pytest puts
+``tests/`` on the path as it does for ``mp_pencil``)."""
+from __future__ import annotations
+
+import hashlib
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+
+def snapshot(root: Path) -> dict:
+    """Every path under ``root`` with its kind and content: a link its target, a folder its
+    mode, a file the SHA-256 of its bytes and its mode (so a changed permission counts)."""
+    out = {}
+    for dirpath, dirnames, filenames in os.walk(root, followlinks=False):
+        for name in dirnames + filenames:
+            path = Path(dirpath) / name
+            rel = str(path.relative_to(root))
+            if path.is_symlink():
+                out[rel] = ("link", os.readlink(path))
+            elif path.is_dir():
+                out[rel] = ("dir", oct(path.stat().st_mode & 0o777))
+            else:
+                out[rel] = ("file", hashlib.sha256(path.read_bytes()).hexdigest(),
+                            oct(path.stat().st_mode & 0o777))
+    return out
+
+
+def lean_series(argv: list[str]) -> tuple[int, bool, str]:
+    """Run ``dispersion.cli.series.lean_main(argv)`` in a fresh interpreter; return its exit
+    status, whether sympy was imported on the way, and what it printed."""
+    code = ("import sys, io, json, contextlib\n"
+            "from dispersion.cli.series import lean_main\n"
+            "buf = io.StringIO()\n"
+            "with contextlib.redirect_stdout(buf):\n"
+            f"    rc = lean_main({argv!r})\n"
+            "print(json.dumps([rc, 'sympy' in sys.modules, buf.getvalue()]))\n")
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert proc.returncode == 0, proc.stderr
+    import json
+
+    rc, sympy_loaded, out = json.loads(proc.stdout)
+    return rc, sympy_loaded, out

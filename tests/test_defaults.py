@@ -1,0 +1,64 @@
+"""The light copies in :mod:`dispersion.defaults` equal the objects they name (issue 23).
+
+The command line reads names and limits from ``defaults`` so that ``--help`` loads neither
+numpy nor sympy; each copy is checked here against the registry or module that owns it, so
+that the two cannot drift.
+"""
+from __future__ import annotations
+
+from fractions import Fraction
+
+import sympy
+
+from dispersion import defaults
+
+
+def test_mass_variants_are_the_registry():
+    from dispersion.symbolic.mass import CONTACT_SETS, MASS_VARIANTS
+    from dispersion.symbolic.mass_rule import RULE_NAMES, RULES
+
+    assert defaults.MASS_VARIANTS == RULE_NAMES == tuple(RULES) == MASS_VARIANTS
+    assert defaults.CONTACT_SETS == CONTACT_SETS
+
+
+def test_plate_limits_are_the_plate_checks():
+    from dispersion.errors import InputError
+    from dispersion.symbolic import plate
+
+    assert (plate.P_MAX, plate.N_MAX) == (defaults.P_MAX, defaults.N_MAX)
+    assert plate.R_RANGE == tuple(sympy.Rational(r.numerator, r.denominator)
+                                  for r in defaults.R_RANGE)
+    assert defaults.R_RANGE == (Fraction(1, 1000), Fraction(1000))
+    # the limits are the ones check_size enforces: the bound holds, one past it is refused
+    assert plate.check_size(defaults.P_MAX, defaults.P_MAX + 1) == (defaults.P_MAX,
+                                                                    defaults.P_MAX + 1)
+    for p, n in ((defaults.P_MAX + 1, defaults.P_MAX + 2), (2, defaults.N_MAX + 1)):
+        try:
+            plate.check_size(p, n)
+        except InputError:
+            continue
+        raise AssertionError(f"check_size({p}, {n}) was not refused")
+
+
+def test_scheme_and_model_names_are_the_modules():
+    from dispersion.waves.fully_discrete import SCHEMES
+    from dispersion.waves.timestep import MODELS
+
+    assert defaults.TIME_SCHEMES == tuple(SCHEMES)
+    assert defaults.TIMESTEP_MODELS == MODELS
+
+
+def test_reproduce_and_sweep_defaults():
+    from dispersion import sweep
+    from dispersion.report import run
+
+    assert (run.DEFAULT_OUT, run.DEFAULT_REFERENCE) == (defaults.REPORT_OUT,
+                                                        defaults.REPORT_REFERENCE)
+    assert sweep.MAX_JOBS_PER_CPU == run.MAX_JOBS_PER_CPU == defaults.MAX_JOBS_PER_CPU
+
+
+def test_claims_job_limit_is_the_verifiers():
+    from dispersion.claims import limits, verify
+
+    assert verify.MAX_JOBS == limits.MAX_JOBS
+    assert verify.check_jobs(limits.MAX_JOBS) == limits.MAX_JOBS

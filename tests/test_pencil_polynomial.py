@@ -320,7 +320,8 @@ def test_taylor_tables_are_the_same_polynomial():
     # the centred tables are exact Taylor shifts of P: their value at (u, mu) equals that of
     # the table in u, evaluated at 50 digits (mpmath); the rule: within 1e-9 of the u-table's
     # bar sum sum |a_jk| u^k |mu|^j (both tables are the exact P rounded coefficient-wise)
-    patch = plate_patch(p=3, n=6, model="bloch", r=2, mass="singular")
+    # the singular-lumped mass of the test above: the same exact polynomial (cached)
+    patch = plate_patch(p=3, n=6, model="bloch", r=2, mass="singular-lumped")
     poly = db._plan(patch, 0.3)[0].poly
     assert poly.centres == pp.taylor_centres(poly.coef.shape[1] - 1) == 4
     rng = np.random.default_rng(1)

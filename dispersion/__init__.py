@@ -27,11 +27,11 @@ from dispersion.errors import ConvergenceError, DispersionError, IndefiniteMassW
 #: Distribution name on the package index (the import name is ``dispersion``).
 DISTRIBUTION = "dispersion-iga"
 
-_API = ("Patch", "patch", "series", "exact_branches", "lamb_modes", "material", "simulate_ring",
+_API = ("Patch", "PatchModel", "patch", "series", "exact_branches", "lamb_modes", "material", "simulate_ring",
         "simulate_bar")
 #: Public modules by their short names (``dispersion.plate``), wherever they live in the wings.
 _MODULES = {
-    "api": "api", "defaults": "defaults", "errors": "errors", "io": "io", "results": "results",
+    "api": "api", "patch_model": "patch_model", "defaults": "defaults", "errors": "errors", "io": "io", "results": "results",
     "sweep": "sweep", "testing": "testing", "contact": "contact", "claims": "claims",
     "symbolic": "symbolic", "waves": "waves", "studies": "studies",
     "bspline": "symbolic.bspline", "mass": "symbolic.mass", "plate": "symbolic.plate",

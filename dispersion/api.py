@@ -29,25 +29,29 @@ from typing import TYPE_CHECKING
 
 from dispersion import defaults
 from dispersion.errors import InputError
+from dispersion.patch_model import PatchModel
 from dispersion.symbolic.patch import Patch
 
 if TYPE_CHECKING:  # pragma: no cover
     import sympy
 
-__all__ = ["Patch", "patch", "series", "exact_branches", "lamb_modes", "material", "simulate_ring",
+__all__ = ["Patch", "PatchModel", "patch", "series", "exact_branches", "lamb_modes", "material", "simulate_ring",
            "simulate_bar"]
 
 
 def patch(p: int = defaults.P, n: int = defaults.N, model: str = defaults.MODEL,
           r=defaults.R, mass: str = defaults.MASS, contact: str = defaults.CONTACT,
-          gamma_s=defaults.GAMMA_S, weights=None, nu=None) -> Patch:
-    """A :class:`~dispersion.symbolic.patch.Patch`, checked at once (bad parameters raise
-    :class:`InputError` here). ``r="r"`` keeps the aspect ratio symbolic.
+          gamma_s=defaults.GAMMA_S, weights=None, nu=None) -> PatchModel:
+    """The patch to compute with (:class:`~dispersion.patch_model.PatchModel`): its
+    :class:`~dispersion.symbolic.patch.Patch` value ``.spec``, checked at once (bad parameters
+    raise :class:`InputError` here), with its matrices, series and branches. ``r="r"`` keeps
+    the aspect ratio symbolic.
 
-    >>> patch(mass="singular", gamma_s=0).plate.massless
-    (2, 5)
+    >>> pt = patch(mass="singular", gamma_s=0)
+    >>> pt.plate.massless, pt.spec == Patch(mass="singular", gamma_s=0)
+    ((2, 5), True)
     """
-    return Patch(p, n, model, r, mass, contact, gamma_s, weights, nu)
+    return PatchModel(Patch(p, n, model, r, mass, contact, gamma_s, weights, nu))
 
 
 def series(branch: str = "S0", order: int = 8, *, exact: bool = False, nu=None,

@@ -117,7 +117,7 @@ def test_discrete_rows_have_group_velocity(tmp_path):
 
 @pytest.mark.slow
 def test_largest_discrete_patch_is_accepted(tmp_path, capsys):
-    # the size limits are the patch's own (plate.check_size), the same as for the series;
+    # the size limits are the patch's own (patch.check_size), the same as for the series;
     # the numeric work bound count * masses * n^3 is the branches' own
     from dispersion.cli.branches import MAX_DISCRETE_WORK
     from dispersion.symbolic.plate import N_MAX

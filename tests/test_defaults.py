@@ -23,18 +23,25 @@ def test_mass_variants_are_the_registry():
 
 def test_plate_limits_are_the_plate_checks():
     from dispersion.errors import InputError
-    from dispersion.symbolic import plate
+    from dispersion.symbolic import patch, plate
 
     assert (plate.P_MAX, plate.N_MAX) == (defaults.P_MAX, defaults.N_MAX)
-    assert plate.R_RANGE == tuple(sympy.Rational(r.numerator, r.denominator)
-                                  for r in defaults.R_RANGE)
     assert defaults.R_RANGE == (Fraction(1, 1000), Fraction(1000))
+    # the aspect-ratio range is the one the patch enforces, at both ends
+    lo, hi = (sympy.Rational(r.numerator, r.denominator) for r in defaults.R_RANGE)
+    assert (patch.aspect_ratio(lo), patch.aspect_ratio(hi)) == (lo, hi)
+    for outside in (lo / 2, hi * 2):
+        try:
+            patch.aspect_ratio(outside)
+        except InputError:
+            continue
+        raise AssertionError(f"aspect_ratio({outside}) was not refused")
     # the limits are the ones check_size enforces: the bound holds, one past it is refused
-    assert plate.check_size(defaults.P_MAX, defaults.P_MAX + 1) == (defaults.P_MAX,
+    assert patch.check_size(defaults.P_MAX, defaults.P_MAX + 1) == (defaults.P_MAX,
                                                                     defaults.P_MAX + 1)
     for p, n in ((defaults.P_MAX + 1, defaults.P_MAX + 2), (2, defaults.N_MAX + 1)):
         try:
-            plate.check_size(p, n)
+            patch.check_size(p, n)
         except InputError:
             continue
         raise AssertionError(f"check_size({p}, {n}) was not refused")

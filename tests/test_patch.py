@@ -22,7 +22,7 @@ def test_plate_patch_and_the_api_build_the_default_patch():
     from dispersion.symbolic.plate import plate_patch
 
     assert plate_patch().spec == DEFAULT
-    assert dispersion.patch() == DEFAULT
+    assert dispersion.patch().spec == DEFAULT
     assert dispersion.patch().plate.spec == DEFAULT
 
 
@@ -34,7 +34,7 @@ def test_discrete_series_derives_the_default_patch(monkeypatch):
     original = plate.plate_patch
     monkeypatch.setattr(plate, "plate_patch", lambda *a, **k: seen.append(original(*a, **k))
                         or seen[-1])
-    assert discrete_series("S0", 4) == DEFAULT.series("S0", 4)
+    assert discrete_series("S0", 4) == dispersion.patch().series("S0", 4)
     assert seen and all(p.spec == DEFAULT for p in seen)
 
 
@@ -63,7 +63,7 @@ def test_a_claims_entry_builds_the_default_patch(tmp_path, model_line):
     path.write_text(f'[[claim]]\nname = "a"\nbranch = "S0"\n{model_line}'
                     'coefficients = {2 = "2/(1-nu)"}\n')
     model = load_claims(path)[0].model
-    assert isinstance(model, Patch) and model == DEFAULT == dispersion.patch()
+    assert isinstance(model, Patch) and model == DEFAULT == dispersion.patch().spec
     assert model.label() == DEFAULT.label()
 
 
@@ -128,3 +128,17 @@ def test_coefficients_page_names_the_patches_its_claims_carry():
     text = _patches_text(claims)
     assert text.count("p=3 n=7 r=5/3, singular mass (bottom, gamma_s=1/5)") == 1
     assert "top" not in text and "p = 2" not in text and "Rayleigh" not in text
+
+
+def test_the_patch_value_imports_nothing_that_computes_with_it():
+    # issue 22 "no import circle": Patch sits below plate, power_balance and discrete_branches
+    # (they take it); it must not import them back, even inside a method
+    import ast
+    import inspect
+
+    from dispersion.symbolic import patch as module
+
+    imported = {node.module for node in ast.walk(ast.parse(inspect.getsource(module)))
+                if isinstance(node, ast.ImportFrom)}
+    assert not imported & {"dispersion.symbolic.plate", "dispersion.symbolic.power_balance",
+                           "dispersion.waves.discrete_branches", "dispersion.patch_model"}

@@ -4,8 +4,9 @@ import pytest
 import sympy
 
 from dispersion.errors import InputError
-from dispersion.symbolic.plate import (N_MAX, P_MAX, bloch_coefficients, check_size, dynamic_stiffness,
-                              mirror_bases, numeric_pencil, plate_patch)
+from dispersion.symbolic.patch import check_size
+from dispersion.symbolic.plate import (N_MAX, P_MAX, bloch_coefficients, dynamic_stiffness,
+                                       mirror_bases, numeric_pencil, plate_patch)
 
 kappa, Omega = sympy.symbols("kappa Omega")
 

@@ -94,8 +94,10 @@ def check_patch(model: ClaimModel, entry: dict, fail) -> None:
             redistribution_matrix(model.n, model.weights_dict)
         except InputError as exc:
             fail("weights", f"the toolkit cannot build this patch: {exc}")
+    from dispersion.symbolic.plate import plate_patch
+
     try:
-        model.plate
+        plate_patch(model)
     except InputError as exc:
         _failure(exc, entry, fail, PATCH_KEYS, "patch")
 

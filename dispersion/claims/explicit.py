@@ -134,8 +134,10 @@ def run(t: tuple):
         if isinstance(model, BarModel):
             cs = timestep.critical_step(model.mass, model.p, model="bar", wave_speed=1.0)
             return (cs.omega_max_exact, cs.ratio)
-        w, exact, _, _ = timestep.patch_omega_max(model.plate, t[2])
-        ref = timestep.patch_omega_max(model.replace(mass="consistent").plate, t[2])[0]
+        from dispersion.symbolic.plate import plate_patch
+
+        w, exact, _, _ = timestep.patch_omega_max(plate_patch(model), t[2])
+        ref = timestep.patch_omega_max(plate_patch(model.replace(mass="consistent")), t[2])[0]
         return (exact if exact is not None else w, ref / w)
     from dispersion.waves.fully_discrete import SCHEMES, fully_discrete_series
 
@@ -146,7 +148,9 @@ def run(t: tuple):
         ser = sympy.series(f, k, 0, order + 1).removeO()
         semi = {i: ser.coeff(k, i) for i in range(1, order + 1)}
     else:
-        semi = model.series(branch, order, nu=nu)
+        from dispersion.symbolic.power_balance import discrete_series
+
+        semi = discrete_series(branch, order, model, nu=nu)
     poly = sympy.Poly(fully_discrete_series(semi, order, SCHEMES[scheme][0]),
                       sympy.Symbol("kappa"), sympy.Symbol("tau"))
     return {m: c for m, c in zip(poly.monoms(), poly.coeffs())}

@@ -9,7 +9,7 @@ periodic bar), in :mod:`dispersion.claims.claim_model`; expressions and numbers 
 :mod:`dispersion.claims.reader` (a whitelist, never evaluated, see
 :mod:`dispersion.claims.claim_fields`); the derivation a claim asks for is bounded by the
 toolkit's own limits (:func:`dispersion.symbolic.power_balance.check_request`,
-:func:`dispersion.symbolic.plate.check_size`) before any work starts.
+:func:`dispersion.symbolic.patch.check_size`) before any work starts.
 """
 from __future__ import annotations
 

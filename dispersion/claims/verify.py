@@ -96,7 +96,9 @@ def _series(model: ClaimModel, branch: str, order: int) -> dict[int, sympy.Expr]
         from dispersion.waves.exact_series import exact_series
 
         return exact_series(branch, order)
-    return model.series(branch, order)
+    from dispersion.symbolic.power_balance import discrete_series
+
+    return discrete_series(branch, order, model, nu=model.nu)
 
 
 def _omega(model: ClaimModel, branch: str, kappa: float, nu: float, guess: float) -> float:
@@ -106,7 +108,10 @@ def _omega(model: ClaimModel, branch: str, kappa: float, nu: float, guess: float
 
         br = trace_branches(nu, [kappa], 2 * guess + 1)
     else:
-        br = model.branches([kappa], nu)
+        from dispersion.symbolic.plate import plate_patch
+        from dispersion.waves.discrete_branches import discrete_branches
+
+        br = discrete_branches(plate_patch(model), nu, [kappa])
     return float(br.omega[branch][0]) if branch in br.omega else float("nan")
 
 

@@ -2,8 +2,8 @@
 
 Every entry point (the API, the command line, a claims file, a report section) builds one
 :class:`Patch` at its boundary and passes it down whole; the defaults are those of
-:mod:`dispersion.defaults`, stated once, and the size limits are those of
-:func:`dispersion.symbolic.plate.check_size`. Results carry the ``Patch`` they were computed
+:mod:`dispersion.defaults`, stated once, and the rules of each field (the size limits of
+:func:`check_size`, the range of the aspect ratio) are stated here, once. Results carry the ``Patch`` they were computed
 on, and every caption, title and CSV header is rendered from it (:meth:`Patch.label`,
 :meth:`Patch.title`, :meth:`Patch.header_lines`).
 
@@ -13,24 +13,76 @@ Patch(p=2, n=3, model='bloch', r=2, mass='consistent', contact='top', gamma_s=1/
 'bloch p=2 n=3 r=2, singular mass (top, gamma_s=0)'
 >>> Patch(model="x-exact").r is None
 True
->>> Patch().K_dyn().shape
-(6, 6)
+
+A ``Patch`` is a value: it computes nothing. Its matrices, series and branches come from the
+functions that take it (:func:`dispersion.symbolic.plate.plate_patch`,
+:func:`dispersion.symbolic.power_balance.discrete_series`,
+:func:`dispersion.waves.discrete_branches.discrete_branches`), or, at the front door, from
+:class:`dispersion.patch_model.PatchModel` (what ``dispersion.patch()`` returns).
 """
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, field, replace
-from functools import cached_property
+import math
+from dataclasses import asdict, dataclass, field, fields, replace
 from typing import TYPE_CHECKING, Any
 
 from dispersion import defaults
-from dispersion.errors import InputError
+from dispersion.errors import InputError, check_positive_int
 
 if TYPE_CHECKING:  # pragma: no cover
     import sympy
 
-    from dispersion.symbolic.plate import PlatePatch
+__all__ = ["Patch", "as_patch", "check_size", "rational", "aspect_ratio", "PATCH_FIELDS"]
 
-__all__ = ["Patch", "as_patch"]
+
+def check_size(p, n) -> tuple[int, int]:
+    """Return ``(p, n)`` as ints if ``1 <= p <= P_MAX`` and ``p + 1 <= n <= N_MAX``
+    (:data:`dispersion.defaults.P_MAX`, :data:`dispersion.defaults.N_MAX`).
+
+    The degree is checked first, so ``p = 100, n = 101`` names the degree.
+
+    >>> check_size(2, 3)
+    (2, 3)
+    >>> check_size(60, 61)
+    Traceback (most recent call last):
+    ...
+    dispersion.errors.InputError: degree p must be an integer in [1, 24], got 60
+    """
+    p = check_positive_int("degree p", p, maximum=defaults.P_MAX)
+    n = check_positive_int("control points n", n, maximum=defaults.N_MAX)
+    if n < p + 1:
+        raise InputError(f"control points n must be >= p + 1 = {p + 1}, got {n}")
+    return p, n
+
+
+def rational(name: str, value) -> sympy.Rational:
+    """``value`` as an exact sympy Rational (floats by their shortest decimal); finite only."""
+    import sympy
+
+    try:
+        if isinstance(value, float):
+            if not math.isfinite(value):
+                raise ValueError
+            out = sympy.Rational(repr(value))
+        else:
+            out = sympy.sympify(value)
+        if not out.is_Rational:
+            raise ValueError
+    except (TypeError, ValueError, sympy.SympifyError):
+        raise InputError(f"{name} must be a finite rational number, got {value!r}") from None
+    return out
+
+
+def aspect_ratio(r) -> sympy.Rational:
+    """The Bloch aspect ratio r = b/h, exact, within :data:`dispersion.defaults.R_RANGE`."""
+    import sympy
+
+    r = rational("aspect ratio r", r)
+    lo, hi = (sympy.Rational(x.numerator, x.denominator) for x in defaults.R_RANGE)
+    if not lo <= r <= hi:
+        shown = str(r) if len(str(r)) <= 20 else str(sympy.Float(r, 3))
+        raise InputError(f"aspect ratio r must lie in [{lo}, {hi}], got {shown}")
+    return r
 
 
 def _freeze_weights(weights):
@@ -55,7 +107,7 @@ class Patch:
     ----------
     p, n : int
         Degree and number of control points through the thickness (limits:
-        :func:`dispersion.symbolic.plate.check_size`).
+        :func:`check_size`).
     model : str
         ``"bloch"`` (one Bloch-periodic column, aspect ratio ``r = b/h``) or ``"x-exact"``.
     r : number, ``"r"`` or None
@@ -86,11 +138,11 @@ class Patch:
         import sympy
 
         from dispersion.symbolic.mass_rule import get_rule
-        from dispersion.symbolic.plate import MODELS, _aspect_ratio, _rational, check_size
 
         p, n = check_size(self.p, self.n)
-        if self.model not in MODELS:
-            raise InputError(f"model must be one of {', '.join(MODELS)}; got {self.model!r}")
+        if self.model not in defaults.MODELS:
+            raise InputError(f"model must be one of {', '.join(defaults.MODELS)}; "
+                             f"got {self.model!r}")
         get_rule(self.mass)  # a registered name or a MassRule, else InputError
         r = self.r
         if self.model == "x-exact":
@@ -100,17 +152,15 @@ class Patch:
         elif r is None or r == "r" or isinstance(r, sympy.Symbol):
             r = sympy.Symbol("r", positive=True)
         else:
-            r = _aspect_ratio(r)
-        gamma_s = None if self.gamma_s is None else _rational("gamma_s", self.gamma_s)
+            r = aspect_ratio(r)
+        gamma_s = None if self.gamma_s is None else rational("gamma_s", self.gamma_s)
         weights = _freeze_weights(self.weights)
         if gamma_s is not None:
             from dispersion.errors import check_real_in_range
 
             check_real_in_range("gamma_s", gamma_s, 0, 1)
-        from dispersion.symbolic.mass import CONTACT_SETS
-
-        if self.contact not in CONTACT_SETS:
-            raise InputError(f"contact must be one of {', '.join(CONTACT_SETS)}; "
+        if self.contact not in defaults.CONTACT_SETS:
+            raise InputError(f"contact must be one of {', '.join(defaults.CONTACT_SETS)}; "
                              f"got {self.contact!r}")
         if (self.contact == "both" and n < 4 and weights is None and gamma_s != 0
                 and get_rule(self.mass).redistributes):
@@ -123,7 +173,7 @@ class Patch:
         if nu is not None:
             from dispersion.errors import check_nu
 
-            nu = check_nu(_rational("nu", nu))
+            nu = check_nu(rational("nu", nu))
         for name, value in (("p", p), ("n", n), ("r", r), ("gamma_s", gamma_s), ("nu", nu),
                             ("weights", weights)):
             object.__setattr__(self, name, value)
@@ -233,90 +283,6 @@ class Patch:
             out.append(f"nu = {self.nu}")
         return out
 
-    # ------------------------------------------------------------------ the matrices
-
-    @cached_property
-    def plate(self) -> PlatePatch:
-        """The exact :class:`dispersion.symbolic.plate.PlatePatch` (built on first use)."""
-        from dispersion.symbolic.plate import plate_patch
-
-        return plate_patch(self)
-
-    def K_dyn(self, kappa=None, Omega=None, nu=None) -> sympy.Matrix:
-        """:math:`K - \\Omega^2 M` (sympy); symbols ``kappa``, ``Omega``, ``nu`` by default.
-
-        Each value is a finite real number or a sympy expression with symbols; anything else
-        (NaN, infinity, a string, a complex number) is an :class:`~dispersion.errors.InputError`.
-
-        >>> Patch().K_dyn(kappa=float("nan"))
-        Traceback (most recent call last):
-        ...
-        dispersion.errors.InputError: kappa must be a finite real number or a sympy symbol, got nan
-        """
-        from dispersion.symbolic.plate import dynamic_stiffness
-
-        return dynamic_stiffness(self.plate, _matrix_value("kappa", kappa),
-                                 _matrix_value("Omega", Omega),
-                                 _matrix_value("nu", self.nu if nu is None else nu))
-
-    def K(self, kappa=None, nu=None) -> sympy.Matrix:
-        """Stiffness :math:`K(\\kappa)` over the shear modulus (sympy)."""
-        return self.K_dyn(kappa, 0, nu)
-
-    def M(self, kappa=None) -> sympy.Matrix:
-        """Mass :math:`M(\\kappa)` over the density (sympy): the variant of ``mass``.
-
-        Every variant keeps the translational mass (the sum of all entries):
-
-        >>> sum(Patch(model="x-exact", mass="singular").M()) == sum(Patch(model="x-exact").M())
-        True
-        """
-        import sympy
-
-        from dispersion.errors import check_finite
-        from dispersion.symbolic.plate import mass_block, x_functions
-
-        if kappa is None:
-            kappa = sympy.Symbol("kappa")
-        else:
-            check_finite("kappa", kappa)
-            kappa = sympy.sympify(kappa)
-        return x_functions(self.plate, kappa)["mx"] * mass_block(self.plate)
-
-    def series(self, branch: str = "S0", order: int = 8, nu=None) -> dict[int, sympy.Expr]:
-        """Taylor coefficients of :math:`\\Omega^2` in :math:`\\kappa` (eqs 17-20)."""
-        from dispersion.symbolic.power_balance import discrete_series
-
-        return discrete_series(branch, order, self, nu=self.nu if nu is None else nu)
-
-    def branches(self, kappa, nu=None, group: bool = False):
-        """All discrete branches on the grid ``kappa``
-        (:func:`dispersion.waves.discrete_branches.discrete_branches`); ``group=True`` adds the
-        group velocities (``DiscreteBranches.group``)."""
-        from dispersion.waves.discrete_branches import discrete_branches
-
-        if self.symbolic_r:
-            raise InputError(f"r must be a number > 0 for numeric branches, got the symbol "
-                             f"{self.r}")
-        nu = float(self.nu_value if nu is None else nu)
-        return discrete_branches(self.plate, nu, kappa, group=group)
-
-
-def _matrix_value(name: str, value):
-    """``value`` of a patch matrix: None (the symbol), an expression with symbols, or a
-    finite real number; anything else raises :class:`InputError` naming ``name``."""
-    from dispersion.errors import as_real
-
-    if value is None or getattr(value, "free_symbols", None):
-        return value
-    try:
-        return as_real(name, value, "a finite real number or a sympy symbol")
-    except InputError:
-        raise
-    except Exception:  # an object whose comparison or conversion fails
-        raise InputError(f"{name} must be a finite real number or a sympy symbol, "
-                         f"got {type(value).__name__}") from None
-
 
 def as_patch(patch: Patch | None = None, **fields) -> Patch:
     """``patch`` with ``fields`` replaced, or a new :class:`Patch` of ``fields``.
@@ -331,3 +297,7 @@ def as_patch(patch: Patch | None = None, **fields) -> Patch:
     if not isinstance(patch, Patch):
         raise InputError(f"patch must be a dispersion.symbolic.patch.Patch, got {type(patch).__name__}")
     return patch.replace(**fields) if fields else patch
+
+
+#: The fields of :class:`Patch` in their positional order (``Patch(2, 3, "bloch", ...)``).
+PATCH_FIELDS = tuple(f.name for f in fields(Patch))

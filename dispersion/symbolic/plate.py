@@ -44,7 +44,6 @@ T. J. R. Hughes, "Isogeometric analysis of structural vibrations", CMAME 195 (20
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from functools import lru_cache
 
@@ -60,7 +59,6 @@ __all__ = [
     "MODELS",
     "P_MAX",
     "N_MAX",
-    "check_size",
     "PlatePatch",
     "plate_patch",
     "thickness_matrices",
@@ -76,28 +74,10 @@ __all__ = [
 ]
 
 # stated with the defaults (a light module the command line reads without sympy)
-from dispersion import defaults as _defaults  # noqa: E402
 from dispersion.defaults import MODELS, N_MAX, P_MAX  # noqa: E402
+from dispersion.symbolic.patch import (  # noqa: E402  (the patch's own rules, stated there)
+    PATCH_FIELDS, Patch, as_patch)
 _y = sympy.Symbol("y")
-
-
-def check_size(p, n) -> tuple[int, int]:
-    """Return ``(p, n)`` as ints if ``1 <= p <= P_MAX`` and ``p + 1 <= n <= N_MAX``.
-
-    The degree is checked first, so ``p = 100, n = 101`` names the degree.
-
-    >>> check_size(2, 3)
-    (2, 3)
-    >>> check_size(60, 61)
-    Traceback (most recent call last):
-    ...
-    dispersion.errors.InputError: degree p must be an integer in [1, 24], got 60
-    """
-    p = check_positive_int("degree p", p, maximum=P_MAX)
-    n = check_positive_int("control points n", n, maximum=N_MAX)
-    if n < p + 1:
-        raise InputError(f"control points n must be >= p + 1 = {p + 1}, got {n}")
-    return p, n
 
 
 def thickness_matrices(p: int, n: int) -> dict[str, sympy.ImmutableMatrix]:
@@ -221,17 +201,11 @@ def plate_patch(*args, allow_negative: bool = False, **fields) -> PlatePatch:
     >>> plate_patch(mass="lumped").spec.label()
     'bloch p=2 n=3 r=2, lumped mass'
     """
-    from dispersion.symbolic.patch import Patch, as_patch
-
     if args and isinstance(args[0], Patch):
-        spec = as_patch(args[0], **dict(zip(_PATCH_FIELDS, args[1:])), **fields)
+        spec = as_patch(args[0], **dict(zip(PATCH_FIELDS, args[1:])), **fields)
     else:
         spec = Patch(*args, **fields)
     return _build(spec, allow_negative)
-
-
-#: Positional order of the fields of :class:`dispersion.symbolic.patch.Patch`.
-_PATCH_FIELDS = ("p", "n", "model", "r", "mass", "contact", "gamma_s", "weights", "nu")
 
 
 @lru_cache(maxsize=64)
@@ -250,36 +224,6 @@ def _build(spec, allow_negative: bool) -> PlatePatch:
     return PlatePatch(spec.p, spec.n, spec.model, spec.r, rule.name, R, Y, My,
                       x_lumped=x_mass == ((0, sympy.Integer(1)),), spec=spec, x_mass=x_mass,
                       rule=rule)
-
-
-#: Valid aspect ratios r = b/h of the Bloch model (:data:`dispersion.defaults.R_RANGE`, the
-#: rule stated there) as sympy Rationals.
-R_RANGE = tuple(sympy.Rational(r.numerator, r.denominator) for r in _defaults.R_RANGE)
-
-
-def _rational(name: str, value) -> sympy.Rational:
-    """``value`` as an exact sympy Rational (floats by their shortest decimal); finite only."""
-    try:
-        if isinstance(value, float):
-            if not math.isfinite(value):
-                raise ValueError
-            out = sympy.Rational(repr(value))
-        else:
-            out = sympy.sympify(value)
-        if not out.is_Rational:
-            raise ValueError
-    except (TypeError, ValueError, sympy.SympifyError):
-        raise InputError(f"{name} must be a finite rational number, got {value!r}") from None
-    return out
-
-
-def _aspect_ratio(r) -> sympy.Rational:
-    r = _rational("aspect ratio r", r)
-    lo, hi = R_RANGE
-    if not lo <= r <= hi:
-        shown = str(r) if len(str(r)) <= 20 else str(sympy.Float(r, 3))
-        raise InputError(f"aspect ratio r must lie in [{lo}, {hi}], got {shown}")
-    return r
 
 
 def x_functions(patch: PlatePatch, kappa) -> dict[str, object]:

@@ -436,7 +436,8 @@ def critical_step(mass, p: int = 2, *, model: str = "plate", material: Material 
                             "exact (rational function of cos theta)", 2 * h / (c * w),
                             2 * h / (c * w_ref),
                             material=None if wave_speed is not None else material.name)
-    from dispersion.symbolic.plate import check_size, plate_patch
+    from dispersion.symbolic.patch import check_size
+    from dispersion.symbolic.plate import plate_patch
 
     n = max(p + 1, 3) if n is None else n
     if isinstance(n, int) and not isinstance(n, bool) and n > MAX_N:  # plate allows N_MAX

@@ -6,7 +6,7 @@ computation (issues 10 and 23).
 
 Run:  python benchmarks/bench_branches.py [--quick] [--discrete-only] [--out DIR]
 
-The discrete race for the report (issue 23 items 1 and 6; 3 min 49 s measured on the shared
+The discrete race for the report (issue 23 items 1 and 6; 2 min 39 s measured on the shared
 2-core machine, under 10):
 
     python benchmarks/bench_branches.py --discrete-only --out reports

@@ -59,7 +59,7 @@ _MODULES = {
     "mass_rule": "symbolic.mass_rule", "timestep": "waves.timestep",
     "fully_discrete": "waves.fully_discrete", "cost_accuracy": "studies.cost_accuracy",
     "discrete_error": "waves.discrete_error", "pencil_frequencies": "waves.pencil_frequencies",
-    "illinois": "waves.illinois",
+    "illinois": "waves.illinois", "certified_roots": "waves.certified_roots",
 }
 _SUBMODULES = tuple(_MODULES)
 

@@ -12,7 +12,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from dispersion.contact.bar import Bar, bar_model
-from dispersion.contact.newmark import integrate, newmark_for
+from dispersion.contact.newmark import integrate
+from dispersion.contact.newmark_scheme import newmark_for
 from dispersion.contact.redistribution import float_redistribution
 from dispersion.symbolic.bspline import SplineBasis1D, open_knot_vector
 from dispersion.errors import InputError

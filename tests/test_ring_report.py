@@ -5,6 +5,8 @@ only their routing to the page is checked.
 """
 from __future__ import annotations
 
+import pytest
+
 import inspect
 
 from dispersion.contact import study
@@ -117,3 +119,25 @@ def test_signorini_rows_store_their_element_count():
     row = study._signorini((1, "singular", "kane", 0.1, 1))
     default = inspect.signature(signorini_1d).parameters["n_elements"].default
     assert row["n_elements"] == default and row["p"] == 1  # the mesh the study runs
+
+
+def test_figure4_title_names_the_scheme_the_runs_stored():
+    # the title was "<raw name> Newmark" ("kane Newmark"); it is the scheme's name as the pages
+    # give it, from the stored summary (a value no default produces: the standard scheme)
+    pytest.importorskip("matplotlib")
+    import numpy as np
+
+    from dispersion.contact.newmark_scheme import SCHEME_TEXT
+    from dispersion.plotting.ring import figure4
+
+    t = np.linspace(0.0, 1.0, 50)
+    force = np.where((t > 0.2) & (t < 0.4), 1.0, 0.0)
+    sc = {"r_inner": 0.9, "r_outer": 1.0, "theta0_deg": 30, "gap": 0.05, "v0": 1.0, "E": 1e6,
+          "nu": 0.3, "rho": 1.0, "n_xi_elements": 4, "n_eta_elements": 2, "dt": 0.02,
+          "t_end": 1.0}
+    runs = [{"summary": {"scheme": "standard", "mass": m, "energy_change_percent": 1.0},
+             "scenario": sc,
+             "series": {"t": t.tolist(), "contact_force": force.tolist(),
+                        "total": (1 + 0.01 * t).tolist()}} for m in ("lumped", "singular")]
+    title = figure4(*runs)._suptitle.get_text().replace("\n", " ")
+    assert title.startswith(f"Figure 4: {SCHEME_TEXT['standard']}, ") and "kane" not in title

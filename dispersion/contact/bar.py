@@ -46,9 +46,10 @@ import numpy as np
 from dispersion.defaults import GAMMA_S_FLOAT
 from dispersion.errors import InputError, check_positive, check_positive_int, check_real_in_range
 from dispersion.symbolic.bspline import SplineBasis1D
-from dispersion.symbolic.mass import mass_variant
-from dispersion.symbolic.mass_rule import RULES, get_rule
-from dispersion.contact.newmark import ContactProblem, History, Newmark, integrate
+from dispersion.symbolic.mass_rule import RULES, get_rule, mass_variant
+from dispersion.contact.contact_problem import ContactProblem
+from dispersion.contact.newmark import History, integrate
+from dispersion.contact.newmark_scheme import Newmark
 from dispersion.contact.redistribution import float_redistribution
 
 __all__ = ["ENDS", "MAX_STEPS", "DENSE_DOFS", "NUMERIC_RULES", "Bar", "BarModel", "BarResult",
@@ -130,7 +131,7 @@ class Bar:
 
 @dataclass(frozen=True)
 class BarModel:
-    """The bar's :class:`~.newmark.ContactProblem` on the free DOFs ``free`` of ``basis``."""
+    """The bar's :class:`~.contact_problem.ContactProblem` on the free DOFs ``free`` of ``basis``."""
 
     bar: Bar
     problem: ContactProblem

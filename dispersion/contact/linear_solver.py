@@ -4,47 +4,24 @@ A problem given as numpy arrays (the 1D bar up to a few hundred DOFs) runs on nu
 scipy is imported only when a sparse matrix is met or a large matrix is factorized.
 
 >>> import numpy as np
->>> from dispersion.contact.newmark import Newmark
+>>> from dispersion.contact.newmark_scheme import Newmark
 >>> solve = LinearSolver(2, Newmark()).factor(np.array([[2.0, 0.0], [0.0, 4.0]]))
 >>> solve(np.array([2.0, 2.0])).tolist()
 [1.0, 0.5]
 """
 from __future__ import annotations
 
-import sys
 from typing import TYPE_CHECKING
 
 import numpy as np
 
 from dispersion.errors import ConvergenceError
+from dispersion.symbolic.matrix_kind import dense
 
 if TYPE_CHECKING:
-    from dispersion.contact.newmark import Newmark
+    from dispersion.contact.newmark_scheme import Newmark
 
-__all__ = ["DENSE_MAX", "LinearSolver", "dense", "issparse"]
-
-#: Largest step matrix factorized with dense LAPACK; sparse SuperLU above. Chosen by
-#: measurement (``python benchmarks/bench_ring.py``, table 1, 2-core machine): at the ring's
-#: 144 DOFs the two factorize within 2x of each other when the machine is quiet, and
-#: threaded LAPACK is up to 20x slower when it is loaded; from 408 DOFs on SuperLU wins
-#: outright (0.74 vs 1.6 ms, 12 vs 74 ms at 1320). Dense stays for the bar's few dozen DOFs.
-DENSE_MAX = 64
-
-
-def issparse(A) -> bool:
-    """True for a scipy.sparse matrix; never imports scipy (such a matrix means it is loaded).
-
-    A problem given as numpy arrays (the 1D bar up to a few hundred DOFs) runs on numpy alone:
-    scipy's import costs more than a whole small run.
-    """
-    sp = sys.modules.get("scipy.sparse")
-    return sp is not None and sp.issparse(A)
-
-
-def dense(A) -> np.ndarray:
-    """``A`` as a dense float array (a scipy.sparse matrix is densified)."""
-    return A.toarray() if issparse(A) else np.asarray(A, dtype=float)
-
+__all__ = ["LinearSolver"]
 
 class LinearSolver:
     """Linear solves of one problem: dense LAPACK or sparse SuperLU, chosen by size."""

@@ -11,10 +11,12 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dispersion.contact.linear_solver import LinearSolver, issparse
+from dispersion.contact.linear_solver import LinearSolver
+from dispersion.symbolic.matrix_kind import is_sparse
 
 if TYPE_CHECKING:
-    from dispersion.contact.newmark import ContactProblem, Newmark
+    from dispersion.contact.contact_problem import ContactProblem
+    from dispersion.contact.newmark_scheme import Newmark
 
 __all__ = ["MATVEC_DENSE_MAX", "MassSplit"]
 
@@ -26,7 +28,7 @@ class MassSplit:
     """Massive / massless DOF split and a factorization of the massive block of ``M``."""
 
     def __init__(self, prob: ContactProblem, nm: Newmark):
-        if not (issparse(prob.M) or issparse(prob.G)):
+        if not (is_sparse(prob.M) or is_sparse(prob.G)):
             self._init_dense(prob, nm)
             return
         import scipy.sparse as sp

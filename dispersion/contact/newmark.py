@@ -52,97 +52,17 @@ import numpy as np
 
 from dispersion.errors import ConvergenceError, InputError, check_positive, check_positive_int
 from dispersion.contact.complementarity import solve_lcp
-from dispersion.contact.linear_solver import DENSE_MAX, LinearSolver, dense, issparse
+from dispersion.contact.contact_problem import ContactProblem
+from dispersion.contact.linear_solver import LinearSolver
 from dispersion.contact.mass_split import MassSplit
+from dispersion.contact.newmark_scheme import Newmark
+from dispersion.symbolic.matrix_kind import dense, is_sparse
 from dispersion.contact.semismooth_newton import Tangent, newton
 
 if TYPE_CHECKING:
-    import scipy.sparse as sp
+    pass
 
-__all__ = ["SCHEMES", "DENSE_MAX", "RING_SCHEMES", "ContactProblem", "History", "Newmark",
-           "State", "critical_step", "consistent_state", "integrate", "newmark_for", "step"]
-
-SCHEMES = ("kane", "standard")
-
-
-@dataclass(frozen=True)
-class ContactProblem:
-    """Mass ``M``, ``internal(u) -> (f_int, K_T)``, gap ``g0 + G u``, ``energy(u)`` (strain).
-
-    ``f_ext`` is a constant external force (its potential ``-f_ext . u`` enters the total
-    energy); ``directions`` (``(k, n)``) maps ``M v`` to momentum components; ``K`` (constant
-    stiffness) marks a linear problem, ``internal(u) = (K u, K)``, whose step matrix is
-    factorized once; ``force(u)`` (optional) is ``f_int`` alone, cheaper than ``internal``.
-    """
-
-    M: sp.csr_matrix
-    internal: Callable
-    G: sp.csr_matrix
-    g0: np.ndarray
-    energy: Callable
-    f_ext: np.ndarray | None = None
-    directions: np.ndarray | None = None
-    K: sp.csr_matrix | None = None
-    force: Callable | None = None
-
-    @property
-    def n(self) -> int:
-        return self.M.shape[0]
-
-
-@dataclass(frozen=True)
-class Newmark:
-    """Newmark parameters (``beta``, ``gamma``), ``scheme`` and Newton controls.
-
-    ``beta = 0`` (with ``gamma = 1/2``) is the explicit central-difference scheme. ``tol``
-    bounds the total residual (force residual and complementarity) relative to
-    ``max(|inertia|, |f_int|, |f_ext|)`` of the step; ``solver`` is ``"auto"`` (dense up to
-    ``dense_max`` unknowns), ``"dense"`` or ``"sparse"``. ``reuse_tangent=False`` rebuilds
-    and refactors the tangent at every Newton iteration (full Newton: the speed baseline).
-    """
-
-    beta: float = 0.25
-    gamma: float = 0.5
-    scheme: str = "kane"
-    tol: float = 1e-8
-    max_iter: int = 25
-    solver: str = "auto"
-    dense_max: int = DENSE_MAX
-    reuse_tangent: bool = True
-
-    def __post_init__(self):
-        if not (np.isfinite(self.beta) and 0 <= self.beta <= 0.5):
-            raise InputError(f"beta must lie in [0, 0.5] (0: explicit), got {self.beta}")
-        check_positive("gamma", self.gamma)
-        if self.scheme not in SCHEMES:
-            raise InputError(f"scheme must be one of {', '.join(SCHEMES)}; got {self.scheme!r}")
-        if self.explicit and (self.gamma != 0.5 or self.scheme != "kane"):
-            raise InputError("beta = 0 (explicit) needs gamma = 0.5 and scheme 'kane', got "
-                             f"gamma = {self.gamma}, scheme {self.scheme!r}")
-        if self.solver not in ("auto", "sparse", "dense"):
-            raise InputError(f"solver must be 'auto', 'sparse' or 'dense', got {self.solver!r}")
-        check_positive("tol", self.tol)
-        check_positive_int("max_iter", self.max_iter)
-        check_positive_int("dense_max", self.dense_max, minimum=0)
-
-    @property
-    def explicit(self) -> bool:
-        return self.beta == 0
-
-
-#: Time integrators by name: Kane's contact-modified Newmark, standard Newmark, explicit
-#: central differences (beta = 0, Kane's contact impulse).
-RING_SCHEMES = ("kane", "standard", "explicit")
-
-
-def newmark_for(scheme: str, **kwargs) -> Newmark:
-    """:class:`~.newmark.Newmark` of the scheme named ``scheme`` (see :data:`RING_SCHEMES`)."""
-    if scheme not in RING_SCHEMES:
-        raise InputError(f"scheme must be one of {', '.join(RING_SCHEMES)}; got {scheme!r}")
-    if scheme == "explicit":
-        return Newmark(beta=0.0, gamma=0.5, scheme="kane", **kwargs)
-    return Newmark(scheme=scheme, **kwargs)
-
+__all__ = ["History", "State", "critical_step", "consistent_state", "integrate", "step"]
 
 @dataclass
 class State:
@@ -195,7 +115,7 @@ class _Linear:
     """Factorized step matrix ``c1 M + P K`` and its response to the constraints (linear)."""
 
     def __init__(self, prob: ContactProblem, split: MassSplit, nm: Newmark, c1: float):
-        if issparse(split.M):
+        if is_sparse(split.M):
             import scipy.sparse as sp
 
             K = sp.csr_matrix(prob.K)

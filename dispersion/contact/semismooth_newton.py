@@ -17,7 +17,8 @@ from __future__ import annotations
 import numpy as np
 
 from dispersion.errors import ConvergenceError
-from dispersion.contact.linear_solver import LinearSolver, dense
+from dispersion.contact.linear_solver import LinearSolver
+from dispersion.symbolic.matrix_kind import dense
 
 __all__ = ["Tangent", "newton"]
 

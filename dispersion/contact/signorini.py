@@ -40,7 +40,8 @@ import numpy as np
 from dispersion.errors import InputError, check_memory, check_positive, check_positive_int
 from dispersion.contact.bar import Bar, bar_model, check_steps
 from dispersion.contact.energy_balance import energy_balance
-from dispersion.contact.newmark import integrate, newmark_for
+from dispersion.contact.newmark import integrate
+from dispersion.contact.newmark_scheme import newmark_for
 
 __all__ = ["ExactSignorini", "SignoriniResult", "exact_solution", "signorini_1d",
            "MAX_T_EXACT", "MAX_SECONDS", "SIGNORINI_SPREAD_RULE", "SPREAD_FIELDS", "gap_ulps",

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from dispersion.contact.newmark_scheme import SCHEME_TEXT
 from dispersion.contact.signorini import SIGNORINI_SPREAD_RULE, SPREAD_FIELDS
 from dispersion.contact.study import measure
 from dispersion.io import save_figure
@@ -161,11 +162,6 @@ def _flag_cell(r: dict) -> str:
     if "energy_flag" not in r:
         return "not judged (older record)"
     return "UNSTABLE: " + r["energy_flag"] if r["energy_flag"] else "ok"
-
-
-#: How the pages name the time integrators the runs store by name.
-SCHEME_TEXT = {"kane": "Kane's contact-modified Newmark", "standard": "standard Newmark",
-               "explicit": "explicit central differences"}
 
 
 def _scheme_text(data: dict) -> str:

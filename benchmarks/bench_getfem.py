@@ -14,7 +14,10 @@ Whole process, side by side (issue 23): ``dispersion impact signorini-1d`` as a 
 GetFEM's driver on the same bar, run in turn A B A B ... ``--repeats`` times; wall seconds and
 the children's CPU seconds (``resource.getrusage``) of every run, the median of each and the
 median of the pair-by-pair ratios (GetFEM / ours: above 1, ours is faster). A shared machine
-moves both; the pairing keeps the ratio meaningful.
+moves both; the pairing keeps the ratio meaningful. The children inherit the environment; with
+``PYTHONDONTWRITEBYTECODE`` set (as on the project's build machine) every run of ours compiles
+the toolkit's modules again, which an installed package does not: ``--cache-bytecode`` drops
+that variable for both sides (the warm-up run writes the cache), and the header says which.
 
 GetFEM runs in a subprocess of Debian's ``/usr/bin/python3`` (``apt-get install -y
 python3-getfem``) through our driver ``benchmarks/getfem/signorini_1d_getfem.py`` (GetFEM
@@ -25,6 +28,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import resource
 import statistics
 import subprocess
@@ -102,18 +106,19 @@ PAIRS = (("singular", "explicit", "singular", "explicit"),
          ("lumped", "kane", "lumped", "implicit"))
 
 
-def _timed(cmd: list[str]) -> tuple[float, float]:
+def _timed(cmd: list[str], env: dict | None = None) -> tuple[float, float]:
     """Wall and CPU (user + sys of the child) seconds of one run of ``cmd``."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
     subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True,
-                   timeout=600)
+                   timeout=600, env=env)
     wall = time.perf_counter() - t0
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     return wall, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
-def whole_process(nx: int, dt: float, t_end: float, repeats: int) -> list[dict]:
+def whole_process(nx: int, dt: float, t_end: float, repeats: int,
+                  env: dict | None = None) -> list[dict]:
     """``dispersion impact signorini-1d`` against GetFEM's driver, in turn, per pair."""
     rows = []
     for mass, scheme, g_mass, g_scheme in PAIRS:
@@ -122,11 +127,11 @@ def whole_process(nx: int, dt: float, t_end: float, repeats: int) -> list[dict]:
                 str(t_end), "--format", "json"]
         cfg = json.dumps({"NX": nx, "dt": dt, "T": t_end, "mass": g_mass, "scheme": g_scheme})
         theirs = [PYTHON, str(DRIVER), cfg]
-        _timed(ours), _timed(theirs)  # warm-up: file caches, not counted
+        _timed(ours, env), _timed(theirs, env)  # warm-up: file caches, not counted
         a, b = [], []
         for _ in range(repeats):
-            a.append(_timed(ours))
-            b.append(_timed(theirs))
+            a.append(_timed(ours, env))
+            b.append(_timed(theirs, env))
         rows.append({
             "ours": f"{mass}/{scheme}", "getfem": f"{g_mass}/{g_scheme}", "runs": repeats,
             "ours_wall_s": statistics.median(w for w, _ in a),
@@ -144,11 +149,24 @@ def main() -> int:
     ap.add_argument("--json", help="also write the rows as JSON to PATH")
     ap.add_argument("--repeats", type=int, default=7,
                     help="whole-process runs of each side per pair (default 7)")
+    ap.add_argument("--cache-bytecode", action="store_true",
+                    help="whole process: drop PYTHONDONTWRITEBYTECODE for both sides, as an "
+                         "installed package runs")
+    ap.add_argument("--whole-process-only", action="store_true",
+                    help="skip the accuracy table")
     args = ap.parse_args()
     if not getfem_available():
         print(f"GetFEM not available to {PYTHON} (apt-get install -y python3-getfem): skipped")
         return 0
     nx, dt, t_end = 20, 0.002, 3.0 if args.quick else 12.0
+    env = None
+    if args.cache_bytecode:
+        env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
+    bytecode = ("cached" if "PYTHONDONTWRITEBYTECODE" not in (os.environ if env is None else env)
+                else "not cached (PYTHONDONTWRITEBYTECODE set)")
+    if args.whole_process_only:
+        return _print_whole_process(whole_process(nx, dt, t_end, max(1, args.repeats), env),
+                                    nx, dt, t_end, bytecode, args.json, [])
     rows = []
     for mass in ("lumped", "consistent", "singular"):
         for scheme in ("kane", "explicit"):
@@ -184,19 +202,23 @@ def main() -> int:
     print(f"singular, explicit: time loop {g['seconds_loop'] / o['seconds_loop']:.1f}x faster, "
           f"whole process {g['seconds_process'] / o['seconds_process']:.1f}x "
           "(GetFEM / dispersion)")
-    procs = whole_process(nx, dt, 12.0 if not args.quick else t_end, max(1, args.repeats))
+    procs = whole_process(nx, dt, t_end, max(1, args.repeats), env)
+    return _print_whole_process(procs, nx, dt, t_end, bytecode, args.json, rows)
+
+
+def _print_whole_process(procs, nx, dt, t_end, bytecode, json_path, rows) -> int:
     print(f"\nWhole process, as a user runs it (NX = {nx}, dt = {dt}, "
-          f"{round((12.0 if not args.quick else t_end) / dt)} steps; median of "
-          f"{procs[0]['runs']} runs each, A B A B ...; ratio = GetFEM / ours, pair by pair)")
+          f"{round(t_end / dt)} steps; median of {procs[0]['runs']} runs each, A B A B ...; "
+          f"ratio = GetFEM / ours, pair by pair; Python bytecode {bytecode})")
     print(f"{'ours':>18} {'GetFEM':>18} {'ours wall':>10} {'GetFEM wall':>12} {'ratio':>6} "
           f"{'ours cpu':>9} {'GetFEM cpu':>11} {'ratio':>6}")
     for r in procs:
         print(f"{r['ours']:>18} {r['getfem']:>18} {r['ours_wall_s']:>10.3f} "
               f"{r['getfem_wall_s']:>12.3f} {r['ratio_wall']:>6.2f} {r['ours_cpu_s']:>9.3f} "
               f"{r['getfem_cpu_s']:>11.3f} {r['ratio_cpu']:>6.2f}")
-    if args.json:
-        Path(args.json).write_text(json.dumps({"accuracy": rows, "whole_process": procs},
-                                              indent=1) + "\n")
+    if json_path:
+        Path(json_path).write_text(json.dumps({"accuracy": rows, "whole_process": procs,
+                                               "bytecode": bytecode}, indent=1) + "\n")
     return 0
 
 

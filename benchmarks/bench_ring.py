@@ -4,7 +4,7 @@ Run:  python benchmarks/bench_ring.py [--quick]
 
 Prints, all measured in this run:
 1. factorization and solve times of one ring step matrix, dense LAPACK vs sparse SuperLU,
-   per mesh level (how ``dispersion.contact.newmark.DENSE_MAX`` was chosen);
+   per mesh level (how ``dispersion.contact.newmark_scheme.DENSE_MAX`` was chosen);
 2. time per step against the number of elements (each step timed by the integrator's
    progress callback, set-up excluded): the solver (modified Newton, factorized
    step matrix reused across steps) against the baseline ``full Newton`` (tangent rebuilt

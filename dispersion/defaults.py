@@ -76,8 +76,7 @@ N_MAX = 200
 #: Valid aspect ratios r = b/h of the Bloch model, as exact fractions. Outside, the float
 #: pencil of the numeric branches loses its digits (the d-function is a difference of O(1)
 #: terms divided by r^2, and the S0 frequency at r = 1e-8 came out 100 % wrong), and exact
-#: rationals grow huge. (:data:`dispersion.symbolic.plate.R_RANGE`: the same as sympy
-#: Rationals.)
+#: rationals grow huge (checked by :func:`dispersion.symbolic.patch.aspect_ratio`).
 R_RANGE = (Fraction(1, 1000), Fraction(1000))
 #: The exact defaults as (numerator, denominator): GAMMA_S, NU and FIGURE2_R (the aspect ratio
 #: r = b/h of Figure 2's caption, h/b = 2) are sympy Rationals made from these on first use.

@@ -26,7 +26,6 @@ import math
 import os
 import platform
 from collections.abc import Mapping, Sequence
-from importlib import metadata
 from pathlib import Path
 
 from dispersion.errors import DispersionError
@@ -115,6 +114,8 @@ def _cpu_model() -> str | None:
 
 def package_versions(packages: Sequence[str] = PACKAGES) -> dict[str, str]:
     """Installed version of each distribution, or ``"not installed"``."""
+    from importlib import metadata  # here, not at import: a small command's start-up
+
     versions = {}
     for name in packages:
         try:

@@ -10,7 +10,8 @@ import numpy as np
 import pytest
 
 from dispersion.contact.bar import MAX_STEPS, Bar, bar_model, check_steps, simulate_bar
-from dispersion.contact.newmark import Newmark, critical_step, integrate
+from dispersion.contact.newmark import critical_step, integrate
+from dispersion.contact.newmark_scheme import Newmark
 from dispersion.errors import InputError
 
 

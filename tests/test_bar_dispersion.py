@@ -60,3 +60,19 @@ def test_bad_input():
         bar_frequency(2, "singular", 0.1)
     with pytest.raises(InputError):
         bar_dispersion(elements_per_wavelength=[1.0])
+
+
+@pytest.mark.parametrize("mass", ["singular", "singular-lumped"])
+def test_one_bar_rule_check_for_dispersion_and_time_step(mass):
+    # one check (bar_dispersion.bar_rule) refuses a contact mass for the periodic bar in
+    # both places that use it, with the same message
+    from dispersion.waves.bar_dispersion import bar_rule
+    from dispersion.waves.timestep import bar_omega_squared
+
+    with pytest.raises(InputError) as direct:
+        bar_rule(mass)
+    for call in (lambda: bar_frequency(2, mass, [0.5]), lambda: bar_omega_squared(mass, 2)):
+        with pytest.raises(InputError) as got:
+            call()
+        assert str(got.value) == str(direct.value)
+    assert "periodic bar" in str(direct.value)

@@ -98,3 +98,30 @@ def test_each_section_declares_rules_that_compile(name):
         assert rule.kind in {"exact", "close", "within", "timing", "unjudged"}
         assert rule.kind != "unjudged" or rule.why  # an unjudged field says why
         assert not (rule.kind == "close" and (math.isnan(rule.rel) or rule.rel >= 1e-3))
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.tuples(st.floats(-10, 10), st.floats(0, 5)), min_size=1, max_size=5),
+       st.data())
+def test_within_on_list_items_judges_each_item_by_its_own_spread(bands, draw):
+    # issue 23: a row of a list (a Signorini row) is judged by the reference's spread of
+    # that same row; a value inside its own widened band agrees, one beyond it never does,
+    # whatever the other rows' bands are
+    ref = {"rows": [{"x": lo, "spread": {"min": lo, "max": lo + w}} for lo, w in bands]}
+    rule = within("rows[].x", "rows[].spread.min", "rows[].spread.max", widen=1.0, abs=1e-6)
+    i = draw.draw(st.integers(0, len(bands) - 1))
+    lo, w = bands[i]
+    margin = max(w, 1e-6)
+    new = copy.deepcopy(ref)
+    new["rows"][i]["x"] = draw.draw(st.floats(lo - margin, lo + w + margin))
+    assert compare_results("s", ref, new, [rule, close("*", abs=1e-300)]).disagree == []
+    new["rows"][i]["x"] = lo + w + 1.5 * margin + 1e-9
+    res = compare_results("s", ref, new, [rule, close("*", abs=1e-300)])
+    assert [d.path for d in res.disagree] == [f"rows[{i}].x"]
+
+
+def test_within_without_the_band_in_the_reference_disagrees():
+    # an older reference without the spread: reported, not a crash and not a silent pass
+    rule = within("rows[].x", "rows[].spread.min", "rows[].spread.max")
+    res = compare_results("s", {"rows": [{"x": 1.0}]}, {"rows": [{"x": 1.0}]}, [rule])
+    assert [d.path for d in res.disagree] == ["rows[0].x"]

@@ -8,7 +8,9 @@ import scipy.sparse as sp
 from dataclasses import replace
 
 from dispersion.contact.bar import Bar, bar_model, bar_problem
-from dispersion.contact.newmark import ContactProblem, Newmark, critical_step, integrate
+from dispersion.contact.contact_problem import ContactProblem
+from dispersion.contact.newmark import critical_step, integrate
+from dispersion.contact.newmark_scheme import Newmark
 from dispersion.errors import ConvergenceError, InputError
 
 

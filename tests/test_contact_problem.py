@@ -5,7 +5,8 @@ import numpy as np
 import pytest
 
 from dispersion.contact.material import StVenantKirchhoff
-from dispersion.contact.newmark import Newmark, critical_step, integrate
+from dispersion.contact.newmark import critical_step, integrate
+from dispersion.contact.newmark_scheme import Newmark
 from dispersion.contact.problem import Plane, patch_problem, rectangle_patch
 from dispersion.errors import InputError
 

@@ -96,3 +96,16 @@ def test_step_count_and_kept_states_are_bounded():
     # 10^5 elements over 10^5 steps keep about 4e10 bytes of states: over half of 24 GiB
     with pytest.raises(InputError, match=r"n_elements = 100000 .* bound of"):
         signorini_1d(n_elements=100_000, dt=1e-4, t_end=10.0)
+
+
+def test_a_signorini_row_carries_the_spread_of_its_perturbed_runs():
+    # issue 23: the row's errors over the runs of SIGNORINI_SPREAD_RULE (the wall moved by
+    # k units of 2^-53); the k = 0 run is one of them, so it lies in each range
+    from dispersion.contact.signorini import SPREAD_FIELDS, gap_ulps
+    from dispersion.contact.study import _signorini
+
+    row = _signorini((1, "lumped", "kane", 3.0, 3))
+    assert row["spread"]["runs"] == 3 and gap_ulps(3) == (0.0, 2.0**-53, 2.0**-52)
+    for name in SPREAD_FIELDS:
+        s = row["spread"][name]
+        assert s["min"] <= row[name] <= s["max"], name

@@ -38,10 +38,7 @@ NEEDS = {
 }
 
 #: Known not to hold yet, with the reason (strict: the test says when it starts to hold).
-KNOWN: dict[str, str] = {
-    "impact signorini-1d --t-end 0.5": "the bar assembles through scipy.sparse and the exact "
-                                       "knot vector (sympy)",
-}
+KNOWN: dict[str, str] = {}
 
 
 def imported(command: str) -> set[str]:

@@ -12,12 +12,11 @@ from hypothesis import strategies as st
 from dispersion.errors import IndefiniteMassWarning, InputError
 from dispersion.symbolic.bspline import SplineBasis1D, open_knot_vector
 from dispersion.symbolic.mass import contact_weights, redistribution_matrix
+from dispersion.symbolic.mass_check import MassProperties, check_mass
 from dispersion.symbolic.mass_rule import (
     RULE_NAMES,
     RULES,
-    MassProperties,
     TranslationalMassWarning,
-    check_mass,
     gram_space,
     mass_matrix,
     rule_from_toml,
@@ -209,9 +208,9 @@ def test_large_float_masses_are_checked_sparse_like_small_ones():
     # the sparse inertia path (n > DENSE_CHECK_MAX) against the dense one on the same matrices
     import scipy.sparse as sp
 
-    from dispersion.symbolic import mass_rule
+    from dispersion.symbolic import mass_check
 
-    n = mass_rule.DENSE_CHECK_MAX + 1
+    n = mass_check.DENSE_CHECK_MAX + 1
     lap = sp.diags([np.full(n - 1, 1.0), np.full(n, 4.0), np.full(n - 1, 1.0)], [-1, 0, 1])
     cases = {"spd": lap.tocsr(), "indefinite": (lap - 5.5 * sp.eye(n)).tocsr()}
     rule = user_rule("as-given", lambda s: s.M,

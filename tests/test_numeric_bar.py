@@ -12,7 +12,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from dispersion.contact.bar import Bar, bar_model
-from dispersion.contact.newmark import integrate, newmark_for
+from dispersion.contact.newmark import integrate
+from dispersion.contact.newmark_scheme import newmark_for
 from dispersion.contact.redistribution import float_redistribution
 from dispersion.symbolic.bspline import SplineBasis1D, open_knot_vector
 from dispersion.errors import InputError
@@ -46,18 +47,19 @@ def test_float_redistribution_equals_the_exact_matrix(n, contact, gamma):
                        np.array(exact.tolist(), dtype=float), rtol=0, atol=2e-16)
 
 
-def _dense_twin(prob):
-    """The same problem handed to the solver as numpy arrays (the scipy-free path)."""
-    return replace(prob, M=sp.csr_matrix(prob.M).toarray(), G=sp.csr_matrix(prob.G).toarray(),
-                   K=sp.csr_matrix(prob.K).toarray())
+def _sparse_twin(prob):
+    """The same problem handed to the solver as scipy.sparse matrices (the large-bar path)."""
+    return replace(prob, M=sp.csr_matrix(prob.M), G=sp.csr_matrix(prob.G),
+                   K=sp.csr_matrix(prob.K))
 
 
 @pytest.mark.parametrize("mass,scheme", [("singular", "explicit"), ("singular", "kane"),
                                          ("consistent", "kane"), ("lumped", "explicit")])
 def test_dense_and_sparse_solver_paths_agree(mass, scheme):
     model = bar_model(Bar(20, 1, 1.0, 1.0, 1.0, mass, clamped=("right",), contact="left"))
-    sparse = model.problem
-    dense = _dense_twin(sparse)
+    dense = model.problem
+    assert isinstance(dense.M, np.ndarray)  # a small bar is assembled as numpy arrays
+    sparse = _sparse_twin(dense)
     u0 = model.coefficients(lambda x: 0.5 * (1 - x))
     # up to t = 0.9: no contact yet, so no chatter amplifies the round-off of either path
     runs = [integrate(prob, u0, np.zeros(prob.n), 0.002, 450, newmark_for(scheme),
@@ -65,3 +67,43 @@ def test_dense_and_sparse_solver_paths_agree(mass, scheme):
     a, b = (np.array([s.u for s in h.states]) for h in runs)
     assert np.allclose(a, b, rtol=0, atol=1e-12)
     assert np.allclose(runs[0].total, runs[1].total, rtol=1e-12, atol=0)
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.integers(1, 4), st.integers(2, 12), st.sampled_from(["consistent", "lumped",
+                                                               "singular", "singular-lumped"]),
+       st.sampled_from(["left", "right"]))
+def test_float_mass_rules_equal_the_exact_rules(p, n_el, mass, contact):
+    # issue 23: the numeric bar applies the rules in floats (no sympy); the exact route is
+    # the rule on the exact Gram matrix of the same knots with the exact redistribution
+    # (gamma_s = 1/2). Rule stated first: every entry within 1e-15 (entries are <= 1 on L = 1).
+    import sympy
+
+    from dispersion.contact.bar import NUMERIC_RULES
+    from dispersion.symbolic.mass_rule import gram_space, mass_matrix
+
+    assert mass in NUMERIC_RULES
+    model = bar_model(Bar(n_el, p, mass=mass, contact=contact))
+    assert isinstance(model.problem.M, np.ndarray)  # the numpy route, not scipy.sparse
+    n = n_el + p
+    side = "bottom" if contact == "left" else "top"
+    R = redistribution_matrix(n, contact_weights(n, side, sympy.Rational(1, 2)))
+    exact = mass_matrix(mass, gram_space(open_knot_vector(p, n_el, 0, 1), R))
+    diff = np.abs(model.problem.M - np.array(exact.tolist(), dtype=float)).max()
+    assert diff <= 1e-15, diff
+
+
+@pytest.mark.parametrize("mass", ["singular", "lumped", pytest.param("hrz", marks=pytest.mark.slow)])
+def test_large_bar_is_assembled_sparse_and_equals_the_dense_assembly(mass, monkeypatch):
+    # above DENSE_DOFS functions the bar is assembled with scipy.sparse; the same bar
+    # assembled dense (the bound lifted) must give the same matrices
+    from dispersion.contact import bar as bar_module
+
+    b = Bar(bar_module.DENSE_DOFS, 1, mass=mass, clamped=("right",))
+    big = bar_model(b).problem
+    assert sp.issparse(big.M) and sp.issparse(big.K)
+    monkeypatch.setattr(bar_module, "DENSE_DOFS", 10 * bar_module.DENSE_DOFS)
+    small = bar_model(b).problem
+    assert isinstance(small.M, np.ndarray)
+    for A, B in ((big.M, small.M), (big.K, small.K), (big.G, small.G)):
+        assert np.allclose(sp.csr_matrix(A).toarray(), B, rtol=0, atol=1e-12)

@@ -15,6 +15,7 @@ from hypothesis import strategies as st
 from dispersion.symbolic.mass import MASS_VARIANTS
 from dispersion.symbolic.plate import dynamic_stiffness, mirror_bases, plate_patch
 from dispersion.waves import discrete_branches as db
+from dispersion.waves import certified_roots as cr
 from dispersion.waves import pencil_polynomial as pp
 from mp_pencil import mp_frequencies
 
@@ -220,3 +221,120 @@ def test_group_velocity_reference_helper_is_sane():
     with mpmath.workdps(30):
         g = float(pytest.importorskip("mp_pencil").mp_group_velocity(patch, 0.3, 1e-4, 1))
     assert g == pytest.approx(math.sqrt(2 / 0.7), rel=1e-7)
+
+
+# --- the certificate itself (issue 23 item 1): a finite radius always encloses the root ---
+
+def _block_reference(patch, nu, kappa, block):
+    """``mu = Omega^2 m_x`` of the roots of one block in extended precision (mp_pencil.py: the
+    eigen-solve of the Cholesky-reduced pencil, nothing of the polynomial path), as floats,
+    and the float m_x the polynomial path multiplies by."""
+    basis = None if block.kind is None else mirror_bases(patch.n, exact=True)[block.kind]
+    # digits: 40 beyond the spread of the roots (A0 ~ kappa^4 beside roots of order one)
+    dps = 40 + int(4 * max(0.0, -math.log10(kappa)))
+    with mpmath.workdps(dps):
+        W = mp_frequencies(patch, nu, kappa, dps, basis)
+        r = float(patch.r) if patch.model == "bloch" else None
+        u, v, _ = pp.u_of_kappa(patch.model, r, np.array([kappa]))
+        mx = float(pp.mass_factor(block.poly, u, v)[0, 0])
+        return np.array([float(w * w * mx) for w in W]), u, v
+
+
+def _certificate_holds(p, n, mass, nu, kappa, rel_shift):
+    # the rule, stated before looking: |mu - mu_ref| <= rad + 8 eps mu, the 8 eps covering
+    # the reference's conversion to float and the float m_x it is multiplied by (a few ulp)
+    patch = plate_patch(p=p, n=n, model="bloch", r=2, mass=mass)
+    for block in db._plan(patch, nu):
+        if block.poly is None:
+            continue
+        ref, u, v = _block_reference(patch, nu, kappa, block)
+        # start off the root by rel_shift: the certificate may not rely on Newton converging
+        mu, rad = cr.certified_roots(block.poly, u, v, (ref * (1 + rel_shift))[None, :],
+                                     iterations=0, kappa=np.array([kappa]))
+        finite = np.isfinite(rad[0])
+        err = np.abs(mu[0] - ref)
+        assert np.all(err[finite] <= rad[0][finite] + 8 * np.finfo(float).eps * ref[finite]), \
+            (block.kind, kappa, mu[0], ref, rad[0])
+
+
+_EDGE = math.pi / 2   # zone edge pi/r of the Bloch patch with r = 2
+_KAPPA = st.one_of(st.floats(1e-12, 1e-4), st.floats(1e-4, _EDGE),
+                   st.sampled_from([1e-20, 1e-8, _EDGE, math.nextafter(_EDGE, 0),
+                                    _EDGE * (1 - 1e-9), _EDGE / 2]))
+
+
+@settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(kappa=_KAPPA, mass=st.sampled_from(ISSUE_MASSES),
+       nu=st.sampled_from([0.0, 0.3, 0.45]), rel_shift=st.floats(-1e-3, 1e-3))
+def test_property_certificate_encloses_the_root(kappa, mass, nu, rel_shift):
+    _certificate_holds(2, 3, mass, nu, kappa, rel_shift)
+
+
+@pytest.mark.slow
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(kappa=_KAPPA, mass=st.sampled_from(ISSUE_MASSES), rel_shift=st.floats(-1e-3, 1e-3))
+def test_property_certificate_encloses_the_root_p3_n6(kappa, mass, rel_shift):
+    # the 12 x 12 mixed pencil of the singular masses: degree 10 in mu, 36 in u, the
+    # centred Taylor tables and the Kantorovich radius
+    _certificate_holds(3, 6, mass, 0.3, kappa, rel_shift)
+
+
+def _p3_values_are_right(kappa, mass):
+    # whatever discrete_branches returns for p = 3, n = 6 (any route) is within 1e-10 of the
+    # 60-digit reference, or the kappa is listed
+    patch = plate_patch(p=3, n=6, model="bloch", r=2, mass=mass)
+    br = db.discrete_branches(patch, 0.3, kappa)
+    for i, kk in enumerate(kappa):
+        if any(f[1] == kk and f[0] == "omega" for f in br.failures):
+            continue
+        dps = 40 + int(4 * max(0.0, -math.log10(kk))) if kk > 0 else 60  # as above
+        ref = np.array([float(v) for v in mp_frequencies(patch, 0.3, kk, dps)])
+        got = _sorted_finite(br, i)
+        scale = np.where(ref > 1e-20, ref, 1.0) if kk == 0 else ref
+        assert got.size == ref.size and np.all(np.abs(got - ref) <= 1e-10 * scale), (kk, got, ref)
+
+
+@pytest.mark.slow
+@settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(kappa=st.lists(_KAPPA, min_size=1, max_size=3), mass=st.sampled_from(ISSUE_MASSES))
+def test_property_p3_n6_values_are_right(kappa, mass):
+    _p3_values_are_right(np.array(kappa), mass)
+
+
+def test_p3_n6_zone_edge_and_zero_are_right():
+    # the hard points of the race grids: kappa = 0, 1e-6 and the zone edge itself
+    _p3_values_are_right(np.array([0.0, 1e-6, 1.0, _EDGE]), "singular-lumped")
+
+
+def test_routes_count_every_kappa_once():
+    # every kappa of the grid is counted on exactly one route; the tiny ones on the power law
+    patch = plate_patch(p=3, n=6, model="bloch", r=2, mass="singular-lumped")
+    kappa = np.concatenate([[0.0, 1e-30], np.linspace(0.01, _EDGE, 300)])
+    br = db.discrete_branches(patch, 0.3, kappa)
+    assert set(br.routes) == set(db.ROUTES)
+    assert sum(br.routes.values()) == kappa.size
+    assert br.routes["power law"] == 2
+
+
+def test_taylor_tables_are_the_same_polynomial():
+    # the centred tables are exact Taylor shifts of P: their value at (u, mu) equals that of
+    # the table in u, evaluated at 50 digits (mpmath); the rule: within 1e-9 of the u-table's
+    # bar sum sum |a_jk| u^k |mu|^j (both tables are the exact P rounded coefficient-wise)
+    # the singular-lumped mass of the test above: the same exact polynomial (cached)
+    patch = plate_patch(p=3, n=6, model="bloch", r=2, mass="singular-lumped")
+    poly = db._plan(patch, 0.3)[0].poly
+    assert poly.centres == pp.taylor_centres(poly.coef.shape[1] - 1) == 4
+    rng = np.random.default_rng(1)
+    u = rng.uniform(0, 2, 40)
+    mu = rng.uniform(0, 50, (1, 40))
+    c = cr._tables(poly, u, 2 - u)[0]
+    p, _ = pp._horner_mu(c, mu)
+    J, D = poly.coef.shape
+    with mpmath.workdps(50):
+        for i in range(u.size):
+            uu, m = mpmath.mpf(u[i]), mpmath.mpf(mu[0, i])
+            ref = sum(mpmath.mpf(poly.coef[j, k]) * uu**k * m**j for j in range(J)
+                      for k in range(D))
+            bar = sum(abs(poly.coef[j, k]) * u[i]**k * mu[0, i]**j for j in range(J)
+                      for k in range(D))
+            assert abs(p[0, i] - float(ref)) <= 1e-9 * bar, (u[i], p[0, i], float(ref))

@@ -5,6 +5,8 @@ only their routing to the page is checked.
 """
 from __future__ import annotations
 
+import pytest
+
 import inspect
 
 from dispersion.contact import study
@@ -76,6 +78,26 @@ def test_scene_history_has_no_typed_figures():
     assert "-8.8" not in src and "-0.03," not in src
 
 
+def test_signorini_errors_are_reported_as_their_spread():
+    # issue 23: a figure that varies between runs is a spread over the stated perturbations
+    from dispersion.contact.signorini import SIGNORINI_SPREAD_RULE
+
+    spread = {"runs": 8, **{k: {"min": v, "max": v} for k, v in (
+        ("u0_rel_l2", 0.01), ("v0_rel_l2", 0.1), ("energy_drift_percent", 1.0),
+        ("energy_error_percent", -1.0), ("energy_growth_percent", 0.0))},
+        "stress_rel_l2": {"min": 1.101, "max": 1.173}}
+    data = dict(DATA, signorini=[dict(_sig("lumped", "kane", 1.101), spread=spread),
+                                 dict(_sig("singular", "kane", 0.354),
+                                      spread=dict(spread, stress_rel_l2={"min": 0.354,
+                                                                         "max": 0.354}))])
+    kane = next(ln for ln in ring.summary(data).splitlines() if ln.strip().startswith("- kane:"))
+    assert "lumped 1.101 .. 1.173" in kane and "singular 0.354" in kane
+    assert "range over 8 runs" in ring.summary(data)
+    assert [ring._err(r, "stress_rel_l2") for r in data["signorini"]] == ["1.101 .. 1.173",
+                                                                          "0.354"]
+    assert SIGNORINI_SPREAD_RULE in ring._runs_text(data["signorini"])
+
+
 def test_scheme_elements_and_step_are_rendered_from_the_rows():
     # issue 22 item 2: "Kane's Newmark" and "20 elements" were typed into the page and the
     # README block; here the stored rows say otherwise (values no code path types), and the
@@ -94,6 +116,28 @@ def test_scheme_elements_and_step_are_rendered_from_the_rows():
 def test_signorini_rows_store_their_element_count():
     from dispersion.contact.signorini import signorini_1d
 
-    row = study._signorini((1, "singular", "kane", 0.1))
+    row = study._signorini((1, "singular", "kane", 0.1, 1))
     default = inspect.signature(signorini_1d).parameters["n_elements"].default
     assert row["n_elements"] == default and row["p"] == 1  # the mesh the study runs
+
+
+def test_figure4_title_names_the_scheme_the_runs_stored():
+    # the title was "<raw name> Newmark" ("kane Newmark"); it is the scheme's name as the pages
+    # give it, from the stored summary (a value no default produces: the standard scheme)
+    pytest.importorskip("matplotlib")
+    import numpy as np
+
+    from dispersion.contact.newmark_scheme import SCHEME_TEXT
+    from dispersion.plotting.ring import figure4
+
+    t = np.linspace(0.0, 1.0, 50)
+    force = np.where((t > 0.2) & (t < 0.4), 1.0, 0.0)
+    sc = {"r_inner": 0.9, "r_outer": 1.0, "theta0_deg": 30, "gap": 0.05, "v0": 1.0, "E": 1e6,
+          "nu": 0.3, "rho": 1.0, "n_xi_elements": 4, "n_eta_elements": 2, "dt": 0.02,
+          "t_end": 1.0}
+    runs = [{"summary": {"scheme": "standard", "mass": m, "energy_change_percent": 1.0},
+             "scenario": sc,
+             "series": {"t": t.tolist(), "contact_force": force.tolist(),
+                        "total": (1 + 0.01 * t).tolist()}} for m in ("lumped", "singular")]
+    title = figure4(*runs)._suptitle.get_text().replace("\n", " ")
+    assert title.startswith(f"Figure 4: {SCHEME_TEXT['standard']}, ") and "kane" not in title

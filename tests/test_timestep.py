@@ -190,3 +190,21 @@ def test_certified_bound_holds_and_a_false_bound_is_not_proven(mass):
     assert w <= certified_omega_max(patch, 0.3, w) <= w * (1 + 1e-3)
     with pytest.raises(InputError, match="does not hold|did not prove"):
         certified_omega_max(patch, 0.3, 0.995 * w, rtol=1e-3, max_cells=4000)
+
+
+def test_one_critical_time_step_for_the_plate_patch():
+    # the plate patch's critical step is 2 / patch_omega_max (one implementation); an
+    # independent check: 2 / the largest batched eigenvalue on a grid can only be larger or
+    # equal (the grid misses the refined maximum), and a zone-end maximum agrees to rounding
+    from dispersion.symbolic.plate import numeric_pencil
+    from dispersion.waves.pencil_frequencies import pencil_frequencies
+    from dispersion.waves.timestep import critical_time_step
+
+    patch = plate_patch(2, 3, "bloch", 2, "lumped")
+    dt = critical_time_step(patch, 0.3, n_theta=33)
+    K, M = numeric_pencil(patch, 0.3, np.linspace(0, np.pi, 33) / 2)
+    grid = 2 / float(pencil_frequencies(K, M, patch.massless).max())
+    assert dt <= grid * (1 + 1e-12)
+    assert dt == pytest.approx(2 / patch_omega_max(patch, 0.3, 33)[0], rel=1e-15)
+    with pytest.raises(InputError, match="n_theta"):
+        critical_time_step(patch, 0.3, n_theta=2)

@@ -15,6 +15,13 @@ The mass is any rule of :mod:`dispersion.symbolic.mass_rule` (a name or a
 :class:`~dispersion.symbolic.mass_rule.MassRule`); the singular ones redistribute
 the contact end's function onto its two neighbours (paper eqs 2-4).
 
+A bar of up to :data:`DENSE_DOFS` functions is assembled as numpy arrays on the float
+B-spline basis (:meth:`~dispersion.symbolic.bspline.SplineBasis1D.uniform`), and the rules
+that read only the consistent mass and the redistribution (:data:`NUMERIC_RULES`) are
+applied to it in floats: such a run imports neither sympy nor scipy (issue 23: their import
+costs more than a whole small run). Larger bars are assembled sparse (scipy), and the rules
+that evaluate the basis (HRZ, nodal quadratures, user rules) are given the exact knot vector.
+
 Validation case (:func:`simulate_bar`): a free bar moving with velocity :math:`-v_0` touches
 the wall at :math:`x = 0` at :math:`t = 0`. The exact solution (d'Alembert) keeps contact for
 exactly :math:`2L/c` with constant contact stress :math:`\\rho c v_0`, then the bar leaves
@@ -35,19 +42,18 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
-import scipy.sparse as sp
 
-from dispersion.symbolic.bspline import open_knot_vector
-from dispersion.defaults import GAMMA_S
+from dispersion.defaults import GAMMA_S_FLOAT
 from dispersion.errors import InputError, check_positive, check_positive_int, check_real_in_range
-from dispersion.symbolic.mass import mass_variant
-from dispersion.symbolic.mass_rule import get_rule
-from dispersion.contact.assembly import float_redistribution
-from dispersion.contact.newmark import ContactProblem, History, Newmark, integrate
-from dispersion.contact.nurbs import SplineBasis1D
+from dispersion.symbolic.bspline import SplineBasis1D
+from dispersion.symbolic.mass_rule import RULES, get_rule, mass_variant
+from dispersion.contact.contact_problem import ContactProblem
+from dispersion.contact.newmark import History, integrate
+from dispersion.contact.newmark_scheme import Newmark
+from dispersion.contact.redistribution import float_redistribution
 
-__all__ = ["ENDS", "MAX_STEPS", "Bar", "BarModel", "BarResult", "bar_model", "bar_problem",
-           "check_steps", "simulate_bar"]
+__all__ = ["ENDS", "MAX_STEPS", "DENSE_DOFS", "NUMERIC_RULES", "Bar", "BarModel", "BarResult",
+           "bar_model", "bar_problem", "check_steps", "simulate_bar"]
 
 ENDS = ("left", "right")
 
@@ -55,6 +61,13 @@ ENDS = ("left", "right")
 #: a step of a small bar costs about 60 microseconds (signorini-1d, 20 elements: 24000 steps
 #: in 1.4 s), so 10^6 steps take about a minute.
 MAX_STEPS = 1_000_000
+#: Most functions of a bar assembled as dense numpy arrays; sparse (scipy) above. The rule:
+#: the time stepper keeps its matrix products dense up to the same size (there
+#: scipy.sparse's per-call overhead dominates), and a dense 400 x 400 matrix is 1.3 MB.
+DENSE_DOFS = 400
+#: Registered rules built from the consistent mass and the redistribution alone (row sums,
+#: :math:`R^T M R`): applied in floats without the knot vector.
+NUMERIC_RULES = ("consistent", "lumped", "singular", "singular-lumped")
 
 
 def check_steps(t_end: float, dt: float, t_end_name: str = "t_end") -> int:
@@ -89,7 +102,7 @@ class Bar:
     clamped: tuple = ()
     contact: str = "left"
     gap: float = 0.0
-    gamma_s: float = float(GAMMA_S)
+    gamma_s: float = GAMMA_S_FLOAT
     body_force: float | Callable | None = field(default=None, compare=False)
 
     def __post_init__(self):
@@ -118,7 +131,7 @@ class Bar:
 
 @dataclass(frozen=True)
 class BarModel:
-    """The bar's :class:`~.newmark.ContactProblem` on the free DOFs ``free`` of ``basis``."""
+    """The bar's :class:`~.contact_problem.ContactProblem` on the free DOFs ``free`` of ``basis``."""
 
     bar: Bar
     problem: ContactProblem
@@ -135,7 +148,9 @@ class BarModel:
         A = np.zeros((len(g), n))
         np.put_along_axis(A, act, N, axis=1)
         c = np.linalg.solve(A, vals)
-        if not np.allclose(c[np.setdiff1d(np.arange(n), self.free)], 0, atol=1e-12):
+        held = np.ones(n, bool)
+        held[self.free] = False
+        if not np.allclose(c[held], 0, atol=1e-12):
             raise InputError("initial field must vanish at a clamped end")
         return c[self.free]
 
@@ -147,10 +162,25 @@ class BarModel:
         return np.einsum("ma,ma->m", N, c[act])
 
 
+def _numeric(rule) -> bool:
+    return any(RULES[name] is rule for name in NUMERIC_RULES)
+
+
+def _assemble(values: np.ndarray, rows: np.ndarray, cols: np.ndarray, n: int, dense: bool):
+    """The ``n x n`` matrix summing ``values`` at ``(rows, cols)``: numpy or scipy.sparse."""
+    if dense:
+        return np.bincount(rows * n + cols, values, minlength=n * n).reshape(n, n)
+    import scipy.sparse as sp
+
+    return sp.csr_matrix((values, (rows, cols)), shape=(n, n))
+
+
 def bar_model(bar: Bar) -> BarModel:
     """Assemble the bar: stiffness, mass variant, wall constraint, body force, clamped ends."""
     p, L = bar.p, bar.L
-    basis = SplineBasis1D.from_knots(open_knot_vector(p, bar.n_elements, 0, 1))
+    basis = SplineBasis1D.uniform(p, bar.n_elements)
+    n = basis.kv.n
+    dense = n <= DENSE_DOFS
     xg, wg = np.polynomial.legendre.leggauss(p + 1)
     a, b = basis.spans[:, :1] * L, basis.spans[:, 1:] * L
     x = (a + (b - a) * (xg + 1) / 2).ravel()
@@ -158,18 +188,28 @@ def bar_model(bar: Bar) -> BarModel:
     act, N = basis.evaluate(x / L)
     _, dN = basis.evaluate(x / L, 1)
     dN = dN / L
-    n = basis.kv.n
     rows = np.repeat(act, p + 1, axis=1).ravel()
     cols = np.tile(act, (1, p + 1)).ravel()
-    K = sp.csr_matrix(((bar.E * w[:, None, None] * dN[:, :, None] * dN[:, None, :]).ravel(),
-                       (rows, cols)), shape=(n, n))
-    M = sp.csr_matrix(((bar.rho * w[:, None, None] * N[:, :, None] * N[:, None, :]).ravel(),
-                       (rows, cols)), shape=(n, n))
+    K = _assemble((bar.E * w[:, None, None] * dN[:, :, None] * dN[:, None, :]).ravel(),
+                  rows, cols, n, dense)
+    M = _assemble((bar.rho * w[:, None, None] * N[:, :, None] * N[:, None, :]).ravel(),
+                  rows, cols, n, dense)
     side = "bottom" if bar.contact == "left" else "top"
     rule = get_rule(bar.mass)
     R = float_redistribution(n, side, bar.gamma_s) if rule.redistributes else None
-    Mv = sp.csr_matrix(mass_variant(M, rule, R, kv=basis.kv))
-    Mv.eliminate_zeros()
+    kv = None
+    if not _numeric(rule):  # HRZ, nodal quadratures, user rules: the exact knot vector
+        from dispersion.symbolic.bspline import open_knot_vector
+
+        kv = open_knot_vector(p, bar.n_elements, 0, 1)
+    Mv = mass_variant(M, rule, R, kv=kv)
+    if dense:
+        Mv = np.asarray(Mv, dtype=float)
+    else:
+        import scipy.sparse as sp
+
+        Mv = sp.csr_matrix(Mv)
+        Mv.eliminate_zeros()
     f_ext = None
     if bar.body_force is not None:
         bx = bar.body_force(x) if callable(bar.body_force) else np.full(len(x), bar.body_force)
@@ -178,20 +218,30 @@ def bar_model(bar: Bar) -> BarModel:
     dof = 0 if bar.contact == "left" else n - 1
     sign = 1.0 if bar.contact == "left" else -1.0
     fixed = {"left": 0, "right": n - 1}
-    free = np.setdiff1d(np.arange(n), [fixed[e] for e in bar.clamped])
-    Kf = K[free][:, free].tocsr()
-    # dense products below a few hundred DOFs: scipy.sparse's per-call overhead dominates
-    Kp = Kf.toarray() if len(free) <= 400 else Kf
-    G = sp.csr_matrix(([sign], ([0], [int(np.flatnonzero(free == dof)[0])])), shape=(1, len(free)))
-    prob = ContactProblem(Mv[free][:, free].tocsr(), lambda u: (Kp @ u, Kf), G,
-                          np.array([bar.gap]), lambda u: 0.5 * float(u @ (Kp @ u)),
+    held = np.zeros(n, bool)  # a mask, not setdiff1d: that imports numpy.ma
+    held[[fixed[e] for e in bar.clamped]] = True
+    free = np.flatnonzero(~held)
+    k = int(np.flatnonzero(free == dof)[0])
+    if dense:
+        Kf = K[np.ix_(free, free)]
+        Mf = Mv[np.ix_(free, free)]
+        G = np.zeros((1, len(free)))
+        G[0, k] = sign
+    else:
+        import scipy.sparse as sp
+
+        Kf = K[free][:, free].tocsr()
+        Mf = Mv[free][:, free].tocsr()
+        G = sp.csr_matrix(([sign], ([0], [k])), shape=(1, len(free)))
+    prob = ContactProblem(Mf, lambda u: (Kf @ u, Kf), G, np.array([bar.gap]),
+                          lambda u: 0.5 * float(u @ (Kf @ u)),
                           None if f_ext is None else f_ext[free], None, Kf,
-                          lambda u: Kp @ u)
+                          lambda u: Kf @ u)
     return BarModel(bar, prob, basis, free, dof)
 
 
 def bar_problem(n_elements: int, p: int = 2, mass: str = "lumped", L: float = 1.0,
-                E: float = 1.0, rho: float = 1.0, gamma_s: float = float(GAMMA_S)
+                E: float = 1.0, rho: float = 1.0, gamma_s: float = GAMMA_S_FLOAT
                 ) -> ContactProblem:
     """Free bar on ``[0, L]`` (unit area) with the wall constraint ``g = u_0 >= 0``."""
     return bar_model(Bar(n_elements, p, L, E, rho, mass, gamma_s=gamma_s)).problem
@@ -209,7 +259,7 @@ class BarResult:
 def simulate_bar(n_elements: int = 40, p: int = 2, mass: str = "lumped", *,
                  courant: float = 0.5, dt: float | None = None, scheme: str = "kane",
                  L: float = 1.0, E: float = 1.0, rho: float = 1.0, v0: float = 1.0,
-                 t_end_factor: float = 3.0, gamma_s: float = float(GAMMA_S),
+                 t_end_factor: float = 3.0, gamma_s: float = GAMMA_S_FLOAT,
                  contact_threshold: float = 1e-12) -> BarResult:
     """Bar impact up to ``t_end_factor * L / c``; ``dt = courant * h / c`` unless given.
 

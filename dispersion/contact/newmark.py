@@ -44,7 +44,6 @@ stable for :math:`\\omega_{max} \\Delta t \\le 2`).
 """
 from __future__ import annotations
 
-import sys
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
@@ -52,117 +51,18 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from dispersion.errors import ConvergenceError, InputError, check_positive, check_positive_int
+from dispersion.contact.complementarity import solve_lcp
+from dispersion.contact.contact_problem import ContactProblem
+from dispersion.contact.linear_solver import LinearSolver
+from dispersion.contact.mass_split import MassSplit
+from dispersion.contact.newmark_scheme import Newmark
+from dispersion.symbolic.matrix_kind import dense, is_sparse
+from dispersion.contact.semismooth_newton import Tangent, newton
 
 if TYPE_CHECKING:
-    import scipy.sparse as sp
+    pass
 
-__all__ = ["SCHEMES", "DENSE_MAX", "RING_SCHEMES", "ContactProblem", "History", "Newmark",
-           "State", "critical_step", "consistent_state", "integrate", "newmark_for", "step"]
-
-SCHEMES = ("kane", "standard")
-
-#: Largest step matrix factorized with dense LAPACK; sparse SuperLU above. Chosen by
-#: measurement (``python benchmarks/bench_ring.py``, table 1, 2-core machine): at the ring's
-#: 144 DOFs the two factorize within 2x of each other when the machine is quiet, and
-#: threaded LAPACK is up to 20x slower when it is loaded; from 408 DOFs on SuperLU wins
-#: outright (0.74 vs 1.6 ms, 12 vs 74 ms at 1320). Dense stays for the bar's few dozen DOFs.
-DENSE_MAX = 64
-#: Largest problem whose mass and constraint matrices are kept dense for products.
-_MATVEC_DENSE_MAX = 400
-
-
-def _issparse(A) -> bool:
-    """True for a scipy.sparse matrix; never imports scipy (such a matrix means it is loaded).
-
-    A problem given as numpy arrays (the 1D bar up to a few hundred DOFs) runs on numpy alone:
-    scipy's import costs more than a whole small run.
-    """
-    sp = sys.modules.get("scipy.sparse")
-    return sp is not None and sp.issparse(A)
-
-
-def _dense(A) -> np.ndarray:
-    return A.toarray() if _issparse(A) else np.asarray(A, dtype=float)
-
-
-@dataclass(frozen=True)
-class ContactProblem:
-    """Mass ``M``, ``internal(u) -> (f_int, K_T)``, gap ``g0 + G u``, ``energy(u)`` (strain).
-
-    ``f_ext`` is a constant external force (its potential ``-f_ext . u`` enters the total
-    energy); ``directions`` (``(k, n)``) maps ``M v`` to momentum components; ``K`` (constant
-    stiffness) marks a linear problem, ``internal(u) = (K u, K)``, whose step matrix is
-    factorized once; ``force(u)`` (optional) is ``f_int`` alone, cheaper than ``internal``.
-    """
-
-    M: sp.csr_matrix
-    internal: Callable
-    G: sp.csr_matrix
-    g0: np.ndarray
-    energy: Callable
-    f_ext: np.ndarray | None = None
-    directions: np.ndarray | None = None
-    K: sp.csr_matrix | None = None
-    force: Callable | None = None
-
-    @property
-    def n(self) -> int:
-        return self.M.shape[0]
-
-
-@dataclass(frozen=True)
-class Newmark:
-    """Newmark parameters (``beta``, ``gamma``), ``scheme`` and Newton controls.
-
-    ``beta = 0`` (with ``gamma = 1/2``) is the explicit central-difference scheme. ``tol``
-    bounds the total residual (force residual and complementarity) relative to
-    ``max(|inertia|, |f_int|, |f_ext|)`` of the step; ``solver`` is ``"auto"`` (dense up to
-    ``dense_max`` unknowns), ``"dense"`` or ``"sparse"``. ``reuse_tangent=False`` rebuilds
-    and refactors the tangent at every Newton iteration (full Newton: the speed baseline).
-    """
-
-    beta: float = 0.25
-    gamma: float = 0.5
-    scheme: str = "kane"
-    tol: float = 1e-8
-    max_iter: int = 25
-    solver: str = "auto"
-    dense_max: int = DENSE_MAX
-    reuse_tangent: bool = True
-
-    def __post_init__(self):
-        if not (np.isfinite(self.beta) and 0 <= self.beta <= 0.5):
-            raise InputError(f"beta must lie in [0, 0.5] (0: explicit), got {self.beta}")
-        check_positive("gamma", self.gamma)
-        if self.scheme not in SCHEMES:
-            raise InputError(f"scheme must be one of {', '.join(SCHEMES)}; got {self.scheme!r}")
-        if self.explicit and (self.gamma != 0.5 or self.scheme != "kane"):
-            raise InputError("beta = 0 (explicit) needs gamma = 0.5 and scheme 'kane', got "
-                             f"gamma = {self.gamma}, scheme {self.scheme!r}")
-        if self.solver not in ("auto", "sparse", "dense"):
-            raise InputError(f"solver must be 'auto', 'sparse' or 'dense', got {self.solver!r}")
-        check_positive("tol", self.tol)
-        check_positive_int("max_iter", self.max_iter)
-        check_positive_int("dense_max", self.dense_max, minimum=0)
-
-    @property
-    def explicit(self) -> bool:
-        return self.beta == 0
-
-
-#: Time integrators by name: Kane's contact-modified Newmark, standard Newmark, explicit
-#: central differences (beta = 0, Kane's contact impulse).
-RING_SCHEMES = ("kane", "standard", "explicit")
-
-
-def newmark_for(scheme: str, **kwargs) -> Newmark:
-    """:class:`~.newmark.Newmark` of the scheme named ``scheme`` (see :data:`RING_SCHEMES`)."""
-    if scheme not in RING_SCHEMES:
-        raise InputError(f"scheme must be one of {', '.join(RING_SCHEMES)}; got {scheme!r}")
-    if scheme == "explicit":
-        return Newmark(beta=0.0, gamma=0.5, scheme="kane", **kwargs)
-    return Newmark(scheme=scheme, **kwargs)
-
+__all__ = ["History", "State", "critical_step", "consistent_state", "integrate", "step"]
 
 @dataclass
 class State:
@@ -211,134 +111,11 @@ class History:
         return out
 
 
-class _Solver:
-    """Linear solves of one problem: dense LAPACK or sparse SuperLU, chosen by size."""
-
-    def __init__(self, n_unknowns: int, nm: Newmark):
-        self.dense = nm.solver == "dense" or (nm.solver == "auto" and n_unknowns <= nm.dense_max)
-
-    def matrix(self, A):
-        if self.dense:
-            return _dense(A)
-        import scipy.sparse as sp
-
-        return sp.csc_matrix(A)
-
-    def solve(self, A, b):
-        try:
-            if self.dense:
-                return np.linalg.solve(A, b)
-            import scipy.sparse.linalg as spla
-
-            return spla.spsolve(A, b)
-        except (RuntimeError, np.linalg.LinAlgError, ValueError) as exc:  # SuperLU, LAPACK
-            raise ConvergenceError(f"singular or non-finite step matrix ({exc}); the scene's "
-                                   "scale is beyond double precision") from None
-
-    def factor(self, A):
-        try:
-            if self.dense:
-                # a few dozen unknowns: one product with the inverse beats any solve call
-                inv = np.linalg.inv(_dense(A))
-                return lambda b: inv @ b
-            import scipy.sparse.linalg as spla
-
-            return spla.splu(A).solve
-        except (RuntimeError, np.linalg.LinAlgError, ValueError) as exc:  # SuperLU, LAPACK
-            raise ConvergenceError(f"singular or non-finite step matrix ({exc}); the scene's "
-                                   "scale is beyond double precision") from None
-
-
-class _Split:
-    """Massive / massless DOF split and a factorization of the massive block of ``M``."""
-
-    def __init__(self, prob: ContactProblem, nm: Newmark):
-        if not (_issparse(prob.M) or _issparse(prob.G)):
-            self._init_dense(prob, nm)
-            return
-        import scipy.sparse as sp
-
-        M = sp.csr_matrix(prob.M)
-        rowmax = np.asarray(abs(M).max(axis=1).todense()).ravel()
-        self.massless = np.flatnonzero(rowmax <= 1e-14 * rowmax.max())
-        self.massive = np.setdiff1d(np.arange(M.shape[0]), self.massless)
-        Mmm = M[self.massive][:, self.massive]
-        self.diagonal = Mmm.nnz == Mmm.shape[0] and np.all(Mmm.indices == np.arange(Mmm.shape[0]))
-        if self.diagonal:
-            d = Mmm.diagonal()
-            self.solve = lambda b: b / d
-        else:
-            solver = _Solver(Mmm.shape[0], nm)
-            self.solve = solver.factor(solver.matrix(Mmm.tocsc()))
-        G = sp.csr_matrix(prob.G)
-        # a constraint that acts only on massless DOFs carries lambda = mu (eq 12)
-        only_massless = np.ones(G.shape[0], bool)
-        for k in range(G.shape[0]):
-            cols = G.indices[G.indptr[k]:G.indptr[k + 1]]
-            only_massless[k] = bool(np.all(np.isin(cols, self.massless)))
-        self.only_massless = only_massless
-        self.M = M
-        small = M.shape[0] <= _MATVEC_DENSE_MAX
-        self.Md = M.toarray() if small else None
-        self.G = G
-        self.Gd = G.toarray() if small else None
-        self.f_ext = np.zeros(prob.n) if prob.f_ext is None else np.asarray(prob.f_ext, float)
-        self.rows = np.zeros(prob.n, bool)  # rows whose internal force is implicit (explicit)
-        self.rows[self.massless] = True
-
-    def _init_dense(self, prob: ContactProblem, nm: Newmark):
-        """The same split for a problem given as numpy arrays (no scipy)."""
-        M = np.asarray(prob.M, dtype=float)
-        G = np.asarray(prob.G, dtype=float).reshape(-1, M.shape[0])
-        rowmax = np.abs(M).max(axis=1)
-        self.massless = np.flatnonzero(rowmax <= 1e-14 * rowmax.max())
-        self.massive = np.setdiff1d(np.arange(M.shape[0]), self.massless)
-        Mmm = M[np.ix_(self.massive, self.massive)]
-        self.diagonal = not np.any(Mmm - np.diag(np.diag(Mmm)))
-        if self.diagonal:
-            d = np.diag(Mmm).copy()
-            self.solve = lambda b: b / d
-        else:
-            solver = _Solver(Mmm.shape[0], nm)
-            self.solve = solver.factor(solver.matrix(Mmm))
-        # a constraint that acts only on massless DOFs carries lambda = mu (eq 12)
-        self.only_massless = np.array([bool(np.all(np.isin(np.flatnonzero(row), self.massless)))
-                                       for row in G], dtype=bool)
-        self.M, self.Md, self.G, self.Gd = M, M, G, G
-        self.f_ext = np.zeros(prob.n) if prob.f_ext is None else np.asarray(prob.f_ext, float)
-        self.rows = np.zeros(prob.n, bool)
-        self.rows[self.massless] = True
-
-    def a_int(self, f: np.ndarray) -> np.ndarray:
-        """Internal acceleration ``M^-1 (f_ext - f)`` on the massive DOFs (0 elsewhere)."""
-        a = np.zeros(len(f))
-        a[self.massive] = self.solve((self.f_ext - f)[self.massive])
-        return a
-
-
-def _lcp(S: np.ndarray, q: np.ndarray, max_iter: int) -> np.ndarray:
-    """``mu >= 0`` with ``S mu + q >= 0`` and ``mu . (S mu + q) = 0`` (primal-dual active set)."""
-    if len(q) == 1:  # one contact point: the complementarity solution in closed form
-        return np.array([max(0.0, -q[0] / S[0, 0])])
-    act = q < 0
-    mu = np.zeros(len(q))
-    for _ in range(max_iter + len(q)):
-        mu[:] = 0
-        if act.any():
-            mu[act] = np.linalg.solve(S[np.ix_(act, act)], -q[act])
-        w = S @ mu + q
-        new = (mu - w) > 0
-        if np.array_equal(new, act):
-            return mu
-        act = new
-    raise ConvergenceError(f"contact active set did not settle in {max_iter + len(q)} sweeps")
-
-
 class _Linear:
     """Factorized step matrix ``c1 M + P K`` and its response to the constraints (linear)."""
 
-    def __init__(self, prob: ContactProblem, split: _Split, nm: Newmark, c1: float):
-        if _issparse(split.M):
+    def __init__(self, prob: ContactProblem, split: MassSplit, nm: Newmark, c1: float):
+        if is_sparse(split.M):
             import scipy.sparse as sp
 
             K = sp.csr_matrix(prob.K)
@@ -346,14 +123,14 @@ class _Linear:
                 K = sp.diags(split.rows.astype(float)) @ K
             A = (c1 * split.M + K).tocsc()
         else:
-            K = _dense(prob.K)
+            K = dense(prob.K)
             if nm.explicit:
                 K = split.rows.astype(float)[:, None] * K
             A = c1 * split.M + K
-        solver = _Solver(prob.n, nm)
+        solver = LinearSolver(prob.n, nm)
         self.solve = solver.factor(solver.matrix(A))
         G = split.G
-        self.W = self.solve(_dense(split.G).T) if G.shape[0] else np.zeros((prob.n, 0))
+        self.W = self.solve(dense(split.G).T) if G.shape[0] else np.zeros((prob.n, 0))
         self.S = G @ self.W
         self.K = K
 
@@ -365,7 +142,7 @@ def step(prob: ContactProblem, nm: Newmark, state: State, dt: float, split=None,
     ``split``, ``linear`` and ``tangent`` carry what does not change between steps (built
     on first use when omitted).
     """
-    split = split or _Split(prob, nm)
+    split = split or MassSplit(prob, nm)
     beta, gamma = nm.beta, nm.gamma
     u, v = state.u, state.v
     explicit = nm.explicit
@@ -384,14 +161,14 @@ def step(prob: ContactProblem, nm: Newmark, state: State, dt: float, split=None,
         mu = np.zeros(G.shape[0])
         if G.shape[0]:
             Gm = split.Gd if split.Gd is not None else G
-            mu = _lcp(linear.S, prob.g0 + Gm @ U0, nm.max_iter)
+            mu = solve_lcp(linear.S, prob.g0 + Gm @ U0, nm.max_iter)
         U = U0 + linear.W @ mu
         it = 1
         f = prob.internal(U)[0] if explicit else None
     else:
         # start from the second-order Taylor guess of the internal motion
         guess = u + dt * v + 0.5 * dt**2 * state.a_int
-        U, mu, it, f = _newton(prob, nm, split, state, ut, c1, rows, tangent=tangent,
+        U, mu, it, f = newton(prob, nm, split, state, ut, c1, rows, tangent=tangent,
                                guess=guess)
     m, z = split.massive, split.massless
     n = prob.n
@@ -407,7 +184,7 @@ def step(prob: ContactProblem, nm: Newmark, state: State, dt: float, split=None,
         a_tot = c1 * (U - ut)[m]
         if nm.scheme == "kane":
             GT = split.Gd.T if split.Gd is not None else G.T
-            y = split.solve((GT @ mu)[m]) if np.any(mu) else np.zeros(len(m))
+            y = split.solve((GT @ mu)[m]) if mu.any() else np.zeros(len(m))
             a_int[m], a_c[m] = a_tot - y, 2 * beta * y
         else:
             a_int[m] = a_tot
@@ -415,119 +192,6 @@ def step(prob: ContactProblem, nm: Newmark, state: State, dt: float, split=None,
         v_new[m] = vt[m] + dt * gamma * a_int[m] + dt * a_c[m]
     v_new[z] = (U[z] - u[z]) / dt
     return State(state.t + dt, U, v_new, a_int, a_c, lam_scale * mu, it, mu)
-
-
-class _Tangent:
-    """Factorized step matrix ``c1 M + P K_T`` at some configuration, reused across iterations
-    and steps while Newton still contracts (a modified Newton method); the constraints enter
-    through ``W = A^-1 G^T`` and the Schur complement ``S = G W`` on the active set."""
-
-    def __init__(self):
-        self.solve = None
-        self.c_ncp = None
-        self.fresh = False
-
-    def refresh(self, prob, nm, split, U, c1, mask, keep):
-        n = prob.n
-        solver = _Solver(n, nm)
-        K = prob.internal(U)[1]
-        if solver.dense:
-            K = _dense(K)
-            M = _dense(split.M)
-            if mask is not None:
-                K = K * mask[:, None]
-            A = c1 * M + K
-            if keep is not None:
-                A = A * keep[:, None] + np.diag(1 - keep)
-        else:
-            import scipy.sparse as sp
-
-            K = sp.csr_matrix(K)
-            if mask is not None:
-                K = sp.diags(mask) @ K
-            A = c1 * split.M + K
-            if keep is not None:
-                A = sp.diags(keep) @ A + sp.diags(1 - keep)
-            A = sp.csc_matrix(A)
-        self.solve = solver.factor(A)
-        if self.c_ncp is None:
-            d = np.diag(A) if solver.dense else A.diagonal()
-            self.c_ncp = float(np.abs(d).max())
-        G = split.G
-        self.W = self.solve(_dense(split.G).T) if G.shape[0] else np.zeros((n, 0))
-        if self.W.ndim == 1:
-            self.W = self.W[:, None]
-        self.S = np.asarray(G @ self.W)
-        self.fresh = True
-
-
-def _newton(prob, nm, split, state, ut, c1, rows, fixed=None, tangent=None, guess=None):
-    """Semismooth Newton for ``c1 M (U - ut) + P (f(U) - f_ext) - G^T mu = 0``, complementarity.
-
-    ``rows`` (bool) restricts the internal force to those rows (explicit scheme); ``fixed``
-    (bool) holds DOFs at ``state.u`` (consistent initial state). ``tangent`` (a
-    :class:`_Tangent`) carries the factorized matrix between steps; it is refreshed at the
-    current iterate whenever an iteration fails to reduce the residual tenfold. Returns
-    ``(U, mu, iterations, f(U))``.
-    """
-    tangent = tangent if tangent is not None else _Tangent()
-    tangent.fresh = False
-    M = split.Md if split.Md is not None else split.M
-    G = split.Gd if split.Gd is not None else split.G
-    GT = G.T
-    f_ext = split.f_ext
-    U = state.u.copy() if guess is None else guess.copy()
-    mu = state.mu.copy() if state.mu is not None else np.zeros(G.shape[0])  # warm start
-    mask = None if rows is None else rows.astype(float)
-    keep = None if fixed is None else (~fixed).astype(float)
-    if tangent.solve is None or not nm.reuse_tangent:
-        tangent.refresh(prob, nm, split, U, c1, mask, keep)
-
-    def residual(U, mu):
-        f = prob.force(U) if prob.force is not None else prob.internal(U)[0]
-        inertia = c1 * (M @ (U - ut))
-        fr = f - f_ext if mask is None else mask * (f - f_ext)
-        r = inertia + fr - GT @ mu
-        if keep is not None:
-            r = keep * r
-        return f, inertia, r, prob.g0 + G @ U
-
-    f, inertia, r, g = residual(U, mu)
-    # the scale of the step's forces, independent of the starting guess
-    scale = max(np.linalg.norm(c1 * (M @ (state.u - ut))), np.linalg.norm(f),
-                np.linalg.norm(f_ext), 1e-300)
-    c = tangent.c_ncp
-    merit = np.hypot(np.linalg.norm(r), np.linalg.norm(np.minimum(mu, c * g)))
-    for it in range(1, nm.max_iter + 1):
-        act = (mu - c * g) > 0
-        d0 = tangent.solve(-(r + GT @ mu))
-        mu_new = np.zeros_like(mu)
-        if act.any():
-            mu_new[act] = np.linalg.solve(tangent.S[np.ix_(act, act)],
-                                          -g[act] - G[act] @ d0)
-        dU = d0 + tangent.W[:, act] @ mu_new[act]
-        if not (np.all(np.isfinite(dU)) and np.all(np.isfinite(mu_new))):
-            raise ConvergenceError(f"singular Newton matrix at t = {state.t:.6g}")
-        # backtracking on the total residual: full steps near the solution, damped far away
-        alpha = 1.0
-        while True:
-            mu_t = mu + alpha * (mu_new - mu)
-            trial = residual(U + alpha * dU, mu_t)
-            m_trial = np.hypot(np.linalg.norm(trial[2]),
-                               np.linalg.norm(np.minimum(mu_t, c * trial[3])))
-            if m_trial <= (1 - 1e-4 * alpha) * merit or alpha <= 1 / 32:
-                break
-            alpha /= 2
-        U, mu = U + alpha * dU, mu_t
-        f, inertia, r, g = trial
-        if m_trial <= nm.tol * scale:
-            return U, mu, it, f
-        if not nm.reuse_tangent or (m_trial > 0.1 * merit and not tangent.fresh):
-            tangent.refresh(prob, nm, split, U, c1, mask, keep)
-        merit = m_trial
-    raise ConvergenceError(
-        f"Newton did not reach tol = {nm.tol:g} in {nm.max_iter} iterations at "
-        f"t = {state.t:.6g}; residual {np.linalg.norm(r):.3e}")
 
 
 def critical_step(prob: ContactProblem, u: np.ndarray | None = None) -> float:
@@ -544,12 +208,12 @@ def critical_step(prob: ContactProblem, u: np.ndarray | None = None) -> float:
     ...               sp.csr_matrix((0, 1)), np.zeros(0), lambda u: 0.0))
     1.0
     """
-    split = _Split(prob, Newmark())
+    split = MassSplit(prob, Newmark())
     u = np.zeros(prob.n) if u is None else np.asarray(u, float)
-    K = _dense(prob.internal(u)[1])
+    K = dense(prob.internal(u)[1])
     m = split.massive
     Kmm = K[np.ix_(m, m)]
-    Mmm = _dense(split.M)[np.ix_(m, m)]
+    Mmm = dense(split.M)[np.ix_(m, m)]
     # K x = w^2 M x with M = L L^T: the standard problem L^-1 K L^-T (numpy alone)
     L = np.linalg.cholesky(Mmm)
     X = np.linalg.solve(L, Kmm)
@@ -567,20 +231,20 @@ def consistent_state(prob: ContactProblem, u0: np.ndarray, nm: Newmark | None = 
     (eq 12 at t = 0). Without massless DOFs ``u0`` is returned unchanged.
     """
     nm = nm or Newmark()
-    split = split or _Split(prob, nm)
+    split = split or MassSplit(prob, nm)
     u0 = np.asarray(u0, float)
     if len(split.massless) == 0:
         return u0.copy(), np.zeros(prob.G.shape[0])
     s = State(0.0, u0, np.zeros(prob.n), np.zeros(prob.n), np.zeros(prob.n),
               np.zeros(prob.G.shape[0]))
     fixed = ~split.rows
-    U, mu, _, _ = _newton(prob, nm, split, s, u0, 0.0, split.rows, fixed)
+    U, mu, _, _ = newton(prob, nm, split, s, u0, 0.0, split.rows, fixed)
     return U, mu
 
 
-def _record(hist: History, prob: ContactProblem, split: _Split, s: State, keep_states: bool):
+def _record(hist: History, prob: ContactProblem, split: MassSplit, s: State, keep_states: bool):
     hist.t.append(s.t)
-    hist.contact_force.append(float(np.sum(s.lam)))
+    hist.contact_force.append(float(s.lam.sum()))
     hist.lam.append(s.lam)
     M = split.Md if split.Md is not None else split.M
     mv = M @ s.v
@@ -626,7 +290,7 @@ def _integrate(prob, u0, v0, dt, n_steps, newmark, progress, keep_states, consis
         raise InputError(f"u0 and v0 must have shape ({prob.n},), got {u0.shape}, {v0.shape}")
     if not (np.all(np.isfinite(u0)) and np.all(np.isfinite(v0))):
         raise InputError("u0 and v0 must be finite")
-    split = _Split(prob, nm)
+    split = MassSplit(prob, nm)
     g = prob.g0 + split.G @ u0
     tol = penetration_tol * max(1.0, float(np.abs(prob.g0).max()) if len(g) else 1.0)
     if len(g) and g.min() < -tol:
@@ -650,12 +314,12 @@ def _integrate(prob, u0, v0, dt, n_steps, newmark, progress, keep_states, consis
     a0 = split.a_int(f0)
     s = State(0.0, u0, v0, a0, np.zeros(prob.n), mu0.copy(), 0, mu0)
     _record(hist, prob, split, s, keep_states)
-    linear, tangent = None, _Tangent()
+    linear, tangent = None, Tangent()
     if prob.K is not None:
         linear = _Linear(prob, split, nm, 2.0 / dt**2 if nm.explicit else 1 / (nm.beta * dt**2))
     for _ in range(n_steps):
         s = step(prob, nm, s, dt, split, linear, tangent)
-        if not (np.all(np.isfinite(s.u)) and np.all(np.isfinite(s.v))):
+        if not (np.isfinite(s.u).all() and np.isfinite(s.v).all()):
             raise ConvergenceError(f"the state became non-finite at t = {s.t:.6g}; the "
                                    "scene's scale (speeds, sizes, dt) is beyond double precision")
         _record(hist, prob, split, s, keep_states)

@@ -4,7 +4,7 @@ A 2D problem is a NURBS patch (knots, control points, weights: :class:`~.nurbs.R
 holds any such patch), a St.Venant-Kirchhoff material (plane stress or plane strain), a
 density, a mass rule of :mod:`dispersion.symbolic.mass_rule`, the patch side that may
 touch a rigid plane and the plane itself, and the sides held fixed. :func:`patch_problem`
-turns it into a :class:`~.newmark.ContactProblem` on the free DOFs. The gap of the plane
+turns it into a :class:`~.contact_problem.ContactProblem` on the free DOFs. The gap of the plane
 :math:`\\mathbf n \\cdot (\\mathbf x - \\mathbf p) \\ge 0` is imposed at the Greville abscissae
 of the contact side, where :math:`\\mathbf x(\\xi) = \\sum_a R_a(\\xi) (\\mathbf X_a +
 \\mathbf u_a)` is linear in the control-point displacements.
@@ -30,7 +30,8 @@ from dispersion.errors import InputError, check_positive, check_positive_int
 from dispersion.symbolic.mass_rule import get_rule
 from dispersion.contact.assembly import discretize, internal_force, patch_mass, strain_energy
 from dispersion.contact.material import StVenantKirchhoff
-from dispersion.contact.newmark import DENSE_MAX, ContactProblem
+from dispersion.contact.contact_problem import ContactProblem
+from dispersion.contact.newmark_scheme import DENSE_MAX
 from dispersion.contact.nurbs import RingPatch, SplineBasis1D
 
 __all__ = ["SIDES", "Plane", "PatchModel", "patch_problem", "rectangle_patch", "restrict",

@@ -24,7 +24,9 @@ import scipy.sparse as sp
 from dispersion.errors import InputError
 from dispersion.contact.energy_balance import energy_balance
 from dispersion.contact.material import StVenantKirchhoff
-from dispersion.contact.newmark import RING_SCHEMES, ContactProblem, integrate, newmark_for
+from dispersion.contact.contact_problem import ContactProblem
+from dispersion.contact.newmark import integrate
+from dispersion.contact.newmark_scheme import RING_SCHEMES, newmark_for
 from dispersion.contact.nurbs import RingPatch, quarter_ring
 from dispersion.contact.problem import Plane, patch_problem
 from dispersion.contact.scenario import Scenario
@@ -133,7 +135,7 @@ def simulate_ring(sc: Scenario | None = None, mass: str = "singular", scheme: st
     consistent : bool
         Put the massless DOFs in equilibrium at t = 0 (:func:`~.newmark.consistent_state`).
     tol, solver, reuse_tangent
-        Newton controls of :class:`~.newmark.Newmark`.
+        Newton controls of :class:`~.newmark_scheme.Newmark`.
 
     ``summary``: ``energy_change_percent`` (total energy at the end vs the initial kinetic
     energy), ``max_penetration_greville`` (m, at the Greville points, where the constraint

@@ -111,7 +111,10 @@ def figure4(lumped: dict, singular: dict, paper: dict | None = None,
     if sc:
         import textwrap
 
-        fig.suptitle(textwrap.fill(f"Figure 4: {lumped['summary']['scheme']} Newmark, "
+        from dispersion.contact.newmark_scheme import SCHEME_TEXT
+
+        name = lumped["summary"]["scheme"]
+        fig.suptitle(textwrap.fill(f"Figure 4: {SCHEME_TEXT.get(name, name)}, "
                                    + scene_caption(sc), 110), fontsize="small")
     grid = fig.subplot_mosaic([["l", "lz"], ["s", "sz"], ["e", "e"]],
                               gridspec_kw={"width_ratios": (2.2, 1)})

@@ -33,6 +33,7 @@ disagreements unless the rule is ``timing`` or ``unjudged``.
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from fnmatch import fnmatchcase
@@ -84,7 +85,12 @@ def close(pattern: str, *, rel: float = 0.0, abs: float = 0.0, why: str = "") ->
 
 def within(pattern: str, lo: str, hi: str, *, widen: float = 1.0, abs: float = 0.0,
            why: str = "") -> Rule:
-    """The new value in the reference's ``[lo, hi]`` (paths), widened by ``widen`` x width."""
+    """The new value in the reference's ``[lo, hi]`` (paths), widened by ``widen`` x width.
+
+    On list items, each ``[]`` of ``lo`` and ``hi`` takes the index of the matched leaf's
+    list at that place: ``within("rows[].x", "rows[].x_min", "rows[].x_max")`` judges
+    ``rows[3].x`` by the reference's ``rows[3]`` spread.
+    """
     return Rule(pattern, "within", lo=lo, hi=hi, widen=widen, abs=abs, why=why)
 
 
@@ -299,7 +305,7 @@ def compare_results(section: str, reference, new, rules: Sequence[Rule] = ()) ->
                                        "missing in the " + ("reference" if a is _MISSING
                                                             else "new run")))
             continue
-        if _agrees(rule, a, b, reference):
+        if _agrees(rule, a, b, reference, path):
             agree += 1
         else:
             disagree.append(Difference(section, path, a, b, rule.describe()))
@@ -310,13 +316,24 @@ def compare_results(section: str, reference, new, rules: Sequence[Rule] = ()) ->
 _MISSING = object()
 
 
-def _agrees(rule: Rule, a, b, reference) -> bool:
+def _bind(template: str, path: str) -> str:
+    """``template`` with each ``[]`` replaced by the next list index of ``path``."""
+    indices = iter(re.findall(r"\[(\d+)\]", path))
+    return re.sub(r"\[\]", lambda m: f"[{next(indices, '')}]", template)
+
+
+def _agrees(rule: Rule, a, b, reference, path: str = "") -> bool:
     if rule.kind == "exact" or not (_number(a) and _number(b)):
         return type(a) is type(b) and a == b or (_number(a) and _number(b) and a == b)
     if rule.kind == "close":
         return abs(b - a) <= rule.abs + rule.rel * abs(a)
     if rule.kind == "within":
-        lo, hi = _get(reference, rule.lo), _get(reference, rule.hi)
+        try:
+            lo, hi = _get(reference, _bind(rule.lo, path)), _get(reference, _bind(rule.hi, path))
+        except (KeyError, IndexError, ValueError, TypeError):  # a reference without the band
+            return False
+        if not (_number(lo) and _number(hi)):
+            return False
         margin = max(rule.widen * (hi - lo), rule.abs)
         return lo - margin <= b <= hi + margin
     raise ValueError(f"unknown rule kind {rule.kind!r}")

@@ -41,7 +41,7 @@ import numpy as np
 from dispersion import defaults
 from dispersion.errors import (IndefiniteMassWarning, InputError, as_real, check_choice,
                      check_positive_int, check_real_in_range)
-from dispersion.symbolic.mass_rule import is_exact, is_sparse
+from dispersion.symbolic.matrix_kind import is_exact, is_sparse
 
 if TYPE_CHECKING:
     import sympy
@@ -51,7 +51,6 @@ __all__ = [
     "CONTACT_SETS",
     "contact_weights",
     "redistribution_matrix",
-    "mass_variant",
     "redistributed_mass",
     "row_sum_lump",
 ]
@@ -170,27 +169,3 @@ def redistributed_mass(M, R, lumped: bool = False):
             R = np.asarray(R, dtype=float)
         Mm = R.T @ M @ R
     return row_sum_lump(Mm) if lumped else Mm
-
-
-def mass_variant(M, variant, R=None, *, kv=None, elements=None, check: bool = True):
-    """Mass matrix of rule ``variant`` from the consistent mass ``M`` and redistribution ``R``.
-
-    ``variant`` is a name of :data:`MASS_VARIANTS` or a
-    :class:`dispersion.symbolic.mass_rule.MassRule`. ``"consistent"``: M; ``"lumped"``: row
-    sums of M; ``"singular"``: R^T M R (eq 1 left); ``"singular-lumped"``: row sums of
-    R^T M R (eq 1 right); ``"hrz"`` and the nodal quadratures need the knot vector ``kv``
-    (or, HRZ, the float element matrices ``elements``). The result is checked against the
-    rule's stated properties (:func:`dispersion.symbolic.mass_rule.mass_matrix`).
-    """
-    from dispersion.symbolic.mass_rule import MassSpace, get_rule, mass_matrix
-
-    rule = get_rule(variant)
-    shape = getattr(M, "shape", None)
-    if shape is None or len(shape) != 2 or shape[0] != shape[1]:
-        raise InputError(f"M must be a square matrix, got shape {shape}")
-    if R is not None and tuple(getattr(R, "shape", np.shape(R))) != tuple(shape):
-        raise InputError(f"R must have the shape of M {tuple(shape)}, got "
-                         f"{tuple(getattr(R, 'shape', np.shape(R)))}")
-    if rule.redistributes and R is None:
-        raise InputError(f"mass variant {rule.name!r} needs a redistribution matrix R")
-    return mass_matrix(rule, MassSpace(M, kv, elements, R), check=check)

@@ -49,10 +49,9 @@ CMAME 195 (2006) 5257-5296 (lumped IGA masses). M. Abramowitz, I. Stegun, 25.4.3
 from __future__ import annotations
 
 import math
-import sys
 import warnings
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 from fractions import Fraction
 from functools import lru_cache
 from typing import TYPE_CHECKING
@@ -60,6 +59,9 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from dispersion.errors import IndefiniteMassWarning, InputError, check_positive_int
+from dispersion.symbolic.mass import redistributed_mass, redistribution_matrix, row_sum_lump
+from dispersion.symbolic.mass_check import MassProperties, check_mass
+from dispersion.symbolic.matrix_kind import is_exact, is_sparse, total
 
 if TYPE_CHECKING:
     import sympy
@@ -68,58 +70,23 @@ if TYPE_CHECKING:
 # where such a matrix is made: a float bar builds and checks its mass on numpy alone.
 
 __all__ = [
-    "MassProperties",
     "MassSpace",
     "MassRule",
-    "MassCheck",
     "RULES",
     "RULE_NAMES",
     "TranslationalMassWarning",
-    "DENSE_CHECK_MAX",
     "get_rule",
     "gram_space",
     "mass_matrix",
-    "check_mass",
     "user_rule",
     "rule_from_toml",
     "x_mass_coefficients",
-    "is_exact",
-    "is_sparse",
+    "mass_variant",
 ]
-
-
-def is_exact(M) -> bool:
-    """True for a sympy matrix; never imports sympy (such a matrix means it is loaded)."""
-    sympy = sys.modules.get("sympy")
-    return sympy is not None and isinstance(M, sympy.MatrixBase)
-
-
-def is_sparse(M) -> bool:
-    """True for a scipy.sparse matrix; never imports scipy (such a matrix means it is loaded)."""
-    sp = sys.modules.get("scipy.sparse")
-    return sp is not None and sp.issparse(M)
 
 
 class TranslationalMassWarning(UserWarning):
     """A mass rule changed the total (translational) mass of the space."""
-
-
-@dataclass(frozen=True)
-class MassProperties:
-    """Properties of a mass matrix, stated by a rule or measured on a space.
-
-    ``zero_rows``: the matrix may have (stated) or has (measured) identically zero rows, the
-    massless DOFs the explicit scheme condenses.
-    """
-
-    symmetric: bool = True
-    psd: bool = True
-    translational: bool = True
-    diagonal: bool = False
-    zero_rows: bool = False
-
-    def as_dict(self) -> dict:
-        return {f.name: getattr(self, f.name) for f in fields(self)}
 
 
 @dataclass(frozen=True)
@@ -176,18 +143,6 @@ class MassRule:
                              "contact set, which the x-direction has not")
 
 
-def _total(M):
-    if is_exact(M):
-        return sum(M)
-    return float(np.asarray(M.sum()))
-
-
-def _dense(M) -> np.ndarray:
-    if is_exact(M):
-        return np.array(M.tolist(), dtype=float)
-    return M.toarray() if is_sparse(M) else np.asarray(M, dtype=float)
-
-
 def _like(A_exact: sympy.Matrix, space: MassSpace, reference_exact: sympy.Matrix):
     """The exact matrix ``A_exact`` in the kind of ``space.M``, scaled like it.
 
@@ -196,7 +151,7 @@ def _like(A_exact: sympy.Matrix, space: MassSpace, reference_exact: sympy.Matrix
     """
     if space.exact:
         return A_exact
-    scale = _total(space.M) / float(sum(reference_exact))
+    scale = total(space.M) / float(sum(reference_exact))
     A = scale * np.array(A_exact.tolist(), dtype=float)
     if is_sparse(space.M):
         import scipy.sparse as sp
@@ -206,8 +161,6 @@ def _like(A_exact: sympy.Matrix, space: MassSpace, reference_exact: sympy.Matrix
 
 
 def _row_sum(M):
-    from dispersion.symbolic.mass import row_sum_lump
-
     return row_sum_lump(M)
 
 
@@ -228,7 +181,6 @@ def _build_lumped(space):
 
 
 def _build_singular(space, lump: bool = False):
-    from dispersion.symbolic.mass import redistributed_mass
 
     if space.R is None:
         raise InputError("a singular mass rule needs a contact set (redistribution matrix R)")
@@ -316,135 +268,6 @@ def gram_space(kv, R=None) -> MassSpace:
     return MassSpace(sympy.Matrix(gram_matrix(kv)), kv, None, R)
 
 
-@dataclass(frozen=True)
-class MassCheck:
-    """Properties measured on a space, and the reasons a rule is refused or warned about."""
-
-    measured: MassProperties
-    refused: tuple[str, ...]
-    warned: tuple[str, ...]
-
-
-def check_mass(rule: MassRule, Mv, M, tol: float = 1e-10) -> MassCheck:
-    """Measure the properties of ``Mv`` (built by ``rule`` from the consistent ``M``).
-
-    Refused: not symmetric; stated diagonal but is not; zero rows it did not state; a
-    massless direction that is no zero row. Warned: indefinite; translational mass changed
-    (the warning says if the rule stated otherwise). ``tol`` is relative to the largest entry (float matrices; exact ones compare
-    exactly, except the eigenvalues).
-    """
-    exact = is_exact(Mv)
-    if exact:
-        import sympy
-    if not exact and Mv.shape[0] > DENSE_CHECK_MAX:
-        return _check_large(rule, Mv, M, tol)
-    A = _dense(Mv)
-    n = A.shape[0]
-    if A.shape != (n, n) or A.shape[0] != M.shape[0]:
-        raise InputError(f"mass rule {rule.name!r} returned shape {A.shape}, expected "
-                         f"{tuple(M.shape)}")
-    if not np.all(np.isfinite(A)):
-        raise InputError(f"mass rule {rule.name!r} returned non-finite entries")
-    scale = max(float(np.abs(A).max(initial=0.0)), np.finfo(float).tiny)
-    if exact:
-        symmetric = Mv.is_symmetric()
-        diagonal = Mv.is_diagonal()
-        zero = [i for i in range(n) if all(v == 0 for v in Mv.row(i))]
-        translational = sympy.expand(sum(Mv) - sum(sympy.Matrix(M))) == 0 \
-            if is_exact(M) else abs(float(sum(Mv)) - _total(M)) <= tol * scale * n
-    else:
-        symmetric = bool(np.allclose(A, A.T, rtol=0, atol=tol * scale))
-        diagonal = bool(np.all(np.abs(A - np.diag(np.diag(A))) <= tol * scale))
-        zero = [i for i in range(n) if np.all(np.abs(A[i]) <= tol * scale)]
-        translational = abs(A.sum() - _total(M)) <= tol * scale * n
-    keep = np.setdiff1d(np.arange(n), zero)
-    Ar = A[np.ix_(keep, keep)]
-    ev = np.linalg.eigvalsh((Ar + Ar.T) / 2) if keep.size else np.zeros(0)
-    psd = bool(ev.size == 0 or ev.min() >= -tol * scale * n)
-    if exact and keep.size:
-        # rank decided exactly (fraction-free over QQ): high-degree nodal masses are
-        # nonsingular but far too ill-conditioned for a float test
-        from sympy.polys.matrices import DomainMatrix
-
-        rest = Mv.extract(list(keep), list(keep))
-        try:
-            nonsingular_rest = DomainMatrix.from_Matrix(rest).to_field().rank() == keep.size
-        except (ValueError, TypeError, NotImplementedError, sympy.polys.polyerrors.PolynomialError):
-            nonsingular_rest = bool(np.abs(ev).min() > tol * scale * n)
-    else:
-        nonsingular_rest = bool(ev.size == 0 or np.abs(ev).min() > tol * scale * n)
-    measured = MassProperties(bool(symmetric), psd, bool(translational), bool(diagonal),
-                              bool(zero))
-    smallest = f"smallest eigenvalue {ev.min():.3g}" if ev.size else ""
-    return _verdict(rule, measured, zero, nonsingular_rest, smallest)
-
-
-#: Largest float matrix checked with dense eigenvalues; above, a sparse symmetric
-#: factorisation gives the inertia (Sylvester). Rule: the dense check stays near a second
-#: (numpy eigvalsh of 2000 x 2000, O(n^3)) and its memory near 32 MB.
-DENSE_CHECK_MAX = 2000
-
-
-def _check_large(rule: MassRule, Mv, M, tol: float) -> MassCheck:
-    """:func:`check_mass` of a large float matrix without forming it densely."""
-    import scipy.sparse as sp
-    from scipy.sparse.linalg import splu
-
-    A = sp.csr_matrix(Mv, dtype=float)
-    n = A.shape[0]
-    if A.shape != (n, n) or n != M.shape[0]:
-        raise InputError(f"mass rule {rule.name!r} returned shape {A.shape}, expected "
-                         f"{tuple(M.shape)}")
-    if not np.all(np.isfinite(A.data)):
-        raise InputError(f"mass rule {rule.name!r} returned non-finite entries")
-    scale = max(float(np.abs(A.data).max(initial=0.0)), np.finfo(float).tiny)
-    symmetric = float(np.abs((A - A.T).data).max(initial=0.0)) <= tol * scale
-    off = A - sp.diags(A.diagonal())
-    diagonal = float(np.abs(off.data).max(initial=0.0)) <= tol * scale
-    rowabs = np.asarray(abs(A).sum(axis=1)).ravel()
-    zero = [int(i) for i in np.flatnonzero(rowabs <= tol * scale)]
-    translational = abs(float(A.sum()) - _total(M)) <= tol * scale * n
-    keep = np.setdiff1d(np.arange(n), zero)
-    S = ((A + A.T) / 2).tocsc()[keep][:, keep]
-    if diagonal:
-        pivots = S.diagonal()
-    else:  # LDL^T by symmetric-mode LU without pivoting: the pivots carry the inertia
-        try:
-            pivots = splu(S, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
-                          options={"SymmetricMode": True}).U.diagonal()
-        except RuntimeError:  # exactly singular
-            pivots = np.zeros(1)
-    psd = bool(pivots.size == 0 or pivots.min() >= -tol * scale)
-    nonsingular_rest = bool(pivots.size == 0 or np.abs(pivots).min() > tol * scale)
-    measured = MassProperties(bool(symmetric), psd, bool(translational), bool(diagonal),
-                              bool(zero))
-    smallest = f"smallest pivot {pivots.min():.3g}" if pivots.size else ""
-    return _verdict(rule, measured, zero, nonsingular_rest, smallest)
-
-
-def _verdict(rule: MassRule, measured: MassProperties, zero, nonsingular_rest: bool,
-             smallest: str) -> MassCheck:
-    refused, warned = [], []
-    if not measured.symmetric:
-        refused.append("it is not symmetric")
-    if not nonsingular_rest:
-        refused.append("it has massless directions that are not zero rows (the explicit "
-                       "scheme condenses zero rows only)")
-    if zero and not rule.states.zero_rows:
-        refused.append(f"it has zero rows {zero} but does not state zero_rows")
-    if rule.states.diagonal and not measured.diagonal:
-        refused.append("it states diagonal but is not")
-    # indefinite or mass-changing matrices are legitimate objects of study (negative weights
-    # on request, mass scaling): warned, with the stated promise named if it is broken
-    if not measured.psd:
-        broken = " although it states psd" if rule.states.psd else ""
-        warned.append(f"it is indefinite ({smallest}){broken}")
-    if not measured.translational:
-        broken = " although it states translational" if rule.states.translational else ""
-        warned.append(f"it changes the translational mass{broken}")
-    return MassCheck(measured, tuple(refused), tuple(warned))
-
-
 def mass_matrix(mass, space: MassSpace, *, check: bool = True):
     """The mass matrix of rule ``mass`` (name or :class:`MassRule`) on ``space``, checked.
 
@@ -516,7 +339,6 @@ def rule_from_toml(source) -> MassRule:
     except ModuleNotFoundError:  # pragma: no cover - Python 3.10
         import tomli as tomllib
 
-    from dispersion.symbolic.mass import redistribution_matrix
 
     text = source
     if isinstance(source, os.PathLike) or (isinstance(source, str) and "\n" not in source
@@ -612,3 +434,24 @@ def x_mass_coefficients(rule, p: int) -> tuple[tuple[int, sympy.Rational], ...]:
         row = {L: M[mid, mid + L] for L in range(-p, p + 1)}
     return tuple((L, sympy.Rational(v.numerator, v.denominator) if isinstance(v, Fraction)
                   else v) for L, v in sorted(row.items()) if v != 0)
+
+
+def mass_variant(M, variant, R=None, *, kv=None, elements=None, check: bool = True):
+    """Mass matrix of rule ``variant`` from the consistent mass ``M`` and redistribution ``R``.
+
+    ``variant`` is a name of :data:`RULE_NAMES` or a :class:`MassRule`. ``"consistent"``: M; ``"lumped"``: row
+    sums of M; ``"singular"``: R^T M R (eq 1 left); ``"singular-lumped"``: row sums of
+    R^T M R (eq 1 right); ``"hrz"`` and the nodal quadratures need the knot vector ``kv``
+    (or, HRZ, the float element matrices ``elements``). The result is checked against the
+    rule's stated properties (:func:`dispersion.symbolic.mass_rule.mass_matrix`).
+    """
+    rule = get_rule(variant)
+    shape = getattr(M, "shape", None)
+    if shape is None or len(shape) != 2 or shape[0] != shape[1]:
+        raise InputError(f"M must be a square matrix, got shape {shape}")
+    if R is not None and tuple(getattr(R, "shape", np.shape(R))) != tuple(shape):
+        raise InputError(f"R must have the shape of M {tuple(shape)}, got "
+                         f"{tuple(getattr(R, 'shape', np.shape(R)))}")
+    if rule.redistributes and R is None:
+        raise InputError(f"mass variant {rule.name!r} needs a redistribution matrix R")
+    return mass_matrix(rule, MassSpace(M, kv, elements, R), check=check)

@@ -52,8 +52,8 @@ import sympy
 
 from dispersion.symbolic import bspline
 from dispersion.errors import InputError, check_nu, check_positive_int
-from dispersion.symbolic.mass import contact_weights, mass_variant, redistribution_matrix
-from dispersion.symbolic.mass_rule import get_rule, x_mass_coefficients
+from dispersion.symbolic.mass import contact_weights, redistribution_matrix
+from dispersion.symbolic.mass_rule import get_rule, mass_variant, x_mass_coefficients
 
 __all__ = [
     "MODELS",

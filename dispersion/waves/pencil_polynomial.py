@@ -23,11 +23,9 @@ cancellation at small kappa is done in exact arithmetic, once per patch: evaluat
 floats, :math:`P` keeps its relative accuracy where :math:`\\Omega^2 \\sim \\kappa^2` (S0)
 or :math:`\\kappa^4` (A0) sits beside eigenvalues of order one.
 
-Roots are polished by Newton's method on :math:`P(u, \\cdot)` and *certified*: with the
-running error bound :math:`e_P = c\\,\\epsilon \\sum_{jk} |a_{jk}| u^k |\\mu|^j` of the
-evaluation, the disc of radius :math:`\\rho = N (|P| + e_P) / (|P_\\mu| - e_{P_\\mu})`
-about each estimate holds a root (:math:`P_\\mu / P = \\sum_i 1/(\\mu - \\mu_i)`), and N
-pairwise disjoint discs hold all N roots, one each.
+Its roots are found and certified in :mod:`dispersion.waves.certified_roots`, on the tables
+of this module: P in u about u = 0, in :math:`v = 2 - u` about the zone edge, and centred
+Taylor tables between (:func:`taylor_centres`), so that every evaluation is well conditioned.
 
 >>> from dispersion.symbolic.plate import plate_patch, mirror_bases
 >>> poly = pencil_polynomial(plate_patch(model="x-exact"), 0.3, mirror_bases(3, exact=True)["A"])
@@ -51,7 +49,8 @@ import numpy as np
 
 from dispersion.errors import InputError
 
-__all__ = ["PencilPolynomial", "pencil_polynomial", "u_of_kappa", "certified_roots"]
+__all__ = ["PencilPolynomial", "mass_factor", "parity_share", "pencil_polynomial", "slopes",
+           "taylor_centres", "u_of_kappa"]
 
 #: Largest block (rows of the projected pencil) the polynomial path takes. The rule: the
 #: interpolation grid has (degree in u + 1) x (N + 1) exact determinants, and the degree in
@@ -79,8 +78,12 @@ class PencilPolynomial:
     mx: np.ndarray
     parity: tuple[np.ndarray, np.ndarray] | None = None
     #: Bloch: the same tables in :math:`v = 2 - u = 1 + \cos\theta` (exact Taylor shift),
-    #: used where u > 1 so that the evaluation stays well conditioned up to the zone edge.
+    #: used where u > 1 so that the evaluation stays well conditioned up to the zone edge;
+    #: ``"P centred"``: the tables of P in :math:`u - c` about the centres
+    #: :math:`c = j / C`, j = 1 .. 2C - 1, C = ``centres`` (:func:`taylor_centres`), for the
+    #: roots inside the zone (:func:`certified_roots`).
     shifted: dict | None = None
+    centres: int = 1
 
     @property
     def degree(self) -> int:
@@ -96,9 +99,9 @@ def u_of_kappa(model: str, r: float | None, kappa: np.ndarray):
     """
     if model == "x-exact":
         return kappa * kappa, None, 2 * kappa
-    th = kappa * r
-    half, co = np.sin(0.5 * th), np.cos(0.5 * th)
-    return 2 * half * half, 2 * co * co, r * np.sin(th)
+    half = kappa * (0.5 * r)
+    s, co = np.sin(half), np.cos(half)
+    return 2 * s * s, 2 * co * co, (2 * r) * s * co   # du/dkappa = r sin(kappa r)
 
 
 def _cheb(L: int, kind: str):
@@ -240,6 +243,11 @@ def _build(key):
         polys = [flint.fmpq_poly([C[k, j] for k in range(du + 1)]) for j in range(N + 1)]
         if shifted is not None:
             shifted[name] = floats([pj(shift) for pj in polys])
+            if name == "P":
+                centres = shifted["centres"] = taylor_centres(max(pj.degree() for pj in polys))
+                shifted["P centred"] = tuple(
+                    floats([pj(flint.fmpq_poly([flint.fmpq(j, centres), 1])) for pj in polys])
+                    for j in range(1, 2 * centres))
         return floats(polys)
 
     coef = solve("P", vals)
@@ -249,7 +257,8 @@ def _build(key):
     mx = floats([xp["mx"]])[0]
     if shifted is not None:
         shifted["mx"] = floats([xp["mx"](shift)])
-    return PencilPolynomial(model, None if r is None else float(r), coef, mx, par, shifted)
+    return PencilPolynomial(model, None if r is None else float(r), coef, mx, par, shifted,
+                            1 if shifted is None else shifted.pop("centres"))
 
 
 def _trim_like(c):
@@ -329,127 +338,35 @@ def _values(poly: PencilPolynomial, name: str, u, v, deriv: bool = False, bars: 
     return val, bar
 
 
-def _horner_mu(c: np.ndarray, mu: np.ndarray):
-    """``P`` and ``P_mu`` at ``mu`` (shape (R, points)) from coefficient values (J, points)."""
+def _horner_mu(c: np.ndarray, mu: np.ndarray, deriv: bool = True):
+    """``P`` and ``P_mu`` (None unless ``deriv``) at ``mu`` (shape (R, points)) from
+    coefficient values (J, points)."""
     p = np.empty_like(mu)
     p[:] = c[-1]
-    dp = np.zeros_like(mu)
+    dp = np.zeros_like(mu) if deriv else None
     for j in range(c.shape[0] - 2, -1, -1):
-        dp *= mu
-        dp += p
+        if deriv:
+            dp *= mu
+            dp += p
         p *= mu
         p += c[j]
     return p, dp
 
 
-def certified_roots(poly: PencilPolynomial, u: np.ndarray, v, guess: np.ndarray,
-                    rtol: float = 2e-10, iterations: int = 8):
-    """Newton-polished roots ``mu`` (ascending, shape of ``guess`` = (points, R)) and radii.
+def taylor_centres(degree: int) -> int:
+    """Taylor centres per unit of u for a table of ``degree`` in u: ``ceil(degree / 9)``.
 
-    The radius is the inclusion bound of the module docstring; ``inf`` where it does not
-    hold (disc overlapping a neighbour, a derivative lost in its error bound, NaN). One
-    Newton step everywhere, up to ``iterations`` more where the radius is above
-    ``rtol * mu`` or the first step was large.
+    P is tabulated about u = 0, 1/C, ..., 2 (Bloch), so every table is evaluated at
+    :math:`|x| \\le 1/(2C)`. The rule: the terms of a table in u lose to cancellation
+    roughly like the binomial growth of a Taylor shift, about :math:`2^{d}` at
+    :math:`|x| = 1` for degree d; with :math:`|x| \\le 1/(2C)` and C = d/9 that loss stays
+    below a few hundred (measured: the degree-36 table of p = 3, n = 6, singular mass loses
+    up to 1e4 at :math:`|x| = 1/2` and certifies every point inside the zone at 1/8).
+
+    >>> taylor_centres(6), taylor_centres(18), taylor_centres(36)
+    (1, 2, 4)
     """
-    c, cbar = _values(poly, "P", u, v)
-    du, dm = poly.coef.shape[1] - 1, poly.coef.shape[0] - 1
-    # Higham (5.3)-type bounds, doubled: Horner in u (2 du), the error of u (<= 4 ulp,
-    # times du from u^k), the coefficients' rounding, Horner in mu (2 dm)
-    g = 2 * (6 * du + 2 * dm + 4) * _EPS
-    # Newton in the form mu' = (mu P_mu - P) / P_mu, numerator by its own Horner rule:
-    # near mu = 0 it is -c_0 / c_1 without the cancellation of mu - P / P_mu
-    cn = c * (np.arange(c.shape[0]) - 1)[:, None]
-    with np.errstate(all="ignore"):
-        mu0 = _small_guesses(c, np.array(guess, dtype=float).T.copy())
-        mu = _newton(c, cn, mu0)
-        rad = _radius(c, cbar, mu, g, dm)
-        # more steps where the radius is too wide, or where the step was above 1e-9 relative
-        # (quadratic convergence: after a step of size d the error is about d^2 relative)
-        again = np.flatnonzero(np.any(~(rad <= rtol * mu) | ~(np.abs(mu - mu0) <= 1e-9 * mu),
-                                      axis=0))
-        for _ in range(iterations):
-            if not again.size:
-                break
-            m0 = mu[:, again]
-            m = _newton(c[:, again], cn[:, again], m0)
-            mu[:, again] = m
-            rad[:, again] = _radius(c[:, again], cbar[:, again], m, g, dm)
-            again = again[np.any(~(np.abs(m - m0) <= 1e-9 * m), axis=0)]
-        if mu.shape[0] > 1 and not np.all(mu[1:] >= mu[:-1]):
-            order = np.argsort(mu, axis=0)
-            mu = np.take_along_axis(mu, order, 0)
-            rad = np.take_along_axis(rad, order, 0)
-        if mu.shape[0] > 1:
-            clash = np.diff(mu, axis=0) <= rad[1:] + rad[:-1]
-            bad = np.zeros_like(rad, dtype=bool)
-            bad[1:] |= clash
-            bad[:-1] |= clash
-            rad[bad] = np.inf
-    return mu.T, rad.T
-
-
-def _newton(c: np.ndarray, cn: np.ndarray, mu: np.ndarray) -> np.ndarray:
-    """One Newton step ``(sum (j - 1) c_j mu^j) / P_mu`` for every root (one Horner loop)."""
-    p = mu * c[-1]
-    p += c[-2]
-    dp = np.empty_like(mu)
-    dp[:] = c[-1]
-    num = mu * cn[-1]
-    num += cn[-2]
-    for j in range(c.shape[0] - 3, -1, -1):
-        dp *= mu
-        dp += p
-        p *= mu
-        p += c[j]
-        num *= mu
-        num += cn[j]
-    num /= dp
-    return num
-
-
-def _radius(c, cbar, mu, g, dm):
-    """Inclusion radius ``dm (|P| + e_P) / (|P_mu| - e_P')`` (inf where not positive)."""
-    a = np.abs(mu)
-    p = mu * c[-1]
-    p += c[-2]
-    pb = a * cbar[-1]
-    pb += cbar[-2]
-    dp = np.empty_like(mu)
-    dp[:] = c[-1]
-    dpb = np.empty_like(mu)
-    dpb[:] = cbar[-1]
-    for j in range(c.shape[0] - 3, -1, -1):
-        dp *= mu
-        dp += p
-        p *= mu
-        p += c[j]
-        dpb *= a
-        dpb += pb
-        pb *= a
-        pb += cbar[j]
-    den = np.abs(dp) - g * dpb
-    rad = dm * (np.abs(p) + g * pb) / den
-    rad[~(den > 0) | ~np.isfinite(mu)] = np.inf
-    return rad
-
-
-def _small_guesses(c: np.ndarray, mu: np.ndarray) -> np.ndarray:
-    """Replace guesses lost in round-off (below 1e-8 of the largest) by the roots of the
-    truncated polynomial: the rigid-body branches (at most two: u_x and u_y translations)
-    are the roots of :math:`c_0 + c_1\\mu` or :math:`c_0 + c_1\\mu + c_2\\mu^2` to a
-    relative O(u) (the remaining roots are O(1)). Arrays are (rows, points)."""
-    small = mu < 1e-8 * np.max(mu, axis=0)
-    z = small.sum(axis=0)
-    one = np.flatnonzero(z == 1)
-    if one.size:
-        mu[0, one] = -c[0, one] / c[1, one]
-    two = np.flatnonzero(z == 2)
-    if two.size and c.shape[0] > 2:
-        a0, a1, a2 = c[0, two], c[1, two], c[2, two]
-        q = -0.5 * (a1 + np.copysign(np.sqrt(np.maximum(a1 * a1 - 4 * a0 * a2, 0)), a1))
-        r1, r2 = a0 / q, q / a2   # stable quadratic roots (Numerical Recipes 5.6)
-        mu[0, two], mu[1, two] = np.minimum(r1, r2), np.maximum(r1, r2)
-    return mu
+    return max(1, -(-int(degree) // 9))
 
 
 def mass_factor(poly: PencilPolynomial, u, v) -> np.ndarray:

@@ -299,14 +299,9 @@ def branch_coefficients(F: Series, N: int, univariate: bool | None = None) -> tu
     rho = r0.get(1)
     if rho is None or rho.is_zero():
         raise DispersionError("the branch is not a simple root at the origin; cannot isolate it")
-    # Y = -sum_{(k,j) != (0,1)} r_kj rho^(j + 2k - 2) Y^j u^k, Y = sum_{k>=1} z_k u^k.
-    # Over QQ[x] a constant is a unit: the fast route scales by the monic rho / L instead
-    # (y = rho' Y, t = rho'^2 u, the equation divided by L rho'^2), which keeps the powers
-    # of L's numerator and denominator out of every coefficient (w_k = z_k / (a rho'^(2k-1))).
-    lead = None
     if uni:
-        lead = rho.coeffs()[-1]
-        rho = rho / lead
+        return _solve_uni(R, rho, N, ctx, a, w0num)
+    # Y = -sum_{(k,j) != (0,1)} r_kj rho^(j + 2k - 2) Y^j u^k, Y = sum_{k>=1} z_k u^k
     zero = rho * 0
     rho_pows = {0: zero + 1}
 
@@ -322,16 +317,58 @@ def branch_coefficients(F: Series, N: int, univariate: bool | None = None) -> tu
                 continue
             if k == 0 and j < 2:
                 continue
-            coef[(k, j)] = c * rp(j + 2 * k - 2) if lead is None else \
-                c * rp(j + 2 * k - 2) / lead
-    z = (_horner_recurrence if uni else _power_recurrence)(coef, N, zero)
-    a_ = _to_uni(a) if uni else a
-    dens = [a_ * rp(2 * k - 1) for k in range(1, N + 1)]
-    if uni:
-        z = [_from_uni(ctx, c) for c in z]
-        dens = [_from_uni(ctx, c) for c in dens]
+            coef[(k, j)] = c * rp(j + 2 * k - 2)
+    z = _power_recurrence(coef, N, zero)
     nums = [w0num] + [z[k] for k in range(1, N + 1)]
-    return nums, [a] + dens
+    return nums, [a] + [a * rp(2 * k - 1) for k in range(1, N + 1)]
+
+
+#: Scalings y = rho'^p Y, t = rho'^q u tried by the fast route, cheapest first; the last one
+#: always gives polynomial coefficients.
+_SCALINGS = ((0, 0), (1, 0), (0, 1), (1, 1), (1, 2))
+
+
+def _solve_uni(R: list[dict], rho, N: int, ctx, a, w0num) -> tuple[list, list]:
+    """The fast route of :func:`branch_coefficients` (one parameter x, ``fmpq_poly``).
+
+    Over QQ[x] a constant is a unit: with rho = L rho' (rho' monic) the substitution
+    y = rho'^p Y, t = rho'^q u and the equation divided by L rho'^(p + 1) give
+    Y = -sum r_kj rho'^(p (j - 1) + q k - 1) / L Y^j u^k. (p, q) = (1, 2) always has
+    polynomial coefficients; a smaller scaling is taken when every coefficient with a
+    negative power of rho' is exactly divisible by it (checked, exact division), which keeps
+    the factors rho'^(2k) out of the z_k (for the Rayleigh-Lamb series, rho' = g - 1 divides
+    them all). Then w_k = rho'^p z_k / (a rho'^(q k)).
+    """
+    lead = rho.coeffs()[-1]
+    rho = rho / lead
+    zero = rho * 0
+    rho_pows = {0: zero + 1}
+
+    def rp(e):
+        if e not in rho_pows:
+            rho_pows[e] = rp(e - 1) * rho
+        return rho_pows[e]
+
+    terms = [(k, j, c) for k, rk in enumerate(R) for j, c in rk.items()
+             if not c.is_zero() and (k, j) != (0, 1) and not (k == 0 and j < 2)]
+    for p, q in _SCALINGS:
+        coef = {}
+        for k, j, c in terms:
+            e = p * (j - 1) + q * k - 1
+            if e >= 0:
+                coef[(k, j)] = c * rp(e) / lead
+                continue
+            quo, rem = divmod(c, rp(-e))
+            if not rem.is_zero():
+                break
+            coef[(k, j)] = quo / lead
+        else:
+            break
+    z = _horner_recurrence(coef, N, zero)
+    a_ = _to_uni(a)
+    nums = [w0num] + [_from_uni(ctx, rp(p) * z[k]) for k in range(1, N + 1)]
+    dens = [a] + [_from_uni(ctx, a_ * rp(q * k)) for k in range(1, N + 1)]
+    return nums, dens
 
 
 def _shifted(Q: list, a, b) -> list[dict]:

@@ -75,7 +75,7 @@ def check_request(branch: str, order, exact: bool, n: int | None = None) -> tupl
 
     The rule: a request that would take more than about a minute on a 2-core machine is
     refused. Measured (S0 + A0, whole process, nu symbolic, a shared 2-core machine):
-    exact kappa^64 0.35 s / 34 MiB, kappa^96 1.6 s / 50 MiB, kappa^128 5.0 s / 89 MiB
+    exact kappa^64 0.3 s / 32 MiB, kappa^96 1.0 s / 41 MiB, kappa^128 3.7 s / 64 MiB
     (before the univariate Horner route: 1.1 s, 5.9 s, 35 s), growing like order^4:
     exact orders <= 128 stay well inside the bound. Discrete, singular mass (the dearest):
     n = 12 kappa^8 7.3 s, n = 12 kappa^20 40 s / 184 MiB, n = 16 kappa^10 22 s / 176 MiB.

@@ -1,4 +1,5 @@
-"""The race's coefficient reader (series_race._value): exact, whitelist-only, no eval.
+"""The race's coefficient reader (series_race._value -> coefficient_value): exact,
+whitelist-only, no eval.
 
 Reference values are computed independently in the test: each random expression tree is
 evaluated directly with Fractions and rendered to text in both syntaxes (ours: ``**``,
@@ -16,6 +17,7 @@ from hypothesis import strategies as st
 from dispersion.errors import InputError
 from dispersion.studies import series_race
 from dispersion.studies.series_race import _value
+from dispersion.studies import coefficient_value as _reader
 
 NU = st.fractions(min_value=-5, max_value=5, max_denominator=20)
 
@@ -103,8 +105,9 @@ def test_injections_are_refused():
         raise AssertionError(f"{text!r} was read")
 
 
-def test_no_eval_in_the_race_module():
-    tree = ast.parse(inspect.getsource(series_race))
-    names = {n.func.id for n in ast.walk(tree)
-             if isinstance(n, ast.Call) and isinstance(n.func, ast.Name)}
-    assert not names & {"eval", "exec", "compile"}
+def test_no_eval_in_the_race_or_the_reader():
+    for module in (series_race, _reader):
+        tree = ast.parse(inspect.getsource(module))
+        names = {n.func.id for n in ast.walk(tree)
+                 if isinstance(n, ast.Call) and isinstance(n.func, ast.Name)}
+        assert not names & {"eval", "exec", "compile"}, module.__name__

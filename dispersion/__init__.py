@@ -44,6 +44,7 @@ _MODULES = {
     "bar_dispersion": "waves.bar_dispersion", "errata": "claims.errata",
     "exact_series": "waves.exact_series", "branch_study": "studies.branch_study",
     "paper_studies": "studies.paper_studies", "series_race": "studies.series_race",
+    "coefficient_value": "studies.coefficient_value",
     "plotting": "plotting", "report": "report", "branch_views": "waves.branch_views",
     "table": "table", "branch_set": "waves.branch_set",
     "explicit": "claims.explicit", "limits": "claims.limits", "reader": "claims.reader",

@@ -179,3 +179,24 @@ def test_peer_program_returns_the_closed_form_coefficients():
     assert S._value(coeffs["S0"][2], nu) == 2 / (1 - nu)
     assert S._value(coeffs["A0"][4], nu) == Fraction(2, 3) / (1 - nu)
     assert seconds is not None
+
+
+def test_scaling_labels_state_the_patch_its_points_stored(tmp_path):
+    # issue 22: "Bloch r = 2" was typed in the figure title and the page; the points now store
+    # their patch, and the labels come from it (r = 5/2, contact bottom, gamma_s = 1/3: values
+    # no code path types)
+    pytest.importorskip("matplotlib")
+    from dispersion.report.series_speed import _scaling_patch, render, summary
+    from dispersion.symbolic.patch import Patch
+
+    data = json.loads(json.dumps(DATA))
+    for q in data["scaling"]:
+        q["patch"] = Patch(p=q["p"], n=q["n"], mass=q["mass"], r="5/2", contact="bottom",
+                           gamma_s="1/3").as_dict()
+    want = "Bloch r = b/h = 5/2; singular: contact bottom, gamma_s = 1/3"
+    assert _scaling_patch(data["scaling"]) == want
+    md = render(data, tmp_path)
+    assert want in md and "r = 2" not in md
+    assert want in summary(data)
+    point = S.scaling({2: (3,)}, masses=("singular",), order=4)[0][0]
+    assert Patch.from_dict(point.patch) == Patch(mass="singular")

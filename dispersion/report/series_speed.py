@@ -48,10 +48,26 @@ def render(data: dict, out: Path) -> str:
     plot_race(data["race"], a1)
     a1.set_title("exact Rayleigh-Lamb S0 + A0 series: ours vs Maxima", fontsize="small")
     plot_scaling(data["scaling"], data["fits"], a2)
-    a2.set_title("discrete series, Bloch r = 2: time against patch size", fontsize="small")
+    a2.set_title(f"discrete series, {_scaling_patch(data['scaling'])}: time against patch size",
+                 fontsize="small")
     save_figure(fig, out / "series_speed.png", dpi=130)
     return ("## Speed of the series engine\n\n![series speed](series_speed.png)\n\n"
             + render_tables(data))
+
+
+def _scaling_patch(points) -> str:
+    """The patches of the scaling study but p, n and the mass, from what its points stored:
+    ``Bloch r = b/h = 2; singular: contact top, gamma_s = 1/2``."""
+    if not points or not all(q.get("patch") for q in points):
+        return "patch not recorded in this older result"
+    from dispersion.symbolic.patch import Patch
+
+    specs = [Patch.from_dict(q["patch"]) for q in points]
+    geometry = " / ".join(dict.fromkeys(
+        "Bloch r = b/h = " + str(sp.r) if sp.model == "bloch" else "x-exact" for sp in specs))
+    singular = " / ".join(dict.fromkeys(f"{sp.mass_name}: contact {sp.contact}, gamma_s = "
+                                        f"{sp.gamma_s}" for sp in specs if sp.singular))
+    return geometry + (f"; {singular}" if singular else "")
 
 
 def _counted(p: dict) -> bool:
@@ -141,7 +157,8 @@ def render_tables(data: dict) -> str:
           "cost that the `dispersion` entry point adds. Maxima's own timer "
           "(`elapsed_run_time()`) ticks in steps of 10 ms, so its compute times below 0.1 s "
           "are coarse.\n\n" + "\n".join(rows) + "\n\n"
-        + f"Cost of the discrete S0 + A0 series to kappa^{order} (nu symbolic, Bloch r = 2; "
+        + f"Cost of the discrete S0 + A0 series to kappa^{order} (nu symbolic, "
+          f"{_scaling_patch(data['scaling'])}; "
           "fraction-free elimination over truncated series, polynomial in n for every mass)."
         + ratio + " Growth fitted by least squares on log t against log n:\n\n"
         + "\n".join(fit_rows) + "\n\n"
@@ -172,12 +189,13 @@ def summary(data: dict) -> str:
         if not _counted(p) and p.get("ours_process_s"):
             lines.append(f"- Ours alone to kappa^{p['order']}: {_fmt(p['ours_process_s'])} s "
                          f"whole process, peak {_fmt(p['ours_peak_mib'], 3)} MiB.")
-    sizes = {(q["mass"], q["p"], q["n"]): q["seconds"] for q in points}
+    sizes = {(q["mass"], q["p"], q["n"]): q for q in points}
     if ("singular", 2, 8) in sizes and ("consistent", 2, 8) in sizes:
+        s, c = sizes[("singular", 2, 8)], sizes[("consistent", 2, 8)]
         lines.append(
-            f"- Discrete S0 + A0 to kappa^8, p = 2, n = 8: singular mass "
-            f"{_fmt(sizes[('singular', 2, 8)])} s, consistent {_fmt(sizes[('consistent', 2, 8)])} "
-            f"s (in-process).")
+            f"- Discrete S0 + A0 to kappa^{s['order']}, p = 2, n = 8 "
+            f"({_scaling_patch([s, c])}): singular mass {_fmt(s['seconds'])} s, consistent "
+            f"{_fmt(c['seconds'])} s (in-process).")
     growth = ", ".join(f"{f['mass']} n^{f['exponent']:.2f} (rms {f['residual']:.2f})"
                        for f in fits if f["p"] == 2)
     if growth:

@@ -79,6 +79,7 @@ class ScalingPoint:
     n: int
     order: int
     seconds: float
+    patch: dict | None = None  # the Patch it was computed on (Patch.as_dict())
 
 
 @dataclass(frozen=True)
@@ -382,7 +383,7 @@ def fit_growth(ns, seconds) -> dict:
 def scaling(grid: dict[int, tuple[int, ...]], masses=("consistent", "lumped", "singular"),
             order: int = 8) -> tuple[tuple[ScalingPoint, ...], tuple[GrowthFit, ...]]:
     """Seconds of the discrete S0 + A0 series to kappa^order on ``grid`` = {p: (n, ...)}."""
-    from dispersion import defaults
+    from dispersion.symbolic.patch import Patch
     from dispersion.symbolic.power_balance import discrete_series_raw
 
     discrete_series_raw(("S0",), 2, n=3, model="x-exact")  # warm-up: imports and flint
@@ -391,12 +392,11 @@ def scaling(grid: dict[int, tuple[int, ...]], masses=("consistent", "lumped", "s
         for p, ns in grid.items():
             times = []
             for n in ns:
+                spec = Patch(p=p, n=n, mass=mass)  # the toolkit's default patch otherwise
                 start = time.perf_counter()
-                discrete_series_raw(("S0", "A0"), order, p=p, n=n, model=defaults.MODEL,
-                                    r=defaults.R, mass=mass, contact=defaults.CONTACT,
-                                    gamma_s=defaults.GAMMA_S)
+                discrete_series_raw(("S0", "A0"), order, spec)
                 times.append(time.perf_counter() - start)
-                points.append(ScalingPoint(mass, p, n, order, times[-1]))
+                points.append(ScalingPoint(mass, p, n, order, times[-1], spec.as_dict()))
             if len(ns) >= 4:
                 f = fit_growth(ns, times)
                 fits.append(GrowthFit(mass, p, f["exponent"], f["residual"],
@@ -406,16 +406,16 @@ def scaling(grid: dict[int, tuple[int, ...]], masses=("consistent", "lumped", "s
 
 def measure(quick: bool = False, executor=None, *, timeout: float = TIMEOUT,
             maxima: str | None = "maxima", extended: bool = False,
-            repeats: int = 1, python: str | None = None) -> SeriesSpeed:
+            repeats: int | None = None, python: str | None = None) -> SeriesSpeed:
     """The race and the scaling table (``quick``: fewer orders and sizes, for CI).
 
-    Full: ours at kappa^8, 16, 32, 64 and Maxima to kappa^32; scaling at kappa^8 for p = 2
-    (n = 3..10), 3 and 4 (four sizes each), about half a minute on a quiet 2-core machine as
-    ``dispersion reproduce`` needs. ``extended`` (``dispersion bench``) adds Maxima at
-    kappa^64 and n = 12. ``executor`` is not used: the timings run one after the other so
-    that they do not compete for the cores. ``repeats``: runs of each side of the race (in
-    turn; medians reported). ``python``: interpreter that runs ours in the race (default
-    this one).
+    Full: ours and Maxima at kappa^8, 16, 32, 64, three runs of each side in turn (medians:
+    a single run at kappa^16 varies by about 20 %); scaling at kappa^8 for p = 2 (n = 3..10),
+    3 and 4 (four sizes each), about a minute on a quiet 2-core machine. Quick: kappa^8 and
+    16, one run. ``extended`` (``dispersion bench``) adds n = 12. ``executor`` is not used:
+    the timings run one after the other so that they do not compete for the cores.
+    ``repeats``: runs of each side of the race (default 3, quick 1). ``python``: interpreter
+    that runs ours in the race (default this one).
     """
     if not (isinstance(timeout, (int, float)) and 0 < timeout <= TIMEOUT_MAX):
         raise InputError(f"timeout (seconds per child process) must lie in (0, {TIMEOUT_MAX:g}], "
@@ -424,7 +424,8 @@ def measure(quick: bool = False, executor=None, *, timeout: float = TIMEOUT,
     orders = (8, 16) if quick else (8, 16, 32, 64)
     grid = {2: (3, 4, 5, 6)} if quick else {2: (3, 4, 6, 8, 10) + ((12,) if extended else ()),
                                              3: (4, 5, 6, 7), 4: (5, 6, 7, 8)}
-    maxima_max_order = 64 if extended else 32
+    maxima_max_order = 64
+    repeats = (1 if quick else 3) if repeats is None else repeats
     exe = shutil.which(maxima) if maxima else None
     if exe is None:
         notes.append(f"Maxima not found ({maxima!r} on PATH): the race shows ours only "

@@ -125,3 +125,15 @@ def test_within_without_the_band_in_the_reference_disagrees():
     rule = within("rows[].x", "rows[].spread.min", "rows[].spread.max")
     res = compare_results("s", {"rows": [{"x": 1.0}]}, {"rows": [{"x": 1.0}]}, [rule])
     assert [d.path for d in res.disagree] == ["rows[0].x"]
+
+
+def test_a_rule_with_two_list_markers_matches_its_fields():
+    # fnmatch read "curves[].error[]" as a character set "].error[": the rule never matched and
+    # its fields fell back to "exact" (found when round-off moved per_wavelength errors by 1e-16)
+    from dispersion.report.compare import _rule
+
+    rule = close("per_wavelength.curves[].error[]", rel=1e-6)
+    assert rule.matches("per_wavelength.curves[0].error[12]")
+    assert not rule.matches("per_wavelength.curves[0].kappa[12]")
+    assert _rule([rule], "per_wavelength.curves[3].error[1]") is rule
+    assert close("a[]", rel=1).matches("a[7]") and not close("a[]", rel=1).matches("a")

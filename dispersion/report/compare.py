@@ -60,7 +60,10 @@ class Rule:
     why: str = ""
 
     def matches(self, path: str) -> bool:
-        return fnmatchcase(_generic(path), self.pattern)
+        # "[]" in a pattern is the literal list marker of _generic, not an fnmatch character
+        # set ("curves[].error[]" would read "].error[" as one); only "*" and "?" are wild
+        literal = self.pattern.replace("[", "\0").replace("]", "[]]").replace("\0", "[[]")
+        return fnmatchcase(_generic(path), literal)
 
     def describe(self) -> str:
         if self.kind == "close":

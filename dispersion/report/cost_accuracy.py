@@ -8,9 +8,21 @@ from __future__ import annotations
 from pathlib import Path
 
 from dispersion.io import save_figure
+from dispersion.report.compare import close
 from dispersion.studies.cost_accuracy import measure
 
-__all__ = ["measure", "render"]
+__all__ = ["measure", "render", "TOLERANCES"]
+
+#: Comparison rules (:mod:`dispersion.report.compare`). An error is a relative difference of
+#: two frequencies, each a root found to round-off (the discrete one certified to 1e-10
+#: relative, in practice to ~1e-15): judged to 1e-12 absolute, which round-off of the root
+#: solvers meets and a changed discretization does not. The critical step is a maximum over
+#: the zone refined to round-off: 1e-10 relative. Counts, names and the Pareto flags: exact.
+TOLERANCES = (
+    close("points[].*error_*", abs=1e-12, why="relative differences of roots found to round-off"),
+    close("points[].tau_crit", rel=1e-10, why="a maximum over the zone, refined to round-off"),
+    close("points[].cost", rel=1e-10, why="computed from the critical step"),
+)
 
 
 def _pct(x) -> str:

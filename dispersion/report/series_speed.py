@@ -48,7 +48,7 @@ def render(data: dict, out: Path) -> str:
     plot_race(data["race"], a1)
     a1.set_title("exact Rayleigh-Lamb S0 + A0 series: ours vs Maxima", fontsize="small")
     plot_scaling(data["scaling"], data["fits"], a2)
-    a2.set_title(f"discrete series, {_scaling_patch(data['scaling'])}: time against patch size",
+    a2.set_title(f"discrete series against patch size\n{_scaling_patch(data['scaling'])}",
                  fontsize="small")
     save_figure(fig, out / "series_speed.png", dpi=130)
     return ("## Speed of the series engine\n\n![series speed](series_speed.png)\n\n"

@@ -303,13 +303,7 @@ def branch_coefficients(F: Series, N: int, univariate: bool | None = None) -> tu
         return _solve_uni(R, rho, N, ctx, a, w0num)
     # Y = -sum_{(k,j) != (0,1)} r_kj rho^(j + 2k - 2) Y^j u^k, Y = sum_{k>=1} z_k u^k
     zero = rho * 0
-    rho_pows = {0: zero + 1}
-
-    def rp(e):
-        if e not in rho_pows:
-            rho_pows[e] = rp(e - 1) * rho
-        return rho_pows[e]
-
+    rp = _powers(rho)
     coef = {}
     for k, rk in enumerate(R):
         for j, c in rk.items():
@@ -321,6 +315,18 @@ def branch_coefficients(F: Series, N: int, univariate: bool | None = None) -> tu
     z = _power_recurrence(coef, N, zero)
     nums = [w0num] + [z[k] for k in range(1, N + 1)]
     return nums, [a] + [a * rp(2 * k - 1) for k in range(1, N + 1)]
+
+
+def _powers(base):
+    """``e -> base**e`` (e >= 0), each power formed once from the one below it."""
+    table = {0: base * 0 + 1}
+
+    def power(e: int):
+        for k in range(len(table), e + 1):
+            table[k] = table[k - 1] * base
+        return table[e]
+
+    return power
 
 
 #: Scalings y = rho'^p Y, t = rho'^q u tried by the fast route, cheapest first; the last one
@@ -342,12 +348,7 @@ def _solve_uni(R: list[dict], rho, N: int, ctx, a, w0num) -> tuple[list, list]:
     lead = rho.coeffs()[-1]
     rho = rho / lead
     zero = rho * 0
-    rho_pows = {0: zero + 1}
-
-    def rp(e):
-        if e not in rho_pows:
-            rho_pows[e] = rp(e - 1) * rho
-        return rho_pows[e]
+    rp = _powers(rho)
 
     terms = [(k, j, c) for k, rk in enumerate(R) for j, c in rk.items()
              if not c.is_zero() and (k, j) != (0, 1) and not (k == 0 and j < 2)]

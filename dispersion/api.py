@@ -39,19 +39,22 @@ __all__ = ["Patch", "PatchModel", "patch", "series", "exact_branches", "lamb_mod
            "simulate_bar"]
 
 
-def patch(p: int = defaults.P, n: int = defaults.N, model: str = defaults.MODEL,
-          r=defaults.R, mass: str = defaults.MASS, contact: str = defaults.CONTACT,
-          gamma_s=defaults.GAMMA_S, weights=None, nu=None) -> PatchModel:
+def patch(*args, **fields) -> PatchModel:
     """The patch to compute with (:class:`~dispersion.patch_model.PatchModel`): its
-    :class:`~dispersion.symbolic.patch.Patch` value ``.spec``, checked at once (bad parameters
-    raise :class:`InputError` here), with its matrices, series and branches. ``r="r"`` keeps
-    the aspect ratio symbolic.
+    :class:`~dispersion.symbolic.patch.Patch` value ``.spec`` of ``fields`` (p, n, model, r,
+    mass, contact, gamma_s, weights, nu: documented there, with their defaults and limits),
+    checked at once (bad parameters raise :class:`InputError` here), with its matrices, series
+    and branches. ``r="r"`` keeps the aspect ratio symbolic.
 
     >>> pt = patch(mass="singular", gamma_s=0)
     >>> pt.plate.massless, pt.spec == Patch(mass="singular", gamma_s=0)
     ((2, 5), True)
     """
-    return PatchModel(Patch(p, n, model, r, mass, contact, gamma_s, weights, nu))
+    try:
+        spec = Patch(*args, **fields)
+    except TypeError as exc:  # an unknown field or too many values: named, one line
+        raise InputError(f"patch(): {exc}; the fields are those of Patch") from None
+    return PatchModel(spec)
 
 
 def series(branch: str = "S0", order: int = 8, *, exact: bool = False, nu=None,

@@ -37,10 +37,6 @@ NEEDS = {
     "impact signorini-1d --t-end 0.5": {"numpy"},
 }
 
-#: Known not to hold yet, with the reason (strict: the test says when it starts to hold).
-KNOWN: dict[str, str] = {}
-
-
 def imported(command: str) -> set[str]:
     proc = subprocess.run([sys.executable, "-c", WRAPPER, *command.split()],
                           capture_output=True, text=True, timeout=120, check=False)
@@ -49,8 +45,7 @@ def imported(command: str) -> set[str]:
     return set(json.loads(line[-1][6:]))
 
 
-@pytest.mark.parametrize("command", [pytest.param(c, marks=pytest.mark.xfail(
-    reason=KNOWN[c], strict=True)) if c in KNOWN else c for c in sorted(NEEDS)])
+@pytest.mark.parametrize("command", sorted(NEEDS))
 def test_command_imports_only_what_it_needs(command):
     # equality: the wrapper sees what a command does import (the check can fail both ways)
     assert imported(command) == NEEDS[command], command

@@ -23,7 +23,7 @@ import threading
 from dispersion.errors import DispersionError, InputError
 
 _SUBCOMMANDS = ("series", "branches", "ring", "impact", "verify", "reproduce", "bench",
-               "timestep")
+               "timestep", "simulate")
 
 
 def number(name: str, convert=float):

@@ -1,0 +1,88 @@
+"""The cost rule of a simulation: DOFs x steps, checked before the work, refused in one line.
+
+Two bounds, stated with their rules:
+
+* :data:`MAX_DOFS`: the memory. The stiffness of p = 4 holds about 120 entries per row
+  (12 bytes each), the records and vectors are small beside it: 10**6 DOFs take about
+  1.5 GB, a sixteenth of the machine's 24 GiB, so that a sweep on two workers fits twice over.
+* :data:`MAX_DOF_STEPS`: the time. The slowest loop measured on the shared 2-core machine
+  (p = 4, factorized consistent mass, about 32,000 DOFs) ran at about 7e-7 s per DOF-step:
+  1e9 DOF-steps are about 10 minutes.
+
+:func:`estimate_cost` is the check made *before* anything is assembled: the DOFs are exact,
+the steps estimated from the 1D bar's largest frequency of the rule along x
+(:func:`dispersion.waves.timestep.bar_omega_max`, exact) at the longitudinal speed over the
+element length: an estimate from below (the plate's and the open mesh's maxima are higher),
+so a request refused here could not finish. After the mesh's own critical step is measured
+(:mod:`dispersion.simulation.mesh_critical_step`) :func:`check_cost` is applied again with
+the true step count, still before the loop.
+
+>>> from dispersion.simulation.strip import Strip, plan_strip
+>>> cost = estimate_cost(plan_strip(Strip(p=1, travel=1, stations=2, elements_per_wavelength=3)))
+>>> cost.dofs, cost.dof_steps < MAX_DOF_STEPS
+(114, True)
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from dispersion.errors import InputError
+
+__all__ = ["MAX_DOFS", "MAX_DOF_STEPS", "RequestTooLarge", "RunCost", "estimate_cost",
+           "check_cost"]
+
+MAX_DOFS = 10**6
+MAX_DOF_STEPS = 10**9
+
+
+class RequestTooLarge(InputError):
+    """A simulation over a bound of :mod:`dispersion.simulation.run_cost` (refused before work)."""
+
+
+@dataclass(frozen=True)
+class RunCost:
+    """``dofs``, ``steps`` and their product; ``estimated``: the steps are an estimate."""
+
+    dofs: int
+    steps: int
+    estimated: bool
+
+    @property
+    def dof_steps(self) -> int:
+        return self.dofs * self.steps
+
+
+def check_cost(cost: RunCost, what: str, limit: int = MAX_DOF_STEPS) -> RunCost:
+    """Raise :class:`RequestTooLarge` (an InputError: one line, naming what sets the size)
+    over a bound."""
+    if cost.dofs > MAX_DOFS:
+        raise RequestTooLarge(f"{what}: {cost.dofs} DOFs, more than the bound of {MAX_DOFS} "
+                              "(memory); use fewer elements per wavelength or a lower degree")
+    if cost.dof_steps > limit:
+        kind = "about " if cost.estimated else ""
+        why = "about 10 minutes" if limit == MAX_DOF_STEPS else "the budget asked for"
+        raise RequestTooLarge(f"{what}: {kind}{cost.dofs} DOFs x {cost.steps} steps = "
+                              f"{cost.dof_steps:.3g} DOF-steps, more than the bound of "
+                              f"{limit:.3g} ({why}); use fewer elements per wavelength, a "
+                              "shorter travel or a lower degree")
+    return cost
+
+
+def estimate_cost(plan) -> RunCost:
+    """DOFs (exact) and steps (estimated from below) of the run of ``plan``."""
+    from dispersion.symbolic.mass_rule import get_rule
+    from dispersion.symbolic.plate import lame
+    from dispersion.waves.timestep import bar_omega_max
+
+    s = plan.strip
+    dofs = 2 * (plan.n_elements_x + s.p) * plan.n
+    rule = get_rule(s.mass)
+    try:
+        w_bar = float(bar_omega_max(rule.x_rule, s.p)[0])
+    except InputError:
+        w_bar = float(bar_omega_max("lumped", s.p)[0])
+    c_L = math.sqrt(float(lame(plan.nu)["L2M"]))
+    omega = c_L * w_bar / plan.element_length
+    steps = math.ceil(plan.t_end * omega / (2 * s.courant))
+    return RunCost(dofs, steps, True)

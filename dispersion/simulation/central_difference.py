@@ -132,6 +132,7 @@ class _Loop:
             nbytes += (lu.L.nnz + lu.U.nnz) * 12
             self._solve_massless(0)
         self.diagonal = op.kind == "diagonal"
+        self.dense = op.kind == "dense"
         if self.diagonal:
             m = np.repeat(op.diagonal, 2)
             self.minv = 1.0 / m
@@ -153,6 +154,16 @@ class _Loop:
         """Steps k0 .. k1 - 1: from u_k0 to u_k1, recording u at every new step."""
         dt2, F = self.dt * self.dt, self.force
         u, w, ur = self.u, self.w, self.ur
+        if self.dense:  # the rule's own explicit step: a dense M^-1 K (no massless DOFs)
+            D, g = self.op.dense, self.op.dense_load * dt2
+            for k in range(k0, k1):
+                r = D @ u
+                r *= -dt2
+                r += g * F[k]
+                w += r
+                u += w
+                np.einsum("sj,sj->s", u[self.st_dofs], self.st_w, out=records[k + 1])
+            return
         if self.diagonal and not self.condensed:
             K, c, load, gl = self.K, self.c, self.load_r, self.gl
             for k in range(k0, k1):
@@ -233,7 +244,19 @@ def run_explicit(mesh, op, dt: float, force, *, segments: int = 5, energy_every:
     stops = sorted(marks | {k - 1 for k in energy_steps} | energy_steps)
     seconds = {}
     energies = []
-    if loop.condensed:
+    if every <= 0:
+        Mrr = None
+    elif op.kind == "banded":  # the mass is the inverse of the known banded one
+        import scipy.sparse.linalg as spla
+
+        S = spla.splu(mesh.mass_inverse.tocsc())
+
+        class _Inverse:
+            def __matmul__(self, V):
+                return S.solve(np.ascontiguousarray(V))
+
+        Mrr = _Inverse()
+    elif loop.condensed:
         Mrr = mesh.mass[op.massive][:, op.massive].tocsr()
     else:
         Mrr = mesh.mass

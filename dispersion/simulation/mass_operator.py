@@ -8,11 +8,16 @@ stiffness block :math:`K_{mm}` (factorized once). On the massive points:
 
 * **diagonal** (the rule states it, or the matrix measured on this mesh is diagonal): the
   step divides by the diagonal;
-* otherwise the massive block is factorized once by SuperLU (``scipy.sparse.linalg.splu``,
-  natural ordering: the x-major numbering keeps the band, symmetric mode) and every step
-  solves with it, both components as two right-hand sides. CHOLMOD (scikit-sparse) has no
-  wheel for this platform and does not build from PyPI without SuiteSparse's headers, so it
-  is not used.
+* **banded** (the rule states that its *inverse* mass is a known banded matrix, the
+  approximate dual S of Nguyen et al. 2023): the step multiplies by it;
+* **factorized** otherwise: the massive block is factorized once by SuperLU
+  (``scipy.sparse.linalg.splu``, natural ordering: the x-major numbering keeps the band,
+  symmetric mode) and every step solves with it, both components as two right-hand sides.
+  CHOLMOD (scikit-sparse) has no wheel for this platform and does not build from PyPI without
+  SuiteSparse's headers, so it is not used;
+* **dense** (the rule states a dense stiffness: the dual basis of the inverted Gram matrix,
+  Held et al. 2023): the step multiplies by the dense :math:`M^{-1} K`, formed once; it is
+  what that rule costs (the bounds of :mod:`dispersion.simulation.run_cost` count it).
 
 >>> from dispersion.simulation.strip import Strip, plan_strip
 >>> from dispersion.simulation.strip_mesh import strip_mesh
@@ -53,12 +58,18 @@ class MassOperator:
     solve: Callable
     factor_nnz: int
     seconds: float
+    #: The dense step operator :math:`M^{-1} K` and the load's :math:`M^{-1} g` (dense kind).
+    dense: np.ndarray | None = None
+    dense_load: np.ndarray | None = None
 
     @property
     def nbytes(self) -> int:
-        """Bytes the operator holds (a diagonal, or the factors' values and indices)."""
+        """Bytes the operator holds (a diagonal, the factors' or the banded inverse's values
+        and indices, or the dense operator)."""
         if self.kind == "diagonal":
             return int(self.diagonal.nbytes)
+        if self.kind == "dense":
+            return int(self.dense.nbytes)
         return int(self.factor_nnz * 12 + 8 * (self.massive.size + 1) * 2)
 
     def __repr__(self) -> str:
@@ -77,12 +88,25 @@ def mass_operator(mesh) -> MassOperator:
     import scipy.sparse as sp
     import scipy.sparse.linalg as spla
 
+    stiffness, stated_mass = mesh.step_kind
+    t0 = time.perf_counter()
+    if stated_mass == "banded":
+        S = mesh.mass_inverse.tocsr()
+        return MassOperator("banded", "stated: the inverse mass is a known banded matrix",
+                            np.arange(S.shape[0]), np.zeros(0, dtype=int), None,
+                            lambda B: S @ B, int(S.nnz), time.perf_counter() - t0)
     M = mesh.mass.tocsr()
     massless = np.asarray(mesh.massless, dtype=int)
     massive = np.setdiff1d(np.arange(M.shape[0]), massless)
     Mrr = M[massive][:, massive].tocsr()
-    t0 = time.perf_counter()
-    stated = bool(mesh.rule.states.diagonal)
+    if stiffness == "dense":
+        return _dense(mesh, M, massless, t0)
+    stated = stated_mass == "diagonal"
+    if stated and not _is_diagonal(Mrr):
+        from dispersion.errors import InputError
+
+        raise InputError(f"mass rule {mesh.rule.name!r} states a diagonal mass, but its mass "
+                         "on the strip is not diagonal")
     if stated or _is_diagonal(Mrr):
         d = Mrr.diagonal().copy()
         if np.any(d <= 0):
@@ -100,3 +124,26 @@ def mass_operator(mesh) -> MassOperator:
     seconds = time.perf_counter() - t0
     return MassOperator("factorized", "not diagonal: SuperLU factorization made once",
                         massive, massless, None, lu.solve, int(lu.L.nnz + lu.U.nnz), seconds)
+
+
+def _dense(mesh, M, massless, t0) -> MassOperator:
+    """The dense step operator :math:`M^{-1}K` of a rule whose stiffness is dense."""
+    import scipy.sparse as sp
+    import scipy.sparse.linalg as spla
+
+    from dispersion.errors import InputError
+
+    if massless.size:
+        raise InputError(f"mass rule {mesh.rule.name!r}: a dense stiffness with massless DOFs "
+                         "is not run")
+    lu = spla.splu(sp.csc_matrix(M), permc_spec="NATURAL", diag_pivot_thresh=0.0,
+                   options={"SymmetricMode": True})
+    n = M.shape[0]
+    K = mesh.K.toarray()  # interleaved rows 2i + c: solve each component's rows with M
+    D = lu.solve(K.reshape(n, -1)).reshape(2 * n, 2 * n)
+    g = np.zeros(2 * n)
+    g[mesh.load_dofs] = mesh.load_values
+    Dg = lu.solve(g.reshape(n, 2)).ravel()
+    return MassOperator("dense", "stated: a dense stiffness, M^-1 K formed once and applied "
+                        "every step", np.arange(n), massless, None, lambda B: lu.solve(B),
+                        int(lu.L.nnz + lu.U.nnz), time.perf_counter() - t0, D, Dg)

@@ -104,6 +104,12 @@ def _operator(mesh, op):
         def kmul(x):
             return K @ x
     n = r_dofs.size
+    if op.kind in ("banded", "dense"):  # M^-1 K, similar to a symmetric matrix: real spectrum
+        def step(x):
+            count[0] += 1
+            return op.solve(kmul(np.ravel(x)).reshape(-1, 2)).ravel()
+
+        return spla.LinearOperator((n, n), matvec=step, dtype=float), "nonsymmetric", None, count
     if op.kind == "diagonal":
         s = 1.0 / np.sqrt(np.repeat(op.diagonal, 2))
 
@@ -142,8 +148,14 @@ def mesh_critical_step(mesh, op, *, bloch: bool = False, tol: float = LANCZOS_TO
     A, M, Minv, count = _operator(mesh, op)
     v0 = np.random.default_rng(0).standard_normal(A.shape[0])
     try:
-        vals = spla.eigsh(A, k=1, M=M, Minv=Minv, which="LA", tol=tol, v0=v0,
-                          ncv=min(A.shape[0] - 1, 60), maxiter=5000, return_eigenvectors=False)
+        if isinstance(M, str):  # the product of the banded inverse mass with K: Arnoldi
+            vals = spla.eigs(A, k=1, which="LR", tol=tol, v0=v0,
+                             ncv=min(A.shape[0] - 1, 60), maxiter=5000,
+                             return_eigenvectors=False).real
+        else:
+            vals = spla.eigsh(A, k=1, M=M, Minv=Minv, which="LA", tol=tol, v0=v0,
+                              ncv=min(A.shape[0] - 1, 60), maxiter=5000,
+                              return_eigenvectors=False)
     except spla.ArpackNoConvergence as exc:
         raise ConvergenceError(f"Lanczos did not converge on the strip's largest frequency "
                                f"({exc})") from None

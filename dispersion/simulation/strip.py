@@ -10,7 +10,8 @@ nothing). :func:`plan_strip` derives, once, the numbers every later step reads
 * **mesh**: elements of length :math:`b = \\lambda / N` along the strip (N elements per
   wavelength) and :math:`n_y = \\lceil 2H/b \\rceil` through the thickness, so no element
   is longer than :math:`\\lambda/N` in either direction; :math:`n = \\max(p + n_y, 3)`
-  control points through the thickness (three: the singular rules' least);
+  control points through the thickness (three: the singular rules' least), or
+  :math:`n = p\\, n_y + 1` nodes for a rule on C0 Lagrange elements (its basis);
 * **stations**: the reference station :math:`x_0` (``reference_station`` wavelengths from the
   loaded end, in the far field) and ``stations - 1`` more, equally spaced up to
   :math:`x_1 = x_0 +` ``travel`` wavelengths; and the *phase stations*, one per wavelength
@@ -146,7 +147,8 @@ class Strip:
 
 @dataclass(frozen=True)
 class StripPlan:
-    """What :func:`plan_strip` derives from a :class:`Strip` (lengths in H, times in H/c_T)."""
+    """What :func:`plan_strip` derives from a :class:`Strip` (lengths in H, times in H/c_T):
+    ``n`` functions through the thickness, ``n_x`` along the strip."""
 
     strip: Strip
     nu: float
@@ -156,6 +158,7 @@ class StripPlan:
     n_elements_x: int
     n_elements_y: int
     n: int
+    n_x: int
     length: float
     stations: tuple[float, ...]
     phase_stations: tuple[float, ...]
@@ -204,6 +207,7 @@ def _cached_velocities(kind: str, nu: float, omega: tuple):
 def plan_strip(strip: Strip) -> StripPlan:
     """Derive the carrier, mesh, stations, record length and strip length (module docstring)."""
     from dispersion.simulation.tone_burst import ToneBurst
+    from dispersion.symbolic.mass_rule import get_rule
     from dispersion.waves.exact_branches import exact_fundamental
     from dispersion.waves.frequency import FREQUENCY_OMEGA_MIN
     from dispersion.waves.materials import MATERIALS
@@ -217,7 +221,8 @@ def plan_strip(strip: Strip) -> StripPlan:
     wavelength = 2 * math.pi / strip.kappa_c
     b = wavelength / strip.elements_per_wavelength
     n_y = max(math.ceil(2.0 / b - 1e-12), 1)
-    n = max(strip.p + n_y, 3)
+    lagrange = getattr(get_rule(strip.mass), "basis", "bspline") == "lagrange"
+    n = strip.p * n_y + 1 if lagrange else max(strip.p + n_y, 3)
     x0 = strip.reference_station * wavelength
     x1 = x0 + strip.travel * wavelength
     stations = tuple(np.linspace(x0, x1, strip.stations).tolist())
@@ -232,7 +237,8 @@ def plan_strip(strip: Strip) -> StripPlan:
     t_end = burst.duration + SLOW_ROOM * x1 / slow
     length = max((fast * t_end + x1) / 2, x1 + wavelength)
     n_x = math.ceil(length / b - 1e-9)
+    n_x_functions = n_x * strip.p + 1 if lagrange else n_x + strip.p
     half_thickness_m = strip.thickness_mm / 2 * 1e-3
-    return StripPlan(strip, nu, omega_c, wavelength, b, n_x, n - strip.p, n, n_x * b, stations,
-                     phase_stations, t_end, (float(lo), float(hi)), slow, fast, float(cg_band[-1]),
+    return StripPlan(strip, nu, omega_c, wavelength, b, n_x, n_y if lagrange else n - strip.p,
+                     n, n_x_functions, n_x * b, stations, phase_stations, t_end, (float(lo), float(hi)), slow, fast, float(cg_band[-1]),
                      omega_c / float(kap[-1]), half_thickness_m / mat.c_T * 1e6)

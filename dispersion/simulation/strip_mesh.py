@@ -58,18 +58,23 @@ import scipy.sparse as sp
 
 from dispersion.errors import InputError
 
-__all__ = ["StripMesh", "strip_mesh", "spline_grams", "x_mass", "check_rule", "KNOWN_STATES"]
+__all__ = ["StripMesh", "strip_mesh", "spline_grams", "x_mass", "check_rule", "explicit_step",
+           "KNOWN_STATES", "BASES"]
 
 #: Stated properties of a mass rule the simulation knows how to run (anything else a rule
 #: states is refused with its name: the simulation would not know what it asks for).
 KNOWN_STATES = ("symmetric", "psd", "translational", "diagonal", "zero_rows")
+#: The discrete spaces the strip builds: smooth B-splines, and C0 Lagrange elements in the
+#: nodal GLL basis (:mod:`dispersion.simulation.lagrange_space`) for rules with that basis.
+BASES = ("bspline", "lagrange")
 
 
 @dataclass(frozen=True, repr=False)
 class StripMesh:
     """The assembled strip: ``K`` (2N x 2N CSR), the scalar mass ``mass`` (N x N CSR, N
-    points), the ``massless`` points (zero rows), the load (``load_dofs``, ``load_values``:
-    unit traction) and the stations (``station_dofs``, ``station_weights``, one row each)."""
+    points; None where only its banded inverse ``mass_inverse`` is known), the ``massless``
+    points (zero rows), the load (``load_dofs``, ``load_values``: unit traction) and the
+    stations (``station_dofs``, ``station_weights``, one row each)."""
 
     plan: object
     rule: object
@@ -80,11 +85,14 @@ class StripMesh:
     load_values: np.ndarray
     station_dofs: np.ndarray
     station_weights: np.ndarray
-    thickness_y: tuple = field(default=())
+    #: ``(stiffness, mass)`` of the rule's explicit step (:func:`explicit_step`).
+    step_kind: tuple[str, str] = ("sparse", "solve")
+    #: The banded inverse of the mass (a rule whose inverse mass is banded: no ``mass``).
+    mass_inverse: sp.csr_matrix | None = None
 
     @property
     def n_points(self) -> int:
-        return self.mass.shape[0]
+        return self.K.shape[0] // 2
 
     @property
     def n_dofs(self) -> int:
@@ -117,9 +125,11 @@ def spline_grams(basis) -> dict[str, sp.csr_matrix]:
 
 
 @lru_cache(maxsize=128)
-def _exact_x_mass(rule, p: int, m: int) -> tuple:
-    """The rule's matrix on ``m`` unit elements, exact, as a tuple of rows of Fractions."""
+def _exact_x_mass(rule, p: int, m: int, inverse: bool = False) -> tuple:
+    """The rule's matrix on ``m`` unit elements (or its inverse), exact, as rows of Fractions."""
     import warnings
+
+    import sympy
 
     from dispersion.symbolic.bspline import open_knot_vector
     from dispersion.symbolic.mass_rule import gram_space, mass_matrix
@@ -127,6 +137,10 @@ def _exact_x_mass(rule, p: int, m: int) -> tuple:
     with warnings.catch_warnings():  # warned about once, by the thickness build of the rule
         warnings.simplefilter("ignore")
         A = mass_matrix(rule, gram_space(open_knot_vector(p, m, 0, m)))
+    if inverse:
+        from sympy.polys.matrices import DomainMatrix
+
+        A = DomainMatrix.from_Matrix(sympy.Matrix(A)).to_field().inv().to_Matrix()
     return tuple(tuple(Fraction(str(v)) for v in row) for row in A.tolist())
 
 
@@ -158,17 +172,17 @@ def _extend(A: tuple, n: int):
     return rows, cols, vals, w
 
 
-def _banded_rule(rule, p: int) -> int:
+def _banded_rule(rule, p: int, inverse: bool = False) -> int:
     """The short mesh whose matrix extends exactly to the next two; InputError if it does not."""
-    name = rule.name
+    name = rule.name + (" (inverse mass)" if inverse else "")
     m0 = 4 * p + 3
-    base = _exact_x_mass(rule, p, m0)
+    base = _exact_x_mass(rule, p, m0, inverse)
     _, _, _, w = _extend(base, len(base))
     if 2 * w + 2 > len(base) // 2:
         raise InputError(f"mass rule {name!r}: its x-mass on {m0} elements has a bandwidth of "
                          f"{w}; the strip needs a banded mass (not dense) along x")
     for extra in (1, 2):
-        target = _exact_x_mass(rule, p, m0 + extra)
+        target = _exact_x_mass(rule, p, m0 + extra, inverse)
         rows, cols, vals, _ = _extend(base, len(target))
         built = {(i, j): v for i, j, v in zip(rows, cols, vals)}
         want = {(i, j): v for i, row in enumerate(target) for j, v in enumerate(row) if v != 0}
@@ -179,9 +193,10 @@ def _banded_rule(rule, p: int) -> int:
     return m0
 
 
-def x_mass(rule, p: int, n_elements: int, b: float) -> sp.csr_matrix:
+def x_mass(rule, p: int, n_elements: int, b: float, inverse: bool = False) -> sp.csr_matrix:
     """The rule (name or :class:`~dispersion.symbolic.mass_rule.MassRule`) along x on
-    ``n_elements`` elements of length ``b`` (float CSR).
+    ``n_elements`` elements of length ``b`` (float CSR); with ``inverse`` its inverse, which
+    must then be the banded one (a rule that states a banded inverse mass).
 
     >>> float(x_mass("lumped", 2, 40, 0.5).sum())        # rho * length
     20.0
@@ -189,19 +204,39 @@ def x_mass(rule, p: int, n_elements: int, b: float) -> sp.csr_matrix:
     from dispersion.symbolic.mass_rule import get_rule
 
     rule = get_rule(rule)
+    scale = 1.0 / b if inverse else b
     if n_elements <= 4 * p + 5:  # small enough to build exactly: no extension needed
-        A = _exact_x_mass(rule, p, n_elements)
+        A = _exact_x_mass(rule, p, n_elements, inverse)
         dense = np.array([[float(v) for v in row] for row in A])
-        return sp.csr_matrix(b * dense)
-    m0 = _banded_rule(rule, p)
-    rows, cols, vals, _ = _extend(_exact_x_mass(rule, p, m0), n_elements + p)
+        return sp.csr_matrix(scale * dense)
+    m0 = _banded_rule(rule, p, inverse)
+    rows, cols, vals, _ = _extend(_exact_x_mass(rule, p, m0, inverse), n_elements + p)
     n = n_elements + p
-    return sp.csr_matrix((b * np.array([float(v) for v in vals]), (rows, cols)), shape=(n, n))
+    return sp.csr_matrix((scale * np.array([float(v) for v in vals]), (rows, cols)),
+                         shape=(n, n))
+
+
+def explicit_step(rule) -> tuple[str, str]:
+    """``(stiffness, mass)``: how the rule's explicit step applies stiffness and inverse mass.
+
+    Stated by the rule (``MassRule.explicit_cost`` where the registry carries one: stiffness
+    ``"sparse"``, ``"banded-wide"`` or ``"dense"``; mass ``"diagonal"``, ``"banded"`` or
+    ``"solve"``), else read off its stated properties: a diagonal mass divides, any other
+    is solved with.
+
+    >>> from dispersion.symbolic.mass_rule import get_rule
+    >>> explicit_step(get_rule("hrz")), explicit_step(get_rule("consistent"))
+    (('sparse', 'diagonal'), ('sparse', 'solve'))
+    """
+    cost = getattr(rule, "explicit_cost", None)
+    if cost is not None:
+        return str(cost.stiffness), str(cost.mass)
+    return "sparse", ("diagonal" if rule.states.diagonal else "solve")
 
 
 def check_rule(rule) -> None:
     """Refuse (InputError, with the reason) a rule the strip cannot run: unknown stated
-    properties, a non-symmetric mass, a rule that needs a contact set along x."""
+    properties, a non-symmetric mass, a basis or an explicit step it does not build."""
     states = rule.states.as_dict()
     unknown = {k: v for k, v in states.items() if k not in KNOWN_STATES}
     if unknown:
@@ -210,19 +245,41 @@ def check_rule(rule) -> None:
     if not states.get("symmetric", True):
         raise InputError(f"mass rule {rule.name!r} is not symmetric: the explicit loop and its "
                          "energy and critical step assume a symmetric mass")
+    basis = getattr(rule, "basis", "bspline")
+    if basis not in BASES:
+        raise InputError(f"mass rule {rule.name!r} has the basis {basis!r}; the strip builds "
+                         f"{', '.join(BASES)}")
+    stiffness, mass = explicit_step(rule)
+    if stiffness not in ("sparse", "dense") or mass not in ("diagonal", "banded", "solve"):
+        raise InputError(f"mass rule {rule.name!r}: its explicit step applies a {stiffness} "
+                         f"stiffness and a {mass} inverse mass (its Petrov-Galerkin operators); "
+                         "the strip assembles the Galerkin stiffness and the sparse, banded or "
+                         "diagonal inverse masses only (its Galerkin form has the same solution)")
+    if getattr(rule, "x_stiffness", None) is not None and mass != "banded":
+        raise InputError(f"mass rule {rule.name!r} multiplies the x-stiffness by a factor the "
+                         "strip does not assemble")
 
 
-def _thickness(plan):
-    """The plate patch through the thickness (x-exact model): Y matrices and the rule's M_y."""
+def _thickness(plan, rule, mass_kind):
+    """Thickness matrices Y and the rule's thickness mass M_y (floats), and the basis."""
     import sympy
 
+    from dispersion.symbolic.bspline import SplineBasis1D
     from dispersion.symbolic.plate import plate_patch
 
     s = plan.strip
+    if getattr(rule, "basis", "bspline") == "lagrange":
+        from dispersion.simulation.lagrange_space import NodalSpace1D
+
+        space = NodalSpace1D(s.p, plan.n_elements_y, -1.0, 1.0)
+        Y = {k: v.toarray() for k, v in space.grams().items()}
+        My = space.lumped().toarray() if mass_kind == "diagonal" else Y["00"]
+        return Y, My, space
     patch = plate_patch(s.p, plan.n, "x-exact", None, s.mass, s.contact,
                         sympy.Rational(repr(s.gamma_s)))
     Y = {k: np.array(v.tolist(), dtype=float) for k, v in patch.Y.items()}
-    return Y, np.array(patch.My.tolist(), dtype=float), patch
+    basis = SplineBasis1D.uniform(s.p, plan.n - s.p, -1.0, 1.0)
+    return Y, np.array(patch.My.tolist(), dtype=float), basis
 
 
 def strip_mesh(plan) -> StripMesh:
@@ -236,10 +293,20 @@ def strip_mesh(plan) -> StripMesh:
     check_rule(rule)
     if rule.x_rule != rule.name:
         check_rule(get_rule(rule.x_rule))
-    Y, My, _ = _thickness(plan)
-    basis_x = SplineBasis1D.uniform(s.p, plan.n_elements_x, 0.0, plan.length)
-    G = spline_grams(basis_x)
-    Mx = x_mass(get_rule(rule.x_rule), s.p, plan.n_elements_x, plan.element_length)
+    stiffness, mass_kind = explicit_step(rule)
+    Y, My, basis_y = _thickness(plan, rule, mass_kind)
+    if getattr(rule, "basis", "bspline") == "lagrange":
+        from dispersion.simulation.lagrange_space import NodalSpace1D
+
+        basis_x = NodalSpace1D(s.p, plan.n_elements_x, 0.0, plan.length)
+        G = basis_x.grams()
+        Mx = basis_x.lumped() if mass_kind == "diagonal" else G["00"]
+    else:
+        basis_x = SplineBasis1D.uniform(s.p, plan.n_elements_x, 0.0, plan.length)
+        G = spline_grams(basis_x)
+        x_rule = get_rule(rule.x_rule)
+        Mx = None if mass_kind == "banded" else x_mass(x_rule, s.p, plan.n_elements_x,
+                                                          plan.element_length)
     mat = lame(plan.nu)
     lam, mu, l2m = float(mat["L"]), float(mat["M"]), float(mat["L2M"])
     Ys = {k: sp.csr_matrix(v) for k, v in Y.items()}
@@ -252,20 +319,26 @@ def strip_mesh(plan) -> StripMesh:
          + kron(Kyy, E[1][1])).tocsr()
     K.sum_duplicates()
     K.sort_indices()
-    M = sp.kron(Mx, sp.csr_matrix(My), format="csr")
-    M.eliminate_zeros()
-    n_points = M.shape[0]
-    rowmax = np.asarray(abs(M).max(axis=1).todense()).ravel()
-    massless = np.flatnonzero(rowmax <= 1e-14 * rowmax.max())
-    comp = 0 if s.kind == "S" else 1
     n = plan.n
+    inverse = None
+    if mass_kind == "banded":  # the rule's inverse mass is banded and known: S_x (x) M_y^-1
+        Sx = x_mass(get_rule(rule.x_rule), s.p, plan.n_elements_x, plan.element_length,
+                    inverse=True)
+        inverse = sp.kron(Sx, sp.csr_matrix(np.linalg.inv(My)), format="csr")
+        M = None
+        massless = np.zeros(0, dtype=int)
+    else:
+        M = sp.kron(Mx, sp.csr_matrix(My), format="csr")
+        M.eliminate_zeros()
+        rowmax = np.asarray(abs(M).max(axis=1).todense()).ravel()
+        massless = np.flatnonzero(rowmax <= 1e-14 * rowmax.max())
+    comp = 0 if s.kind == "S" else 1
     load_dofs = 2 * np.arange(n) + comp  # the column x = 0: i_x = 0
     load_values = Y["00"].sum(axis=1)  # int N_j dy (partition of unity)
-    basis_y = SplineBasis1D.uniform(s.p, n - s.p, -1.0, 1.0)
     where = np.asarray(plan.stations + plan.phase_stations)  # the stations, then the phase ones
     ax, Nx = basis_x.evaluate(where)
     ay, Ny = basis_y.evaluate(np.zeros(1))
     station_dofs = 2 * (ax[:, :, None] * n + ay[0][None, None, :]).reshape(where.size, -1) + comp
     station_weights = (Nx[:, :, None] * Ny[0][None, None, :]).reshape(where.size, -1)
     return StripMesh(plan, rule, K, M, massless, load_dofs, load_values, station_dofs,
-                     station_weights)
+                     station_weights, (stiffness, mass_kind), inverse)

@@ -262,7 +262,7 @@ def simulate(strip: Strip, *, bloch: bool = True, predict: bool = True, segments
     seconds["critical_step"] = step.seconds
     dt = strip.courant * step.dt_crit
     n_steps = math.ceil(plan.t_end / dt)
-    check_cost(RunCost(mesh.n_dofs, n_steps, False), what, limit)
+    check_cost(RunCost(mesh.n_dofs, n_steps, False, mesh.step_kind[0] == "dense"), what, limit)
     burst = ToneBurst(strip.cycles, plan.omega_c)
     force = burst.signal(np.arange(n_steps) * dt)
     run = run_explicit(mesh, op, dt, force, segments=segments, energy_every=energy_every)

@@ -95,8 +95,14 @@ def predict(plan, tau: float, *, rtol: float = 1e-13, max_iter: int = 60) -> Dis
     roots = modes_at_frequency(plan.nu, [plan.omega_c], kinds=(s.kind,), zgv=False)
     row = roots.label.index(label)
     k_ex, cg_ex = float(roots.kappa[row]), float(roots.group[row])
-    patch = plate_patch(s.p, plan.n, "bloch", plan.r, s.mass, s.contact,
-                        sympy.Rational(repr(s.gamma_s)))
+    from dispersion.errors import InputError
+
+    try:
+        patch = plate_patch(s.p, plan.n, "bloch", plan.r, s.mass, s.contact,
+                            sympy.Rational(repr(s.gamma_s)))
+    except InputError as exc:  # a rule the Bloch plate patch does not model
+        return DispersionPrediction(plan.omega_c, tau, plan.distance, k_ex, cg_ex, None, None,
+                                    None, None, None, f"no Bloch plate patch: {exc}")
     at = _branch(patch, plan.nu, label, tau)
     edge = math.pi / plan.r
     lo, hi = 0.0, edge

@@ -66,6 +66,8 @@ class MeshCriticalStep:
     dt_bloch: float | None
     iterations: int
     seconds: float
+    #: Why the toolkit has no Bloch-patch step for this rule (None: it has one, or not asked).
+    bloch_failure: str | None = None
 
     @property
     def ratio_to_bloch(self) -> float | None:
@@ -164,11 +166,16 @@ def mesh_critical_step(mesh, op, *, bloch: bool = False, tol: float = LANCZOS_TO
         raise ConvergenceError(f"the strip's largest eigenvalue is {w2}, not positive")
     omega = math.sqrt(w2)
     omega_max = round_up(omega)
-    omega_b = dt_b = None
+    omega_b = dt_b = why = None
     if bloch:
-        omega_b, dt_b = bloch_step(mesh.plan)
+        from dispersion.errors import InputError
+
+        try:
+            omega_b, dt_b = bloch_step(mesh.plan)
+        except InputError as exc:  # a rule the Bloch plate patch does not model
+            why = str(exc)
     return MeshCriticalStep(omega, omega_max, 2.0 / omega_max, omega_b, dt_b, count[0],
-                            time.perf_counter() - t0)
+                            time.perf_counter() - t0, why)
 
 
 def bloch_step(plan) -> tuple[float, float]:

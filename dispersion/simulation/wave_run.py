@@ -124,7 +124,9 @@ class WaveRun:
             "wavelengths",
             f"time: central differences, dt = {self.dt:.6g} H/c_T = {s.courant:g} x the mesh's "
             f"critical step {self.step.dt_crit:.6g} (Lanczos)"
-            + (f"; Bloch patch's step {self.step.dt_bloch:.6g}" if self.step.dt_bloch else "")
+            + (f"; Bloch patch's step {self.step.dt_bloch:.6g}" if self.step.dt_bloch
+               else f"; no Bloch-patch step ({self.step.bloch_failure})"
+               if self.step.bloch_failure else "")
             + f"; {self.n_steps} steps to t = {self.n_steps * self.dt:.6g} H/c_T "
             f"({self.n_steps * self.dt * pl.time_unit_us:.4g} us)",
             f"reference: the first station's record band-limited to Omega in "
@@ -312,7 +314,8 @@ def simulate(strip: Strip, *, bloch: bool = True, predict: bool = True, segments
         failures.append(f"prediction: {pred.failure}")
     per_step = run.seconds_per_step
     spread = (float(per_step.min()), float(np.median(per_step)), float(per_step.max()))
-    nbytes = int(run.nbytes + mesh.mass.data.nbytes + mesh.mass.indices.nbytes)
+    held = mesh.mass if mesh.mass is not None else mesh.mass_inverse
+    nbytes = int(run.nbytes + held.data.nbytes + held.indices.nbytes)
     return WaveRun(strip, plan, mesh.n_dofs, int(mesh.massless.size), op.kind, op.why, step,
                    dt, n_steps, rec, ref, errors, pred, seconds, spread, nbytes,
                    tuple(failures), bool(phase_certain))

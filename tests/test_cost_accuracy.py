@@ -36,3 +36,15 @@ def test_study_points_and_render(tmp_path):
     md = render(data, tmp_path)
     assert (tmp_path / "cost_accuracy.png").stat().st_size > 0
     assert "p = 2 lumped" in md and "| 2 | consistent |" in md
+
+
+def test_a_mass_that_needs_a_solve_is_never_on_the_explicit_front():
+    """The modelled cost counts no solve: a rule whose mass is not diagonal is marked and kept
+    off the front, however cheap its model makes it (p = 3, 4 consistent were on it before)."""
+    from dispersion.symbolic.mass_rule import get_rule
+
+    res = cost_accuracy((3, 4), ("consistent", "lumped", "hrz"))
+    for pt in res.points:
+        assert pt.needs_solve == (not get_rule(pt.mass).states.diagonal)
+        assert not (pt.needs_solve and pt.pareto)
+    assert any(pt.pareto for pt in res.points)

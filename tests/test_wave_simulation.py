@@ -179,3 +179,103 @@ def test_a_rule_the_strip_cannot_run_is_refused_with_its_reason():
     with pytest.raises(InputError, match="banded"):
         x_mass(user_rule("dense-coupled", dense), 2, 100, 1.0)
     assert x_mass("nodal-greville", 3, 100, 0.5).sum() == pytest.approx(50.0, rel=1e-14)
+
+
+def test_the_nodal_gll_space_has_the_spectra_of_the_c0_bernstein_space():
+    """C0 Lagrange elements in the nodal GLL basis (the spectral-element comparator) against
+    the same space as B-splines with p-fold interior knots (Bernstein basis): the pencils
+    (stiffness, consistent mass) and (stiffness, GLL-quadrature mass, the registry's
+    nodal-lobatto matrix of that knot vector) are congruent, so their eigenvalues agree."""
+    import scipy.linalg as sla
+    import sympy
+
+    from dispersion.simulation.lagrange_space import NodalSpace1D
+    from dispersion.simulation.strip_mesh import spline_grams
+    from dispersion.symbolic.bspline import KnotVector, SplineBasis1D
+    from dispersion.symbolic.spline_mass import lobatto_matrix
+
+    for p in (1, 2, 3, 4):
+        ne = 3
+        inner = [sympy.Rational(e, ne) for e in range(1, ne) for _ in range(p)]
+        kv = KnotVector(tuple([0] * (p + 1) + inner + [1] * (p + 1)), p)
+        bern = spline_grams(SplineBasis1D.from_knots(kv))
+        node = NodalSpace1D(p, ne, 0.0, 1.0)
+        G = node.grams()
+        gll = np.array(lobatto_matrix(kv).tolist(), dtype=float)
+        for (Kb, Mb), (Kn, Mn) in (((bern["11"], bern["00"]), (G["11"], G["00"])),
+                                   ((bern["11"], gll), (G["11"], node.lumped()))):
+            lb = sla.eigh(Kb.toarray(), Mb if isinstance(Mb, np.ndarray) else Mb.toarray(),
+                          eigvals_only=True)
+            ln = sla.eigh(Kn.toarray(), Mn.toarray(), eigvals_only=True)
+            assert np.allclose(lb, ln, rtol=1e-10, atol=1e-10)
+        assert np.count_nonzero(node.lumped().toarray() - np.diag(node.lumped().diagonal())) == 0
+
+
+def test_simulate_command_writes_signals_with_their_inputs(tmp_path, capsys):
+    """``dispersion simulate``: CSV with # input lines and one column pair per station, a
+    figure, JSON on stdout; bad input is one line and exit 2."""
+    import json
+
+    from dispersion.cli import main
+
+    csv_path, fig = tmp_path / "s.csv", tmp_path / "s.png"
+    args = ["simulate", "--p", "1", "--elements-per-wavelength", "3", "--travel", "1",
+            "--stations", "2", "--kappa", "1", "--csv", str(csv_path), "--figure", str(fig),
+            "--format", "json"]
+    assert main(args) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["strip"]["mass"] == "lumped" and out["dofs"] > 0 and "failures" in out
+    lines = csv_path.read_text().splitlines()
+    header = [ln for ln in lines if ln.startswith("#")]
+    assert any(ln.startswith("# material: steel") for ln in header)
+    columns = lines[len(header)].split(",")
+    assert columns[:2] == ["t [H/c_T]", "t [us]"] and len(columns) == 2 + 2 * 2
+    assert len(lines) - len(header) - 1 == out["n_steps"]
+    assert fig.stat().st_size > 0
+    assert main(["simulate", "--courant", "1.5"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "courant" in err[0]
+
+
+@pytest.mark.slow
+def test_the_simulation_meets_the_exact_reference_at_the_verification_setting():
+    """One setting fixed before it was run (the default study's verification: S0, p = 3,
+    consistent, 8 elements per wavelength, 0.3 of the critical step, 40 wavelengths): the
+    burst after 40 wavelengths arrives within 0.1 % of the exact modal synthesis by both
+    measures, its phase velocity is the fully discrete branch's to 1e-5, its arrival time the
+    predicted one within 20 %, and its L2 error is at most 0.05 (four times the predicted
+    phase error of about 0.011 rad)."""
+    from dispersion.simulation.wave_run import simulate
+
+    run = simulate(Strip(p=3, mass="consistent", elements_per_wavelength=8, courant=0.3))
+    e, pred = run.far, run.prediction
+    assert not run.failures and run.phase_certain
+    assert abs(e.arrival_error) <= 1e-3 and abs(e.energy_arrival_error) <= 1e-3
+    assert abs(e.phase_velocity_error - pred.phase_velocity_error) <= 1e-5
+    assert abs(e.energy_arrival_error - pred.arrival_error) <= 0.2 * abs(pred.arrival_error)
+    assert e.l2_error <= 0.05
+
+
+@pytest.mark.slow
+def test_the_study_runs_every_rule_and_renders_from_its_json(tmp_path):
+    """A tiny size through the whole pipeline: every rule of the registry run or refused with
+    a reason, the front and the cheapest from the points, JSON strict, page and figures."""
+    import json
+
+    from dispersion.report.wave_simulation import FIGURES, render
+    from dispersion.results import dumps
+    from dispersion.studies.wave_simulation import WaveSimulationSize, wave_simulation
+
+    size = WaveSimulationSize("tiny", ("S0",), (1,), (3, 4), 10**7,
+                              {"p": 1, "mass": "lumped", "elements_per_wavelength": 4,
+                               "courant": 0.5},
+                              {"travel": 2, "stations": 2, "kappa_c": 1.0})
+    study = wave_simulation(size, jobs=1)
+    ran = {pt.mass for pt in study.points} | {r.mass for r in study.refused}
+    assert ran == set(RULES)
+    assert all(r.reason for r in study.refused)
+    data = json.loads(dumps(study))
+    page = render(data, tmp_path)
+    for name in FIGURES:
+        assert (tmp_path / name).stat().st_size > 0 and name in page
+    assert f"{len(study.points)} runs" in page

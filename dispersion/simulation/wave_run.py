@@ -44,7 +44,7 @@ class WaveRun:
 
     ``records[k, s]`` is the particle velocity (v_x for S0, v_y for A0, on the mid-plane, per
     unit traction over mu, in units of c_T) at station s and time ``times[k]`` (the half steps
-    :math:`(k + 1/2)\Delta t` of central differences); ``reference`` the exact continuation
+    :math:`(k + 1/2)\\Delta t` of central differences); ``reference`` the exact continuation
     of station 0's record (band-limited) to each station. ``errors[s - 1]`` are those of
     station s against its reference. Times in H/c_T.
     """

@@ -1,4 +1,4 @@
-"""The guided-wave simulation (dispersion/simulation/): loop, mesh, critical step, reference, bounds.
+"""The guided-wave simulation (dispersion/simulation/): loop, mesh, step, reference, bounds.
 
 Default-run tests use tiny strips (one wavelength of travel, three elements per wavelength,
 a few hundred steps). The slow test checks one setting fixed before it was run against the
@@ -11,6 +11,8 @@ import math
 import numpy as np
 import pytest
 import scipy.sparse as sp
+from hypothesis import example, given, settings
+from hypothesis import strategies as st
 
 from dispersion.errors import ConvergenceError, InputError
 from dispersion.simulation.central_difference import run_explicit
@@ -30,17 +32,15 @@ def _tiny(**kw):
     return strip_mesh(plan_strip(Strip(**{**TINY, **kw})))
 
 
-@pytest.mark.parametrize("mass", list(RULES))
-def test_the_undamped_loop_conserves_its_discrete_energy(mass):
-    """After the end load stops, E = v.Mv/2 + u_k.K u_{k+1}/2 is constant to round-off, for
-    every rule of the registry (division, factorization and the massless condensation)."""
+def _energy_case(mass, p, mode, courant):
+    """After the end load stops, E = v.Mv/2 + u_k.K u_{k+1}/2 is constant to round-off."""
     try:
-        mesh = _tiny(p=2, mass=mass)
+        mesh = _tiny(p=p, mass=mass, mode=mode)
     except InputError as exc:  # a rule the strip cannot run says why
         assert str(exc)
         return
     op = mass_operator(mesh)
-    dt = 0.9 * mesh_critical_step(mesh, op).dt_crit
+    dt = courant * mesh_critical_step(mesh, op).dt_crit
     n = 300
     t = np.arange(n) * dt
     force = np.where(t < 60 * dt, np.sin(np.pi * t / (60 * dt)) ** 2, 0.0)
@@ -49,6 +49,29 @@ def test_the_undamped_loop_conserves_its_discrete_energy(mass):
     after = E[k > 62]
     assert after.size > 8 and after.min() > 0
     assert np.ptp(after) <= 1e-11 * after.max()
+
+
+_ENERGY_DOMAIN = dict(mass=st.sampled_from(list(RULES)), p=st.integers(1, 4),
+                      mode=st.sampled_from(["S0", "A0"]), courant=st.floats(0.05, 0.99))
+
+
+@pytest.mark.parametrize("mass", list(RULES))
+def test_the_undamped_loop_conserves_its_discrete_energy(mass):
+    """Every rule of the registry (division, factorization, condensation of the massless
+    DOFs, a banded inverse mass, a dense stiffness: each path the rules take), p = 2, S0."""
+    _energy_case(mass, 2, "S0", 0.9)
+
+
+@pytest.mark.slow
+@settings(max_examples=60, deadline=None)
+@given(**_ENERGY_DOMAIN)
+@example(mass="lumped", p=1, mode="S0", courant=0.05)
+@example(mass="consistent", p=4, mode="A0", courant=0.99)
+@example(mass="singular", p=4, mode="A0", courant=0.99)
+def test_the_undamped_loop_conserves_its_discrete_energy_slow(mass, p, mode, courant):
+    """The whole domain: every rule, p = 1..4, both loads, steps from 0.05 to 0.99 of the
+    critical step (its ends as examples)."""
+    _energy_case(mass, p, mode, courant)
 
 
 def test_a_symmetric_load_gives_a_mirror_symmetric_field():

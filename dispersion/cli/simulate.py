@@ -1,4 +1,4 @@
-"""``dispersion simulate``: one guided-wave simulation of a plate strip, against the exact reference.
+"""``dispersion simulate``: one guided-wave simulation of a plate strip against the exact one.
 
 The command parses the options into a :class:`dispersion.simulation.strip.Strip`, calls
 :func:`dispersion.simulation.wave_run.simulate` and renders the :class:`WaveRun` it returns

@@ -60,7 +60,8 @@ def _run_name(c) -> str:
 
 def _cheapest_table(data) -> str:
     rows = ["| mode | target | cheapest by measured seconds | loop [s] | error | "
-            "cheapest by today's modelled cost | loop [s] | error |", "|---|---|---|---|---|---|---|---|"]
+            "cheapest by today's modelled cost | loop [s] | error |",
+            "|---|---|---|---|---|---|---|---|"]
     by = {(c["mode"], c["target"], c["by"]): c for c in data["cheapest"]}
     for mode in data["size"]["modes"]:
         for t in data["targets"]:

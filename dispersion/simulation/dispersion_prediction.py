@@ -1,4 +1,4 @@
-"""What the dispersion analysis predicts for a simulated burst: the fully discrete branch at Omega_c.
+"""What the dispersion analysis predicts for a simulated burst: the fully discrete branch.
 
 The strip's interior is the Bloch plate patch with the same thickness mesh (p, n), aspect
 ratio :math:`r = b/H`, mass rule and Poisson's ratio. Its semi-discrete branch

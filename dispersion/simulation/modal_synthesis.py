@@ -1,4 +1,4 @@
-"""The exact reference: a received signal continued along the plate by the exact Rayleigh-Lamb branch.
+"""The exact reference: a received signal continued along the plate by the exact branch.
 
 In the far field of a symmetric (antisymmetric) end load below the first cut-off only S0 (A0)
 propagates; every other mode of its class is evanescent. A displacement recorded at

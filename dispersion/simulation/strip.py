@@ -5,7 +5,8 @@ nothing). :func:`plan_strip` derives, once, the numbers every later step reads
 (:class:`StripPlan`), from the exact Rayleigh-Lamb branch of the chosen mode:
 
 * **carrier**: wavenumber :math:`\\kappa_c = k_c H` on the exact S0 or A0 branch, frequency
-  :math:`\\Omega_c = \\Omega(\\kappa_c)` (:func:`dispersion.waves.exact_branches.exact_fundamental`),
+  :math:`\\Omega_c = \\Omega(\\kappa_c)`
+  (:func:`dispersion.waves.exact_branches.exact_fundamental`),
   wavelength :math:`\\lambda = 2\\pi H / \\kappa_c` (units: H the half-thickness, :math:`c_T`);
 * **mesh**: elements of length :math:`b = \\lambda / N` along the strip (N elements per
   wavelength) and :math:`n_y = \\lceil 2H/b \\rceil` through the thickness, so no element
@@ -240,5 +241,6 @@ def plan_strip(strip: Strip) -> StripPlan:
     n_x_functions = n_x * strip.p + 1 if lagrange else n_x + strip.p
     half_thickness_m = strip.thickness_mm / 2 * 1e-3
     return StripPlan(strip, nu, omega_c, wavelength, b, n_x, n_y if lagrange else n - strip.p,
-                     n, n_x_functions, n_x * b, stations, phase_stations, t_end, (float(lo), float(hi)), slow, fast, float(cg_band[-1]),
+                     n, n_x_functions, n_x * b, stations, phase_stations, t_end,
+                     (float(lo), float(hi)), slow, fast, float(cg_band[-1]),
                      omega_c / float(kap[-1]), half_thickness_m / mat.c_T * 1e6)

@@ -30,8 +30,8 @@ translation invariant inside: an exact build on thousands of elements is beyond 
 
 The load is a traction on the end x = 0 with the burst's time history: along x over the
 thickness (S0, symmetric) or along y (A0, antisymmetric), its nodal values
-:math:`\\int N_j dy`. Stations (the plan's stations, then its phase stations) read u_x (S0) or u_y (A0) on the
-mid-plane y = 0.
+:math:`\\int N_j dy`. Stations (the plan's stations, then its phase stations) read u_x (S0)
+or u_y (A0) on the mid-plane y = 0.
 
 >>> from dispersion.simulation.strip import Strip, plan_strip
 >>> mesh = strip_mesh(plan_strip(Strip(p=2, mass="consistent", travel=1, stations=2,
@@ -49,7 +49,7 @@ T. J. R. Hughes, J. A. Cottrell, Y. Bazilevs, "Isogeometric analysis", CMAME 194
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from fractions import Fraction
 from functools import lru_cache
 

@@ -46,7 +46,8 @@ MAX_CYCLES = 20
 
 @dataclass(frozen=True)
 class ToneBurst:
-    """``cycles`` periods of :math:`\\sin \\Omega_c t` under a Hann window (``omega_c`` in c_T/H)."""
+    """``cycles`` periods of :math:`\\sin \\Omega_c t` under a Hann window (``omega_c``:
+    c_T/H)."""
 
     cycles: int
     omega_c: float

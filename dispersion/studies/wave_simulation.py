@@ -404,9 +404,9 @@ def wave_simulation(size: str | WaveSimulationSize = "default", executor=None,
     coarse = [q for q in points if q.p == 1 and q.mass == "lumped" and q.mode == size.modes[0]]
     if coarse:
         q = min(coarse, key=lambda q: q.elements_per_wavelength)
-        traces.append(_trace("coarsest p = 1 lumped", replace(
-            base, mode=q.mode, p=1, mass="lumped", elements_per_wavelength=q.elements_per_wavelength),
-            q))
+        coarsest = replace(base, mode=q.mode, p=1, mass="lumped",
+                           elements_per_wavelength=q.elements_per_wavelength)
+        traces.append(_trace("coarsest p = 1 lumped", coarsest, q))
     for tr in traces:
         if not tr.same_as_sweep:
             failures.append(f"the re-run of {tr.why} ({tr.mass}, p = {tr.p}) gave another error "

@@ -31,8 +31,9 @@ def _legend(ax, data, where="lower left"):
 
 
 def plot_pareto(data: dict, mode: str = "S0", ax=None):
-    """Loop seconds against the arrival-time error after the travel, every run; the measured
-    Pareto front as a step line; the targets as horizontal lines; failed runs hollow."""
+    """Loop seconds against the arrival-time error after the travel, every run (the bar: the
+    fastest and slowest of its five timed segments); the measured Pareto front as a step line;
+    the targets as horizontal lines; failed runs hollow."""
     ax = axes(ax, size=(7.5, 5.2))
     _, _, colours, markers = _style(data)
     pts = data["points"]
@@ -40,6 +41,10 @@ def plot_pareto(data: dict, mode: str = "S0", ax=None):
         if pt["mode"] != mode or pt["arrival_error"] is None:
             continue
         ok = not pt["failures"]
+        lo, _, hi = (v * pt["n_steps"] for v in pt["seconds_per_step"])
+        ax.errorbar(pt["loop_seconds"], pt["arrival_error"],
+                    xerr=[[pt["loop_seconds"] - lo], [hi - pt["loop_seconds"]]],
+                    color=colours[pt["mass"]], lw=0.6, zorder=2)
         ax.scatter(pt["loop_seconds"], pt["arrival_error"], marker=markers[pt["p"]], s=34,
                    facecolor=colours[pt["mass"]] if ok else "none",
                    edgecolor=colours[pt["mass"]], lw=1.0, zorder=3)
@@ -55,7 +60,8 @@ def plot_pareto(data: dict, mode: str = "S0", ax=None):
                     ha="right", va="bottom", fontsize="x-small", color="0.3")
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlabel("measured cost: wall seconds of the explicit loop (same simulated time)")
+    ax.set_xlabel("measured cost: wall seconds of the explicit loop (same simulated time; "
+                  "bar: spread of its five timed segments)")
     ax.set_ylabel("arrival-time error after the travel (larger of peak and energy)")
     s = data["strip"]
     ax.set_title(f"{mode}: {s['cycles']}-cycle burst, kappa_c = {s['kappa_c']:g}, "

@@ -54,8 +54,10 @@ def _size(x, digits: int = 3) -> str:
 
 
 def _run_name(c) -> str:
-    return (f"p = {c['p']}, {c['mass']}, {c['elements_per_wavelength']:g} per wavelength"
-            if c["p"] is not None else "none within the sweep")
+    if c["p"] is None:
+        return "none within the sweep"
+    note = " (errors cancel: the sign changes next to it)" if c.get("cancellation") else ""
+    return f"p = {c['p']}, {c['mass']}, {c['elements_per_wavelength']:g} per wavelength{note}"
 
 
 def _cheapest_table(data) -> str:

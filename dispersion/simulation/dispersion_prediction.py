@@ -13,9 +13,9 @@ run's own step :math:`\\tau` travels with the fully discrete frequency
     \\tilde c_g = \\frac{d\\tilde\\Omega}{d\\kappa} = \\frac{c_h}{\\cos(\\tilde\\Omega\\tau/2)} .
 
 A burst of carrier :math:`\\Omega_c` excites the discrete wavenumber :math:`\\tilde\\kappa`
-with :math:`\\tilde\\Omega(\\tilde\\kappa) = \\Omega_c` (found by Newton's method from the
-exact :math:`\\kappa`, safeguarded by bisection). Over a distance :math:`\\Delta x` the
-analysis then predicts
+with :math:`\\tilde\\Omega(\\tilde\\kappa) = \\Omega_c` (bracketed on samples of the branch
+around the exact :math:`\\kappa`, refined on their cubic Hermite interpolant,
+:func:`predict`). Over a distance :math:`\\Delta x` the analysis then predicts
 
 * the arrival-time error :math:`c_g / \\tilde c_g - 1` (group delay, relative),
 * the carrier phase error :math:`\\Delta\\varphi = -(\\tilde\\kappa - \\kappa)\\,\\Delta x`,
@@ -67,71 +67,97 @@ class DispersionPrediction:
 
 
 def _branch(patch, nu, label, tau):
+    """``kappa -> (Omega_tilde, d Omega_tilde / d kappa)`` arrays of the fully discrete branch."""
     from dispersion.waves.discrete_branches import discrete_branches
     from dispersion.waves.fully_discrete import time_frequency
 
     def at(kappa):
-        br = discrete_branches(patch, nu, [kappa], group=True)
+        kappa = np.atleast_1d(np.asarray(kappa, dtype=float))
+        br = discrete_branches(patch, nu, kappa, group=True)
         if label not in br.omega:
-            return math.nan, math.nan
-        w, cg = float(br.omega[label][0]), float(br.group[label][0])
-        wt = float(time_frequency(np.array([w]), tau)[0])
-        if not math.isfinite(wt):
-            return math.nan, math.nan
-        return wt, cg / math.cos(wt * tau / 2)
+            nan = np.full(kappa.shape, np.nan)
+            return nan, nan
+        w, cg = np.asarray(br.omega[label], float), np.asarray(br.group[label], float)
+        wt = time_frequency(w, tau)
+        with np.errstate(invalid="ignore"):
+            return wt, cg / np.cos(wt * tau / 2)
 
     return at
 
 
-def predict(plan, tau: float, *, rtol: float = 1e-13, max_iter: int = 60) -> DispersionPrediction:
-    """The prediction for the strip of ``plan`` run with step ``tau`` (module docstring)."""
+#: Samples of the fully discrete branch over [KAPPA_SPAN[0], KAPPA_SPAN[1]] x kappa (clipped
+#: to the Brillouin zone) that bracket the root, and of the bracket that refines it.
+KAPPA_SPAN = (0.25, 2.5)
+SAMPLES = 33
+
+
+def _hermite_root(k0, k1, f0, f1, d0, d1, target):
+    """Root of the cubic Hermite interpolant of (f, f') on [k0, k1] where it crosses target."""
+    from scipy.optimize import brentq
+
+    h = k1 - k0
+
+    def cubic(k):
+        t = (k - k0) / h
+        h00, h10 = 2 * t**3 - 3 * t**2 + 1, t**3 - 2 * t**2 + t
+        h01, h11 = -2 * t**3 + 3 * t**2, t**3 - t**2
+        return h00 * f0 + h10 * h * d0 + h01 * f1 + h11 * h * d1 - target
+
+    return brentq(cubic, k0, k1, xtol=1e-15 * k1, rtol=4 * np.finfo(float).eps)
+
+
+def predict(plan, tau: float) -> DispersionPrediction:
+    """The prediction for the strip of ``plan`` run with step ``tau`` (module docstring).
+
+    The root is bracketed on :data:`SAMPLES` samples of the branch over the span
+    :data:`KAPPA_SPAN` times the exact wavenumber, refined on the cubic Hermite interpolant of
+    the samples (values and slopes) between them and on a second, finer sampling of the
+    bracket, and the group velocity taken at the root itself (three calls of the branch
+    solver in all).
+    """
     import sympy
 
+    from dispersion.errors import InputError
     from dispersion.symbolic.plate import plate_patch
-    from dispersion.waves.frequency import modes_at_frequency
 
     s = plan.strip
     label = s.mode
-    roots = modes_at_frequency(plan.nu, [plan.omega_c], kinds=(s.kind,), zgv=False)
-    row = roots.label.index(label)
-    k_ex, cg_ex = float(roots.kappa[row]), float(roots.group[row])
-    from dispersion.errors import InputError
-
+    k_ex, cg_ex = float(s.kappa_c), float(plan.group_c)
+    r = sympy.Rational(plan.r.numerator, plan.r.denominator)
     try:
-        patch = plate_patch(s.p, plan.n, "bloch", plan.r, s.mass, s.contact,
+        patch = plate_patch(s.p, plan.n, "bloch", r, s.mass, s.contact,
                             sympy.Rational(repr(s.gamma_s)))
     except InputError as exc:  # a rule the Bloch plate patch does not model
         return DispersionPrediction(plan.omega_c, tau, plan.distance, k_ex, cg_ex, None, None,
                                     None, None, None, f"no Bloch plate patch: {exc}")
     at = _branch(patch, plan.nu, label, tau)
-    edge = math.pi / plan.r
-    lo, hi = 0.0, edge
-    k = min(k_ex, 0.999 * edge)
-    failure, f = None, math.inf
-    for _ in range(max_iter):
-        w, cg = at(k)
-        if not math.isfinite(w):
-            hi = k
-            k = 0.5 * (lo + hi)
-            continue
-        f = w - plan.omega_c
-        if abs(f) <= rtol * plan.omega_c:
+    edge = math.pi / float(r)
+    target = plan.omega_c
+    lo, hi = KAPPA_SPAN[0] * k_ex, min(KAPPA_SPAN[1] * k_ex, edge * (1 - 1e-9))
+    failure = None
+    root = None
+    for _ in range(2):  # a coarse sampling, then one of the bracket it finds
+        k = np.linspace(lo, hi, SAMPLES)
+        w, d = at(k)
+        ok = np.isfinite(w) & np.isfinite(d)
+        cross = np.flatnonzero(ok[:-1] & ok[1:] & ((w[:-1] - target) * (w[1:] - target) <= 0))
+        if cross.size == 0:
             break
-        if f < 0:
-            lo = k
-        else:
-            hi = k
-        k_new = k - f / cg if cg > 0 else math.inf
-        k = k_new if lo < k_new < hi else 0.5 * (lo + hi)
+        i = int(cross[0])
+        root = _hermite_root(k[i], k[i + 1], w[i], w[i + 1], d[i], d[i + 1], target)
+        lo, hi = k[i], k[i + 1]
+    if root is None:
+        failure = (f"the fully discrete {label} branch does not reach Omega_c = {target:.6g} "
+                   f"for kappa in [{KAPPA_SPAN[0]:g}, {KAPPA_SPAN[1]:g}] x {k_ex:.4g} inside "
+                   f"the Brillouin zone (kappa < {edge:.6g})")
     else:
-        if abs(f) > 1e-9 * plan.omega_c:
-            failure = (f"the fully discrete {label} branch does not reach Omega_c = "
-                       f"{plan.omega_c:.6g} inside the Brillouin zone (kappa < {edge:.6g})"
-                       if hi == edge else f"Newton's method found no fully discrete {label} "
-                       f"root at Omega_c = {plan.omega_c:.6g}")
-    w, cg = at(k)
+        w, d = at([root])
+        w, cg = float(w[0]), float(d[0])
+        if not (math.isfinite(w) and abs(w - target) <= 1e-9 * target and cg > 0):
+            failure = f"no fully discrete {label} root at Omega_c = {target:.6g}"
     if failure is not None:
         return DispersionPrediction(plan.omega_c, tau, plan.distance, k_ex, cg_ex, None, None,
                                     None, None, None, failure)
+    k = root
     return DispersionPrediction(plan.omega_c, tau, plan.distance, k_ex, cg_ex, k, cg,
                                 cg_ex / cg - 1, -(k - k_ex) * plan.distance, k_ex / k - 1)

@@ -186,7 +186,7 @@ def bloch_step(plan) -> tuple[float, float]:
     from dispersion.waves.timestep import patch_omega_max
 
     s = plan.strip
-    patch = plate_patch(s.p, plan.n, "bloch", plan.r, s.mass, s.contact,
-                        sympy.Rational(repr(s.gamma_s)))
+    patch = plate_patch(s.p, plan.n, "bloch", sympy.Rational(plan.r.numerator, plan.r.denominator),
+                        s.mass, s.contact, sympy.Rational(repr(s.gamma_s)))
     w = patch_omega_max(patch, plan.nu, n_theta=17, exact=False)[0]
     return float(w), 2.0 / float(w)

@@ -75,12 +75,13 @@ def band_limit(signal, dt: float, band) -> np.ndarray:
     return np.fft.irfft(U, nfft)[: u.size]
 
 
-def continue_signal(signal, dt: float, distance: float, wavenumber: Callable,
+def continue_signal(signal, dt: float, distance, wavenumber: Callable,
                     band: tuple[float, float]) -> np.ndarray:
     """The record ``signal`` (step ``dt``) band-limited and continued over ``distance``.
 
     ``wavenumber(omega)`` gives :math:`\\kappa` (per unit length) at an array of angular
-    frequencies; it is called once, on the bins inside ``band``.
+    frequencies; it is called once, on the bins inside ``band``. ``distance`` may be an
+    array: the result then has one column per distance (one transform of the record).
     """
     dt = float(check_positive("dt", dt))
     u = np.asarray(signal, dtype=float)
@@ -92,8 +93,13 @@ def continue_signal(signal, dt: float, distance: float, wavenumber: Callable,
     kappa = np.asarray(wavenumber(omega[keep]), dtype=float)
     if kappa.shape != (int(keep.sum()),) or not np.all(np.isfinite(kappa)):
         raise InputError("wavenumber must return one finite kappa per frequency")
-    U[keep] *= np.exp(-1j * kappa * float(distance))
-    return np.fft.irfft(U, nfft)[: u.size]
+    d = np.asarray(distance, dtype=float)
+    if d.ndim == 0:
+        U[keep] *= np.exp(-1j * kappa * float(d))
+        return np.fft.irfft(U, nfft)[: u.size]
+    V = np.zeros((U.size, d.size), complex)
+    V[keep] = U[keep, None] * np.exp(-1j * np.outer(kappa, d))
+    return np.fft.irfft(V, nfft, axis=0)[: u.size]
 
 
 def exact_wavenumber(kind: str, nu: float) -> Callable:

@@ -9,7 +9,7 @@ nothing). :func:`plan_strip` derives, once, the numbers every later step reads
   (:func:`dispersion.waves.exact_branches.exact_fundamental`),
   wavelength :math:`\\lambda = 2\\pi H / \\kappa_c` (units: H the half-thickness, :math:`c_T`);
 * **mesh**: elements of length :math:`b = \\lambda / N` along the strip (N elements per
-  wavelength) and :math:`n_y = \\lceil 2H/b \\rceil` through the thickness, so no element
+  wavelength; b/H as a fraction with a denominator of at most 1000, within 1e-6 relative) and :math:`n_y = \\lceil 2H/b \\rceil` through the thickness, so no element
   is longer than :math:`\\lambda/N` in either direction; :math:`n = \\max(p + n_y, 3)`
   control points through the thickness (three: the singular rules' least), or
   :math:`n = p\\, n_y + 1` nodes for a rule on C0 Lagrange elements (its basis);
@@ -26,7 +26,7 @@ nothing). :func:`plan_strip` derives, once, the numbers every later step reads
   :math:`L \\ge (c_{g,fast} t_{end} + x_1)/2`, rounded up to whole elements.
 
 >>> plan = plan_strip(Strip(p=1, elements_per_wavelength=4, travel=2, stations=2))
->>> plan.n, plan.n_elements_y, round(plan.element_length * 4 / plan.wavelength, 12)
+>>> plan.n, plan.n_elements_y, round(plan.element_length * 4 / plan.wavelength, 5)
 (3, 2, 1.0)
 >>> bool(plan.length >= plan.stations[-1] + plan.wavelength)
 True
@@ -40,6 +40,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from fractions import Fraction
 from functools import lru_cache
 
 import numpy as np
@@ -170,11 +171,12 @@ class StripPlan:
     group_c: float
     phase_c: float
     time_unit_us: float = field(default=0.0)
+    aspect: Fraction = Fraction(1)
 
     @property
-    def r(self) -> float:
-        """Aspect ratio b/H of the Bloch patch with the strip's element length."""
-        return self.element_length
+    def r(self) -> Fraction:
+        """Aspect ratio b/H of the Bloch patch: the strip's element length, exactly."""
+        return self.aspect
 
     @property
     def distance(self) -> float:
@@ -220,7 +222,11 @@ def plan_strip(strip: Strip) -> StripPlan:
     lo, hi = burst.band(BAND_LEVEL)
     lo = max(lo, FREQUENCY_OMEGA_MIN)
     wavelength = 2 * math.pi / strip.kappa_c
-    b = wavelength / strip.elements_per_wavelength
+    # the element length as a fraction of H with a denominator of at most 1000 (within 1e-6
+    # of a wavelength over N): the Bloch patch of the prediction takes the same exact r, and
+    # its exact pencil polynomial stays small
+    aspect = Fraction(wavelength / strip.elements_per_wavelength).limit_denominator(1000)
+    b = float(aspect)
     n_y = max(math.ceil(2.0 / b - 1e-12), 1)
     lagrange = getattr(get_rule(strip.mass), "basis", "bspline") == "lagrange"
     n = strip.p * n_y + 1 if lagrange else max(strip.p + n_y, 3)
@@ -243,4 +249,4 @@ def plan_strip(strip: Strip) -> StripPlan:
     return StripPlan(strip, nu, omega_c, wavelength, b, n_x, n_y if lagrange else n - strip.p,
                      n, n_x_functions, n_x * b, stations, phase_stations, t_end,
                      (float(lo), float(hi)), slow, fast, float(cg_band[-1]),
-                     omega_c / float(kap[-1]), half_thickness_m / mat.c_T * 1e6)
+                     omega_c / float(kap[-1]), half_thickness_m / mat.c_T * 1e6, aspect)

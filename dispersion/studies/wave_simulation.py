@@ -86,7 +86,7 @@ SIZES = {
                                 {"p": 2, "mass": "consistent", "elements_per_wavelength": 12,
                                  "courant": 0.3}),
     "default": WaveSimulationSize("default", ("S0",), (1, 2, 3, 4), (4, 6, 8, 12, 16),
-                                  5 * 10**7,
+                                  25 * 10**6,
                                   {"p": 3, "mass": "consistent", "elements_per_wavelength": 8,
                                    "courant": 0.3}),
     "full": WaveSimulationSize("full", ("S0", "A0"), (1, 2, 3, 4),
@@ -154,7 +154,12 @@ class Refusal:
 
 @dataclass(frozen=True)
 class Cheapest:
-    """The cheapest run meeting ``target`` (by ``by``: measured seconds or modelled cost)."""
+    """The cheapest run meeting ``target`` (by ``by``: measured seconds or modelled cost).
+
+    ``cancellation``: the signed arrival error of its (mode, p, rule) changes sign between
+    the coarser and the finer neighbour of its N, so it meets the target through the spatial
+    and the time-stepping errors cancelling near that N, not by being converged.
+    """
 
     mode: str
     target: float
@@ -165,6 +170,7 @@ class Cheapest:
     loop_seconds: float | None
     modelled_cost: float | None
     arrival_error: float | None
+    cancellation: bool = False
 
 
 @dataclass(frozen=True)
@@ -323,8 +329,13 @@ def _cheapest(points, mode, target, by):
     if not ok:
         return Cheapest(mode, target, by, None, None, None, None, None, None)
     best = min(ok, key=key)
+    line = sorted((q for q in points if (q.mode, q.p, q.mass) == (mode, best.p, best.mass)
+                   and not q.failures), key=lambda q: q.elements_per_wavelength)
+    signs = [math.copysign(1.0, q.energy_arrival_error) for q in line]
+    i = line.index(best)
+    cancel = any(signs[j] != signs[j + 1] for j in range(max(i - 1, 0), min(i + 1, len(line) - 1)))
     return Cheapest(mode, target, by, best.p, best.mass, best.elements_per_wavelength,
-                    best.loop_seconds, best.modelled_cost, best.arrival_error)
+                    best.loop_seconds, best.modelled_cost, best.arrival_error, bool(cancel))
 
 
 def _trace(why, strip, sweep_point) -> SignalTrace:

@@ -302,3 +302,40 @@ def test_the_study_runs_every_rule_and_renders_from_its_json(tmp_path):
     for name in FIGURES:
         assert (tmp_path / name).stat().st_size > 0 and name in page
     assert f"{len(study.points)} runs" in page
+
+
+def _point(N, energy, peak=None, predicted=None, seconds=1.0, failures=()):
+    from dispersion.studies.wave_simulation import SweepPoint
+
+    peak = energy if peak is None else peak
+    return SweepPoint("S0", 2, "lumped", N, 4, 100, "diagonal", 10, 0.1, 0.11, 0.11, seconds,
+                      (0.1, 0.1, 0.1), 0.0, 1.0, 1e3, 10, max(abs(peak), abs(energy)), peak,
+                      energy, 0.0, 0.0, 0.0, 0.0, predicted, 0.0, 0.0, None, None, failures,
+                      "w")
+
+
+def test_the_cheapest_choice_and_the_stated_reasons_follow_the_numbers():
+    """The cheapest run meeting a target is the one of least loop time without a failure; a
+    sign change of the error next to it is flagged as a cancellation; the prediction verdict
+    gives the first stated reason that applies."""
+    from dispersion.studies.wave_simulation import (STRONG_DISPERSION, _cheapest, _verdict)
+
+    pts = [_point(4, 0.05, seconds=1.0), _point(8, 0.004, seconds=2.0),
+           _point(12, -0.0008, seconds=4.0), _point(16, 0.0009, seconds=0.5, failures=("x",))]
+    c = _cheapest(pts, "S0", 1e-2, "measured")
+    assert (c.elements_per_wavelength, c.cancellation) == (8, False)
+    c = _cheapest(pts, "S0", 1e-3, "measured")
+    assert (c.elements_per_wavelength, c.cancellation) == (12, True)  # 16 has a failure
+    assert _cheapest(pts, "S0", 1e-4, "measured").p is None
+    v = _verdict(0, _point(8, 0.0101, predicted=0.01), "energy arrival", "energy_arrival_error",
+                 "predicted_arrival_error")
+    assert v.holds and v.reason is None
+    v = _verdict(0, _point(8, 0.02, predicted=2 * STRONG_DISPERSION), "energy arrival",
+                 "energy_arrival_error", "predicted_arrival_error")
+    assert not v.holds and v.reason.startswith("strong discrete dispersion")
+    v = _verdict(0, _point(8, 0.01, peak=0.02, predicted=0.01), "envelope-peak arrival",
+                 "peak_arrival_error", "predicted_arrival_error")
+    assert not v.holds and v.reason.startswith("the envelope is distorted")
+    v = _verdict(0, _point(8, 0.01), "energy arrival", "energy_arrival_error",
+                 "predicted_arrival_error")
+    assert not v.holds and v.reason.startswith("no prediction")

@@ -83,20 +83,22 @@ def _pairs(data, mode, measured, predicted):
 
 
 def plot_prediction(data: dict, mode: str = "S0"):
-    """Predicted (fully discrete branch at the carrier) against measured: arrival time
-    (envelope peak hollow, energy centroid filled) and phase velocity; the diagonal and the
-    band within which the prediction is said to hold."""
+    """Predicted (fully discrete branch) against measured: arrival time at the carrier
+    (envelope peak hollow, energy centroid filled), energy arrival over the band, phase
+    velocity; the diagonal and the band within which the prediction is said to hold."""
     import numpy as np
 
-    fig = new_figure(figsize=(11.0, 4.8))
-    left, right = fig.subplots(1, 2)
+    fig = new_figure(figsize=(15.0, 5.0))
+    left, middle, right = fig.subplots(1, 3)
     _, _, colours, markers = _style(data)
     rtol, atol = data["prediction_rtol"], data["prediction_atol"]
     panels = ((left, ("peak_arrival_error", "energy_arrival_error"), "predicted_arrival_error",
-               "arrival-time error"),
+               "arrival-time error", "the carrier"),
+              (middle, ("energy_arrival_error",), "predicted_band_arrival_error",
+               "energy arrival-time error", "the band"),
               (right, ("phase_velocity_error",), "predicted_phase_velocity_error",
-               "phase-velocity error"))
-    for ax, measured, predicted, what in panels:
+               "phase-velocity error", "the carrier"))
+    for ax, measured, predicted, what, where in panels:
         lo, hi = np.inf, 0.0
         for k, m in enumerate(measured):
             for pt, x, y in _pairs(data, mode, m, predicted):
@@ -115,11 +117,13 @@ def plot_prediction(data: dict, mode: str = "S0"):
                             f"or {atol:g}")
         ax.set_xscale("log")
         ax.set_yscale("log")
-        ax.set_xlabel(f"predicted {what} (fully discrete branch at the carrier)")
+        ax.set_xlabel(f"predicted {what} (fully discrete branch over {where})")
         ax.set_ylabel(f"measured {what}")
         ax.grid(True, which="both", lw=0.3, alpha=0.5)
-    left.set_title("arrival time: hollow = envelope peak, filled = energy centroid; "
-                   "x = opposite sign", fontsize="small")
+    left.set_title("arrival time against the carrier's group delay\nhollow = envelope peak, "
+                   "filled = energy centroid; x = opposite sign", fontsize="small")
+    middle.set_title("energy arrival against the group delay averaged over\nthe burst's "
+                     "spectrum at the reference station", fontsize="small")
     right.set_title("phase velocity of the carrier over the travel", fontsize="small")
     _legend(left, data, "upper left")
     right.legend(fontsize="x-small", loc="upper left")

@@ -56,7 +56,8 @@ def _size(x, digits: int = 3) -> str:
 def _run_name(c) -> str:
     if c["p"] is None:
         return "none within the sweep"
-    note = " (errors cancel: the sign changes next to it)" if c.get("cancellation") else ""
+    note = (" (errors cancel: the error has the other sign at the next coarser N)"
+            if c.get("cancellation") else "")
     return f"p = {c['p']}, {c['mass']}, {c['elements_per_wavelength']:g} per wavelength{note}"
 
 
@@ -187,9 +188,13 @@ def render(data: dict, out: Path) -> str:
         "![measured Pareto front](wave_simulation_pareto.png)\n\n"
         "### Does the dispersion analysis predict the simulation?\n\n"
         "Prediction: the fully discrete branch of the Bloch plate patch with the run's "
-        "thickness mesh, aspect ratio, rule and step, at the burst's centre frequency "
-        "(`dispersion.simulation.dispersion_prediction`). It holds where the measured error "
-        f"lies within {100 * data['prediction_rtol']:g} % of the predicted one (or "
+        "thickness mesh, aspect ratio, rule and step (`dispersion.simulation."
+        "dispersion_prediction`), at the burst's centre frequency (the group delay and phase of "
+        "the carrier), and over the whole band: the energy centroid of a single mode travels "
+        "exactly at its group delay averaged over its energy spectrum, so the branch's group "
+        "velocity at every frequency, weighted by the spectrum the run received at the "
+        "reference station, predicts the energy arrival. A prediction holds where the measured "
+        f"error lies within {100 * data['prediction_rtol']:g} % of it (or "
         f"{data['prediction_atol']:g} absolute); the reasons below are stated rules applied "
         "to each run's own numbers.\n\n"
         + _prediction_summary(data) + "\n\n"

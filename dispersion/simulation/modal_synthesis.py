@@ -48,7 +48,8 @@ import numpy as np
 
 from dispersion.errors import InputError, check_positive
 
-__all__ = ["PAD", "continue_signal", "band_limit", "exact_wavenumber", "fft_length"]
+__all__ = ["PAD", "continue_signal", "band_limit", "exact_branch", "exact_wavenumber",
+           "fft_length"]
 
 #: The FFT length is a power of two of at least PAD times the record.
 PAD = 2
@@ -102,6 +103,27 @@ def continue_signal(signal, dt: float, distance, wavenumber: Callable,
     return np.fft.irfft(V, nfft, axis=0)[: u.size]
 
 
+def exact_branch(kind: str, nu: float, omega) -> tuple[np.ndarray, np.ndarray]:
+    """Exact wavenumber and group velocity of S0 (``kind="S"``) or A0 at each frequency."""
+    from dispersion.errors import ConvergenceError
+    from dispersion.waves.frequency import FREQUENCY_OMEGA_MIN, modes_at_frequency
+
+    omega = np.asarray(omega, dtype=float)
+    kappa, group = np.full(omega.shape, np.nan), np.full(omega.shape, np.nan)
+    ok = omega >= FREQUENCY_OMEGA_MIN
+    if np.any(ok):
+        roots = modes_at_frequency(nu, omega[ok], kinds=(kind,), zgv=False)
+        if roots.failures:
+            raise ConvergenceError(f"exact {kind}0 not certified: {roots.failures[0]}")
+        rows = [i for i, lab in enumerate(roots.label) if lab == f"{kind}0"]
+        idx = np.flatnonzero(ok)[roots.index[rows]]
+        kappa[idx], group[idx] = roots.kappa[rows], roots.group[rows]
+    if np.any(~np.isfinite(kappa)):
+        raise ConvergenceError(f"exact {kind}0 has no root at some frequency of the band "
+                               f"(below Omega = {FREQUENCY_OMEGA_MIN:g}?)")
+    return kappa, group
+
+
 def exact_wavenumber(kind: str, nu: float) -> Callable:
     """``omega -> kappa`` of the exact S0 (``kind="S"``) or A0 branch (certified roots).
 
@@ -109,24 +131,7 @@ def exact_wavenumber(kind: str, nu: float) -> Callable:
     >>> round(float(0.01 / k[0]) ** 2, 4)      # plate speed squared, 2 / (1 - nu)
     2.8571
     """
-    from dispersion.errors import ConvergenceError
-    from dispersion.waves.frequency import FREQUENCY_OMEGA_MIN, modes_at_frequency
-
     def wavenumber(omega):
-        omega = np.asarray(omega, dtype=float)
-        out = np.full(omega.shape, np.nan)
-        ok = omega >= FREQUENCY_OMEGA_MIN
-        if np.any(ok):
-            roots = modes_at_frequency(nu, omega[ok], kinds=(kind,), zgv=False)
-            if roots.failures:
-                raise ConvergenceError(f"exact {kind}0 not certified: {roots.failures[0]}")
-            label = f"{kind}0"
-            rows = [i for i, lab in enumerate(roots.label) if lab == label]
-            idx = np.flatnonzero(ok)[roots.index[rows]]
-            out[idx] = roots.kappa[rows]
-        if np.any(~np.isfinite(out)):
-            raise ConvergenceError(f"exact {kind}0 has no root at some frequency of the band "
-                                   f"(below Omega = {FREQUENCY_OMEGA_MIN:g}?)")
-        return out
+        return exact_branch(kind, nu, omega)[0]
 
     return wavenumber

@@ -14,7 +14,9 @@ The steps, in order (each timed):
 5. the reference at every station, continued from the reference station by the exact branch
    (:func:`~.modal_synthesis.continue_signal`), and the errors
    (:func:`~.signal_error.signal_error`);
-6. the prediction of the dispersion analysis (:func:`~.dispersion_prediction.predict`).
+6. the prediction of the dispersion analysis (:func:`~.dispersion_prediction.predict`: at the
+   carrier; :func:`~.dispersion_prediction.band_arrival_error`: the energy arrival over the
+   band, weighted by the spectrum received at the reference station).
 
 The result, :class:`WaveRun`, carries the strip it was computed from and renders its own
 title, header lines (inputs in words, with units), CSV columns and rows (the signals and
@@ -69,6 +71,9 @@ class WaveRun:
     #: False if the carrier phase could not be followed from the reference station (its
     #: 2 pi branch, and so the phase errors, are then uncertain; the arrival times stand).
     phase_certain: bool = True
+    #: The energy arrival error the fully discrete branch predicts over the burst's band
+    #: (:func:`~.dispersion_prediction.band_arrival_error`), or None.
+    band_prediction: float | None = None
 
     @property
     def times(self) -> np.ndarray:
@@ -170,7 +175,7 @@ class WaveRun:
             "phase_certain": self.phase_certain, "l2_error": e.l2_error,
             "energy_arrival_error": e.energy_arrival_error,
             "out_of_band": e.out_of_band, "errors": self.errors,
-            "prediction": self.prediction,
+            "prediction": self.prediction, "band_prediction": self.band_prediction,
             "seconds": self.seconds, "seconds_per_step": self.seconds_per_step,
             "seconds_per_time": self.seconds_per_time, "modelled_cost": self.modelled_cost,
             "nbytes": self.nbytes, "failures": self.failures,
@@ -237,7 +242,7 @@ def simulate(strip: Strip, *, bloch: bool = True, predict: bool = True, segments
     from dispersion.simulation.dispersion_prediction import predict as prediction
     from dispersion.simulation.mass_operator import mass_operator
     from dispersion.simulation.mesh_critical_step import mesh_critical_step
-    from dispersion.simulation.modal_synthesis import continue_signal, exact_wavenumber
+    from dispersion.simulation.modal_synthesis import continue_signal, exact_branch, fft_length
     from dispersion.simulation.run_cost import (MAX_DOF_STEPS, RunCost, check_cost,
                                                 estimate_cost)
     from dispersion.simulation.signal_error import (carrier_phase, envelope_centroid,
@@ -270,10 +275,19 @@ def simulate(strip: Strip, *, bloch: bool = True, predict: bool = True, segments
     run = run_explicit(mesh, op, dt, force, segments=segments, energy_every=energy_every)
     seconds["loop"] = run.seconds
     t0 = time.perf_counter()
-    wavenumber = exact_wavenumber(strip.kind, plan.nu)
+    x_rec = np.diff(run.records, axis=0) / dt  # velocity at the half steps
+    nfft = fft_length(x_rec.shape[0])
+    bins = 2 * np.pi * np.fft.rfftfreq(nfft, dt)
+    bins = bins[(bins >= plan.band[0]) & (bins <= plan.band[1])]
+    kappa_b, group_b = exact_branch(strip.kind, plan.nu, bins)  # one certified solve
+
+    def wavenumber(omega):  # the band's bins, solved above
+        return kappa_b if omega.shape == bins.shape else exact_branch(strip.kind, plan.nu,
+                                                                      omega)[0]
+
     n_user = len(plan.stations)
     x = np.asarray(plan.stations + plan.phase_stations)
-    rec = np.diff(run.records, axis=0) / dt  # velocity at the half steps
+    rec = x_rec
     ref = continue_signal(rec[:, 0], dt, x - x[0], wavenumber, plan.band)
     # the carrier phase error followed from zero at x0, one wavelength at a time
     wrapped = [carrier_phase(rec[:, j], ref[:, j], dt, plan.band, plan.omega_c)
@@ -299,14 +313,24 @@ def simulate(strip: Strip, *, bloch: bool = True, predict: bool = True, segments
     seconds["reference"] = time.perf_counter() - t0
     t0 = time.perf_counter()
     pred = prediction(plan, dt) if predict else None
+    band = (None, "not asked")
+    if pred is not None:
+        from dispersion.simulation.dispersion_prediction import band_arrival_error
+
+        weights = np.abs(np.fft.rfft(rec[:, 0], nfft)[: np.fft.rfftfreq(nfft).size]) ** 2
+        omega_all = 2 * np.pi * np.fft.rfftfreq(nfft, dt)
+        inside = (omega_all >= plan.band[0]) & (omega_all <= plan.band[1])
+        band = band_arrival_error(pred, bins, weights[inside], group_b)
     seconds["prediction"] = time.perf_counter() - t0
     failures += [f"station {s + 1}: {e.failure}" for s, e in enumerate(errors) if e.failure]
     if pred is not None and pred.failure:
         failures.append(f"prediction: {pred.failure}")
+    elif pred is not None and band[1]:
+        failures.append(f"band prediction: {band[1]}")
     per_step = run.seconds_per_step
     spread = (float(per_step.min()), float(np.median(per_step)), float(per_step.max()))
     held = mesh.mass if mesh.mass is not None else mesh.mass_inverse
     nbytes = int(run.nbytes + held.data.nbytes + held.indices.nbytes)
     return WaveRun(strip, plan, mesh.n_dofs, int(mesh.massless.size), op.kind, op.why, step,
                    dt, n_steps, rec, ref, errors, pred, seconds, spread, nbytes,
-                   tuple(failures), bool(phase_certain))
+                   tuple(failures), bool(phase_certain), band[0])

@@ -133,6 +133,7 @@ class SweepPoint:
     predicted_phase_error: float | None
     predicted_phase_velocity_error: float | None
     prediction_failure: str | None
+    predicted_band_arrival_error: float | None
     failures: tuple[str, ...]
     worker: str
 
@@ -156,9 +157,10 @@ class Refusal:
 class Cheapest:
     """The cheapest run meeting ``target`` (by ``by``: measured seconds or modelled cost).
 
-    ``cancellation``: the signed arrival error of its (mode, p, rule) changes sign between
-    the coarser and the finer neighbour of its N, so it meets the target through the spatial
-    and the time-stepping errors cancelling near that N, not by being converged.
+    ``cancellation``: the signed (energy) arrival error of its (mode, p, rule) has the other
+    sign at the next coarser N: the error crossed zero in between, so the run meets the target
+    through the spatial and the time-stepping errors cancelling near its N, not by being
+    converged (a finer mesh may well miss it).
     """
 
     mode: str
@@ -205,9 +207,10 @@ class PredictionVerdict:
 
 #: The measures the prediction is checked on: (name, measured field, predicted field).
 PREDICTED_MEASURES = (
-    ("envelope-peak arrival", "peak_arrival_error", "predicted_arrival_error"),
-    ("energy arrival", "energy_arrival_error", "predicted_arrival_error"),
-    ("phase velocity", "phase_velocity_error", "predicted_phase_velocity_error"),
+    ("envelope-peak arrival (carrier)", "peak_arrival_error", "predicted_arrival_error"),
+    ("energy arrival (carrier)", "energy_arrival_error", "predicted_arrival_error"),
+    ("energy arrival (band)", "energy_arrival_error", "predicted_band_arrival_error"),
+    ("phase velocity (carrier)", "phase_velocity_error", "predicted_phase_velocity_error"),
 )
 #: Above this predicted error the burst's band sees very different discrete velocities.
 STRONG_DISPERSION = 0.05
@@ -219,8 +222,9 @@ def _verdict(i: int, pt: SweepPoint, name: str, mfield: str, pfield: str) -> Pre
         return PredictionVerdict(i, name, None, p, False, "not measured: the carrier phase's "
                                  "branch could not be followed along the strip")
     if p is None:
-        return PredictionVerdict(i, name, m, None, False,
-                                 f"no prediction: {pt.prediction_failure}")
+        why = pt.prediction_failure or ("the sampled branch does not reach enough of the "
+                                        "burst's band")
+        return PredictionVerdict(i, name, m, None, False, f"no prediction: {why}")
     holds = abs(m - p) <= max(PREDICTION_RTOL * abs(p), PREDICTION_ATOL)
     reason = None
     if not holds:
@@ -232,9 +236,14 @@ def _verdict(i: int, pt: SweepPoint, name: str, mfield: str, pfield: str) -> Pre
         elif mfield == "peak_arrival_error" and abs(pk - en) > PREDICTION_RTOL * abs(en):
             reason = ("the envelope is distorted (its peak and its energy centroid disagree): "
                       "the peak is not the group delay of the carrier")
-        elif mfield == "energy_arrival_error":
-            reason = ("the energy centroid travels at the group delay averaged over the band, "
-                      "the prediction is that of the carrier alone (second-order dispersion)")
+        elif mfield == "energy_arrival_error" and pfield == "predicted_arrival_error":
+            band = pt.predicted_band_arrival_error
+            averaged = band is not None and abs(m - band) <= max(PREDICTION_RTOL * abs(band),
+                                                                  PREDICTION_ATOL)
+            reason = ("the energy centroid travels at the group delay averaged over the band "
+                      + ("(and the band prediction holds)" if averaged else
+                         "(the band prediction misses it too)")
+                      + ", the prediction is that of the carrier alone")
         else:
             reason = "not explained by the stated reasons"
     return PredictionVerdict(i, name, m, p, bool(holds), reason)
@@ -286,7 +295,7 @@ def _point(run, worker: str) -> SweepPoint:
         e.out_of_band, None if pred is None else pred.arrival_error,
         None if pred is None else pred.phase_error,
         None if pred is None else pred.phase_velocity_error,
-        None if pred is None else pred.failure,
+        None if pred is None else pred.failure, run.band_prediction,
         (e.failure,) if e.failure else (), worker)
 
 
@@ -333,7 +342,7 @@ def _cheapest(points, mode, target, by):
                    and not q.failures), key=lambda q: q.elements_per_wavelength)
     signs = [math.copysign(1.0, q.energy_arrival_error) for q in line]
     i = line.index(best)
-    cancel = any(signs[j] != signs[j + 1] for j in range(max(i - 1, 0), min(i + 1, len(line) - 1)))
+    cancel = i > 0 and signs[i - 1] != signs[i]
     return Cheapest(mode, target, by, best.p, best.mass, best.elements_per_wavelength,
                     best.loop_seconds, best.modelled_cost, best.arrival_error, bool(cancel))
 

@@ -11,7 +11,8 @@ nothing). :func:`plan_strip` derives, once, the numbers every later step reads
 * **mesh**: elements of length :math:`b = \\lambda / N` along the strip (N elements per
   wavelength; b/H as a fraction with a denominator of at most 1000, within 1e-6 relative)
   and :math:`n_y = \\lceil 2H/b \\rceil` through the thickness, so no element is longer
-  than :math:`\\lambda/N` in either direction; :math:`n = \\max(p + n_y, 3)` control points through the thickness (three: the singular rules' least), or
+  than :math:`\\lambda/N` in either direction; :math:`n = \\max(p + n_y, 3)` control points
+  through the thickness (three: the singular rules' least), or
   :math:`n = p\\, n_y + 1` nodes for a rule on C0 Lagrange elements (its basis);
 * **stations**: the reference station :math:`x_0` (``reference_station`` wavelengths from the
   loaded end, in the far field) and ``stations - 1`` more, equally spaced up to

@@ -53,7 +53,8 @@ import sympy
 from dispersion.symbolic import bspline
 from dispersion.errors import InputError, check_nu, check_positive_int
 from dispersion.symbolic.mass import contact_weights, redistribution_matrix
-from dispersion.symbolic.mass_rule import get_rule, mass_variant, x_mass_coefficients
+from dispersion.symbolic.mass_rule import (get_rule, mass_variant, x_mass_coefficients,
+                                           x_stiffness_factor)
 
 __all__ = [
     "MODELS",
@@ -64,6 +65,7 @@ __all__ = [
     "thickness_matrices",
     "bloch_coefficients",
     "x_functions",
+    "x_coefficients",
     "lame",
     "stiffness_terms",
     "dynamic_stiffness",
@@ -174,6 +176,9 @@ class PlatePatch:
     spec: object = field(default=None, compare=False)
     x_mass: tuple = ()
     rule: object = field(default=None, repr=False, compare=False)
+    #: Bloch factor ``((L, s_L), ...)`` of the x-stiffness (1 but for Petrov-Galerkin rules,
+    #: :func:`dispersion.symbolic.mass_rule.x_stiffness_factor`).
+    x_stiffness: tuple = ((0, 1),)
 
     @property
     def massless(self) -> tuple[int, ...]:
@@ -223,7 +228,25 @@ def _build(spec, allow_negative: bool) -> PlatePatch:
     x_mass = x_mass_coefficients(rule.x_rule, spec.p)
     return PlatePatch(spec.p, spec.n, spec.model, spec.r, rule.name, R, Y, My,
                       x_lumped=x_mass == ((0, sympy.Integer(1)),), spec=spec, x_mass=x_mass,
-                      rule=rule)
+                      rule=rule, x_stiffness=x_stiffness_factor(rule.x_rule, spec.p))
+
+
+def x_coefficients(patch) -> dict[str, dict[int, sympy.Rational]]:
+    """The Bloch coefficients of the x-stiffness of ``patch``: :func:`bloch_coefficients`
+    times its factor :attr:`PlatePatch.x_stiffness` (a Laurent product; unchanged for every
+    Galerkin rule).
+
+    >>> x_coefficients(plate_patch(p=1, mass="dual-lumped"))["00"]
+    {-2: -1/36, -1: 2/9, 0: 11/18, 1: 2/9, 2: -1/36}
+    """
+    from dispersion.symbolic.approximate_dual import bloch_product
+
+    c = bloch_coefficients(patch.p)
+    factor = dict(getattr(patch, "x_stiffness", ((0, 1),)))
+    if factor == {0: 1}:
+        return c
+    return {key: {L: v for L, v in bloch_product(val, factor).items() if v != 0}
+            for key, val in c.items()}
 
 
 def x_functions(patch: PlatePatch, kappa) -> dict[str, object]:
@@ -237,13 +260,13 @@ def x_functions(patch: PlatePatch, kappa) -> dict[str, object]:
         one = np.ones_like(kappa, dtype=float) if numeric else sympy.Integer(1)
         out = {"m": one, "s": kappa, "d": kappa**2}
     else:
-        c = bloch_coefficients(patch.p)
+        c = x_coefficients(patch)
         r = float(patch.r) if numeric else patch.r
         th = kappa * r
         conv = float if numeric else (lambda v: v)
         out = {
             "m": sum(conv(v) * cos(L * th) for L, v in c["00"].items()),
-            "s": -2 / r * sum(conv(c["10"][L]) * sin(L * th) for L in range(1, patch.p + 1)),
+            "s": -2 / r * sum(conv(v) * sin(L * th) for L, v in c["10"].items() if L > 0),
             "d": sum(conv(v) * cos(L * th) for L, v in c["11"].items()) / r**2,
         }
     if patch.model == "x-exact" or patch.x_lumped:
@@ -273,14 +296,14 @@ def x_taylor(patch: PlatePatch, D: int) -> dict[str, list[tuple[sympy.Rational, 
                "d": [(sympy.Integer(0), 0), (sympy.Integer(1), 0)][: D + 1]
                + [(sympy.Integer(0), 0)] * (D - 1)}
     else:
-        c = bloch_coefficients(patch.p)
+        c = x_coefficients(patch)
         out = {"m": [], "s": [], "d": []}
         for k in range(D + 1):
             sign = (-1) ** k
             out["m"].append((sign * sum(v * L ** (2 * k) for L, v in c["00"].items())
                              / sympy.factorial(2 * k), 2 * k))
-            out["s"].append((-2 * sign * sum(c["10"][L] * L ** (2 * k + 1)
-                                             for L in range(1, patch.p + 1))
+            out["s"].append((-2 * sign * sum(v * L ** (2 * k + 1)
+                                             for L, v in c["10"].items() if L > 0)
                              / sympy.factorial(2 * k + 1), 2 * k))
             out["d"].append((sign * sum(v * L ** (2 * k) for L, v in c["11"].items())
                              / sympy.factorial(2 * k), 2 * k - 2))

@@ -62,9 +62,9 @@ _z = sympy.Symbol("z")
 
 
 def _coefficients(rule, p: int):
-    from dispersion.symbolic.plate import bloch_coefficients
+    from dispersion.waves.bar_dispersion import bar_stiffness_coefficients
 
-    return bloch_coefficients(p)["11"], dict(x_mass_coefficients(rule, p))
+    return bar_stiffness_coefficients(rule, p), dict(x_mass_coefficients(rule, p))
 
 
 def bar_omega_squared(mass, p: int) -> sympy.Expr:
@@ -304,7 +304,7 @@ def certified_omega_max(patch, nu, omega: float, rtol: float = 1e-3, max_cells: 
     """
     import flint
 
-    from dispersion.symbolic.plate import bloch_coefficients, lame, mass_block, stiffness_terms
+    from dispersion.symbolic.plate import lame, mass_block, stiffness_terms, x_coefficients
 
     if patch.model != "bloch" or isinstance(patch.r, sympy.Symbol):
         raise InputError("certification needs a Bloch patch with a numeric aspect ratio r")
@@ -323,7 +323,7 @@ def certified_omega_max(patch, nu, omega: float, rtol: float = 1e-3, max_cells: 
         n2 = 2 * patch.n
         ml = list(patch.massless)
         keep = [i for i in range(n2) if i not in ml]
-        c = bloch_coefficients(patch.p)
+        c = x_coefficients(patch)  # Petrov-Galerkin rules: times their x-factor
         r = q(patch.r)
         lam = {k: q(v) for k, v in lame(sympy.nsimplify(nu), scaled=False).items()}
         terms = [(lam[m], f, mat(B)) for m, f, B in stiffness_terms(patch)]
@@ -334,8 +334,8 @@ def certified_omega_max(patch, nu, omega: float, rtol: float = 1e-3, max_cells: 
         def definite(lo: float, hi: float) -> bool:
             th = flint.arb((lo + hi) / 2, (hi - lo) / 2)
             xf = {"m": sum((q(v) * (L * th).cos() for L, v in c["00"].items()), flint.arb(0)),
-                  "s": -2 / r * sum((q(c["10"][L]) * (L * th).sin()
-                                     for L in range(1, patch.p + 1)), flint.arb(0)),
+                  "s": -2 / r * sum((q(v) * (L * th).sin()
+                                     for L, v in c["10"].items() if L > 0), flint.arb(0)),
                   "d": sum((q(v) * (L * th).cos() for L, v in c["11"].items()),
                            flint.arb(0)) / r**2}
             mx = sum((q(v) * (L * th).cos() for L, v in patch.x_mass), flint.arb(0))

@@ -23,7 +23,7 @@ periodic mesh every weight equals the element length, so the periodic row equals
 
 >>> from dispersion.symbolic.bspline import open_knot_vector
 >>> [str(w) for w in interpolatory_weights(open_knot_vector(2, 2))]   # exact on splines
-['1/6', '1/3', '1/3', '1/6']
+['1/18', '4/9', '4/9', '1/18']
 
 References
 ----------

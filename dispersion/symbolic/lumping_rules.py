@@ -46,7 +46,7 @@ from __future__ import annotations
 from dispersion.symbolic.explicit_cost import ExplicitCost
 from dispersion.symbolic.mass_check import MassProperties
 
-__all__ = ["ENTRIES", "approximate_dual_entry", "sms_entry"]
+__all__ = ["ENTRIES", "approximate_dual_entry", "sms_entry", "approximate_dual_rule", "sms_rule"]
 
 
 def _kv(space, name):
@@ -157,3 +157,33 @@ ENTRIES = {
                                             "points, nodal quadrature"),
     "sms": dict(sms_entry(), x_rule="sms"),
 }
+
+
+def approximate_dual_rule(q: int):
+    """A :class:`~dispersion.symbolic.mass_rule.MassRule` ``dual-lumped-q<q>``: approximate-dual
+    lumping with reproduction degree ``q`` (capped at the degree p of the space).
+
+    >>> from dispersion.waves.timestep import bar_omega_max
+    >>> bar_omega_max(approximate_dual_rule(0), 1)[0]     # q = 0: the row-sum lumped bar, 2
+    2
+    """
+    from dispersion.symbolic.mass_rule import MassRule
+
+    e = approximate_dual_entry(q)
+    return MassRule(f"dual-lumped-q{q}", e["build"], e["states"], "dual-lumped", False,
+                    e["description"], e["periodic"], e["x_stiffness"], e["cost"])
+
+
+def sms_rule(beta):
+    """A :class:`~dispersion.symbolic.mass_rule.MassRule` ``sms-<beta>``: selective mass scaling
+    with parameter ``beta`` (x-direction included).
+
+    >>> from dispersion.waves.timestep import bar_omega_max
+    >>> bar_omega_max(sms_rule(1), 1)[0]                  # 4 / (1 + 4 beta) = 4/5
+    2*sqrt(5)/5
+    """
+    from dispersion.symbolic.mass_rule import MassRule
+
+    e = sms_entry(beta)
+    return MassRule(f"sms-{e['description'].rsplit('= ', 1)[1]}", e["build"], e["states"],
+                    "sms", False, e["description"], e["periodic"], None, e["cost"])

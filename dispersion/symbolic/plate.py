@@ -228,7 +228,8 @@ def _build(spec, allow_negative: bool) -> PlatePatch:
     x_mass = x_mass_coefficients(rule.x_rule, spec.p)
     return PlatePatch(spec.p, spec.n, spec.model, spec.r, rule.name, R, Y, My,
                       x_lumped=x_mass == ((0, sympy.Integer(1)),), spec=spec, x_mass=x_mass,
-                      rule=rule, x_stiffness=x_stiffness_factor(rule.x_rule, spec.p))
+                      rule=rule, x_stiffness=x_stiffness_factor(
+                          rule if rule.x_stiffness is not None else rule.x_rule, spec.p))
 
 
 def x_coefficients(patch) -> dict[str, dict[int, sympy.Rational]]:
@@ -237,7 +238,7 @@ def x_coefficients(patch) -> dict[str, dict[int, sympy.Rational]]:
     Galerkin rule).
 
     >>> x_coefficients(plate_patch(p=1, mass="dual-lumped"))["00"]
-    {-2: -1/36, -1: 2/9, 0: 11/18, 1: 2/9, 2: -1/36}
+    {-2: -1/36, -1: 1/9, 0: 5/6, 1: 1/9, 2: -1/36}
     """
     from dispersion.symbolic.approximate_dual import bloch_product
 

@@ -132,6 +132,15 @@ def _interpolatory(space):
     return _like(interpolatory_mass(_kv(space, "interpolatory-nodal")), space)
 
 
+def _greville_row(p):
+    # uniform periodic knots: every interpolatory weight is the element length (translation
+    # invariance and exactness on constants), so the row is nodal-greville's; the middle row
+    # of a finite mesh is not (the cardinal splines reach its boundary)
+    from dispersion.symbolic.spline_mass import PERIODIC_ROWS
+
+    return PERIODIC_ROWS["nodal-greville"](p)
+
+
 #: name -> registry entry (build, states, x rule, periodic row, x stiffness factor, cost).
 ENTRIES = {
     "dual-lumped": dict(approximate_dual_entry(), x_rule="dual-lumped"),
@@ -148,7 +157,7 @@ ENTRIES = {
                             description="approximate-dual Petrov-Galerkin without lumping "
                                         "(consistent spectrum)"),
     "interpolatory-nodal": dict(build=_interpolatory, states=MassProperties(),
-                                x_rule="nodal-greville",
+                                x_rule="nodal-greville", periodic=_greville_row,
                                 cost=ExplicitCost("sparse", "solve",
                                                   "in the interpolatory basis: diagonal mass, "
                                                   "dense stiffness; in B-spline coordinates: "

@@ -145,7 +145,7 @@ def _check_bar_symbol(p, theta):
     # assembled open-mesh S K applied to a Bloch wave in the interior, at 50 digits
     from dispersion.waves.bar_dispersion import bar_frequency
 
-    ne = 3 * p + 3
+    ne = 4 * p + 4  # the middle row of S K sees uniform knots only
     kv = open_knot_vector(p, ne, 0, ne)
     SK = approximate_dual_matrix(kv) * _stiffness_cached(p, ne)
     mid = kv.n // 2

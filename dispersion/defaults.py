@@ -44,7 +44,7 @@ CONTACT = "top"
 #: command line offers them without importing the rules.
 MASS_VARIANTS = ("consistent", "lumped", "hrz", "nodal-greville", "nodal-lobatto", "singular",
                  "singular-lumped", "dual-lumped", "dual-gram", "dual-consistent",
-                 "interpolatory-nodal", "sms")
+                 "interpolatory-nodal", "sms", "sem-consistent", "sem-lumped")
 #: Named Newmark members of the fully discrete branches
 #: (:data:`dispersion.waves.fully_discrete.SCHEMES` holds their beta and gamma; tested equal).
 TIME_SCHEMES = ("central", "average-acceleration", "linear-acceleration", "fox-goodwin")

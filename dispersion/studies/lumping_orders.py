@@ -124,7 +124,7 @@ def lumping_orders(degrees=(1, 2, 3, 4), rules=None, *, bar: bool = True,
             res: dict[str, tuple] = {}
             if bar and not rule.redistributes:
                 res["bar"] = bar_leading_term(rule, p, order)
-            if plate:
+            if plate and rule.basis == "bspline":  # C0 Lagrange: the bar only (p DOFs a cell)
                 try:
                     key = _plate_key(rule, p)
                     if key not in plate_cache:  # rules with the same matrices share a series

@@ -19,6 +19,9 @@ paper's scheme is Petrov-Galerkin the equivalence is exact (stated per rule, tes
                             quadrature (Voet, Sande 2025): :mod:`interpolatory_spline`
 ``sms``                     selective mass scaling of the lumped mass, beta = 1/2
                             (Olovsson et al. 2005; Tkachuk, Bischoff 2013): :mod:`mass_scaling`
+``sem-consistent``,         the classical comparator: C0 Lagrange elements of degree p,
+``sem-lumped``              consistent or Gauss-Lobatto-Legendre lumped (spectral elements);
+                            they change the *basis* (``basis = "lagrange"``): :mod:`lagrange_sem`
 ==========================  ==================================================================
 
 Non-symmetric pencils never reach the solvers: a Petrov-Galerkin pencil
@@ -28,7 +31,7 @@ a user rule that is not symmetric is refused by :func:`dispersion.symbolic.mass_
 with the reason.
 
 >>> sorted(ENTRIES)
-['dual-consistent', 'dual-gram', 'dual-lumped', 'interpolatory-nodal', 'sms']
+['dual-consistent', 'dual-gram', 'dual-lumped', 'interpolatory-nodal', 'sem-consistent', 'sem-lumped', 'sms']
 
 References
 ----------
@@ -141,6 +144,16 @@ def _greville_row(p):
     return PERIODIC_ROWS["nodal-greville"](p)
 
 
+def _sem_consistent(space):
+    return space.M  # the plate hands the C0 space's own Gram matrix (basis "lagrange")
+
+
+def _sem_lumped(space):
+    from dispersion.symbolic.spline_mass import lobatto_matrix
+
+    return _like(lobatto_matrix(_kv(space, "sem-lumped")), space)
+
+
 #: name -> registry entry (build, states, x rule, periodic row, x stiffness factor, cost).
 ENTRIES = {
     "dual-lumped": dict(approximate_dual_entry(), x_rule="dual-lumped"),
@@ -165,6 +178,16 @@ ENTRIES = {
                                 description="interpolatory spline basis at the Greville "
                                             "points, nodal quadrature"),
     "sms": dict(sms_entry(), x_rule="sms"),
+    "sem-consistent": dict(build=_sem_consistent, states=MassProperties(), x_rule="consistent",
+                           basis="lagrange",
+                           cost=ExplicitCost("sparse", "solve", "C0 Lagrange elements"),
+                           description="C0 Lagrange elements, consistent mass"),
+    "sem-lumped": dict(build=_sem_lumped, states=MassProperties(), x_rule="consistent",
+                       basis="lagrange",
+                       cost=ExplicitCost("sparse", "diagonal",
+                                         "spectral elements: diagonal in the nodal GLL basis"),
+                       description="C0 Lagrange elements, Gauss-Lobatto-Legendre lumped "
+                                   "(spectral elements)"),
 }
 
 

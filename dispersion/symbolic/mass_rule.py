@@ -75,6 +75,7 @@ __all__ = [
     "MassRule",
     "RULES",
     "RULE_NAMES",
+    "BLOCH_RULE_NAMES",
     "TranslationalMassWarning",
     "get_rule",
     "gram_space",
@@ -137,6 +138,9 @@ class MassRule:
     x_stiffness: Callable | None = field(default=None, compare=False, repr=False)
     #: How the explicit step applies stiffness and inverse mass (None: from ``states``).
     cost: ExplicitCost | None = field(default=None, compare=False, repr=False)
+    #: The discrete space: ``"bspline"`` (smooth B-splines) or ``"lagrange"`` (C0 elements,
+    #: :mod:`dispersion.symbolic.lagrange_sem`): such a rule changes the stiffness too.
+    basis: str = "bspline"
 
     @property
     def explicit_cost(self) -> ExplicitCost:
@@ -264,7 +268,8 @@ def _literature():
     for name, e in ENTRIES.items():
         _BUILTIN[name] = (e["build"], e["states"], e["x_rule"], False, e["description"])
     return {name: MassRule(name, e["build"], e["states"], e["x_rule"], False, e["description"],
-                           e.get("periodic"), e.get("x_stiffness"), e.get("cost"))
+                           e.get("periodic"), e.get("x_stiffness"), e.get("cost"),
+                           e.get("basis", "bspline"))
             for name, e in ENTRIES.items()}
 
 
@@ -276,6 +281,9 @@ RULES: dict[str, MassRule] = {
     for name, (build, states, x_rule, redis, desc) in _BUILTIN.items()
 }
 RULE_NAMES = tuple(RULES)
+#: The rules that apply to the Bloch plate patch (its x-direction is one B-spline symbol; the
+#: C0 Lagrange rules carry p DOFs a cell there and apply to the x-exact model and the bar).
+BLOCH_RULE_NAMES = tuple(name for name, rule in RULES.items() if rule.basis == "bspline")
 
 
 def get_rule(mass) -> MassRule:

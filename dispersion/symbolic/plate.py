@@ -63,6 +63,7 @@ __all__ = [
     "PlatePatch",
     "plate_patch",
     "thickness_matrices",
+    "thickness_knot_vector",
     "bloch_coefficients",
     "x_functions",
     "x_coefficients",
@@ -82,19 +83,38 @@ from dispersion.symbolic.patch import (  # noqa: E402  (the patch's own rules, s
 _y = sympy.Symbol("y")
 
 
-def thickness_matrices(p: int, n: int) -> dict[str, sympy.ImmutableMatrix]:
+def thickness_matrices(p: int, n: int, basis: str = "bspline") -> dict[str, sympy.ImmutableMatrix]:
     """Exact :math:`Y_{ab} = \\int_{-1}^{1} N^{(a)}_i N^{(b)}_j dy` for ``n`` open B-splines of degree p.
+
+    ``basis="lagrange"``: the C0 space of degree p with ``n = p * elements + 1`` DOFs
+    (:func:`thickness_knot_vector`).
 
     >>> thickness_matrices(1, 2)["11"].tolist()
     [[1/2, -1/2], [-1/2, 1/2]]
     """
-    return dict(zip(("00", "01", "10", "11"), _thickness_matrices(p, n)))
+    return dict(zip(("00", "01", "10", "11"), _thickness_matrices(p, n, basis)))
+
+
+def thickness_knot_vector(p: int, n: int, basis: str = "bspline"):
+    """The knot vector through the thickness [-1, 1]: open uniform B-splines, or the C0
+    (Lagrange) space, interior knots repeated p times.
+
+    >>> [str(k) for k in thickness_knot_vector(2, 5, "lagrange").knots]
+    ['-1', '-1', '-1', '0', '0', '1', '1', '1']
+    """
+    if basis == "lagrange":
+        from dispersion.symbolic.lagrange_sem import c0_elements, c0_knot_vector
+
+        return c0_knot_vector(p, c0_elements(p, n), -1, 1)
+    if basis != "bspline":
+        raise InputError(f"basis must be 'bspline' or 'lagrange', got {basis!r}")
+    return bspline.open_knot_vector(p, n - p, -1, 1)
 
 
 @lru_cache(maxsize=None)
-def _thickness_matrices(p: int, n: int) -> tuple[sympy.ImmutableMatrix, ...]:
+def _thickness_matrices(p: int, n: int, basis: str = "bspline") -> tuple[sympy.ImmutableMatrix, ...]:
     # cached and shared, hence immutable
-    kv = bspline.open_knot_vector(p, n - p, -1, 1)
+    kv = thickness_knot_vector(p, n, basis)
     Y = {k: sympy.zeros(n, n) for k in ("00", "01", "10", "11")}
     for (a, b), polys, active in bspline.basis_polynomials(kv, _y, local=False):
         ders = [[sympy.Poly(f, _y) for f in polys], [sympy.Poly(f, _y).diff(_y) for f in polys]]
@@ -215,15 +235,15 @@ def plate_patch(*args, allow_negative: bool = False, **fields) -> PlatePatch:
 
 @lru_cache(maxsize=64)
 def _build(spec, allow_negative: bool) -> PlatePatch:
-    Y = thickness_matrices(spec.p, spec.n)
-    R = None
     rule = get_rule(spec.mass)
+    Y = thickness_matrices(spec.p, spec.n, rule.basis)
+    R = None
     if rule.redistributes:
         weights = spec.weights_dict
         if weights is None:
             weights = contact_weights(spec.n, spec.contact, spec.gamma_s)
         R = redistribution_matrix(spec.n, weights, allow_negative=allow_negative)
-    kv = bspline.open_knot_vector(spec.p, spec.n - spec.p, -1, 1)
+    kv = thickness_knot_vector(spec.p, spec.n, rule.basis)
     My = mass_variant(Y["00"], rule, R, kv=kv)
     x_mass = x_mass_coefficients(rule.x_rule, spec.p)
     return PlatePatch(spec.p, spec.n, spec.model, spec.r, rule.name, R, Y, My,
@@ -389,14 +409,16 @@ def numeric_terms(patch: PlatePatch) -> tuple[tuple[tuple[str, str, np.ndarray],
     >>> len(terms), M0.shape
     (6, (6, 6))
     """
-    return _numeric_terms(patch.p, patch.n, tuple(patch.My))
+    rule = getattr(patch, "rule", None)
+    return _numeric_terms(patch.p, patch.n, tuple(patch.My),
+                          getattr(rule, "basis", "bspline"))
 
 
 @lru_cache(maxsize=64)
-def _numeric_terms(p: int, n: int, my: tuple):
+def _numeric_terms(p: int, n: int, my: tuple, basis: str = "bspline"):
     from types import SimpleNamespace
 
-    terms = stiffness_terms(SimpleNamespace(Y=thickness_matrices(p, n), n=n))
+    terms = stiffness_terms(SimpleNamespace(Y=thickness_matrices(p, n, basis), n=n))
     out = []
     for m, f, B in terms:
         arr = np.array(B, dtype=float)

@@ -72,6 +72,10 @@ def bar_frequency(p: int, mass: str, theta) -> np.ndarray:
     """Discrete :math:`\\omega h / c` at :math:`\\theta = kh` (module docstring), float array."""
     p = check_positive_int("degree p", p)
     rule = bar_rule(mass)
+    if rule.basis == "lagrange":  # C0 elements: p branches, the acoustic one
+        from dispersion.waves.sem_bar import sem_bar_frequency
+
+        return sem_bar_frequency(rule.name, p, theta)
     from dispersion.symbolic.mass_rule import x_mass_coefficients
 
     theta = np.asarray(theta, dtype=float)
@@ -95,7 +99,11 @@ def bar_stiffness_coefficients(mass, p: int) -> dict:
     from dispersion.symbolic.mass_rule import x_stiffness_factor
 
     c11 = bloch_coefficients(check_positive_int("degree p", p))["11"]
-    factor = dict(x_stiffness_factor(bar_rule(mass), p))
+    rule = bar_rule(mass)
+    if rule.basis != "bspline":
+        raise InputError(f"mass {rule.name!r} uses C0 Lagrange elements: the bar has p "
+                         "branches, not one B-spline symbol (dispersion.waves.sem_bar)")
+    factor = dict(x_stiffness_factor(rule, p))
     if factor == {0: 1}:
         return c11
     return {L: v for L, v in bloch_product(c11, factor).items() if v != 0}

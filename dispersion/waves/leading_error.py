@@ -38,7 +38,17 @@ def bar_leading_term(rule, p: int, order: int) -> tuple[int | None, str]:
     from dispersion.symbolic.mass_rule import x_mass_coefficients
     from dispersion.waves.bar_dispersion import bar_stiffness_coefficients
 
+    from dispersion.symbolic.mass_rule import get_rule
+
     K = order // 2 + 1
+    if get_rule(rule).basis == "lagrange":  # the acoustic branch of the C0 bar
+        from dispersion.symbolic.lagrange_sem import acoustic_series
+
+        q = acoustic_series(get_rule(rule).name, p, K + 1)
+        for k in range(1, K + 1):
+            if q[k] != 0:
+                return 2 * k, str(q[k])
+        return None, ""
     d = _cos_series(bar_stiffness_coefficients(rule, p).items(), K + 1)
     m = _cos_series(x_mass_coefficients(rule, p), K + 1)
     # d = d_1 t + d_2 t^2 + ... (d_0 = 0); q = (d / t) / m

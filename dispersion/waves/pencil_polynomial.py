@@ -160,13 +160,13 @@ def _fmpq_mat(rows):
 
 @functools.lru_cache(maxsize=64)
 def _build(key):
-    (p, n, model, r, my, x_mass, nu, basis, parity, x_factor) = key
+    (p, n, model, r, my, x_mass, nu, basis, parity, x_factor, space) = key
     import flint
     import sympy
 
     from dispersion.symbolic.plate import lame, stiffness_terms, thickness_matrices
 
-    Y = thickness_matrices(p, n)
+    Y = thickness_matrices(p, n, space)
     n2 = 2 * n
     My = sympy.Matrix(n, n, list(my))
     M0 = sympy.diag(My, My)
@@ -289,7 +289,8 @@ def pencil_polynomial(patch, nu: float, basis=None, parity: bool = False) -> Pen
            Fraction(repr(float(nu))),
            None if basis is None else tuple(tuple(int(v) for v in basis.row(i))
                                             for i in range(basis.shape[0])), bool(parity),
-           tuple(patch.x_stiffness) if patch.model == "bloch" else ((0, 1),))
+           tuple(patch.x_stiffness) if patch.model == "bloch" else ((0, 1),),
+           getattr(patch.rule, "basis", "bspline"))
     return _build(key)
 
 

@@ -143,3 +143,36 @@ def test_relative_step_claim():
     text = ('[[claim]]\nname = "y"\nkind = "critical_step"\nmodel = "bar"\np = 1\n'
             f'mass = "sms"\nratio = {math.sqrt(3)!r}\nrelative_to = "lumped"\n')
     assert verify_claims(parse_claims(text)).results[0].status == "holds"
+
+
+@pytest.mark.parametrize("mass", ["sem-consistent", "sem-lumped"])
+@pytest.mark.parametrize("p", [1, 2, 3, 4])
+def test_sem_acoustic_series_matches_the_bloch_pencil(mass, p):
+    # exact series (condensation + reversion) against the p x p Bloch pencil's lowest root
+    from dispersion.symbolic.lagrange_sem import acoustic_series
+    from dispersion.waves.sem_bar import sem_bar_frequency
+
+    theta = 0.4
+    s = acoustic_series(mass, p, 2 * p + 8)
+    lam = theta**2 * sum(float(c) * theta ** (2 * k) for k, c in enumerate(s))
+    assert float(sem_bar_frequency(mass, p, theta)) ** 2 == pytest.approx(lam, rel=1e-9)
+
+
+def test_sem_p1_is_the_linear_element():
+    # p = 1: C0 linear elements are the p = 1 B-splines; GLL lumping is row-sum lumping
+    from dispersion.waves.timestep import critical_step
+
+    for sem, bsp in (("sem-consistent", "consistent"), ("sem-lumped", "lumped")):
+        assert bar_leading_term(sem, 1, 6) == bar_leading_term(bsp, 1, 6)
+        assert critical_step(sem, 1, model="bar", wave_speed=1.0).omega_max == \
+            pytest.approx(critical_step(bsp, 1, model="bar", wave_speed=1.0).omega_max)
+
+
+def test_sem_on_the_plate_x_exact_only():
+    from dispersion.symbolic.patch import Patch
+
+    with pytest.raises(InputError, match="Lagrange elements"):
+        Patch(p=2, n=5, mass="sem-lumped")
+    with pytest.raises(InputError, match="n - 1 divisible by p"):
+        Patch(p=2, n=4, model="x-exact", mass="sem-lumped")
+    assert Patch(p=2, n=5, model="x-exact", mass="sem-lumped").basis == "lagrange"

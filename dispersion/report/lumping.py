@@ -13,7 +13,7 @@ from dispersion.io import write_text
 from dispersion.report.compare import timing
 from dispersion.studies.lumping_orders import measure
 
-__all__ = ["measure", "render", "TOLERANCES"]
+__all__ = ["measure", "render", "summary", "TOLERANCES"]
 
 #: Comparison rules (:mod:`dispersion.report.compare`): every other field identical.
 TOLERANCES = (timing("seconds", "wall time of the derivation"),)
@@ -52,6 +52,8 @@ def render(data: dict, out: Path) -> str:
     write_text(out / "lumping.md", "# Leading error terms of the mass rules\n\n"
                + "\n".join(detail) + "\n")
     failures = "".join(f"- could not derive: {f}\n" for f in data.get("failures") or [])
+    claims = ("### The papers' claims\n\n" + summary(data) + "\n") if data.get("literature") \
+        else ""
     return (
         "## Orders of accuracy of the mass rules\n\n"
         f"Leading error term of each rule for p = {', '.join(map(str, degrees))}: the periodic "
@@ -61,6 +63,19 @@ def render(data: dict, out: Path) -> str:
         "Rayleigh-Lamb series, exact in nu). A power in bold is lower than the consistent "
         "mass's at the same p: the rule loses the order. Rules that keep the order of the "
         f"consistent mass everywhere: {', '.join(keeps)}.\n\n"
-        + "\n\n".join(parts) + "\n\n" + "\n".join(info) + "\n\n" + failures
+        + "\n\n".join(parts) + "\n\n" + "\n".join(info) + "\n\n" + claims + failures
         + "Every coefficient: [lumping.md](lumping.md). Data: `lumping.json`. Regenerate: "
         "`dispersion reproduce --sections lumping`.\n")
+
+
+def summary(data: dict) -> str:
+    """The README block: each literature claim with its status and the difference found."""
+    rows = data.get("literature") or []
+    held = sum(1 for r in rows if r[3] in ("holds", "differs (expected)"))
+    lines = [f"`dispersion verify examples/literature/*.toml`: {held} of {len(rows)} claims "
+             "as recorded.", "",
+             "| file | claim | status | difference (derived) |", "|---|---|---|---|"]
+    for file, name, _source, status, diff in rows:
+        cells = [file, name, status, diff]
+        lines.append("| " + " | ".join(str(x).replace("|", "\\|") for x in cells) + " |")
+    return "\n".join(lines) + "\n"

@@ -64,6 +64,8 @@ class LumpingOrders:
     failures: tuple[str, ...] = ()
     #: ``(name, description, explicit cost in words)`` per rule, from the registry.
     rule_info: tuple[tuple[str, str, str], ...] = ()
+    #: The literature's claims files verified: ``(file, claim, source, status, difference)``.
+    literature: tuple[tuple[str, str, str, str, str], ...] = ()
 
     def title(self) -> str:
         return (f"Leading error terms of {len(self.rules)} mass rules, p = "
@@ -149,7 +151,39 @@ def lumping_orders(degrees=(1, 2, 3, 4), rules=None, *, bar: bool = True,
                          tuple(failures), info)
 
 
+#: The claims files of the lumping literature, relative to the checkout root.
+LITERATURE = "examples/literature"
+
+
+def literature_claims(folder=None) -> tuple[tuple[tuple[str, str, str, str, str], ...],
+                                           tuple[str, ...]]:
+    """Verify every ``*.toml`` of ``folder`` (default :data:`LITERATURE` of the checkout):
+    rows ``(file, claim, source, status, difference)`` and the failures (files not found)."""
+    from pathlib import Path
+
+    from dispersion.claims.verify import verify_claims
+    from dispersion.claims.schema import load_claims
+
+    root = Path(__file__).resolve().parents[2]
+    folder = root / LITERATURE if folder is None else Path(folder)
+    files = sorted(folder.glob("*.toml")) if folder.is_dir() else []
+    if not files:
+        return (), (f"no claims files in {LITERATURE} (an installed package without the "
+                    "examples)",)
+    rows = []
+    for path in files:
+        result = verify_claims(load_claims(path), jobs=1)
+        rows += [(path.name, r.name, r.source or "", r.status, r.difference or "")
+                 for r in result.results]
+    return tuple(rows), ()
+
+
 def measure(quick: bool = False, executor=None) -> LumpingOrders:
-    """The report's measurement: p = 1..4 (quick: 1..2), every rule, bar and plate."""
+    """The report's measurement: p = 1..4 (quick: 1..2), every rule, bar and plate, and the
+    literature's claims files verified."""
+    import dataclasses
+
     del executor  # seconds in-process
-    return lumping_orders((1, 2) if quick else (1, 2, 3, 4))
+    res = lumping_orders((1, 2) if quick else (1, 2, 3, 4))
+    rows, failures = literature_claims()
+    return dataclasses.replace(res, literature=rows, failures=res.failures + failures)

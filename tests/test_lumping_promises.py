@@ -1,6 +1,6 @@
 """The orders promise of the lumping rules (docs/promises.md), searched over its domain
 against an independent computation: the discrete S0 / A0 frequencies of the Bloch patch at 80
-digits (80; tests/mp_pencil.py, no characteristic polynomial, no series) and the exact
+digits (tests/mp_pencil.py, no characteristic polynomial, no series) and the exact
 Rayleigh-Lamb roots (tests/mp_lamb.py): the error falls as kappa^k with k the consistent
 mass's leading power, for every degree and Poisson's ratio."""
 from __future__ import annotations

@@ -13,7 +13,8 @@ from hypothesis import strategies as st
 from dispersion.errors import InputError
 from dispersion.symbolic.bspline import open_knot_vector
 from dispersion.symbolic.interpolatory_spline import interpolatory_weights
-from dispersion.symbolic.lumping_rules import ENTRIES, approximate_dual_rule, sms_rule
+from dispersion.symbolic.lumping_rules import ENTRIES
+from dispersion.symbolic.rule_families import approximate_dual_rule, sms_rule
 from dispersion.symbolic.mass_rule import RULES, get_rule, x_mass_coefficients
 from dispersion.waves.leading_error import bar_leading_term
 from dispersion.waves.timestep import _z, bar_omega_max, bar_omega_squared
@@ -104,10 +105,10 @@ def test_study_small():
     from dispersion.studies.lumping_orders import lumping_orders
 
     res = lumping_orders(degrees=(2,), rules=("consistent", "lumped", "dual-lumped"))
-    keeps = {(r.rule, r.model): r.keeps_order for r in res.rows}
+    keeps = {(r.rule, r.model): r.keeps_order for r in res.terms}
     assert keeps[("dual-lumped", "plate S0")] and keeps[("dual-lumped", "bar")]
     assert not keeps[("lumped", "bar")]
-    assert res.to_json()["rows"] and "rules" in repr(res)
+    assert res.to_json()["terms"] and res.rows() and "rules" in repr(res)
 
 
 ORDER = '''
@@ -176,3 +177,10 @@ def test_sem_on_the_plate_x_exact_only():
     with pytest.raises(InputError, match="n - 1 divisible by p"):
         Patch(p=2, n=4, model="x-exact", mass="sem-lumped")
     assert Patch(p=2, n=5, model="x-exact", mass="sem-lumped").basis == "lagrange"
+
+
+def test_sms_family_member_on_the_plate_uses_its_own_beta():
+    from dispersion.symbolic.plate import plate_patch
+
+    patch = plate_patch(p=1, n=3, mass=sms_rule(1))
+    assert dict(patch.x_mass) == {-1: -1, 0: 3, 1: -1}   # 1 + 1 * (-1, 2, -1)

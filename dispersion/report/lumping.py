@@ -31,7 +31,7 @@ def render(data: dict, out: Path) -> str:
     """Markdown of the orders table (and ``lumping.md`` with every coefficient)."""
     out = Path(out)
     degrees = data["degrees"]
-    by = {(r["rule"], r["p"], r["model"]): r for r in data["rows"]}
+    by = {(r["rule"], r["p"], r["model"]): r for r in data["terms"]}
     parts = []
     for model, var in _MODELS:
         lines = [f"| rule | {' | '.join(f'p = {p}' for p in degrees)} |",
@@ -43,12 +43,12 @@ def render(data: dict, out: Path) -> str:
                 lines.append(f"| {rule} | {' | '.join(cells)} |")
         parts.append(f"**{model}**: power of the leading error term\n\n" + "\n".join(lines))
     keeps = [rule for rule in data["rules"]
-             if all(r["keeps_order"] for r in data["rows"] if r["rule"] == rule)]
+             if all(r["keeps_order"] for r in data["terms"] if r["rule"] == rule)]
     info = ["| rule | what it is | explicit step (modelled) |", "|---|---|---|"]
     info += [f"| {name} | {desc} | {cost} |" for name, desc, cost in data["rule_info"]]
     detail = ["| rule | p | model | power | leading coefficient (exact) |", "|---|---|---|---|---|"]
     detail += [f"| {r['rule']} | {r['p']} | {r['model']} | {r['power']} | `{r['coefficient']}` |"
-               for r in data["rows"]]
+               for r in data["terms"]]
     write_text(out / "lumping.md", "# Leading error terms of the mass rules\n\n"
                + "\n".join(detail) + "\n")
     failures = "".join(f"- could not derive: {f}\n" for f in data.get("failures") or [])

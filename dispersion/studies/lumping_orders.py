@@ -19,7 +19,7 @@ beyond the consistent mass's leading term for every p here; a rule that agrees w
 series that far is reported with ``power = None`` ("beyond").
 
 >>> res = lumping_orders(degrees=(1,), rules=("consistent", "lumped"), plate=False)
->>> [(r.rule, r.power, r.coefficient) for r in res.rows]     # theta^2/12 and -theta^2/12
+>>> [(r.rule, r.power, r.coefficient) for r in res.terms]     # theta^2/12 and -theta^2/12
 [('consistent', 2, '1/12'), ('lumped', 2, '-1/12')]
 """
 from __future__ import annotations
@@ -59,7 +59,7 @@ class LumpingOrders:
     plate_r: str
     plate_n: str
     series_order: str
-    rows: tuple[OrderRow, ...]
+    terms: tuple[OrderRow, ...]
     seconds: float
     failures: tuple[str, ...] = ()
     #: ``(name, description, explicit cost in words)`` per rule, from the registry.
@@ -80,17 +80,18 @@ class LumpingOrders:
     def columns(self) -> tuple[str, ...]:
         return ("rule", "p", "model", "power", "coefficient", "consistent power", "keeps order")
 
-    def rows_as_dicts(self) -> list[dict]:
-        return [asdict(r) for r in self.rows]
+    def rows(self) -> list[dict]:
+        return [asdict(r) for r in self.terms]
 
     def to_json(self) -> dict:
         out = asdict(self)
-        out["rows"] = [asdict(r) for r in self.rows]
+        out["terms"] = self.rows()
         out["failures"] = list(self.failures)
         return out
 
     def __repr__(self) -> str:
-        return f"LumpingOrders({len(self.rows)} rows: {len(self.rules)} rules, p = {self.degrees})"
+        return (f"LumpingOrders({len(self.terms)} leading terms: {len(self.rules)} rules, "
+                f"p = {self.degrees})")
 
 
 def _plate_key(rule, p: int):
@@ -107,7 +108,7 @@ def lumping_orders(degrees=(1, 2, 3, 4), rules=None, *, bar: bool = True,
                    plate: bool = True) -> LumpingOrders:
     """The table of leading error terms (module docstring)."""
     from dispersion.errors import InputError
-    from dispersion.symbolic.lumping_rules import approximate_dual_rule
+    from dispersion.symbolic.rule_families import approximate_dual_rule
     from dispersion.symbolic.mass_rule import RULE_NAMES, get_rule
 
     t0 = time.perf_counter()

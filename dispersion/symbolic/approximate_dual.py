@@ -215,11 +215,12 @@ def _laurent_power_w(k: int) -> dict[int, Fraction]:
 @lru_cache(maxsize=None)
 def _gram_in_w(p: int) -> tuple[Fraction, ...]:
     """The uniform Gram symbol :math:`g = \\sum_L c^{00}_L \\cos L\\theta` as a polynomial in w."""
-    from dispersion.symbolic.plate import bloch_coefficients
+    from dispersion.symbolic.spline_mass import PERIODIC_ROWS
 
     z = sympy.Symbol("z")  # cos(theta) = 1 - w/2
     w = sympy.Symbol("w")
-    g = sum(v * sympy.chebyshevt(abs(L), z) for L, v in bloch_coefficients(p)["00"].items())
+    g = sum(sympy.Rational(v.numerator, v.denominator) * sympy.chebyshevt(abs(L), z)
+            for L, v in PERIODIC_ROWS["consistent"](p).items() if v != 0)
     poly = sympy.Poly(sympy.expand(g.subs(z, 1 - w / 2)), w)
     return tuple(Fraction(int(c.p), int(c.q)) for c in reversed(poly.all_coeffs()))
 

@@ -79,14 +79,14 @@ def c0_elements(p: int, n: int) -> int:
 def element_matrices(mass: str, p: int) -> tuple[sympy.ImmutableMatrix, sympy.ImmutableMatrix]:
     """Stiffness and mass of one unit element (Bernstein basis, ends first and last)."""
     from dispersion.symbolic.bspline import open_knot_vector
-    from dispersion.symbolic.plate import thickness_matrices
+    from dispersion.symbolic.derivative_gram import derivative_gram
     from dispersion.symbolic.spline_mass import gram_matrix, lobatto_matrix
 
     if mass not in SEM_RULES:
         raise InputError(f"mass must be one of {', '.join(SEM_RULES)}, got {mass!r}")
     p = check_positive_int("degree p", p)
-    K = 2 * sympy.Matrix(thickness_matrices(p, p + 1)["11"])  # element [-1, 1] -> [0, 1]
     kv = open_knot_vector(p, 1, 0, 1)
+    K = derivative_gram(kv)
     M = gram_matrix(kv) if mass == "sem-consistent" else lobatto_matrix(kv)
     return sympy.ImmutableMatrix(K), sympy.ImmutableMatrix(M)
 

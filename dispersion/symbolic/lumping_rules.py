@@ -49,7 +49,7 @@ from __future__ import annotations
 from dispersion.symbolic.explicit_cost import ExplicitCost
 from dispersion.symbolic.mass_check import MassProperties
 
-__all__ = ["ENTRIES", "approximate_dual_entry", "sms_entry", "approximate_dual_rule", "sms_rule"]
+__all__ = ["ENTRIES", "approximate_dual_entry", "sms_entry"]
 
 
 def _kv(space, name):
@@ -66,10 +66,9 @@ def _no_kv(name):
 
 
 def _like(A, space):
-    from dispersion.symbolic.mass_rule import _like as like
-    from dispersion.symbolic.spline_mass import gram_matrix
-
-    return like(A, space, gram_matrix(space.kv))
+    # the registry converts an exact matrix to the kind of a float space
+    # (dispersion.symbolic.mass_rule, where the entries are registered)
+    return A
 
 
 def approximate_dual_entry(q: int | None = None) -> dict:
@@ -190,32 +189,3 @@ ENTRIES = {
                                    "(spectral elements)"),
 }
 
-
-def approximate_dual_rule(q: int):
-    """A :class:`~dispersion.symbolic.mass_rule.MassRule` ``dual-lumped-q<q>``: approximate-dual
-    lumping with reproduction degree ``q`` (capped at the degree p of the space).
-
-    >>> from dispersion.waves.timestep import bar_omega_max
-    >>> bar_omega_max(approximate_dual_rule(0), 1)[0]     # q = 0: the row-sum lumped bar, 2
-    2
-    """
-    from dispersion.symbolic.mass_rule import MassRule
-
-    e = approximate_dual_entry(q)
-    return MassRule(f"dual-lumped-q{q}", e["build"], e["states"], "dual-lumped", False,
-                    e["description"], e["periodic"], e["x_stiffness"], e["cost"])
-
-
-def sms_rule(beta):
-    """A :class:`~dispersion.symbolic.mass_rule.MassRule` ``sms-<beta>``: selective mass scaling
-    with parameter ``beta`` (x-direction included).
-
-    >>> from dispersion.waves.timestep import bar_omega_max
-    >>> bar_omega_max(sms_rule(1), 1)[0]                  # 4 / (1 + 4 beta) = 4/5
-    2*sqrt(5)/5
-    """
-    from dispersion.symbolic.mass_rule import MassRule
-
-    e = sms_entry(beta)
-    return MassRule(f"sms-{e['description'].rsplit('= ', 1)[1]}", e["build"], e["states"],
-                    "sms", False, e["description"], e["periodic"], None, e["cost"])

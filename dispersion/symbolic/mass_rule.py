@@ -266,11 +266,29 @@ def _literature():
     from dispersion.symbolic.lumping_rules import ENTRIES
 
     for name, e in ENTRIES.items():
-        _BUILTIN[name] = (e["build"], e["states"], e["x_rule"], False, e["description"])
-    return {name: MassRule(name, e["build"], e["states"], e["x_rule"], False, e["description"],
-                           e.get("periodic"), e.get("x_stiffness"), e.get("cost"),
-                           e.get("basis", "bspline"))
-            for name, e in ENTRIES.items()}
+        _BUILTIN[name] = (literature_build(e["build"]), e["states"], e["x_rule"], False,
+                          e["description"])
+    return {name: literature_rule(name, e) for name, e in ENTRIES.items()}
+
+
+def literature_build(build: Callable) -> Callable:
+    """``build`` (exact matrices from the space's knot vector) in the kind of the space."""
+    def kind_of_space(space: MassSpace):
+        A = build(space)
+        if space.exact or not is_exact(A):
+            return A
+        from dispersion.symbolic.spline_mass import gram_matrix
+
+        return _like(A, space, gram_matrix(space.kv))
+
+    return kind_of_space
+
+
+def literature_rule(name: str, e: dict) -> MassRule:
+    """A :class:`MassRule` from an entry of :data:`dispersion.symbolic.lumping_rules.ENTRIES`."""
+    return MassRule(name, literature_build(e["build"]), e["states"], e["x_rule"], False,
+                    e["description"], e.get("periodic"), e.get("x_stiffness"), e.get("cost"),
+                    e.get("basis", "bspline"))
 
 
 _LITERATURE = _literature()

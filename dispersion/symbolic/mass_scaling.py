@@ -23,7 +23,7 @@ so :math:`\\Omega_{max}^2 = d_{max} / (1 + \\beta d_{max})`: the step grows by
 :math:`\\sqrt{1 + \\beta d_{max}}`, and the low branch is slowed by
 :math:`\\Omega^2 \\approx \\theta^2 (1 - \\beta \\theta^2)`: a second-order error whatever p.
 
->>> scaled_row(1, sympy.Rational(1, 4))       # lumped 1 plus beta * (-1, 2, -1)
+>>> scaled_row(1, "1/4")                      # lumped 1 plus beta * (-1, 2, -1)
 {-1: -1/4, 0: 3/2, 1: -1/4}
 
 References
@@ -38,7 +38,7 @@ algebraic SMS of Olovsson et al.).
 """
 from __future__ import annotations
 
-import sympy
+from fractions import Fraction
 
 from dispersion.errors import InputError
 
@@ -47,15 +47,20 @@ __all__ = ["SMS_BETA", "check_beta", "scaled_mass", "scaled_row"]
 #: The registered rule's scaling parameter. Rule, stated before any result: the smallest
 #: beta of the form 1/2^k that raises the p = 1 bar's critical step by half or more
 #: (:math:`\\sqrt{1 + 4\\beta} \\ge 1.5 \\Leftrightarrow \\beta \\ge 5/16`): 1/2.
-SMS_BETA = sympy.Rational(1, 2)
+SMS_BETA = Fraction(1, 2)
 
 
-def check_beta(beta) -> sympy.Rational:
-    """``beta`` as an exact non-negative rational, else :class:`InputError`."""
-    from dispersion.symbolic.patch import rational
-
-    b = rational("scaling parameter beta", beta)
-    if b < 0 or b > 100:
+def check_beta(beta) -> Fraction:
+    """``beta`` as an exact rational in [0, 100] (a number or a "p/q" string), else
+    :class:`InputError`."""
+    try:
+        if isinstance(beta, bool):
+            raise TypeError
+        b = Fraction(repr(beta) if isinstance(beta, float) else str(beta))
+    except (TypeError, ValueError, ZeroDivisionError):
+        raise InputError(f"scaling parameter beta must be a rational number, got {beta!r}") \
+            from None
+    if not 0 <= b <= 100:
         raise InputError(f"scaling parameter beta must lie in [0, 100], got {b}")
     return b
 
@@ -67,37 +72,29 @@ def scaled_mass(kv, beta=SMS_BETA) -> sympy.ImmutableMatrix:
     >>> scaled_mass(open_knot_vector(1, 1), 1).tolist()
     [[3/2, -1], [-1, 3/2]]
     """
+    import sympy
+
+    from dispersion.symbolic.derivative_gram import derivative_gram
     from dispersion.symbolic.mass import row_sum_lump
-    from dispersion.symbolic.plate import _y
     from dispersion.symbolic.spline_mass import gram_matrix
 
     beta = check_beta(beta)
     ks = list(kv.knots)
     h = max(b - a for a, b in zip(ks, ks[1:]))
-    D = _derivative_gram(kv)
-    return sympy.ImmutableMatrix(row_sum_lump(sympy.Matrix(gram_matrix(kv))) + beta * h**2 * D)
+    D = sympy.Matrix(derivative_gram(kv))
+    return sympy.ImmutableMatrix(row_sum_lump(sympy.Matrix(gram_matrix(kv)))
+                                 + sympy.Rational(beta.numerator, beta.denominator) * h**2 * D)
 
 
-def _derivative_gram(kv) -> sympy.Matrix:
-    from dispersion.symbolic import bspline
-    from dispersion.symbolic.plate import _y
+def scaled_row(p: int, beta=SMS_BETA) -> dict:
+    """The periodic row :math:`\\delta_{L0} + \\beta c^{11}_L` on unit elements (sympy
+    rationals)."""
+    import sympy
 
-    n = kv.n
-    D = sympy.zeros(n, n)
-    for (a, b), polys, active in bspline.basis_polynomials(kv, _y, local=False):
-        ders = [sympy.Poly(f, _y).diff(_y) for f in polys]
-        for i, gi in zip(active, ders):
-            for j, gj in zip(active, ders):
-                prim = (gi * gj).integrate()
-                D[i, j] += prim.eval(b) - prim.eval(a)
-    return D
-
-
-def scaled_row(p: int, beta=SMS_BETA) -> dict[int, sympy.Rational]:
-    """The periodic row :math:`\\delta_{L0} + \\beta c^{11}_L` on unit elements."""
-    from dispersion.symbolic.plate import bloch_coefficients
+    from dispersion.symbolic.derivative_gram import uniform_derivative_row
 
     beta = check_beta(beta)
-    row = {L: beta * v for L, v in bloch_coefficients(p)["11"].items()}
+    row = {L: beta * v for L, v in uniform_derivative_row(p).items()}
     row[0] = row.get(0, 0) + 1
-    return {L: v for L, v in sorted(row.items()) if v != 0}
+    return {L: sympy.Rational(v.numerator, v.denominator) for L, v in sorted(row.items())
+            if v != 0}

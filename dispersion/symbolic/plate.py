@@ -245,7 +245,8 @@ def _build(spec, allow_negative: bool) -> PlatePatch:
         R = redistribution_matrix(spec.n, weights, allow_negative=allow_negative)
     kv = thickness_knot_vector(spec.p, spec.n, rule.basis)
     My = mass_variant(Y["00"], rule, R, kv=kv)
-    x_mass = x_mass_coefficients(rule.x_rule, spec.p)
+    # a rule with its own periodic row (a family member: sms_rule(beta)) uses it along x
+    x_mass = x_mass_coefficients(rule if rule.periodic is not None else rule.x_rule, spec.p)
     return PlatePatch(spec.p, spec.n, spec.model, spec.r, rule.name, R, Y, My,
                       x_lumped=x_mass == ((0, sympy.Integer(1)),), spec=spec, x_mass=x_mass,
                       rule=rule, x_stiffness=x_stiffness_factor(

@@ -38,13 +38,15 @@ def test_study_points_and_render(tmp_path):
     assert "p = 2 lumped" in md and "| 2 | consistent |" in md
 
 
-def test_a_mass_that_needs_a_solve_is_never_on_the_explicit_front():
-    """The modelled cost counts no solve: a rule whose mass is not diagonal is marked and kept
-    off the front, however cheap its model makes it (p = 3, 4 consistent were on it before)."""
+
+def test_a_mass_that_needs_a_solve_is_not_counted_as_cheap_as_a_division():
+    """The modelled cost counts the solve of a non-diagonal mass (it was free before issue 30):
+    at every p the step of a rule that states a solve costs more work per DOF than a diagonal
+    one's, and more than the same stiffness product alone."""
     from dispersion.symbolic.mass_rule import get_rule
 
-    res = cost_accuracy((3, 4), ("consistent", "lumped", "hrz"))
-    for pt in res.points:
-        assert pt.needs_solve == (not get_rule(pt.mass).states.diagonal)
-        assert not (pt.needs_solve and pt.pareto)
-    assert any(pt.pareto for pt in res.points)
+    res = cost_accuracy((1, 2, 3, 4), ("consistent", "lumped"))
+    by = {(pt.p, pt.mass): pt for pt in res.points}
+    for p in (1, 2, 3, 4):
+        assert get_rule("consistent").explicit_cost.mass == "solve"
+        assert by[(p, "consistent")].work > by[(p, "lumped")].work

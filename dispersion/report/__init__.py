@@ -31,7 +31,7 @@ __all__ = ["SECTIONS", "section_module"]
 
 #: Report sections in the order they run (module names in :mod:`dispersion.report`).
 SECTIONS = ("coefficients", "branches", "ring", "series_speed", "studies", "peers",
-            "cost_accuracy", "wave_simulation")
+            "cost_accuracy", "lumping", "wave_simulation")
 
 
 def section_module(name: str) -> ModuleType:

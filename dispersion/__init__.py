@@ -70,6 +70,7 @@ _MODULES = {
     "sem_bar": "waves.sem_bar", "lumping_orders": "studies.lumping_orders",
     "orders": "claims.orders", "derivative_gram": "symbolic.derivative_gram",
     "rule_families": "symbolic.rule_families",
+    "wave_simulation": "studies.wave_simulation",
 }
 _SUBMODULES = tuple(_MODULES)
 

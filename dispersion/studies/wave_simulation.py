@@ -157,10 +157,11 @@ class Refusal:
 class Cheapest:
     """The cheapest run meeting ``target`` (by ``by``: measured seconds or modelled cost).
 
-    ``cancellation``: the signed (energy) arrival error of its (mode, p, rule) has the other
-    sign at the next coarser N: the error crossed zero in between, so the run meets the target
-    through the spatial and the time-stepping errors cancelling near its N, not by being
-    converged (a finer mesh may well miss it).
+    ``cancellation``: the run meets the target by a cancellation of errors near its N, not
+    by being converged: the signed (energy) arrival error of its (mode, p, rule) has the other
+    sign at the next coarser N (it crossed zero in between), or the next finer N run has a
+    larger error (a finer mesh misses what this one met). ``robust``: the cheapest choice
+    among the runs that are not such a cancellation.
     """
 
     mode: str
@@ -173,6 +174,7 @@ class Cheapest:
     modelled_cost: float | None
     arrival_error: float | None
     cancellation: bool = False
+    robust: bool = False
 
 
 @dataclass(frozen=True)
@@ -332,19 +334,27 @@ def _sweep_task(task) -> tuple[list[SweepPoint], list[Refusal]]:
     return points, refused
 
 
-def _cheapest(points, mode, target, by):
-    ok = [pt for pt in points if pt.mode == mode and pt.ok and pt.arrival_error <= target]
+def _cancellation(points, pt) -> bool:
+    """True if ``pt`` meets its error by a cancellation (see :class:`Cheapest`)."""
+    line = sorted((q for q in points if (q.mode, q.p, q.mass) == (pt.mode, pt.p, pt.mass)
+                   and not q.failures), key=lambda q: q.elements_per_wavelength)
+    i = line.index(pt)
+    signs = [math.copysign(1.0, q.energy_arrival_error) for q in line]
+    crossed = i > 0 and signs[i - 1] != signs[i]
+    worse = i + 1 < len(line) and line[i + 1].arrival_error > pt.arrival_error
+    return bool(crossed or worse)
+
+
+def _cheapest(points, mode, target, by, robust: bool = False):
+    ok = [pt for pt in points if pt.mode == mode and pt.ok and pt.arrival_error <= target
+          and not (robust and _cancellation(points, pt))]
     key = (lambda q: q.loop_seconds) if by == "measured" else (lambda q: q.modelled_cost)
     if not ok:
-        return Cheapest(mode, target, by, None, None, None, None, None, None)
+        return Cheapest(mode, target, by, None, None, None, None, None, None, False, robust)
     best = min(ok, key=key)
-    line = sorted((q for q in points if (q.mode, q.p, q.mass) == (mode, best.p, best.mass)
-                   and not q.failures), key=lambda q: q.elements_per_wavelength)
-    signs = [math.copysign(1.0, q.energy_arrival_error) for q in line]
-    i = line.index(best)
-    cancel = i > 0 and signs[i - 1] != signs[i]
     return Cheapest(mode, target, by, best.p, best.mass, best.elements_per_wavelength,
-                    best.loop_seconds, best.modelled_cost, best.arrival_error, bool(cancel))
+                    best.loop_seconds, best.modelled_cost, best.arrival_error,
+                    _cancellation(points, best), robust)
 
 
 def _trace(why, strip, sweep_point) -> SignalTrace:
@@ -409,18 +419,23 @@ def wave_simulation(size: str | WaveSimulationSize = "default", executor=None,
     front_mask = pareto_front([pt.loop_seconds for pt in keep],
                               [pt.arrival_error if pt.ok else math.inf for pt in keep])
     front = tuple(i for i, f in enumerate(front_mask) if f and keep[i].ok)
-    cheapest = tuple(_cheapest(points, mode, target, by) for mode in size.modes
-                     for target in TARGETS for by in ("measured", "modelled"))
+    cheapest = tuple(_cheapest(points, mode, target, by, robust) for mode in size.modes
+                     for target in TARGETS for by in ("measured", "modelled")
+                     for robust in (False, True))
     traces = []
     if verification is not None:
         traces.append(_trace("verification (converged)", verify, verification))
     for c in cheapest:
-        if c.by == "measured" and c.p is not None:
+        if c.by == "measured" and c.p is not None and not (c.robust and any(
+                (o.target, o.by, o.p, o.mass, o.elements_per_wavelength) ==
+                (c.target, c.by, c.p, c.mass, c.elements_per_wavelength)
+                for o in cheapest if not o.robust)):
             s = replace(base, mode=c.mode, p=c.p, mass=c.mass,
                         elements_per_wavelength=c.elements_per_wavelength)
             pt = next(q for q in points if (q.mode, q.p, q.mass, q.elements_per_wavelength)
                       == (c.mode, c.p, c.mass, c.elements_per_wavelength))
-            traces.append(_trace(f"cheapest at {c.target:g}", s, pt))
+            traces.append(_trace(f"cheapest{' converged' if c.robust else ''} at {c.target:g}",
+                                 s, pt))
     coarse = [q for q in points if q.p == 1 and q.mass == "lumped" and q.mode == size.modes[0]]
     if coarse:
         q = min(coarse, key=lambda q: q.elements_per_wavelength)

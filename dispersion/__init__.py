@@ -59,6 +59,7 @@ _MODULES = {
     "mode_table": "waves.mode_table",
     "mass_rule": "symbolic.mass_rule", "timestep": "waves.timestep",
     "fully_discrete": "waves.fully_discrete", "cost_accuracy": "studies.cost_accuracy",
+    "time_integration": "waves.time_integration",
     "discrete_error": "waves.discrete_error", "pencil_frequencies": "waves.pencil_frequencies",
     "illinois": "waves.illinois", "mass_check": "symbolic.mass_check",
     "matrix_kind": "symbolic.matrix_kind", "certified_roots": "waves.certified_roots",

@@ -12,7 +12,7 @@ import sympy
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from dispersion.symbolic.mass import MASS_VARIANTS
+from dispersion.symbolic.mass_rule import RULE_NAMES as MASS_VARIANTS
 from dispersion.symbolic.plate import dynamic_stiffness, mirror_bases, plate_patch
 from dispersion.waves import discrete_branches as db
 from dispersion.waves import certified_roots as cr

@@ -22,11 +22,11 @@ import sys
 from typing import TYPE_CHECKING
 
 from dispersion import defaults
-from dispersion.defaults import CONTACT_SETS, MASS_VARIANTS, MODELS, N_MAX, P_MAX, R_RANGE
+from dispersion.defaults import CONTACT_SETS, N_MAX, P_MAX, PATCH_MODELS, R_RANGE
 from dispersion.errors import InputError
 from dispersion.io import check_output_file, unit_target, write_bytes, write_unit
 from dispersion.cli import frequency as _frequency
-from dispersion.cli.options import integer, number, real
+from dispersion.cli.options import choice, integer, lazy_help, number, real
 
 if TYPE_CHECKING:  # numpy and the tracer are imported where used: --help stays light
     import numpy as np
@@ -49,8 +49,9 @@ def register(sub) -> None:
         description="All discrete branches of the plate patch and the exact Rayleigh-Lamb "
                     "branches below Omega_max on a kappa grid (paper Figure 2), with phase "
                     "and group velocity, optionally in physical units.")
-    p.add_argument("--mass", choices=MASS_VARIANTS, action="append",
-                   help="mass variant (repeat for several; default: consistent and singular)")
+    p.add_argument("--mass", type=choice("--mass", _rules), action="append", metavar="RULE",
+                   help=lazy_help("mass rule, one of {names} (repeat for several; default: "
+                                  "consistent and singular)", _rules))
     p.add_argument("--mass-rule", action="append", default=[], metavar="FILE",
                    help="a user mass rule: TOML table of redistribution weights (repeatable)")
     p.add_argument("--contact", choices=CONTACT_SETS, default=None,
@@ -58,7 +59,7 @@ def register(sub) -> None:
     p.add_argument("--gamma-s", type=real("gamma_s", 0, 1), default=None,
                    help="share of a contact shape function sent to the second neighbour, "
                         f"singular masses only (default: {defaults.text('GAMMA_S')})")
-    p.add_argument("--model", choices=MODELS, default=None,
+    p.add_argument("--model", choices=PATCH_MODELS, default=None,
                    help=f"patch model along x (default: {defaults.MODEL})")
     p.add_argument("--r", type=real("r", *R_RANGE), default=None,
                    help=f"aspect ratio b/h of the Bloch model, dimensionless, in [1/1000, "
@@ -88,9 +89,9 @@ def register(sub) -> None:
     p.add_argument("--ct", type=real("ct"), help="shear speed c_T in m/s")
     p.add_argument("--thickness", type=real("thickness"),
                    help="plate thickness d = 2h in mm (with a material: physical columns)")
-    p.add_argument("--scheme", choices=_schemes(), default=None,
-                   help="time integrator for fully discrete branches (default: none, "
-                        "semi-discrete); Bloch model only")
+    p.add_argument("--scheme", type=choice("--scheme", _schemes), default=None, metavar="NAME",
+                   help=lazy_help("time integrator for fully discrete branches, one of {names} "
+                                  "(default: none, semi-discrete); Bloch model only", _schemes))
     p.add_argument("--courant", type=number("courant"), default=None,
                    help="time step as a fraction of each mass's central-difference critical "
                         "step, in (0, 10] (with --scheme; explicit schemes need <= 1)")
@@ -108,7 +109,15 @@ def register(sub) -> None:
 
 
 def _schemes():
-    return defaults.TIME_SCHEMES
+    from dispersion.waves.time_integration import NEWMARK_MEMBERS
+
+    return tuple(NEWMARK_MEMBERS)
+
+
+def _rules():
+    from dispersion.symbolic.mass_rule import RULE_NAMES
+
+    return RULE_NAMES
 
 
 def _materials():
@@ -372,10 +381,10 @@ def run(args) -> int:
                   file=sys.stderr)
     inputs = _inputs(args, s)
     if s["material"] is not None:  # the practitioner's path: ZGV points in the output
-        from dispersion.waves.frequency import zgv_points
+        from dispersion.waves.frequency import zgv_points_below
         from dispersion.waves.units import zgv_in_units
 
-        points = zgv_in_units(zgv_points(nu, args.omega_max), s["material"], args.thickness)
+        points = zgv_in_units(zgv_points_below(nu, args.omega_max), s["material"], args.thickness)
         for p in points:
             inputs[f"ZGV {p['mode']}"] = (f"f = {p['f [kHz]']:.10g} kHz, fd = "
                                           f"{p['fd [MHz mm]']:.10g} MHz mm, c_p = "
@@ -441,10 +450,10 @@ def _physical_figure(kappa, exact, vel, material, thickness, omega_max):
     from dispersion.plotting.lamb import figure_dispersion
     from dispersion.waves.rayleigh_lamb import cutoff_frequencies
     from dispersion.waves.units import frequency_khz, physical_branches, zgv_in_units
-    from dispersion.waves.frequency import zgv_points
+    from dispersion.waves.frequency import zgv_points_below
 
     phys = physical_branches(kappa, exact.omega, vel.group, material, thickness)
-    zgv = [p for p in zgv_points(exact.nu, omega_max) if p.kappa <= kappa.max()]
+    zgv = [p for p in zgv_points_below(exact.nu, omega_max) if p.kappa <= kappa.max()]
     cut = {}
     for kind in ("S", "A"):
         for j, (w, _) in enumerate(cutoff_frequencies(kind, exact.nu, omega_max)):

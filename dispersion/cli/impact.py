@@ -3,7 +3,7 @@
 Examples::
 
     dispersion impact signorini-1d --mass singular --out results/signorini
-    dispersion impact signorini-1d --p 2 --mass lumped --scheme explicit --format json
+    dispersion impact signorini-1d --p 2 --mass lumped --scheme central --format json
 """
 from __future__ import annotations
 
@@ -11,8 +11,7 @@ import argparse
 import sys
 
 from dispersion.errors import InputError
-from dispersion.defaults import MASS_VARIANTS
-from dispersion.cli.options import number
+from dispersion.cli.options import choice, lazy_help, number
 
 SCENES = ("signorini-1d",)
 
@@ -23,6 +22,18 @@ def _stability_note() -> str:
     return STABILITY_NOTE
 
 
+def _rules():
+    from dispersion.symbolic.mass_rule import RULE_NAMES
+
+    return RULE_NAMES
+
+
+def _schemes():
+    from dispersion.contact.newmark_scheme import CONTACT_SCHEMES
+
+    return CONTACT_SCHEMES
+
+
 def register(sub) -> None:
     p = sub.add_parser(
         "impact", help="named impact scenes with exact solutions (GetFEM's 1D Signorini bar)",
@@ -30,19 +41,20 @@ def register(sub) -> None:
                     "x = 0, u(x, 0) = (1 - x)/2, u_t = 0 (GetFEM's demo_dynamic_contact_1D); "
                     "exact solution of period 3, energy 1/8. Writes the history at x = 0 "
                     "(t, u(0), v(0), contact stress, energies) and the errors against the "
-                    "exact solution. " + _stability_note(),
-        formatter_class=argparse.ArgumentDefaultsHelpFormatter)
-    p.add_argument("scene", choices=SCENES, help="scene name")
-    p.add_argument("--mass", choices=MASS_VARIANTS, default="singular", help="mass variant")
-    p.add_argument("--p", type=number("p", int), default=1, help="B-spline degree (1: P1 elements)")
-    p.add_argument("--elements", type=number("elements", int), default=20, help="number of elements")
-    p.add_argument("--scheme", choices=("kane", "standard", "explicit"), default="kane",
-                   help="time integrator (explicit: central differences, beta = 0)")
-    p.add_argument("--dt", type=number("dt"), default=0.002, help="time step (s, unit wave speed)")
+                    "exact solution. " + _stability_note())
+    p.add_argument("scene", choices=SCENES, help="scene name: " + ", ".join(SCENES))
+    p.add_argument("--mass", type=choice("--mass", _rules), default="singular", metavar="RULE",
+                   help=lazy_help("mass rule, one of {names} (default: singular)", _rules))
+    p.add_argument("--p", type=number("p", int), default=1, help="B-spline degree, in [1, 6] (1: P1 elements; default: 1)")
+    p.add_argument("--elements", type=number("elements", int), default=20, help="number of elements, in [1, 100000] (default: 20)")
+    p.add_argument("--scheme", type=choice("--scheme", _schemes), default="kane", metavar="NAME",
+                   help=lazy_help("time integrator, one of {names} (central: explicit central "
+                                  "differences, beta = 0; default: kane)", _schemes))
+    p.add_argument("--dt", type=number("dt"), default=0.002, help="time step in s, unit wave speed (default: 0.002)")
     p.add_argument("--t-end", type=number("t-end"), default=12.0,
-                   help="end time (s; a whole multiple of dt; 12 = 4 periods)")
+                   help="end time in s, a whole multiple of dt (default: 12, four periods)")
     p.add_argument("--consistent", action=argparse.BooleanOptionalAction, default=True,
-                   help="massless DOFs in equilibrium at t = 0")
+                   help="massless DOFs in equilibrium at t = 0 (default: on)")
     p.add_argument("--out", metavar="DIR",
                    help="folder (new, or written by dispersion) to write: history.csv (the "
                         "history at x = 0 with units, after # lines with the inputs) and "
@@ -51,7 +63,8 @@ def register(sub) -> None:
                    help="write the contact stress against the exact solution to FILE "
                         "(.png, .pdf or .svg)")
     p.add_argument("--format", choices=("text", "json", "csv"), default="text",
-                   help="what goes to stdout: one-line summary, JSON summary, or the CSV history")
+                   help="what goes to stdout: one-line summary, JSON summary, or the CSV history "
+                        "(default: text)")
     p.set_defaults(func=run)
 
 

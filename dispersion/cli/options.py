@@ -28,7 +28,8 @@ from fractions import Fraction
 
 from dispersion.errors import InputError
 
-__all__ = ["rational", "real", "integer", "number", "span", "material_from_args"]
+__all__ = ["rational", "real", "integer", "number", "span", "choice", "lazy_help",
+           "material_from_args"]
 
 #: Most digits of an integer option (the largest meaningful count has 7).
 MAX_INT_DIGITS = 18
@@ -135,6 +136,59 @@ def number(name: str, convert=float):
     """argparse ``type`` of the older form ``number(name, int | float)``: see :func:`integer`
     and :func:`real` (same grammar; kept for callers not yet moved)."""
     return integer(name) if convert is int else real(name)
+
+
+def _close(word: str, valid) -> str:
+    """``; did you mean 'x'?`` for the nearest valid name, or nothing."""
+    import difflib
+
+    lower = {v.lower(): v for v in valid}
+    near = difflib.get_close_matches(word.lower(), list(lower), n=1, cutoff=0.6)
+    return f"; did you mean {lower[near[0]]!r}?" if near else ""
+
+
+def choice(option: str, names):
+    """argparse ``type``: one of the names ``names()`` returns (read from a registry when a
+    value is checked, never copied), any letter case; otherwise the names and the nearest.
+
+    >>> choice("--mass", lambda: ("consistent", "singular"))("Singular")
+    'singular'
+    >>> choice("--mass", lambda: ("consistent", "singular"))("singlar")
+    Traceback (most recent call last):
+    ...
+    argparse.ArgumentTypeError: --mass must be one of consistent, singular, got 'singlar'; did you mean 'singular'?
+    """
+    def parse(text: str) -> str:
+        valid = tuple(names())
+        word = text.strip()
+        for name in valid:
+            if name.lower() == word.lower():
+                return name
+        raise argparse.ArgumentTypeError(f"{option} must be one of {', '.join(valid)}, got "
+                                         f"{text[:40]!r}{_close(word, valid)}")
+    return parse
+
+
+class _LazyHelp(str):
+    """A help text whose ``{names}`` are filled in only when help is printed (argparse formats
+    a help text with ``%``), so that building a parser reads no registry."""
+
+    def __new__(cls, template: str, names):
+        obj = super().__new__(cls, template.replace("{names}", "..."))
+        obj.template, obj.names = template, names
+        return obj
+
+    def __mod__(self, params):
+        return self.template.replace("{names}", ", ".join(self.names())) % params
+
+
+def lazy_help(template: str, names) -> str:
+    """Help text ``template`` with ``{names}`` replaced by ``names()`` when help is printed.
+
+    >>> lazy_help("mass rule: {names}", lambda: ("a", "b")) % {}
+    'mass rule: a, b'
+    """
+    return _LazyHelp(template, names)
 
 
 #: Option of each input of :func:`dispersion.waves.materials.user_material` (E in GPa there).

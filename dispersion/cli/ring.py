@@ -13,8 +13,7 @@ from dataclasses import replace
 
 from dispersion.contact.scenario import MAX_STEPS, Scenario
 from dispersion.errors import InputError
-from dispersion.defaults import MASS_VARIANTS
-from dispersion.cli.options import integer, number
+from dispersion.cli.options import choice, integer, lazy_help, number
 
 DEFAULT = Scenario()
 
@@ -69,17 +68,30 @@ def progress_default(flag) -> bool:
     return sys.stderr.isatty() if flag is None else flag
 
 
+def _rules():
+    from dispersion.symbolic.mass_rule import RULE_NAMES
+
+    return RULE_NAMES
+
+
+def _schemes():
+    from dispersion.contact.newmark_scheme import CONTACT_SCHEMES
+
+    return CONTACT_SCHEMES
+
+
 def register(sub) -> None:
     p = sub.add_parser("ring", help="ring bouncing on a rigid plane (paper Figure 4)",
                        description="Quarter ring (one quadratic NURBS patch) bouncing on a "
                                    "rigid frictionless plane; reconstructed scenario (see "
                                    "dispersion.contact.scenario). Every default below is the "
                                    "default scene. " + _stability_note())
-    p.add_argument("--mass", choices=MASS_VARIANTS, default="singular",
-                   help="mass variant (default: singular)")
-    p.add_argument("--scheme", choices=("kane", "standard", "explicit"), default="kane",
-                   help="time integrator: contact-modified Newmark (Kane), standard Newmark, "
-                        "explicit central differences (default: kane)")
+    p.add_argument("--mass", type=choice("--mass", _rules), default="singular", metavar="RULE",
+                   help=lazy_help("mass rule, one of {names} (default: singular)", _rules))
+    p.add_argument("--scheme", type=choice("--scheme", _schemes), default="kane", metavar="NAME",
+                   help=lazy_help("time integrator, one of {names}: contact-modified Newmark "
+                                  "(Kane), standard Newmark, explicit central differences "
+                                  "(default: kane)", _schemes))
     p.add_argument("--level", type=level, default=0,
                    help="mesh refinement level: elements x 2^level in both directions "
                         "(default: 0)")

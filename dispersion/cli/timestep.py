@@ -16,16 +16,23 @@ from dispersion.errors import InputError
 
 def register(sub) -> None:
     # light modules only: --help builds this parser without numpy or sympy
-    from dispersion.defaults import CONTACT_SETS, TIMESTEP_MODELS as MODELS
-    from dispersion.defaults import MASS_VARIANTS as RULE_NAMES
+    from dispersion.cli.options import choice, lazy_help
+    from dispersion.defaults import CONTACT_SETS
+    from dispersion.waves.time_integration import CRITICAL_STEP_MODELS as MODELS
+
+    def rules():
+        from dispersion.symbolic.mass_rule import RULE_NAMES
+
+        return RULE_NAMES
     from dispersion.waves.materials import MATERIALS
 
     p = sub.add_parser(
         "timestep", help="critical time step of central differences for mass rules",
         description="Largest discrete frequency over the Brillouin zone, the critical step "
                     "2/omega_max of central differences and its ratio to the consistent mass.")
-    p.add_argument("--mass", choices=RULE_NAMES, action="append",
-                   help="mass rule (repeat for several; default: all registered rules)")
+    p.add_argument("--mass", type=choice("--mass", rules), action="append", metavar="RULE",
+                   help=lazy_help("mass rule, one of {names} (repeat for several; default: all "
+                                  "registered rules)", rules))
     p.add_argument("--mass-rule", action="append", default=[], metavar="FILE",
                    help="a user rule: TOML table of redistribution weights (repeatable)")
     p.add_argument("--p", type=number("degree p", int), default=2, help="degree (default: 2)")

@@ -52,8 +52,8 @@ from dispersion.contact.newmark import History, integrate
 from dispersion.contact.newmark_scheme import Newmark
 from dispersion.contact.redistribution import float_redistribution
 
-__all__ = ["ENDS", "MAX_STEPS", "DENSE_DOFS", "NUMERIC_RULES", "Bar", "BarModel", "BarResult",
-           "bar_model", "bar_problem", "check_steps", "simulate_bar"]
+__all__ = ["ENDS", "MAX_STEPS", "DENSE_DOFS", "NUMERIC_RULES", "Bar", "BarAssembly", "BarResult",
+           "assemble_bar", "bar_problem", "check_steps", "simulate_bar"]
 
 ENDS = ("left", "right")
 
@@ -130,7 +130,7 @@ class Bar:
 
 
 @dataclass(frozen=True)
-class BarModel:
+class BarAssembly:
     """The bar's :class:`~.contact_problem.ContactProblem` on the free DOFs ``free`` of ``basis``."""
 
     bar: Bar
@@ -175,7 +175,7 @@ def _assemble(values: np.ndarray, rows: np.ndarray, cols: np.ndarray, n: int, de
     return sp.csr_matrix((values, (rows, cols)), shape=(n, n))
 
 
-def bar_model(bar: Bar) -> BarModel:
+def assemble_bar(bar: Bar) -> BarAssembly:
     """Assemble the bar: stiffness, mass variant, wall constraint, body force, clamped ends."""
     p, L = bar.p, bar.L
     basis = SplineBasis1D.uniform(p, bar.n_elements)
@@ -237,14 +237,14 @@ def bar_model(bar: Bar) -> BarModel:
                           lambda u: 0.5 * float(u @ (Kf @ u)),
                           None if f_ext is None else f_ext[free], None, Kf,
                           lambda u: Kf @ u)
-    return BarModel(bar, prob, basis, free, dof)
+    return BarAssembly(bar, prob, basis, free, dof)
 
 
 def bar_problem(n_elements: int, p: int = 2, mass: str = "lumped", L: float = 1.0,
                 E: float = 1.0, rho: float = 1.0, gamma_s: float = GAMMA_S_FLOAT
                 ) -> ContactProblem:
     """Free bar on ``[0, L]`` (unit area) with the wall constraint ``g = u_0 >= 0``."""
-    return bar_model(Bar(n_elements, p, L, E, rho, mass, gamma_s=gamma_s)).problem
+    return assemble_bar(Bar(n_elements, p, L, E, rho, mass, gamma_s=gamma_s)).problem
 
 
 @dataclass(frozen=True)
@@ -279,9 +279,9 @@ def simulate_bar(n_elements: int = 40, p: int = 2, mass: str = "lumped", *,
         dt = courant * h / c
     check_positive("dt", dt)
     n_steps = check_steps(t_end_factor * L / c, dt, "t_end_factor * L / c")
-    prob = bar_model(bar).problem
+    prob = assemble_bar(bar).problem
     n = prob.n
-    nm = Newmark(beta=0.0, gamma=0.5) if scheme == "explicit" else Newmark(scheme=scheme)
+    nm = Newmark(beta=0.0, gamma=0.5) if scheme == "central" else Newmark(scheme=scheme)
     hist = integrate(prob, np.zeros(n), -v0 * np.ones(n), dt, n_steps, nm)
     arr = hist.arrays()
     exact = {"duration": 2 * L / c, "stress": rho * c * v0, "rebound_velocity": v0,

@@ -38,7 +38,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from dispersion.errors import InputError, check_memory, check_positive, check_positive_int
-from dispersion.contact.bar import Bar, bar_model, check_steps
+from dispersion.contact.bar import Bar, assemble_bar, check_steps
 from dispersion.contact.energy_balance import energy_balance
 from dispersion.contact.newmark import integrate
 from dispersion.contact.newmark_scheme import newmark_for
@@ -273,7 +273,7 @@ def signorini_1d(p: int = 1, n_elements: int = 20, mass: str = "singular",
     """Solve GetFEM's 1D Signorini problem with the bar API and compare with the exact solution.
 
     ``scheme``: ``"kane"`` (contact-modified Newmark, beta = 1/4), ``"standard"`` or
-    ``"explicit"`` (central differences, refused above the stability limit). ``gap`` moves
+    ``"central"`` (central differences, explicit; refused above the stability limit). ``gap`` moves
     the rigid wall that far beyond x = 0 (default 0, the problem's); a round-off-sized gap
     (a few units of 2**-53, the last place of the initial gap u(0, 0) = 1/2) measures how
     much a run's figures move with round-off (:data:`SIGNORINI_SPREAD_RULE`); the exact
@@ -299,7 +299,7 @@ def signorini_1d(p: int = 1, n_elements: int = 20, mass: str = "singular",
                          f"steps would take about {seconds / 60:.0f} min, more than the bound "
                          f"of {MAX_SECONDS / 60:.0f} min (fewer elements, a lower p or fewer "
                          "steps)")
-    model = bar_model(Bar(n_elements, p, 1.0, 1.0, 1.0, mass, clamped=("right",),
+    model = assemble_bar(Bar(n_elements, p, 1.0, 1.0, 1.0, mass, clamped=("right",),
                           contact="left", gap=gap))
     prob = model.problem
     u_init = model.coefficients(lambda x: 0.5 * (1 - x))

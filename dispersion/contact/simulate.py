@@ -26,12 +26,12 @@ from dispersion.contact.energy_balance import energy_balance
 from dispersion.contact.material import StVenantKirchhoff
 from dispersion.contact.contact_problem import ContactProblem
 from dispersion.contact.newmark import integrate
-from dispersion.contact.newmark_scheme import RING_SCHEMES, newmark_for
+from dispersion.contact.newmark_scheme import CONTACT_SCHEMES, newmark_for
 from dispersion.contact.nurbs import RingPatch, quarter_ring
 from dispersion.contact.problem import Plane, patch_problem
 from dispersion.contact.scenario import Scenario
 
-__all__ = ["RING_SCHEMES", "RingResult", "Scenario", "newmark_for", "ring_patch", "ring_problem",
+__all__ = ["CONTACT_SCHEMES", "RingResult", "Scenario", "newmark_for", "ring_patch", "ring_problem",
            "simulate_ring"]
 
 _SAMPLES_PER_ELEMENT = 8

@@ -47,7 +47,6 @@ if TYPE_CHECKING:
     import sympy
 
 __all__ = [
-    "MASS_VARIANTS",
     "CONTACT_SETS",
     "contact_weights",
     "redistribution_matrix",
@@ -55,8 +54,6 @@ __all__ = [
     "row_sum_lump",
 ]
 
-#: Names of the registered mass rules (:mod:`dispersion.symbolic.mass_rule`).
-MASS_VARIANTS = defaults.MASS_VARIANTS
 CONTACT_SETS = defaults.CONTACT_SETS
 
 

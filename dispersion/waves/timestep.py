@@ -51,12 +51,12 @@ from dispersion.errors import InputError, check_positive, check_positive_int
 from dispersion.symbolic.mass_rule import get_rule, x_mass_coefficients
 from dispersion.waves.bar_dispersion import bar_rule
 from dispersion.waves.materials import MATERIALS, Material
+from dispersion.waves.time_integration import CRITICAL_STEP_MODELS
 
-__all__ = ["MATERIALS", "MODELS", "EXACT_MAX_DOFS", "MAX_N", "certified_omega_max",
+__all__ = ["MATERIALS", "CRITICAL_STEP_MODELS", "EXACT_MAX_DOFS", "MAX_N", "certified_omega_max",
            "CriticalStep", "bar_omega_squared", "critical_time_step", "float_pencil",
            "bar_omega_max", "patch_omega_max", "critical_step", "matrix_critical_step"]
 
-MODELS = ("plate", "bar")
 
 _z = sympy.Symbol("z")
 
@@ -418,8 +418,8 @@ def critical_step(mass, p: int = 2, *, model: str = "plate", material: Material 
     >>> cs.omega_max_exact, round(cs.theta, 6), round(cs.ratio, 6)  # at 2 pi/3; sqrt(10)/sqrt(3/2)
     (sqrt(6)/2, 2.094395, 2.581989)
     """
-    if model not in MODELS:
-        raise InputError(f"model must be one of {', '.join(MODELS)}; got {model!r}")
+    if model not in CRITICAL_STEP_MODELS:
+        raise InputError(f"model must be one of {', '.join(CRITICAL_STEP_MODELS)}; got {model!r}")
     if isinstance(material, str):
         if material not in MATERIALS:
             raise InputError(f"material must be one of {', '.join(MATERIALS)}; got {material!r}")

@@ -252,7 +252,7 @@ def zgv_points(nu: float, kappa_max: float, omega_max: float, count: int = 400) 
     (:func:`~dispersion.waves.deflated_frequency.deflated_frequency_function`). ZGV points are
     where a backward wave (e.g. S1 for most nu) turns; S0 and A0 rise monotonically, and the
     points at :math:`\\kappa = 0` (cut-offs, slope zero by symmetry) are not listed. The one
-    implementation behind :func:`dispersion.waves.frequency.zgv_points` too.
+    implementation behind :func:`dispersion.waves.frequency.zgv_points_below` too.
 
     >>> [(p.label, round(p.kappa, 4), round(p.omega, 4)) for p in zgv_points(0.3, 2.0, 4.0)]
     [('S1', 0.8383, 2.7303)]

@@ -29,11 +29,12 @@ from typing import TYPE_CHECKING
 
 from dispersion import defaults
 from dispersion.errors import InputError
-from dispersion.patch_model import PatchModel
-from dispersion.symbolic.patch import Patch
 
 if TYPE_CHECKING:  # pragma: no cover
     import sympy
+
+    from dispersion.patch_model import PatchModel
+    from dispersion.symbolic.patch import Patch
 
 __all__ = ["Patch", "PatchModel", "patch", "series", "exact_branches", "lamb_modes", "material", "simulate_ring",
            "simulate_bar"]
@@ -46,10 +47,14 @@ def patch(*args, **fields) -> PatchModel:
     checked at once (bad parameters raise :class:`InputError` here), with its matrices, series
     and branches. ``r="r"`` keeps the aspect ratio symbolic.
 
+    >>> from dispersion.symbolic.patch import Patch
     >>> pt = patch(mass="singular", gamma_s=0)
     >>> pt.plate.massless, pt.spec == Patch(mass="singular", gamma_s=0)
     ((2, 5), True)
     """
+    from dispersion.patch_model import PatchModel
+    from dispersion.symbolic.patch import Patch
+
     try:
         spec = Patch(*args, **fields)
     except TypeError as exc:  # an unknown field or too many values: named, one line
@@ -130,3 +135,17 @@ def simulate_bar(n_elements: int = 40, p: int = defaults.P, mass: str = "lumped"
     from dispersion.contact.bar import simulate_bar as _simulate
 
     return _simulate(n_elements, p, mass, **kwargs)
+
+
+def __getattr__(name: str):
+    # the patch value and its model load sympy (the exact defaults): only when asked for, so
+    # that ``dispersion.lamb_modes`` and the other numeric doors do not pay for it
+    if name == "Patch":
+        from dispersion.symbolic.patch import Patch
+
+        return Patch
+    if name == "PatchModel":
+        from dispersion.patch_model import PatchModel
+
+        return PatchModel
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -50,22 +50,32 @@ def test_the_degree_range_is_stated_alike(capsys):
     assert re.search(r"degree through the thickness, in \[1, \d+\]", branches)
 
 
-@pytest.mark.parametrize("extra", [["--csv", "-"], ["--figure", "f.png"]])
 @pytest.mark.parametrize("fmt", ["text", "csv", "json"])
-def test_format_with_a_named_file_is_an_error(fmt, extra, tmp_path, monkeypatch, capsys):
+def test_format_beside_a_stdout_file_is_an_error(fmt, tmp_path, monkeypatch, capsys):
+    # two outputs never share stdout (issue 26: --json - --csv - interleaved them)
     monkeypatch.chdir(tmp_path)
-    assert main(["branches", "--exact", "--count", "3", "--format", fmt, *extra]) == 2
+    assert main(["branches", "--exact", "--count", "3", "--format", fmt, "--csv", "-"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and "--format" in err[0] and "does not apply" in err[0]
+    assert len(err) == 1 and "--format" in err[0] and "stdout" in err[0]
     assert list(tmp_path.iterdir()) == []
+
+
+def test_format_beside_a_named_file_also_prints(tmp_path, capsys):
+    out = tmp_path / "b.csv"
+    argv = ["branches", "--exact", "--count", "3", "--omega-max", "2", "--csv", str(out)]
+    assert main(argv) == 0 and capsys.readouterr().out == ""   # the file alone
+    assert main([*argv, "--format", "json"]) == 0                 # the file, and JSON
+    assert __import__("json").loads(capsys.readouterr().out)["rows"]
+    assert out.read_text().startswith("# Rayleigh-Lamb branches")
 
 
 def test_exact_only_csv_lists_only_what_applies(capsys):
     assert main(["branches", "--exact", "--count", "3", "--kappa-max", "1",
                  "--omega-max", "2", "--no-progress"]) == 0
     header = [line for line in capsys.readouterr().out.splitlines() if line.startswith("#")]
-    keys = {line[2:].split(":")[0] for line in header}
-    assert keys == {"nu", "kappa", "omega_max", "dispersion-iga", "empty cell"}, keys
+    keys = {line[2:].split(":")[0] for line in header[1:]}
+    assert keys == {"Poisson's ratio", "kappa = k h", "Omega = omega h / c_T", "source",
+                    "dispersion-iga", "empty cell"}, keys
 
 
 # --------------------------------------------------------------------------- formats

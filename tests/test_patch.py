@@ -46,12 +46,15 @@ def test_series_command_builds_the_default_patch(argv):
     assert _resolve(build_parser("series").parse_args(argv)) == DEFAULT
 
 
-def test_branches_command_builds_the_default_patch():
-    from dispersion.cli import build_parser
-    from dispersion.cli.branches import _settings
+def test_branches_command_builds_the_default_patch(capsys):
+    from dispersion.cli import main
+    from dispersion.waves.branch_table import branch_table
 
-    s = _settings(build_parser("branches").parse_args(["branches", "--count", "3"]))
-    assert s["patch"] == DEFAULT
+    table = branch_table(masses=["consistent"], count=2, kappa_max=0.5, omega_max=1.0)
+    assert table.base_patch == DEFAULT
+    assert main(["branches", "--mass", "consistent", "--count", "2", "--kappa-max", "0.5",
+                 "--omega-max", "1", "--format", "csv"]) == 0
+    assert f"# patch: {DEFAULT.geometry_title()}" in capsys.readouterr().out
 
 
 @pytest.mark.parametrize("model_line", ["", 'model = "bloch"\n'])

@@ -161,7 +161,7 @@ def test_cli_branches_fully_discrete(capsys):
     assert main(["branches", "--scheme", "central", "--courant", "0.9", "--mass", "lumped",
                  "--count", "3", "--kappa-max", "0.5", "--omega-max", "2"]) == 0
     out = capsys.readouterr().out
-    assert "lumped central C=0.9" in out and "# scheme: central" in out
+    assert "lumped central C=0.9" in out and "# time integration: Newmark member central" in out
     assert main(["branches", "--scheme", "central", "--courant", "1.5"]) == 2
 
 

@@ -256,7 +256,11 @@ def get_rule(mass) -> MassRule:
         return mass
     if isinstance(mass, str) and mass in RULES:
         return RULES[mass]
-    raise InputError(f"mass must be one of {', '.join(RULE_NAMES)} or a MassRule; got {mass!r}")
+    from dispersion.errors import did_you_mean
+
+    hint = did_you_mean(mass, RULE_NAMES) if isinstance(mass, str) else ""
+    raise InputError(f"mass must be one of {', '.join(RULE_NAMES)} or a MassRule; got "
+                     f"{mass!r}{hint}")
 
 
 def gram_space(kv, R=None) -> MassSpace:

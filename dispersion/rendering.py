@@ -80,8 +80,12 @@ EMPTY_NOTE = "empty cell: not defined (no value is written as nan or inf)"
 TEXT_FAILURES = 10
 
 
-def _finite(value) -> bool:
-    return isinstance(value, float) and math.isfinite(value)
+def _clean(value) -> str:
+    """Text without terminal escape sequences or control characters: a cell may come from a
+    stranger's file (a claim's name) and never reaches a terminal as an instruction."""
+    from dispersion.table import clean
+
+    return clean(value)
 
 
 def text_cell(value, digits: int = TEXT_DIGITS) -> str:
@@ -97,9 +101,9 @@ def text_cell(value, digits: int = TEXT_DIGITS) -> str:
         try:
             value = float(value)
         except (TypeError, ValueError):
-            return str(value)
+            return _clean(value)
         return f"{value:.{digits}g}" if math.isfinite(value) else ""
-    return str(value)
+    return _clean(value)
 
 
 def csv_cell(value) -> str:
@@ -110,9 +114,9 @@ def csv_cell(value) -> str:
         try:
             value = float(value)
         except (TypeError, ValueError):
-            return str(value)
+            return _clean(value)
         return repr(value) if math.isfinite(value) else ""
-    return str(value)
+    return _clean(value)
 
 
 def _failure_text(item) -> str:
@@ -318,6 +322,8 @@ def render(result, fmt: str) -> str:
     """
     from dispersion.errors import InputError
 
+    if fmt == "latex" and hasattr(result, "to_latex"):  # the results that have a LaTeX form
+        return result.to_latex() + "\n"
     if fmt not in FORMATS:
         raise InputError(f"--format must be one of {', '.join(FORMATS)}, got {fmt!r}")
     if fmt == "json":

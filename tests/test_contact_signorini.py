@@ -74,7 +74,7 @@ def test_explicit_and_kane_agree_for_the_singular_mass():
 
 def test_history_csv_has_one_row_per_step():
     res = signorini_1d(p=1, mass="singular", dt=0.01, t_end=0.5)
-    lines = [line for line in res.csv_text().splitlines() if not line.startswith("#")]
+    lines = [line for line in res.to_csv().splitlines() if not line.startswith("#")]
     assert lines[0] == "t [-],u0 [-],v0 [-],contact_stress [-],kinetic [-],strain [-],total [-]"
     assert len(lines) == 1 + 51
 

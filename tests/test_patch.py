@@ -39,11 +39,13 @@ def test_discrete_series_derives_the_default_patch(monkeypatch):
 
 
 @pytest.mark.parametrize("argv", [["series"], ["series", "--branch", "A0", "--order", "6"]])
-def test_series_command_builds_the_default_patch(argv):
-    from dispersion.cli import build_parser
-    from dispersion.cli.series import _resolve
+def test_series_command_builds_the_default_patch(argv, capsys):
+    from dispersion.cli import main
+    from dispersion.waves.series_table import series_table
 
-    assert _resolve(build_parser("series").parse_args(argv)) == DEFAULT
+    assert series_table(("A0",), 4).patch == DEFAULT
+    assert main([*argv, "--format", "csv"]) == 0
+    assert f"# model: {DEFAULT.title()}" in capsys.readouterr().out
 
 
 def test_branches_command_builds_the_default_patch(capsys):

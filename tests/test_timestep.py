@@ -1,6 +1,7 @@
 """Critical time step (dispersion.waves.timestep): closed forms, two ways, and the contact solver."""
 from __future__ import annotations
 
+import csv
 import math
 
 import numpy as np
@@ -147,10 +148,15 @@ def test_user_rule_end_to_end():
 def test_cli_timestep_prints_step_and_ratio(capsys):
     from dispersion.cli import main
 
-    assert main(["timestep", "--mass", "hrz", "--p", "2", "--material", "steel", "--h", "1"]) == 0
+    assert main(["timestep", "--mass", "hrz", "--p", "2", "--material", "steel", "--h", "1",
+                 "--format", "csv"]) == 0
     out = capsys.readouterr().out
     cs = critical_step("hrz", 2, material="steel", h=1.0)
-    assert f"{cs.dt:.6g} s" in out and f"{cs.ratio:.6g}" in out and "mass hrz, p = 2" in out
+    row = next(csv.DictReader(ln for ln in out.splitlines() if not ln.startswith("#")))
+    assert (row["mass"], float(row["dt_crit [s]"]), float(row["ratio to consistent"])) == \
+        ("hrz", cs.dt, cs.ratio)
+    # the setting once, every symbol defined (issue 28: no repeated preamble, h and H defined)
+    assert out.count("# model:") == 1 and "# H: half the plate thickness" in out
     assert main(["timestep", "--model", "bar", "--mass", "singular"]) == 2
     assert "periodic bar" in capsys.readouterr().err
 
@@ -174,8 +180,8 @@ def test_cli_user_rule_from_toml(tmp_path, capsys):
     assert main(["branches", "--mass-rule", str(rule), "--count", "2", "--kappa-max", "0.5",
                  "--omega-max", "1"]) == 0
     assert ",far-quarter," in capsys.readouterr().out
-    assert main(["timestep", "--mass-rule", str(rule), "--p", "2"]) == 0
-    assert "mass far-quarter, p = 2" in capsys.readouterr().out
+    assert main(["timestep", "--mass-rule", str(rule), "--p", "2", "--format", "csv"]) == 0
+    assert "\nfar-quarter," in capsys.readouterr().out
 
 
 @pytest.mark.slow  # the default run proves the lumped bound in the doctest

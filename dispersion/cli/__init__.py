@@ -27,14 +27,6 @@ _SUBCOMMANDS = ("series", "branches", "ring", "impact", "verify", "reproduce", "
                "timestep")
 
 
-def number(name: str, convert=float):
-    """argparse ``type`` of a number option; see :mod:`dispersion.cli.options` (one grammar
-    for every command: ``0.3``, ``3/10``, ``1e-3``, bounded digits)."""
-    from dispersion.cli.options import number as typed
-
-    return typed(name, convert)
-
-
 class Terminated(KeyboardInterrupt):
     """SIGTERM arrived: unwound like Ctrl-C, so every writer removes its temporaries."""
 

@@ -5,13 +5,13 @@ line (a kappa grid), or with ``--frequency``/``--fd`` the Lamb-wave calculator
 from __future__ import annotations
 
 import argparse
-import sys
 
 from dispersion import defaults
 from dispersion.cli import frequency
 from dispersion.cli.options import (check_applies, choice, given, integer, lazy_help, rational,
                                     real)
-from dispersion.cli.outputs import add_outputs, check_outputs, warn_failures, write_outputs
+from dispersion.cli.outputs import (add_outputs, check_outputs, progress_bar, warn_failures,
+                                    write_outputs)
 from dispersion.defaults import CONTACT_SETS, N_MAX, P_MAX, PATCH_MODELS, R_RANGE
 
 
@@ -116,26 +116,23 @@ def run(args) -> int:
     check_applies(args, RULES)
     if frequency.requested(args):
         return frequency.run(args)
-    from dispersion.cli.options import material_from_args
+    from dispersion.cli.options import material_from_args, masses_from_args
     from dispersion.plotting.branches import figure_branch_table
     from dispersion.waves.branch_table import branch_table
 
     material = material_from_args(args)
     check_outputs(args, "branches")
-    fields = {k: getattr(args, k) for k in ("p", "n", "model", "r", "contact", "gamma_s")
-              if given(args, k)}
-    rules = [_mass_rule(path) for path in args.mass_rule or ()]
-    masses = None if not (args.mass or rules) else [*(args.mass or ()), *rules]
     grid = {k: getattr(args, k) for k in ("kappa_min", "kappa_max", "count", "omega_max")
             if given(args, k)}
     patch = None
-    if _discrete(args):
+    if _discrete(args):  # the one patch of the run, every field but the mass
         from dispersion.symbolic.patch import Patch
 
-        patch = Patch(**fields)
-    bar = _progress(args)
+        patch = Patch(**{k: getattr(args, k) for k in ("p", "n", "model", "r", "contact",
+                                                       "gamma_s") if given(args, k)})
+    bar = progress_bar(args.progress, "branches", "kappa")
     try:
-        table = branch_table(masses=masses, exact_only=args.exact, patch=patch, nu=args.nu,
+        table = branch_table(masses=masses_from_args(args), exact_only=args.exact, patch=patch, nu=args.nu,
                              material=material, thickness_mm=args.thickness,
                              scheme=args.scheme, courant=args.courant,
                              paired=bool(args.figure) and material is None,
@@ -147,17 +144,4 @@ def run(args) -> int:
     write_outputs(args, table, figure_branch_table)
     return 0
 
-
-def _mass_rule(path):
-    from dispersion.symbolic.mass_rule import rule_from_toml
-
-    return rule_from_toml(path)
-
-
-def _progress(args):
-    if not (sys.stderr.isatty() if args.progress is None else args.progress):
-        return None
-    from tqdm import tqdm
-
-    return tqdm(desc="branches", unit="kappa", file=sys.stderr)
 

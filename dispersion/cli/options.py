@@ -29,8 +29,9 @@ from fractions import Fraction
 
 from dispersion.errors import InputError, did_you_mean
 
-__all__ = ["rational", "real", "integer", "number", "span", "choice", "lazy_help",
-           "material_from_args", "frequencies", "given", "check_applies", "cli_words"]
+__all__ = ["rational", "real", "integer", "span", "choice", "lazy_help",
+           "material_from_args", "masses_from_args", "frequencies", "given", "check_applies",
+           "cli_words"]
 
 #: Most digits of an integer option (the largest meaningful count has 7).
 MAX_INT_DIGITS = 18
@@ -131,12 +132,6 @@ def integer(name: str, lo: int | None = None, hi: int | None = None, *, valid=No
             raise argparse.ArgumentTypeError(f"{name} must be an integer {rule()}, got {value}")
         return value
     return parse
-
-
-def number(name: str, convert=float):
-    """argparse ``type`` of the older form ``number(name, int | float)``: see :func:`integer`
-    and :func:`real` (same grammar; kept for callers not yet moved)."""
-    return integer(name) if convert is int else real(name)
 
 
 def choice(option: str, names):
@@ -244,6 +239,17 @@ def material_from_args(args: argparse.Namespace, default: str | None = None):
         raise InputError(msg) from None
 
 
+def masses_from_args(args: argparse.Namespace) -> list | None:
+    """The mass rules of ``--mass NAME`` and ``--mass-rule FILE`` (user rules read from TOML),
+    in that order; None when neither is given (the command's default rules)."""
+    rules = list(getattr(args, "mass", None) or ())
+    if getattr(args, "mass_rule", None):
+        from dispersion.symbolic.mass_rule import rule_from_toml
+
+        rules += [rule_from_toml(path) for path in args.mass_rule]
+    return rules or None
+
+
 # ---------------------------------------------------------------------- frequency lists
 
 #: Most frequencies of one request (a grid's COUNT included).
@@ -305,8 +311,14 @@ def frequencies(text: str, option: str, units: dict | None = _UNITS) -> list[flo
 # ---------------------------------------------------------------------- one grammar
 
 def given(args: argparse.Namespace, dest: str) -> bool:
-    """True if the option stored in ``dest`` was given (its default is None, False or [])."""
-    return getattr(args, dest, None) not in (None, False, [])
+    """True if the option stored in ``dest`` was given (its default is None, False or []; a
+    given 0 counts).
+
+    >>> given(argparse.Namespace(gamma_s=0), "gamma_s"), given(argparse.Namespace(x=[]), "x")
+    (True, False)
+    """
+    value = getattr(args, dest, None)
+    return not (value is None or value is False or (isinstance(value, list) and not value))
 
 
 def check_applies(args: argparse.Namespace, rules) -> None:
@@ -319,11 +331,11 @@ def check_applies(args: argparse.Namespace, rules) -> None:
     >>> check_applies(argparse.Namespace(courant=0.5, scheme=None), rules)
     Traceback (most recent call last):
     ...
-    dispersion.errors.InputError: --courant applies with --scheme only
+    dispersion.errors.InputError: --courant applies only with --scheme
     """
     for option, applies, where in rules:
         if given(args, option[2:].replace("-", "_")) and not applies(args):
-            raise InputError(f"{option} applies {where} only")
+            raise InputError(f"{option} applies only {where}")
 
 
 #: Python parameters of the package functions and the options that set them. Names with an

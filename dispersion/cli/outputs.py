@@ -22,7 +22,7 @@ import sys
 from dispersion.errors import InputError
 
 __all__ = ["FIGURE_SUFFIXES", "add_outputs", "check_figure", "check_outputs", "emit",
-           "stdout_format", "warn_failures", "write_outputs"]
+           "progress_bar", "stdout_format", "warn_failures", "write_outputs"]
 
 #: File endings a ``--figure`` may have (matplotlib writes each of them without extras).
 FIGURE_SUFFIXES = (".png", ".pdf", ".svg")
@@ -162,3 +162,12 @@ def warn_failures(result) -> None:
         print(f"warning: {len(fails)} value(s) not certified, each listed in the output "
               f"('# failure:' lines of CSV, 'failures' of JSON); first: {fails[0]}",
               file=sys.stderr)
+
+
+def progress_bar(flag, desc: str, unit: str, total: int | None = None):
+    """A tqdm bar on stderr (``flag`` None: when stderr is a terminal), or None."""
+    if not (sys.stderr.isatty() if flag is None else flag):
+        return None
+    from tqdm import tqdm
+
+    return tqdm(total=total, desc=desc, unit=unit, file=sys.stderr)

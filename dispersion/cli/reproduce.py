@@ -22,7 +22,7 @@ import argparse
 import shlex
 from pathlib import Path
 
-from dispersion.cli.options import number
+from dispersion.cli.options import integer
 from dispersion.defaults import MAX_JOBS_PER_CPU
 from dispersion.defaults import REPORT_OUT as DEFAULT_OUT
 from dispersion.defaults import REPORT_REFERENCE as DEFAULT_REFERENCE
@@ -69,7 +69,7 @@ def register(subparsers) -> None:
     parser.add_argument("--readme", default=None, metavar="FILE",
                         help="also rewrite the generated blocks of this Markdown file "
                              "(e.g. README.md) from the new results")
-    parser.add_argument("--jobs", type=number("--jobs", int), default=None,
+    parser.add_argument("--jobs", type=integer("--jobs", 1), default=None,
                         help=f"worker processes for sweeps, 1 to {MAX_JOBS_PER_CPU} x the usable "
                              "CPUs (default: the usable CPU count)")
     parser.add_argument("--sections", default=",".join(SECTIONS),

@@ -66,8 +66,8 @@ import io
 import math
 from collections.abc import Mapping
 
-__all__ = ["FORMATS", "TEXT_DIGITS", "EMPTY_NOTE", "Rendered", "failure_lines", "render",
-           "text_cell", "csv_cell"]
+__all__ = ["FORMATS", "TEXT_DIGITS", "EMPTY_NOTE", "DATAFRAME_EXTRA", "Rendered",
+           "failure_lines", "render", "require_pandas", "text_cell", "csv_cell"]
 
 #: The ``--format`` vocabulary of every command (a command refuses, in one line, a format its
 #: result has no form for; ``series`` adds ``latex``).
@@ -76,6 +76,8 @@ FORMATS = ("text", "csv", "json", "markdown")
 TEXT_DIGITS = 7
 #: The ``#`` line every CSV carries about empty cells.
 EMPTY_NOTE = "empty cell: not defined (no value is written as nan or inf)"
+#: What to install for ``to_dataframe()``.
+DATAFRAME_EXTRA = 'pip install "dispersion-iga[dataframe]"'
 #: Failures listed in a text footer before the rest are counted (every one is in CSV and JSON).
 TEXT_FAILURES = 10
 
@@ -146,6 +148,18 @@ def failure_lines(result) -> list[str]:
     if callable(items):
         items = items()
     return [_failure_text(x) for x in (items or ())]
+
+
+def require_pandas():
+    """pandas, or :class:`~dispersion.errors.InputError` naming the ``dataframe`` extra."""
+    try:
+        import pandas
+    except ImportError:
+        from dispersion.errors import InputError
+
+        raise InputError(f"to_dataframe() needs pandas, which is not installed: "
+                         f"{DATAFRAME_EXTRA}") from None
+    return pandas
 
 
 def _version() -> str:
@@ -273,8 +287,6 @@ class Rendered:
     def to_dataframe(self):
         """The rows as a pandas DataFrame (the ``dataframe`` extra); ``attrs`` hold the title,
         the header lines and the failures."""
-        from dispersion.waves.branch_views import require_pandas
-
         pd = require_pandas()
         frame = pd.DataFrame(self.rows(), columns=list(self.columns()))
         frame.attrs.update(title=self.title(), header=list(self.header_lines()),

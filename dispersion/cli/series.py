@@ -28,10 +28,9 @@ def _formats():
 
 
 def _order_range() -> str:
-    from dispersion.symbolic.power_balance import MAX_ORDER
+    from dispersion.waves.series_table import order_range
 
-    return (f"(an even power of kappa) in [2, {MAX_ORDER['discrete']}], or [2, "
-            f"{MAX_ORDER['exact']}] with --exact")
+    return order_range()
 
 
 def register(sub) -> None:

@@ -51,6 +51,7 @@ from dispersion.contact.contact_problem import ContactProblem
 from dispersion.contact.newmark import History, integrate
 from dispersion.contact.newmark_scheme import Newmark
 from dispersion.contact.redistribution import float_redistribution
+from dispersion.rendering import Rendered
 
 __all__ = ["ENDS", "MAX_STEPS", "DENSE_DOFS", "NUMERIC_RULES", "Bar", "BarAssembly", "BarResult",
            "assemble_bar", "bar_problem", "check_steps", "simulate_bar"]
@@ -247,13 +248,45 @@ def bar_problem(n_elements: int, p: int = 2, mass: str = "lumped", L: float = 1.
     return assemble_bar(Bar(n_elements, p, L, E, rho, mass, gamma_s=gamma_s)).problem
 
 
-@dataclass(frozen=True)
-class BarResult:
-    """History of a bar run and its errors against the exact solution."""
+@dataclass(frozen=True, repr=False)  # Rendered: a short repr; rows are the history
+class BarResult(Rendered):
+    """History of a bar run and its errors against the exact solution, with the ``bar`` and
+    the ``scheme`` it was computed from."""
 
     history: History
     exact: dict
     metrics: dict
+    bar: Bar | None = None
+    scheme: str = ""
+
+    def title(self) -> str:
+        b = self.bar
+        return (f"bar impact: p = {b.p}, {b.n_elements} elements, "
+                f"{getattr(b.mass, 'name', b.mass)} mass, "
+                f"{self.scheme}, dt = {self.metrics['dt']:g} s")
+
+    def header_lines(self) -> list[str]:
+        b = self.bar
+        m = self.metrics
+        return [f"bar: length L = {b.L:g} m, Young's modulus E = {b.E:g} Pa, density "
+                f"rho = {b.rho:g} kg/m^3 (unit area), wave speed c = {b.wave_speed:g} m/s",
+                f"exact: contact duration 2L/c = {self.exact['duration']:g} s, contact stress "
+                f"rho c v0 = {self.exact['stress']:g} Pa",
+                "errors (relative): contact duration "
+                f"{m['duration_error']:.3g}, contact stress {m['stress_error']:.3g}, rebound "
+                f"velocity {m['rebound_error']:.3g}; energy change "
+                f"{m['energy_change_percent']:.3g} %"]
+
+    def columns(self) -> tuple[str, ...]:
+        return ("t [s]", "contact force [N]", "kinetic [J]", "strain [J]", "total [J]")
+
+    def rows(self) -> list[dict]:
+        a = self.history.arrays()
+        keys = ("t", "contact_force", "kinetic", "strain", "total")
+        return [dict(zip(self.columns(), map(float, vals))) for vals in zip(*(a[k] for k in keys))]
+
+    def json_extra(self) -> dict:
+        return {"metrics": self.metrics, "exact": self.exact}
 
 
 def simulate_bar(n_elements: int = 40, p: int = 2, mass: str = "lumped", *,
@@ -303,4 +336,4 @@ def simulate_bar(n_elements: int = 40, p: int = 2, mass: str = "lumped", *,
         "energy_change_percent": 100 * (arr["total"][-1] - arr["total"][0]) / arr["total"][0],
         "in_contact_at_end": bool(on[-1]),
     }
-    return BarResult(hist, exact, metrics)
+    return BarResult(hist, exact, metrics, bar, scheme)

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from dispersion import defaults
 from dispersion.rendering import Rendered
 
 __all__ = ["CriticalSteps", "critical_steps", "default_rules"]
@@ -34,6 +35,8 @@ class CriticalSteps(Rendered):
     model: str
     material: object
     certify: bool = False
+    contact: str | None = None
+    gamma_s: object = None
 
     @property
     def _unit(self) -> str:
@@ -63,6 +66,9 @@ class CriticalSteps(Rendered):
                      "omega_max H / c_T: the largest discrete frequency over the Brillouin "
                      "zone theta in [0, pi] (theta = k b, b the element length along the "
                      "plate), dimensionless; c_T the shear wave speed"]
+        if self.contact is not None:
+            lines.append(f"singular rules: contact set {self.contact}, gamma_s = "
+                         f"{self.gamma_s} (the share sent to the second neighbour)")
         if self.material is not None and s.material is not None:
             lines.append(f"material: {self.material.describe()}")
         lines.append("dt_crit = 2 / omega_max in s: the largest stable step of central "
@@ -124,8 +130,19 @@ def critical_steps(masses=None, p: int = 2, *, model: str = "plate", material="s
     rules = default_rules(model) if masses is None else tuple(masses)
     if not rules:
         raise InputError("masses must name at least one mass rule")
-    extra = {} if gamma_s is None else {"gamma_s": gamma_s}
+    from dispersion.symbolic.mass_rule import get_rule
+
+    gamma_s = defaults.text("GAMMA_S") if gamma_s is None else gamma_s
     steps = tuple(critical_step(rule, p, model=model, material=material, h=h, n=n,
-                                wave_speed=wave_speed, contact=contact, certify=certify, **extra)
-                  for rule in rules)
-    return CriticalSteps(steps, model, material, bool(certify))
+                                wave_speed=wave_speed, contact=contact, certify=certify,
+                                gamma_s=_exact(gamma_s)) for rule in rules)
+    singular = model == "plate" and any(get_rule(r).redistributes for r in rules)
+    return CriticalSteps(steps, model, material, bool(certify),
+                         contact if singular else None, gamma_s if singular else None)
+
+
+def _exact(value):
+    """A gamma_s as the exact number the patch takes (``"1/2"`` -> 1/2)."""
+    from fractions import Fraction
+
+    return Fraction(value) if isinstance(value, str) else value

@@ -13,7 +13,7 @@ neither sympy nor numpy; LaTeX (:meth:`SeriesTable.to_latex`) parses the text wi
 >>> t
 <SeriesTable: Omega^2 series of A0, exact Rayleigh-Lamb, nu symbolic, to kappa^6 (2 rows)>
 >>> print(t.to_text())
-Omega_A0^2 [exact, rayleigh-lamb] =
+Omega_A0^2 [exact Rayleigh-Lamb] =
   + (-2/(3*(nu - 1))) * kappa^4
   + (2*(7*nu - 17)/(45*(nu - 1)**2)) * kappa^6
   + O(kappa^8)
@@ -29,10 +29,23 @@ from typing import Any
 
 from dispersion.rendering import Rendered
 
-__all__ = ["ORDER", "SeriesTable", "series_table"]
+__all__ = ["ORDER", "SeriesTable", "series_table", "order_range"]
 
 #: Default highest power of kappa (the printed eqs 17-20 stop at kappa^8).
 ORDER = 8
+
+
+def order_range() -> str:
+    """The orders a request may ask for, in words (the bounds of
+    :func:`dispersion.symbolic.power_balance.check_request`).
+
+    >>> order_range()
+    '(an even power of kappa) in [2, 32], or [2, 128] for the exact series'
+    """
+    from dispersion.symbolic.power_balance import MAX_ORDER
+
+    return (f"(an even power of kappa) in [2, {MAX_ORDER['discrete']}], or [2, "
+            f"{MAX_ORDER['exact']}] for the exact series")
 
 
 @dataclass(frozen=True, repr=False)  # Rendered: short repr; every format from the records
@@ -82,7 +95,8 @@ class SeriesTable(Rendered):
         blocks = []
         for r in self.records:
             terms = list(r["coefficients"].items())
-            lines = [f"{self._label(r)} ="] + [f"  + ({c}) * kappa^{k}" for k, c in terms]
+            lines = [f"Omega_{r['branch']}^2 [{self._model()}] ="]
+            lines += [f"  + ({c}) * kappa^{k}" for k, c in terms]
             blocks.append("\n".join(lines + [f"  + O(kappa^{int(terms[-1][0]) + 2})"]))
         return "\n\n".join(blocks)
 
@@ -100,13 +114,10 @@ class SeriesTable(Rendered):
                 f"\\left({sympy.latex(parse_expr(c, local_dict=local, evaluate=False))}"
                 f"\\right)\\kappa^{{{k}}}" for k, c in terms)
             last = int(terms[-1][0])
-            out.append(f"% {self._label(r)}\n\\Omega_{{{r['branch']}}}^2 = {body} + "
+            out.append(f"% Omega_{r['branch']}^2 [{self._model()}]\n"
+                       f"\\Omega_{{{r['branch']}}}^2 = {body} + "
                        f"O(\\kappa^{{{last + 2}}})")
         return "\n\n".join(out)
-
-    @staticmethod
-    def _label(record: dict) -> str:
-        return f"Omega_{record['branch']}^2 [{record['mass']}, {record['model']}]"
 
 
 def series_table(branches=("S0", "A0"), order: int = ORDER, *, patch=None,
@@ -120,6 +131,13 @@ def series_table(branches=("S0", "A0"), order: int = ORDER, *, patch=None,
     from dispersion.errors import InputError
 
     branches = (branches,) if isinstance(branches, str) else tuple(branches)
+    if isinstance(nu, str):  # "3/10" as the command line reads it
+        from fractions import Fraction
+
+        try:
+            nu = Fraction(nu)
+        except ValueError:
+            raise InputError(f"nu must be a rational number such as 3/10, got {nu!r}") from None
     if exact:
         if patch is not None:
             raise InputError("patch does not apply with exact=True (the exact Rayleigh-Lamb "

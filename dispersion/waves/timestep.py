@@ -48,6 +48,7 @@ import numpy as np
 import sympy
 
 from dispersion.errors import InputError, check_positive, check_positive_int
+from dispersion.rendering import Rendered
 from dispersion.symbolic.mass_rule import get_rule, x_mass_coefficients
 from dispersion.waves.bar_dispersion import bar_rule
 from dispersion.waves.materials import MATERIALS, Material
@@ -103,8 +104,8 @@ def bar_omega_max(mass, p: int) -> tuple[sympy.Expr, float]:
     return sympy.simplify(exact), float(sympy.acos(best))
 
 
-@dataclass(frozen=True)
-class CriticalStep:
+@dataclass(frozen=True, repr=False)  # Rendered: a short repr
+class CriticalStep(Rendered):
     """Critical step of central differences for one rule, with what it was computed from.
 
     ``omega_max`` is dimensionless: :math:`\\omega_{max} h / c` (bar: h the element length,
@@ -141,6 +142,22 @@ class CriticalStep:
         if self.omega_certified is None:
             return None
         return self.dt * self.omega_max / self.omega_certified
+
+    # the rendering protocol: one row; the words of describe() as title and header
+    def title(self) -> str:
+        return self.describe().splitlines()[0]
+
+    def header_lines(self) -> list[str]:
+        return self.describe().splitlines()[1:]
+
+    def columns(self) -> tuple[str, ...]:
+        return ("mass", "p", "model", "omega_max", "theta", "found", "dt_crit [s]",
+                "ratio to consistent", "omega_max proven bound", "proven stable dt [s]")
+
+    def rows(self) -> list[dict]:
+        return [dict(zip(self.columns(), (self.mass, self.p, self.model, self.omega_max,
+                                          self.theta, self.method, self.dt, self.ratio,
+                                          self.omega_certified, self.dt_certified)))]
 
     def describe(self) -> str:
         """Lines for a terminal, rendered from the fields."""

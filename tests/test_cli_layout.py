@@ -88,3 +88,12 @@ def test_planted_numerics_import_is_caught(tmp_path):
     bad = tmp_path / "bad.py"
     bad.write_text("def run():\n    from dispersion.waves.exact_branches import trace_branches\n")
     assert "dispersion.waves.exact_branches" in _imports(bad) - set(ALLOWED)
+
+
+def test_notebook_03_needs_one_import():
+    # issue 28: the notebook does in one import what `dispersion branches` does
+    nb = CLI.parents[1] / "notebooks" / "03_branches.py"
+    tree = ast.parse(nb.read_text())
+    names = {a.name for n in ast.walk(tree) if isinstance(n, ast.Import) for a in n.names}
+    names |= {n.module for n in ast.walk(tree) if isinstance(n, ast.ImportFrom)}
+    assert names == {"dispersion"}, names

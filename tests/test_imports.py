@@ -34,6 +34,10 @@ NEEDS = {
     **{f"{c} --help": set() for c in ("verify", "reproduce", "bench")},
     **{f"{c} --help": {"numpy"} for c in ("branches", "ring", "impact", "timestep")},
     "series --exact --order 8": {"flint"},
+    # the Lamb-wave calculator (issue 28): no sympy, no scipy, no matplotlib
+    "branches --exact --material steel --thickness 3 --frequency 200": {"numpy", "flint"},
+    # a usage error answers before the heavy imports (the mass registry needs numpy)
+    "branches --mass singlar": {"numpy"}, "series --order x": set(),
     # a numeric 1D bar of 20 elements: numpy only (no sympy through the B-splines, no scipy)
     "impact signorini-1d --t-end 0.5": {"numpy"},
 }

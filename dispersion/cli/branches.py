@@ -140,7 +140,7 @@ def run(args) -> int:
     finally:
         if bar is not None:
             bar.close()
-    warn_failures(table)
+    warn_failures(table, args)
     write_outputs(args, table, figure_branch_table)
     return 0
 

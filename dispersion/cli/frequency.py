@@ -101,6 +101,6 @@ def run(args) -> int:
     from dispersion.cli.outputs import warn_failures
     from dispersion.plotting.lamb import figure_mode_table
 
-    warn_failures(table)
+    warn_failures(table, args)
     write_outputs(args, table, figure_mode_table)
     return 0

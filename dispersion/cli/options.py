@@ -222,11 +222,9 @@ def material_from_args(args: argparse.Namespace, default: str | None = None):
         return None if default is None else material(default)
     from dispersion.waves.unit_mixups import unit_mixups
 
-    for hint in unit_mixups(c_L=values["c_L"], c_T=values["c_T"], rho=values["rho"],
-                            E_gpa=values["E"]):  # valid, but likely not what was meant
-        import sys
-
-        print(f"warning: {cli_words(hint)}", file=sys.stderr)
+    # valid, but likely not what was meant: said after the run (an error states them itself)
+    args.unit_hints = [cli_words(h) for h in unit_mixups(c_L=values["c_L"], c_T=values["c_T"],
+                                                          rho=values["rho"], E_gpa=values["E"])]
     if values["E"] is not None:
         values["E"] = values["E"] * 1e9  # GPa on the command line, Pa in the API
     try:

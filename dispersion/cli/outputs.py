@@ -153,10 +153,13 @@ def write_outputs(args, result, figure=None) -> None:
             emit(path, data) if isinstance(data, str) else write_bytes(path, data)
 
 
-def warn_failures(result) -> None:
-    """One line on stderr when values were not certified (every one is in every output)."""
+def warn_failures(result, args=None) -> None:
+    """One line on stderr when values were not certified (every one is in every output), and
+    one per input that looks like a unit mix-up (``args.unit_hints``)."""
     from dispersion.rendering import failure_lines
 
+    for hint in getattr(args, "unit_hints", None) or ():
+        print(f"warning: {hint}", file=sys.stderr)
     fails = failure_lines(result)
     if fails:
         print(f"warning: {len(fails)} value(s) not certified, each listed in the output "

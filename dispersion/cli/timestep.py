@@ -97,6 +97,6 @@ def run(args) -> int:
                            material=material, h=1.0 if args.h is None else args.h, n=args.n,
                            wave_speed=args.c, contact=args.contact or "top",
                            gamma_s=args.gamma_s, certify=args.certify)
-    warn_failures(table)
+    warn_failures(table, args)
     write_outputs(args, table)
     return 0

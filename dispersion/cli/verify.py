@@ -37,6 +37,8 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
+    if not (args.files or args.paper):  # a usage error: before the claims machinery loads
+        raise InputError("give at least one claims FILE (or --paper)")
     from dispersion.claims.report import plain
 
     try:
@@ -52,8 +54,6 @@ def _run(args) -> int:
 
     # every option is checked before a claims file is read or a derivation starts
     paths = list(args.files) + ([paper_claims_path()] if args.paper else [])
-    if not paths:
-        raise InputError("give at least one claims FILE (or --paper)")
     check_outputs(args, "verify")
     if args.junit is not None:
         junit = check_output_file(args.junit, option="--junit")

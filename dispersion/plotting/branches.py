@@ -281,9 +281,12 @@ def figure_branch_table(table):
         ax_err.set_title("error of each exact branch against the discrete mode of the same "
                          "shape\n(MAC >= 0.5; no curve: no discrete mode resembles it)",
                          fontsize="small")
+    import re
     import textwrap
 
-    fig.suptitle(textwrap.fill(table.title(), 110), fontsize="medium")
+    # an interval "[0, 8]" is never split over two lines (a no-break space inside it)
+    title = re.sub(r"\[([^\]]*?), ", "[\\1,\u00a0", table.title())
+    fig.suptitle(textwrap.fill(title, 110), fontsize="medium")
     return fig
 
 

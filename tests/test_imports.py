@@ -37,7 +37,7 @@ NEEDS = {
     # the Lamb-wave calculator (issue 28): no sympy, no scipy, no matplotlib
     "branches --exact --material steel --thickness 3 --frequency 200": {"numpy", "flint"},
     # a usage error answers before the heavy imports (the mass registry needs numpy)
-    "branches --mass singlar": {"numpy"}, "series --order x": set(),
+    "branches --mass singlar": {"numpy"}, "series --order x": {"flint"},  # (the bounds)
     # a numeric 1D bar of 20 elements: numpy only (no sympy through the B-splines, no scipy)
     "impact signorini-1d --t-end 0.5": {"numpy"},
 }

@@ -44,7 +44,7 @@ def test_signorini_standard_newmark_is_flagged_on_stderr_and_in_json(capsys):
     assert main(["impact", "signorini-1d", "--mass", "lumped", "--scheme", "standard",
                  "--t-end", "3", "--format", "json"]) == 0
     out, err = capsys.readouterr()
-    s = json.loads(out)
+    s = json.loads(out)["summary"]
     assert s["energy_flag"] and "unstable" in s["energy_flag"]
     assert s["energy_growth_percent"] > GROWTH_BOUND_PERCENT
     assert err.startswith("warning: signorini-1d (lumped mass, standard)")

@@ -161,8 +161,10 @@ def warn_failures(result, args=None) -> None:
     for hint in getattr(args, "unit_hints", None) or ():
         print(f"warning: {hint}", file=sys.stderr)
     fails = failure_lines(result)
-    if fails:
-        print(f"warning: {len(fails)} value(s) not certified, each listed in the output "
+    if len(fails) == 1:
+        print(f"warning: {fails[0]}", file=sys.stderr)
+    elif fails:
+        print(f"warning: {len(fails)} values not certified, each listed in the output "
               f"('# failure:' lines of CSV, 'failures' of JSON); first: {fails[0]}",
               file=sys.stderr)
 

@@ -242,7 +242,8 @@ class SignoriniResult(Rendered):
     @property
     def failures(self) -> tuple[str, ...]:
         flag = self.errors.get("energy_flag")
-        return (f"{flag}; the figures of this run are not a result",) if flag else ()
+        return ((f"signorini-1d ({self.mass} mass, {self.scheme}): {flag}; the figures of this "
+                 "run are not a result",) if flag else ())
 
     def summary(self) -> dict:
         """Inputs, errors and wall time of the run (strict-JSON ready)."""

@@ -75,7 +75,8 @@ class RingResult(Rendered):
     @property
     def failures(self) -> tuple[str, ...]:
         flag = self.summary.get("energy_flag")
-        return (f"{flag}; the figures of this run are not a result",) if flag else ()
+        return ((f"ring ({self.mass} mass, {self.scheme}): {flag}; the figures of this run are "
+                 "not a result",) if flag else ())
 
     def to_dict(self) -> dict:
         """JSON-ready dict: scenario, summary and the time histories as lists."""

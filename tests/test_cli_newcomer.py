@@ -161,6 +161,7 @@ def test_the_readme_shows_what_the_calculator_prints(capsys, monkeypatch):
     assert capsys.readouterr().out.startswith(block)
 
 
+@pytest.mark.slow  # 400 kappa of two masses, paired by shape, and a PNG
 def test_the_readme_figure_2_command_draws_figure_2(tmp_path, monkeypatch, capsys):
     # issue 26 item 7: the README's "Figure 2" command gives the paper's Figure 2 (r = 1/2),
     # and says so in what it writes (rendered from the result)

@@ -6,9 +6,8 @@
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
-
-import numpy as np
 
 from dispersion.errors import InputError, check_positive, check_positive_int
 
@@ -47,7 +46,7 @@ class Newmark:
     reuse_tangent: bool = True
 
     def __post_init__(self):
-        if not (np.isfinite(self.beta) and 0 <= self.beta <= 0.5):
+        if not (math.isfinite(self.beta) and 0 <= self.beta <= 0.5):
             raise InputError(f"beta must lie in [0, 0.5] (0: explicit), got {self.beta}")
         check_positive("gamma", self.gamma)
         if self.scheme not in CONTACT_TREATMENTS:

@@ -36,8 +36,6 @@ from collections.abc import Mapping
 
 from typing import TYPE_CHECKING
 
-import numpy as np
-
 from dispersion import defaults
 from dispersion.errors import (IndefiniteMassWarning, InputError, as_real, check_choice,
                      check_positive_int, check_real_in_range)
@@ -95,6 +93,7 @@ def redistribution_matrix(
         Weights outside [0, 1] raise :class:`InputError` unless this is set; then they give
         an :class:`IndefiniteMassWarning` (the lumped singular mass loses definiteness).
     """
+    import numpy as np
     import sympy
 
     n = check_positive_int("n (number of basis functions)", n, minimum=2)
@@ -143,6 +142,7 @@ def redistribution_matrix(
 
 def row_sum_lump(M):
     """Diagonal matrix of row sums of ``M`` (sympy, numpy or scipy.sparse in, same kind out)."""
+    import numpy as np
     if is_exact(M):
         import sympy
 
@@ -156,6 +156,7 @@ def row_sum_lump(M):
 
 def redistributed_mass(M, R, lumped: bool = False):
     """:math:`R^T M R` (eq 1 left), or its row sums with ``lumped=True`` (eq 1 right)."""
+    import numpy as np
     if is_exact(M):
         import sympy
 

@@ -102,12 +102,14 @@ class CriticalSteps(Rendered):
 
 
 def default_rules(model: str) -> tuple[str, ...]:
-    """Every registered rule that applies to ``model``: the bar has no contact set, so the
-    singular rules (and rules with zero rows) are left out there."""
-    from dispersion.symbolic.mass_rule import RULE_NAMES, get_rule
+    """Every registered rule that applies to ``model``: the Bloch plate takes the rules with
+    one B-spline symbol along x (:data:`~dispersion.symbolic.mass_rule.BLOCH_RULE_NAMES`); the
+    bar has no contact set, so the singular rules (and rules with zero rows) are left out
+    there."""
+    from dispersion.symbolic.mass_rule import BLOCH_RULE_NAMES, RULE_NAMES, get_rule
 
     if model != "bar":
-        return RULE_NAMES
+        return BLOCH_RULE_NAMES
     return tuple(r for r in RULE_NAMES
                  if not (get_rule(r).redistributes or get_rule(r).states.zero_rows))
 

@@ -256,15 +256,15 @@ class Rendered:
         return {}
 
     def to_json(self) -> dict:
-        """Strict-JSON data: ``title``, ``header``, ``columns``, ``rows``, ``failures`` and the
-        result's own extra keys (non-finite numbers become ``null``)."""
+        """Strict-JSON data: ``title``, ``header``, ``columns``, ``rows``, ``failures``, the
+        package version and the result's own extra keys (non-finite numbers become ``null``)."""
         from dispersion.results import jsonable
 
         cols = self.columns()
         out = {"title": self.title(), "header": list(self.header_lines()),
                "columns": list(cols),
                "rows": [{c: row.get(c) for c in cols} for row in self.rows()],
-               "failures": failure_lines(self)}
+               "failures": failure_lines(self), "dispersion-iga": _version()}
         out.update(self.json_extra())
         return jsonable(out)
 

@@ -89,7 +89,7 @@ def test_no_module_imports_one_that_imports_it_back():
 LAYERS = (("symbolic",), ("waves",), ("contact", "claims", "simulation"),
           ("studies", "plotting"), ("report",), ("cli",))
 BASE = ("dispersion.errors", "dispersion.defaults", "dispersion.results", "dispersion.io",
-        "dispersion.staging", "dispersion.sweep", "dispersion.testing")
+        "dispersion.staging", "dispersion.sweep", "dispersion.testing", "dispersion.rendering")
 
 
 def test_the_simulation_wing_imports_only_the_layers_below():

@@ -247,13 +247,16 @@ def test_simulate_command_writes_signals_with_their_inputs(tmp_path, capsys):
             "--format", "json"]
     assert main(args) == 0
     out = json.loads(capsys.readouterr().out)
-    assert out["strip"]["mass"] == "lumped" and out["dofs"] > 0 and "failures" in out
+    summary = out["summary"]
+    assert summary["strip"]["mass"] == "lumped" and summary["dofs"] > 0 and "failures" in out
+    assert out["columns"][:2] == ["t [H/c_T]", "t [us]"] and len(out["rows"]) == \
+        summary["n_steps"]
     lines = csv_path.read_text().splitlines()
     header = [ln for ln in lines if ln.startswith("#")]
     assert any(ln.startswith("# material: steel") for ln in header)
     columns = lines[len(header)].split(",")
     assert columns[:2] == ["t [H/c_T]", "t [us]"] and len(columns) == 2 + 2 * 2
-    assert len(lines) - len(header) - 1 == out["n_steps"]
+    assert len(lines) - len(header) - 1 == summary["n_steps"]
     assert fig.stat().st_size > 0
     assert main(["simulate", "--courant", "1.5"]) == 2
     err = capsys.readouterr().err.strip().splitlines()

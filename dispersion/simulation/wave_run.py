@@ -35,14 +35,19 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from dispersion.rendering import Rendered
 from dispersion.simulation.strip import Strip
 
 __all__ = ["WaveRun", "simulate", "Strip"]
 
 
 @dataclass(frozen=True, repr=False)
-class WaveRun:
+class WaveRun(Rendered):
     """A simulated burst with its reference, errors, prediction, costs and failures.
+
+    It renders itself (:class:`dispersion.rendering.Rendered`): its rows are the signals
+    (every station's record and reference, CSV and JSON), its text and Markdown forms the
+    errors, the prediction and the cost.
 
     ``records[k, s]`` is the particle velocity (v_x for S0, v_y for A0, on the mid-plane, per
     unit traction over mu, in units of c_T) at station s and time ``times[k]`` (the half steps
@@ -181,54 +186,50 @@ class WaveRun:
             "nbytes": self.nbytes, "failures": self.failures,
         })
 
-    def to_json(self) -> dict:
-        from dispersion.results import jsonable
+    def json_extra(self) -> dict:
+        """The run without its signals beside them (:meth:`summary`)."""
+        return {"summary": self.summary()}
 
-        out = self.summary()
-        out["title"] = self.title()
-        out["header"] = self.header_lines()
-        out["signals"] = {"columns": list(self.columns()),
-                          "data": jsonable(np.column_stack(
-                              [self.times]
-                              + [self.records[:, s] for s in range(self.records.shape[1])]
-                              + [self.reference[:, s] for s in range(self.records.shape[1])]))}
-        return out
+    def station_lines(self) -> list[str]:
+        """The errors at every station and the prediction, one line each (text forms)."""
+        lines = []
+        for x, e in zip(self.plan.stations[1:], self.errors):
+            lam = (x - self.plan.stations[0]) / self.plan.wavelength
+            phase = (f"phase {e.phase_error:+.4g} rad (phase velocity "
+                     f"{100 * e.phase_velocity_error:+.4g} %)" if self.phase_certain
+                     else "phase not followed")
+            lines.append(f"after {lam:.4g} wavelengths: arrival {100 * e.arrival_error:+.4g} % "
+                         f"(peak), {100 * e.energy_arrival_error:+.4g} % (energy); {phase}; "
+                         f"L2 {e.l2_error:.4g}")
+        pred = self.prediction
+        if pred is not None and pred.failure is None:
+            band = ("" if self.band_prediction is None else
+                    f", {100 * self.band_prediction:+.4g} % (energy, over the band)")
+            lines.append(f"predicted by the fully discrete branch: arrival "
+                         f"{100 * pred.arrival_error:+.4g} % (carrier){band}; phase "
+                         f"{pred.phase_error:+.4g} rad (phase velocity "
+                         f"{100 * pred.phase_velocity_error:+.4g} %)")
+        lo, med, hi = self.seconds_per_step
+        lines.append(f"cost: {med * self.n_steps:.3g} s for {self.n_steps} steps of "
+                     f"{self.dofs} DOFs ({med:.3g} s per step, {lo:.3g} to {hi:.3g} over the "
+                     f"timed segments; {self.seconds_per_time / self.plan.time_unit_us:.3g} s "
+                     f"per simulated us); today's modelled cost {self.modelled_cost:.4g} "
+                     f"DOF-steps per H/c_T; {self.nbytes / 1e6:.3g} MB")
+        return lines
 
-    def csv_text(self) -> str:
-        """The signals as CSV after ``#`` lines with the inputs (and failures)."""
-        import csv
-        import io
+    def to_text(self, digits: int = 7) -> str:
+        """Title, the errors at every station, the prediction and the cost, the inputs and
+        the failures (the signals themselves are in the CSV and JSON forms)."""
+        lines = [self.title(), "", *self.station_lines(), "", *self.header_lines()]
+        lines += ([""] + [f"failure: {f}" for f in self.failures] if self.failures else [])
+        return "\n".join(lines)
 
-        buf = io.StringIO()
-        for line in [self.title()] + self.header_lines():
-            buf.write(f"# {line}\n")
-        for f in self.failures:
-            buf.write(f"# failure: {f}\n")
-        w = csv.writer(buf, lineterminator="\n")
-        w.writerow(self.columns())
-        t = self.times
-        block = np.column_stack([t, t * self.plan.time_unit_us]
-                                + [c for s in range(self.records.shape[1])
-                                   for c in (self.records[:, s], self.reference[:, s])])
-        for row in block:
-            w.writerow([repr(float(v)) for v in row])
-        return buf.getvalue()
-
-    def to_dataframe(self):
-        import pandas as pd
-
-        return pd.DataFrame(self.rows(), columns=list(self.columns()))
-
-    def __repr__(self) -> str:
-        e = self.far
-        return (f"WaveRun({self.strip.label()}: {self.n_steps} steps, {self.dofs} DOFs; "
-                f"arrival error {e.arrival_error:+.3g}, {len(self.failures)} failures)")
-
-    def _repr_html_(self) -> str:
-        import html
-
-        items = "".join(f"<li>{html.escape(line)}</li>" for line in self.header_lines())
-        return f"<p><b>{html.escape(self.title())}</b></p><ul>{items}</ul>"
+    def to_markdown(self, digits: int = 7) -> str:
+        parts = [f"**{self.title()}**", "\n".join(f"- {x}" for x in self.station_lines()),
+                 "\n".join(f"- {x}" for x in self.header_lines())]
+        if self.failures:
+            parts.append("\n".join(f"- failure: {f}" for f in self.failures))
+        return "\n\n".join(parts)
 
 
 def simulate(strip: Strip, *, bloch: bool = True, predict: bool = True, segments: int = 5,

@@ -312,7 +312,7 @@ def _point(N, energy, peak=None, predicted=None, seconds=1.0, failures=()):
 
     peak = energy if peak is None else peak
     return SweepPoint("S0", 2, "lumped", N, 4, 100, "diagonal", 10, 0.1, 0.11, 0.11, seconds,
-                      (0.1, 0.1, 0.1), 0.0, 1.0, 1e3, 10, max(abs(peak), abs(energy)), peak,
+                      (0.1, 0.1, 0.1), 0.0, 1.0, 1e3, 1e4, 10, max(abs(peak), abs(energy)), peak,
                       energy, 0.0, 0.0, 0.0, 0.0, predicted, 0.0, 0.0, None, None, failures,
                       "w")
 

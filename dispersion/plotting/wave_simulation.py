@@ -14,20 +14,28 @@ _MARKERS = "osD^v<>pPX*h"
 
 
 def _style(data):
+    from matplotlib import colormaps
+
     rules = list(data["rules"])
     degrees = sorted({pt["p"] for pt in data["points"]})
-    colours = {rule: f"C{i % 10}" for i, rule in enumerate(rules)}
+    palette = colormaps["tab10" if len(rules) <= 10 else "tab20"]
+    colours = {rule: palette(i % palette.N) for i, rule in enumerate(rules)}
     markers = {p: _MARKERS[i % len(_MARKERS)] for i, p in enumerate(degrees)}
     return rules, degrees, colours, markers
 
 
-def _legend(ax, data, where="lower left"):
+def _handles(data):
+    from matplotlib.lines import Line2D
+
     rules, degrees, colours, markers = _style(data)
-    for rule in rules:
-        ax.scatter([], [], color=colours[rule], marker="s", label=rule)
-    for p in degrees:
-        ax.scatter([], [], color="0.4", marker=markers[p], label=f"p = {p}")
-    ax.legend(fontsize="x-small", ncol=2, loc=where)
+    return ([Line2D([], [], ls="", marker="s", color=colours[r], label=r) for r in rules]
+            + [Line2D([], [], ls="", marker=markers[p], color="0.4", label=f"p = {p}")
+               for p in degrees])
+
+
+def _legend(ax, data, where="lower left"):
+    ax.legend(handles=_handles(data) + ax.get_legend_handles_labels()[0],
+              fontsize="x-small", ncol=2, loc=where)
 
 
 def plot_pareto(data: dict, mode: str = "S0", ax=None):
@@ -60,8 +68,8 @@ def plot_pareto(data: dict, mode: str = "S0", ax=None):
                     ha="right", va="bottom", fontsize="x-small", color="0.3")
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlabel("measured cost: wall seconds of the explicit loop (same simulated time; "
-                  "bar: spread of its five timed segments)")
+    ax.set_xlabel("measured cost: wall seconds of the explicit loop (the same simulated "
+                  "time)\nbar: the spread of its five timed segments")
     ax.set_ylabel("arrival-time error after the travel (larger of peak and energy)")
     s = data["strip"]
     ax.set_title(f"{mode}: {s['cycles']}-cycle burst, kappa_c = {s['kappa_c']:g}, "
@@ -88,7 +96,7 @@ def plot_prediction(data: dict, mode: str = "S0"):
     velocity; the diagonal and the band within which the prediction is said to hold."""
     import numpy as np
 
-    fig = new_figure(figsize=(15.0, 5.0))
+    fig = new_figure(figsize=(15.0, 6.0))
     left, middle, right = fig.subplots(1, 3)
     _, _, colours, markers = _style(data)
     rtol, atol = data["prediction_rtol"], data["prediction_atol"]
@@ -109,15 +117,17 @@ def plot_prediction(data: dict, mode: str = "S0"):
                     ax.scatter(abs(x), abs(y), marker="x", s=16, color="k", lw=0.7, zorder=4)
                 lo, hi = min(lo, abs(x), abs(y)), max(hi, abs(x), abs(y))
         if hi > 0:
-            grid = np.geomspace(max(lo, 1e-8) / 2, hi * 2, 50)
+            lo = max(lo, 1e-8)
+            grid = np.geomspace(lo / 2, hi * 2, 50)
             ax.plot(grid, grid, color="k", lw=0.8)
             width = np.maximum(rtol * grid, atol)
-            ax.fill_between(grid, np.maximum(grid - width, grid * 1e-3), grid + width,
+            ax.fill_between(grid, np.maximum(grid - width, lo / 3), grid + width,
                             color="0.85", zorder=1, label=f"holds: within {100 * rtol:g} % "
                             f"or {atol:g}")
+            ax.set_ylim(lo / 3, hi * 3)
         ax.set_xscale("log")
         ax.set_yscale("log")
-        ax.set_xlabel(f"predicted {what} (fully discrete branch over {where})")
+        ax.set_xlabel(f"predicted {what}\n(fully discrete branch over {where})")
         ax.set_ylabel(f"measured {what}")
         ax.grid(True, which="both", lw=0.3, alpha=0.5)
     left.set_title("arrival time against the carrier's group delay\nhollow = envelope peak, "
@@ -125,8 +135,9 @@ def plot_prediction(data: dict, mode: str = "S0"):
     middle.set_title("energy arrival against the group delay averaged over\nthe burst's "
                      "spectrum at the reference station", fontsize="small")
     right.set_title("phase velocity of the carrier over the travel", fontsize="small")
-    _legend(left, data, "upper left")
     right.legend(fontsize="x-small", loc="upper left")
+    fig.legend(handles=_handles(data), loc="outside lower center", ncol=10,
+               fontsize="x-small")
     fig.suptitle(f"{mode}: what the dispersion analysis predicted against what the simulation "
                  "measured", fontsize="medium")
     return fig
@@ -155,21 +166,25 @@ def plot_signals(data: dict):
 
 
 def plot_costs(data: dict, ax=None):
-    """Measured wall seconds per simulated time against today's modelled cost (DOFs x steps
-    per unit time): filled = diagonal mass (a division), hollow = factorized (a solve)."""
+    """Measured wall seconds per simulated time against today's modelled cost (steps per unit
+    time x DOFs x the rule's modelled work per DOF): filled = diagonal mass (a division),
+    hollow = any other step (a solve, a banded or a dense product)."""
     ax = axes(ax, size=(7.0, 5.0))
     _, _, colours, markers = _style(data)
     for pt in data["points"]:
         diag = pt["mass_kind"] == "diagonal"
-        ax.scatter(pt["modelled_cost"], pt["seconds_per_time"], marker=markers[pt["p"]], s=30,
+        if pt.get("modelled_work") is None:
+            continue
+        ax.scatter(pt["modelled_work"], pt["seconds_per_time"], marker=markers[pt["p"]], s=30,
                    facecolor=colours[pt["mass"]] if diag else "none",
                    edgecolor=colours[pt["mass"]], lw=0.9)
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlabel("modelled cost of today's chart: DOFs / dt  [DOF-steps per H/c_T]")
+    ax.set_xlabel("modelled cost of today's chart: DOFs x work per DOF / dt  "
+                  "[multiply-adds per H/c_T]")
     ax.set_ylabel("measured: wall seconds of the loop per H/c_T simulated")
-    ax.set_title("a model that counted the solve as free would put hollow and filled markers "
-                 "on one line", fontsize="small")
+    ax.set_title("filled: a division per DOF; hollow: a solve, a banded or a dense product\n"
+                 "a right model would put every marker on one line", fontsize="small")
     _legend(ax, data, "upper left")
     ax.grid(True, which="both", lw=0.3, alpha=0.5)
     return ax.figure

@@ -53,6 +53,10 @@ def _size(x, digits: int = 3) -> str:
     return "-" if x is None else f"{100 * x:.{digits}g} %"
 
 
+def _work(x) -> str:
+    return "-" if x is None else f"{x:.3g}"
+
+
 def _seconds(c) -> str:
     return "-" if c["loop_seconds"] is None else format(c["loop_seconds"], ".3g")
 
@@ -108,9 +112,10 @@ def _prediction_summary(data) -> str:
 def _points_table(data) -> str:
     rows = ["| mode | p | mass | N | n | DOFs | mass | steps | dt / dt_crit(mesh) | "
             "dt_crit mesh / Bloch | loop [s] | s per step (min-median-max) | memory [MB] | "
-            "modelled DOFs/dt | peak arrival | energy arrival | predicted arrival | "
+            "modelled DOFs/dt | modelled work/dt | peak arrival | energy arrival | "
+            "predicted arrival | "
             "phase-velocity err. | predicted | L2 | failures |",
-            "|" + "---|" * 21]
+            "|" + "---|" * 22]
     for pt in data["points"]:
         sps = pt["seconds_per_step"]
         ratio = ("-" if pt["dt_bloch"] is None else f"{pt['dt_crit'] / pt['dt_bloch']:.4g}")
@@ -119,7 +124,8 @@ def _points_table(data) -> str:
             f"{pt['n']} | {pt['dofs']} | {pt['mass_kind']} | {pt['n_steps']} | "
             f"{pt['dt'] / pt['dt_crit']:.3g} | {ratio} | {pt['loop_seconds']:.3g} | "
             f"{sps[0]:.2e} / {sps[1]:.2e} / {sps[2]:.2e} | {pt['nbytes'] / 1e6:.3g} | "
-            f"{pt['modelled_cost']:.3g} | {_pct(pt['peak_arrival_error'])} | "
+            f"{pt['modelled_cost']:.3g} | {_work(pt['modelled_work'])} | "
+            f"{_pct(pt['peak_arrival_error'])} | "
             f"{_pct(pt['energy_arrival_error'])} | {_pct(pt['predicted_arrival_error'])} | "
             f"{_pct(pt['phase_velocity_error'])} | {_pct(pt['predicted_phase_velocity_error'])} | "
             f"{pt['l2_error']:.3g} | {'; '.join(pt['failures']) or ''} |")
@@ -184,10 +190,10 @@ def render(data: dict, out: Path) -> str:
         "envelope centroid's (energy) error; a run with a measurement failure meets no "
         "target. 'any': the cheapest run within the target; 'converged': the cheapest whose "
         "error is not a cancellation (the signed error keeps its sign from the next coarser "
-        "N, and the next finer N does no worse). Cost: wall seconds of the explicit loop (median of five timed segments "
-        "times the steps; every run simulates the same time). Timed on a shared, loaded "
-        "2-core machine while other work ran: the seconds are indicative, the lead re-times "
-        "on a quiet machine.\n\n"
+        "N, and the next finer N does no worse). Cost: wall seconds of the explicit loop "
+        "(median of five timed segments times the steps; every run simulates the same time). "
+        "Timed on a shared, loaded 2-core machine while other work ran: the seconds are "
+        "indicative, the lead re-times on a quiet machine.\n\n"
         + _cheapest_table(data) + "\n\n"
         "![measured Pareto front](wave_simulation_pareto.png)\n\n"
         "### Does the dispersion analysis predict the simulation?\n\n"
@@ -205,8 +211,10 @@ def render(data: dict, out: Path) -> str:
         "![predicted against measured](wave_simulation_prediction.png)\n\n"
         "### Signals\n\n![signals against the exact reference](wave_simulation_signals.png)\n\n"
         "### Measured cost against today's modelled cost\n\n"
-        "The cost-accuracy chart models the cost as steps per unit time x DOFs, the same for "
-        "a diagonal and a factorized mass; the loop's seconds say what the solve costs.\n\n"
+        "The cost-accuracy chart models the cost as steps per unit time x DOFs x the rule's "
+        "modelled work per DOF and step (a stiffness row plus a division, a banded product or "
+        "a solve); the loop's seconds say what each step costs on this machine. Were the model "
+        "right, every marker would lie on one line.\n\n"
         "![measured against modelled cost](wave_simulation_costs.png)\n\n"
         f"Not run:{refused}\n\nFailures of the study:{failures}\n\n"
         "<details><summary>Every run</summary>\n\n" + _points_table(data)

@@ -93,8 +93,20 @@ class WaveRun(Rendered):
 
     @property
     def modelled_cost(self) -> float:
-        """Today's chart's model: steps per unit time x DOFs (DOF-steps per H/c_T)."""
+        """The chart's first model: steps per unit time x DOFs (DOF-steps per H/c_T)."""
         return self.dofs / self.dt
+
+    @property
+    def modelled_work(self) -> float | None:
+        """Today's chart's model (:mod:`dispersion.studies.cost_accuracy`): steps per unit
+        time x DOFs x the rule's modelled multiply-adds per DOF and step (its stated
+        ``explicit_cost``, two dimensions), or None for a rule that states none."""
+        from dispersion.symbolic.mass_rule import get_rule
+
+        cost = getattr(get_rule(self.strip.mass), "explicit_cost", None)
+        if cost is None:
+            return None
+        return self.modelled_cost * cost.work_per_dof(self.strip.p, 2, dofs=self.dofs)
 
     @property
     def far(self):
@@ -183,6 +195,7 @@ class WaveRun(Rendered):
             "prediction": self.prediction, "band_prediction": self.band_prediction,
             "seconds": self.seconds, "seconds_per_step": self.seconds_per_step,
             "seconds_per_time": self.seconds_per_time, "modelled_cost": self.modelled_cost,
+            "modelled_work": self.modelled_work,
             "nbytes": self.nbytes, "failures": self.failures,
         })
 
@@ -213,8 +226,10 @@ class WaveRun(Rendered):
         lines.append(f"cost: {med * self.n_steps:.3g} s for {self.n_steps} steps of "
                      f"{self.dofs} DOFs ({med:.3g} s per step, {lo:.3g} to {hi:.3g} over the "
                      f"timed segments; {self.seconds_per_time / self.plan.time_unit_us:.3g} s "
-                     f"per simulated us); today's modelled cost {self.modelled_cost:.4g} "
-                     f"DOF-steps per H/c_T; {self.nbytes / 1e6:.3g} MB")
+                     f"per simulated us); modelled: {self.modelled_cost:.4g} DOF-steps per H/c_T"
+                     + ("" if self.modelled_work is None else
+                        f", {self.modelled_work:.4g} multiply-adds per H/c_T")
+                     + f"; {self.nbytes / 1e6:.3g} MB")
         return lines
 
     def to_text(self, digits: int = 7) -> str:

@@ -20,7 +20,8 @@ Rules stated before any result was looked at:
   run and is listed, with the bound;
 * **the cheapest** (p, rule, N) for a target is the run of least measured loop time that
   meets it; the same is reported for the modelled cost of today's chart (steps per unit
-  time x DOFs), so the two choices can be compared;
+  time x DOFs x the rule's modelled work per DOF, :mod:`dispersion.studies.cost_accuracy`),
+  so the two choices can be compared;
 * **the prediction holds** for a run when the measured error lies within
   :data:`PREDICTION_RTOL` of the predicted one (or :data:`PREDICTION_ATOL` absolute);
 * **the verification** of the reference: one converged run (``WaveSimulationSize.verification``:
@@ -121,6 +122,7 @@ class SweepPoint:
     setup_seconds: float
     seconds_per_time: float
     modelled_cost: float
+    modelled_work: float | None
     nbytes: int
     arrival_error: float
     peak_arrival_error: float
@@ -171,7 +173,7 @@ class Cheapest:
     mass: str | None
     elements_per_wavelength: float | None
     loop_seconds: float | None
-    modelled_cost: float | None
+    modelled_work: float | None
     arrival_error: float | None
     cancellation: bool = False
     robust: bool = False
@@ -291,7 +293,8 @@ def _point(run, worker: str) -> SweepPoint:
         run.strip.mode, run.strip.p, run.strip.mass, run.strip.elements_per_wavelength,
         run.plan.n, run.dofs, run.mass_kind, run.n_steps, run.dt, run.step.dt_crit,
         run.step.dt_bloch, run.seconds_per_step[1] * run.n_steps, run.seconds_per_step,
-        setup, run.seconds_per_time, run.modelled_cost, run.nbytes, arrival, e.arrival_error,
+        setup, run.seconds_per_time, run.modelled_cost, run.modelled_work, run.nbytes,
+        arrival, e.arrival_error,
         e.energy_arrival_error, e.phase_error if run.phase_certain else None,
         e.phase_velocity_error if run.phase_certain else None, e.l2_error,
         e.out_of_band, None if pred is None else pred.arrival_error,
@@ -348,12 +351,13 @@ def _cancellation(points, pt) -> bool:
 def _cheapest(points, mode, target, by, robust: bool = False):
     ok = [pt for pt in points if pt.mode == mode and pt.ok and pt.arrival_error <= target
           and not (robust and _cancellation(points, pt))]
-    key = (lambda q: q.loop_seconds) if by == "measured" else (lambda q: q.modelled_cost)
+    key = ((lambda q: q.loop_seconds) if by == "measured" else
+           (lambda q: math.inf if q.modelled_work is None else q.modelled_work))
     if not ok:
         return Cheapest(mode, target, by, None, None, None, None, None, None, False, robust)
     best = min(ok, key=key)
     return Cheapest(mode, target, by, best.p, best.mass, best.elements_per_wavelength,
-                    best.loop_seconds, best.modelled_cost, best.arrival_error,
+                    best.loop_seconds, best.modelled_work, best.arrival_error,
                     _cancellation(points, best), robust)
 
 

@@ -163,9 +163,9 @@ def _settings(args) -> dict:
     if args.exact and args.mass_rule:
         raise InputError("--mass-rule does not apply with --exact (no discrete patch)")
     if args.mass_rule:
-        from dispersion.symbolic.mass_rule import rule_from_toml
+        from dispersion.symbolic.mass_rule_file import read_rule_file
 
-        rules = [rule_from_toml(path) for path in args.mass_rule]
+        rules = [read_rule_file(path) for path in args.mass_rule]
     else:
         rules = []
     masses = [] if args.exact else (args.mass or ([] if rules else ["consistent", "singular"]))

@@ -3,7 +3,7 @@
 ``dispersion timestep --mass hrz --p 2 --material steel --h 1`` prints, per rule, the largest
 discrete frequency over the Brillouin zone, :math:`\\Delta t_{crit} = 2/\\omega_{max}` in
 seconds and its ratio to the consistent mass (:func:`dispersion.waves.timestep.critical_step`).
-``--mass-rule FILE.toml`` adds a user rule (:func:`dispersion.symbolic.mass_rule.rule_from_toml`).
+``--mass-rule FILE.toml`` adds a user rule (:func:`dispersion.symbolic.mass_rule_file.read_rule_file`).
 """
 from __future__ import annotations
 
@@ -53,7 +53,8 @@ def register(sub) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from dispersion.symbolic.mass_rule import RULE_NAMES, rule_from_toml
+    from dispersion.symbolic.mass_rule import RULE_NAMES
+    from dispersion.symbolic.mass_rule_file import read_rule_file
     from dispersion.waves.timestep import critical_step
 
     if args.c is not None and args.model != "bar":
@@ -64,7 +65,7 @@ def run(args: argparse.Namespace) -> int:
         raise InputError("--certify applies to --model plate only (the bar's maximum is exact)")
     material = material_from_args(args, default="steel")
     rules = list(args.mass or ([] if args.mass_rule else RULE_NAMES))
-    rules += [rule_from_toml(path) for path in args.mass_rule]
+    rules += [read_rule_file(path) for path in args.mass_rule]
     if args.model == "bar":
         from dispersion.symbolic.mass_rule import get_rule
 

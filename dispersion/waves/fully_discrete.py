@@ -48,6 +48,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 import sympy
 
+from dispersion.budget import check_time_terms
 from dispersion.errors import InputError, check_positive, check_positive_int, check_real_in_range
 
 __all__ = ["SCHEMES", "TimeScheme", "time_scheme", "time_frequency", "fully_discrete_branches",
@@ -172,7 +173,7 @@ def time_series(order: int, beta=0) -> list:
     >>> time_series(2, sympy.Rational(1, 4))    # trapezoidal rule: 1, -1/6 (leads)
     [1, -1/6]
     """
-    order = check_positive_int("order", order)
+    order = check_time_terms(check_positive_int("order", order))  # dispersion.budget
     beta = sympy.nsimplify(beta)
     y = _X / (2 * (1 + beta * _X))
     g = 2 * sum((2 * y) ** m / (m**2 * sympy.binomial(2 * m, m)) for m in range(1, order + 1))
@@ -196,7 +197,7 @@ def fully_discrete_series(omega2: dict, order: int, beta=0) -> sympy.Expr:
     lowest = min((k for k, v in omega2.items() if v != 0), default=None)
     if lowest is None or lowest < 1:
         raise InputError("omega2 must be a series with a first nonzero term at kappa^k, k >= 1")
-    terms = order // lowest
+    terms = check_time_terms(order // lowest, "order // lowest power")  # dispersion.budget
     g = time_series(max(terms, 1), beta)
     S = sum(sympy.sympify(v) * kappa**k for k, v in omega2.items() if k <= order)
     out = sympy.Integer(0)

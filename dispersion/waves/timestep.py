@@ -47,6 +47,7 @@ from dataclasses import dataclass
 import numpy as np
 import sympy
 
+from dispersion.budget import check_bar_degree, check_phases
 from dispersion.errors import InputError, check_positive, check_positive_int
 from dispersion.symbolic.mass_rule import get_rule, x_mass_coefficients
 from dispersion.waves.bar_dispersion import bar_rule
@@ -74,7 +75,7 @@ def bar_omega_squared(mass, p: int) -> sympy.Expr:
     -6*(z - 1)/(z + 2)
     """
     rule = bar_rule(mass)
-    p = check_positive_int("degree p", p)
+    p = check_bar_degree(check_positive_int("degree p", p))  # cost bound: dispersion.budget
     c11, a = _coefficients(rule, p)
     d = sum(v * sympy.chebyshevt(abs(L), _z) for L, v in c11.items())
     m = sum(v * sympy.chebyshevt(abs(L), _z) for L, v in a.items())
@@ -235,7 +236,7 @@ def patch_omega_max(patch, nu: float, n_theta: int = 65, exact: bool = True
 
     from dispersion.waves.pencil_frequencies import pencil_frequencies
 
-    n_theta = check_positive_int("n_theta", n_theta, minimum=3)
+    n_theta = check_phases(check_positive_int("n_theta", n_theta, minimum=3), 2 * patch.n)
     if patch.model != "bloch" or isinstance(patch.r, sympy.Symbol):
         raise InputError("the critical step needs a Bloch patch with a numeric aspect ratio r")
     r = float(patch.r)

@@ -1,0 +1,153 @@
+"""Work a request may ask for: stated cost rules, checked before the work starts.
+
+Every entry point whose cost grows without bound in one of its arguments checks that
+argument here first, so the API, the claims files and the command line refuse the same
+requests, at once, with an :class:`~dispersion.errors.InputError` naming the bound. The
+budget of one request is about a minute of CPU and a gibibyte of memory on the 2-core
+development machine; each bound is the largest size whose measured (fitted) cost stays
+inside it. The measurements are ``benchmarks/bench_request_costs.py`` (CPU seconds, the
+machine shared with other jobs: the lead re-times them on a quiet machine).
+
+1. **Exact maximum of the periodic bar** (:func:`dispersion.waves.timestep.bar_omega_max`,
+   ``critical_step(model="bar")``, claims of kind ``critical_step`` on the bar, ``dispersion
+   timestep --model bar``): a rational function of :math:`\\cos\\theta` of degree about p is
+   maximised exactly (its critical points are algebraic numbers). Measured CPU per call
+   (rule and the consistent reference): p = 10, 12, 13, 14 take 2.8, 6.5, 9.8, 21 s for
+   HRZ and 5.8, 11.5, 15.8, 38 s for nodal-greville, the dearest rule; a fit
+   :math:`t = a\\,b^p` over p = 8..14 gives b = 1.6 to 1.8 per degree, so p = 15 would take
+   60 to 70 s and p = 16 timed out at 120 s (HRZ, lumped, nodal-greville). Bound:
+   :data:`BAR_P_MAX` = 14.
+2. **Fully discrete series** (:func:`dispersion.waves.fully_discrete.fully_discrete_series`,
+   :func:`~dispersion.waves.fully_discrete.time_series`): the time series to m terms
+   (:math:`m` = order // lowest power) is a sympy series of degree m. Measured for
+   ``{2: 1}``: m = 64, 128, 256 take 0.8, 1.7, 12.6 s (growth about m^3); m = 512 timed out
+   at 120 s. Bound: :data:`TIME_TERMS_MAX` = 128 terms.
+3. **Fully discrete series of the bar in claims** (kind ``fully_discrete_series``, model
+   ``bar``): the semi-discrete series is a sympy series of :math:`\\omega^2(\\cos\\kappa)` to
+   the claim's highest power of kappa. Measured (HRZ): order 12, 16, 20 take 0.3, 2.3,
+   37 s at p = 1 and order 16 about 3 to 4 s for p = 2 to 8 (order 20 timed out at 90 s
+   from p = 2). Bound: order (highest power of kappa) :data:`BAR_SERIES_ORDER_MAX` = 16,
+   and p at most :data:`BAR_P_MAX`.
+4. **Phases of the critical-step grid** (:func:`dispersion.waves.timestep.patch_omega_max`,
+   ``critical_time_step``, ``critical_step``): every phase holds its stiffness and mass
+   matrices and their eigenvalues, of size 2n; measured 115 KiB a phase at 2n = 48 (10^4
+   phases: 1.3 GiB, 8.9 s) and 1.4 KiB at 2n = 6, about 50 bytes per phase and squared
+   size. Bound: phases x (2n)^2 at most :data:`PHASE_WORK_MAX` = 2e7 (about 1 GiB).
+5. **Worker processes** (:func:`dispersion.sweep.parallel_map`,
+   :func:`dispersion.sweep.process_pool`): at most :data:`dispersion.defaults.MAX_JOBS_PER_CPU`
+   per usable CPU (each holds its own copy of the toolkit, about 150 MB).
+
+>>> check_bar_degree(24)
+Traceback (most recent call last):
+...
+dispersion.errors.InputError: p = 24 is beyond the exact maximum of the periodic bar: at most p = 14 (about a minute of CPU at p = 14; the cost grows about 1.7x per degree)
+"""
+from __future__ import annotations
+
+import numbers
+
+from dispersion import defaults
+from dispersion.errors import InputError
+
+__all__ = ["BAR_P_MAX", "TIME_TERMS_MAX", "BAR_SERIES_ORDER_MAX", "PHASE_WORK_MAX",
+           "check_bar_degree", "check_time_terms", "check_bar_series", "check_phases",
+           "check_jobs", "max_jobs", "check_claim"]
+
+#: Highest degree of the exact maximum of the periodic bar (rule 1).
+BAR_P_MAX = 14
+#: Most terms of the time series of a fully discrete series (rule 2).
+TIME_TERMS_MAX = 128
+#: Highest power of kappa of a fully discrete series claim on the bar (rule 3).
+BAR_SERIES_ORDER_MAX = 16
+#: Most phases x (2n)^2 of the critical-step grid (rule 4).
+PHASE_WORK_MAX = 20_000_000
+
+
+def _integer(name: str, value) -> int:
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        raise InputError(f"{name} must be an integer, got {value!r}")
+    return int(value)
+
+
+def check_bar_degree(p) -> int:
+    """Rule 1: the degree of an exact maximum of the periodic bar."""
+    p = _integer("p", p)
+    if p > BAR_P_MAX:
+        raise InputError(f"p = {p} is beyond the exact maximum of the periodic bar: at most "
+                         f"p = {BAR_P_MAX} (about a minute of CPU at p = {BAR_P_MAX}; the cost "
+                         "grows about 1.7x per degree)")
+    return p
+
+
+def check_time_terms(terms, what: str = "order") -> int:
+    """Rule 2: terms of the time series of a fully discrete series.
+
+    >>> check_time_terms(10**6 // 2, "order // lowest power")
+    Traceback (most recent call last):
+    ...
+    dispersion.errors.InputError: order // lowest power = 500000 terms of the time series, more than the limit of 128 (its cost grows as the cube)
+    """
+    terms = _integer(what, terms)
+    if terms > TIME_TERMS_MAX:
+        raise InputError(f"{what} = {terms} terms of the time series, more than the limit of "
+                         f"{TIME_TERMS_MAX} (its cost grows as the cube)")
+    return terms
+
+
+def check_bar_series(p, order) -> None:
+    """Rule 3: a fully discrete series of the bar to kappa^order at degree p."""
+    check_bar_degree(p)
+    order = _integer("order", order)
+    if order > BAR_SERIES_ORDER_MAX:
+        raise InputError(f"kappa^{order} is beyond the series of the periodic bar: at most "
+                         f"kappa^{BAR_SERIES_ORDER_MAX} (kappa^20 takes over a minute)")
+
+
+def check_phases(n_theta, size: int) -> int:
+    """Rule 4: ``n_theta`` phases of matrices of size ``size`` (2n).
+
+    >>> check_phases(10**9, 6)
+    Traceback (most recent call last):
+    ...
+    dispersion.errors.InputError: n_theta = 1000000000 phases of 6 x 6 matrices is more than the limit of n_theta x size^2 <= 20000000 (about 1 GiB): at most n_theta = 555555
+    """
+    n_theta = _integer("n_theta", n_theta)
+    if n_theta * size * size > PHASE_WORK_MAX:
+        raise InputError(f"n_theta = {n_theta} phases of {size} x {size} matrices is more than "
+                         f"the limit of n_theta x size^2 <= {PHASE_WORK_MAX} (about 1 GiB): at "
+                         f"most n_theta = {PHASE_WORK_MAX // (size * size)}")
+    return n_theta
+
+
+def max_jobs() -> int:
+    """Rule 5: the most worker processes, :data:`~dispersion.defaults.MAX_JOBS_PER_CPU` per
+    usable CPU."""
+    import os
+
+    try:
+        cpus = len(os.sched_getaffinity(0))
+    except AttributeError:  # pragma: no cover - not on Linux
+        cpus = os.cpu_count() or 1
+    return defaults.MAX_JOBS_PER_CPU * max(1, cpus)
+
+
+def check_jobs(jobs, name: str = "jobs") -> int:
+    """Rule 5: a worker count in [1, :func:`max_jobs`]."""
+    if isinstance(jobs, bool) or not isinstance(jobs, numbers.Integral) \
+            or not 1 <= jobs <= max_jobs():
+        raise InputError(f"{name} must be an integer in [1, {max_jobs()}] "
+                         f"({defaults.MAX_JOBS_PER_CPU} per usable CPU), got {jobs!r}")
+    return int(jobs)
+
+
+def check_claim(claim) -> None:
+    """Rules 1 and 3 for a claim of :mod:`dispersion.claims` (other kinds are bounded by
+    the series engine's own limits)."""
+    model = claim.model
+    if getattr(model, "name", None) != "bar":
+        return
+    if claim.kind == "critical_step":
+        check_bar_degree(model.p)
+    elif claim.kind == "fully_discrete_series":
+        order = max((i for (i, _), _ in claim.printed[1:]), default=0)
+        check_bar_series(model.p, order)

@@ -62,6 +62,8 @@ _MODULES = {
     "discrete_error": "waves.discrete_error", "pencil_frequencies": "waves.pencil_frequencies",
     "illinois": "waves.illinois", "mass_check": "symbolic.mass_check",
     "matrix_kind": "symbolic.matrix_kind", "certified_roots": "waves.certified_roots",
+    "mass_rule_file": "symbolic.mass_rule_file", "ownership": "ownership", "budget": "budget",
+    "untrusted": "untrusted",
 }
 _SUBMODULES = tuple(_MODULES)
 

@@ -187,8 +187,9 @@ def test_parallel_map_refuses_more_workers_than_its_bound_before_any_work(monkey
         raise AssertionError("the work started")
 
     monkeypatch.setattr(sweep, "process_pool", never)
+    bound = rf"jobs must be an integer in \[1, {budget.max_jobs()}\]"
     for jobs in (10**6, budget.max_jobs() + 1, 0, True, 2.0):
-        with pytest.raises(InputError, match=rf"jobs must be an integer in \[1, {budget.max_jobs()}\]"):
+        with pytest.raises(InputError, match=bound):
             parallel_map(never, iter(never, None), jobs=jobs, progress=False)
 
 

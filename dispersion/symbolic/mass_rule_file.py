@@ -149,7 +149,8 @@ def _rule(data: dict, file: str) -> MassRule:
         for c, ws in table.items():
             cr = _resolve(c, n)
             if cr in weights:
-                raise InputError(f"mass rule {name!r}: contact index {c} repeats another on n = {n}")
+                raise InputError(f"mass rule {file}: contact index {c} repeats another on "
+                                 f"n = {n}")
             weights[cr] = {_resolve(j, n): w for j, w in ws.items()}
         try:  # what depends on n (indices in range, targets outside the contact set)
             R = redistribution_matrix(n, weights)

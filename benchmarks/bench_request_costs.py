@@ -31,6 +31,10 @@ import numpy as np
 
 _CHILD = """
 import json, resource, sys, time
+import dispersion.budget as budget
+# the bounds are what is measured here: lifted in the child
+budget.BAR_P_MAX = budget.BAR_SERIES_ORDER_MAX = budget.TIME_TERMS_MAX = 10**9
+budget.PHASE_WORK_MAX = 10**18
 {setup}
 t = time.process_time()
 {call}

@@ -268,7 +268,7 @@ def atomic_write(path, mode: str = "w", *, option: str | None = None, notice=Non
                 yield fh
                 fh.flush()
             with _named(way.shown, option):
-                new.commit(perms)
+                new.commit(perms, state.gid)
         except BaseException:
             new.discard()
             raise
@@ -339,7 +339,7 @@ def open_folder(path, *, option: str = "--out", notice=None) -> Iterator[Path]:
                 marker = NewFile(new.fd, MARKER, MARKER, option)
                 _write_all(marker.fd, MARKER_TEXT.encode())
                 marker.commit(0o666 & ~umask())
-                new.commit(mode)
+                new.commit(mode, target.gid)
         except BaseException:
             new.discard()
             raise
@@ -426,7 +426,7 @@ def write_unit(files: Mapping[Path, str | bytes], *, option: str | None = None) 
                 new = NewFile(way.fd, way.name, way.shown, opt)
                 staged[-1][1] = new
                 _write_all(new.fd, data.encode() if isinstance(data, str) else bytes(data))
-                new.sync(perms)
+                new.sync(perms, state.gid)
         checkpoint()
         for way, new in staged:
             with _named(way.shown, option):

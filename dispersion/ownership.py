@@ -80,13 +80,14 @@ class Target:
     """What a writer found at its target: ``kind`` is ``"new"`` (absent), ``"file"``,
     ``"folder"``, ``"stream"`` (a character device or named pipe), ``"stdout"`` or
     ``"stderr"``; ``ident`` is ``(st_dev, st_ino)`` of what exists, ``mode`` its
-    permission bits."""
+    permission bits and ``gid`` its group (both kept by the new version)."""
 
     text: str
     option: str
     kind: str
     ident: tuple[int, int] | None = None
     mode: int | None = None
+    gid: int | None = None
 
     @property
     def shown(self) -> str:
@@ -217,7 +218,7 @@ def file_state(fd: int, name: str, shown: str, option: str) -> Target:
     if st.st_uid != os.geteuid():
         _fail(f"{option} {shown} belongs to another user (uid {st.st_uid}); dispersion "
               "replaces only your own files")
-    return Target(shown, option, "file", (st.st_dev, st.st_ino), stat.S_IMODE(mode))
+    return Target(shown, option, "file", (st.st_dev, st.st_ino), stat.S_IMODE(mode), st.st_gid)
 
 
 def tree(fd: int, shown: str, option: str):
@@ -285,7 +286,8 @@ def folder_state(fd: int, name: str, shown: str, option: str) -> Target:
                 pass
     finally:
         os.close(sub)
-    return Target(shown, option, "folder", (st.st_dev, st.st_ino), stat.S_IMODE(st.st_mode))
+    return Target(shown, option, "folder", (st.st_dev, st.st_ino), stat.S_IMODE(st.st_mode),
+                  st.st_gid)
 
 
 def _stream(text: str) -> str | None:

@@ -158,6 +158,13 @@ def rename_new(fd: int, old: str, new: str) -> None:
     raise FileExistsError(errno.EEXIST, os.strerror(errno.EEXIST), new)
 
 
+def _group(fd: int, gid: int | None) -> None:
+    """Give the open file ``fd`` group ``gid`` where the system allows (a member may)."""
+    if gid is not None and os.fstat(fd).st_gid != gid:
+        with contextlib.suppress(OSError):
+            os.fchown(fd, -1, gid)
+
+
 def _fsync(fd: int) -> None:
     with contextlib.suppress(OSError):  # some file systems cannot sync a folder
         os.fsync(fd)
@@ -249,21 +256,23 @@ class NewFile:
         fcntl.flock(self.fd, fcntl.LOCK_EX)  # alive: not reported as a leftover
         self.done = False
 
-    def commit(self, mode: int) -> None:
-        """``fsync``, give mode ``mode``, rename onto the target, unless the target now
-        breaks the owner rule (then :class:`~dispersion.errors.InputError`, the temporary
-        removed)."""
+    def commit(self, mode: int, gid: int | None = None) -> None:
+        """``fsync``, give mode ``mode`` (and group ``gid``), rename onto the target, unless
+        the target now breaks the owner rule (then :class:`~dispersion.errors.InputError`,
+        the temporary removed)."""
         try:
-            self.sync(mode)
+            self.sync(mode, gid)
             self.swap()
         except BaseException:
             self.discard()
             raise
         self.close()
 
-    def sync(self, mode: int) -> None:
-        """``fsync`` the data and give the file mode ``mode`` (before :meth:`swap`)."""
+    def sync(self, mode: int, gid: int | None = None) -> None:
+        """``fsync`` the data, give the file mode ``mode`` and group ``gid`` (the replaced
+        file's; kept where the system allows), before :meth:`swap`."""
         os.fsync(self.fd)
+        _group(self.fd, gid)
         os.fchmod(self.fd, mode)
         checkpoint()
 
@@ -316,6 +325,7 @@ def _copy_file(src_dir: int, dst_dir: int, name: str, st: os.stat_result) -> Non
             with open(src, "rb", closefd=False) as fin, open(dst, "wb", closefd=False) as fout:
                 shutil.copyfileobj(fin, fout, 1 << 20)
             os.fsync(dst)
+            _group(dst, st.st_gid)
             os.fchmod(dst, stat.S_IMODE(st.st_mode))
             os.utime(dst, ns=(st.st_atime_ns, st.st_mtime_ns))
         finally:
@@ -395,6 +405,7 @@ class NewFolder:
                     if stat.S_ISDIR(st.st_mode):
                         os.mkdir(rel[-1], 0o700, dir_fd=dst)
                         dirs[rel] = (_open_dir(rel[-1], src), _open_dir(rel[-1], dst))
+                        _group(dirs[rel][1], st.st_gid)
                         if _ident(os.fstat(dirs[rel][0])) != _ident(st):
                             raise FileNotFoundError(errno.ENOENT, "changed while copied",
                                                     "/".join(rel))
@@ -412,13 +423,15 @@ class NewFolder:
         finally:
             os.close(old)
 
-    def commit(self, mode: int) -> None:
-        """Swap the new folder in (mode ``mode``); remove what the old one held that was
-        copied. A target that changed since the check is refused (the new folder removed)."""
+    def commit(self, mode: int, gid: int | None = None) -> None:
+        """Swap the new folder in (mode ``mode``, group ``gid``); remove what the old one
+        held that was copied. A target that changed since the check is refused (the new
+        folder removed)."""
         try:
             if self.ignore:
                 os.unlink(".gitignore", dir_fd=self.fd)
             _fsync(self.fd)
+            _group(self.fd, gid)
             os.fchmod(self.fd, mode)
             checkpoint()
             self._swap()

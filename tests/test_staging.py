@@ -96,6 +96,21 @@ def test_a_folder_is_swapped_in_whole_keeping_what_it_held(tmp_path, monkeypatch
     assert sorted(p.name for p in tmp_path.iterdir()) == ["run"]
 
 
+@pytest.mark.skipif(os.geteuid() != 0, reason="needs root to give a file another group")
+def test_a_replaced_file_and_a_carried_one_keep_their_group(tmp_path):
+    other = 65534
+    io.write_text(tmp_path / "a.csv", "old")
+    os.chown(tmp_path / "a.csv", -1, other)
+    io.write_text(tmp_path / "a.csv", "new")
+    out = tmp_path / "run"
+    io.write_files(out, {"a.csv": "old", "sub/b.csv": "b"})
+    for rel in ("", "sub", "sub/b.csv"):
+        os.chown(out / rel, -1, other)
+    io.write_files(out, {"a.csv": "new"})
+    assert {(tmp_path / rel).stat().st_gid for rel in ("a.csv", "run", "run/sub",
+                                                        "run/sub/b.csv")} == {other}
+
+
 def test_a_folder_replaced_during_the_run_is_swapped_back_and_refused(tmp_path):
     out = tmp_path / "run"
     io.write_files(out, {"a.csv": "old"})

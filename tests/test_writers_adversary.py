@@ -31,8 +31,9 @@ import types
 from pathlib import Path
 
 import pytest
-from hypothesis import HealthCheck, example, given, settings
+from hypothesis import HealthCheck, event, example, given, settings
 from hypothesis import strategies as st
+from hypothesis.control import currently_in_test_context
 
 from dispersion import io, staging
 from dispersion.cli import main
@@ -252,6 +253,8 @@ def _run(root: Path, claims: Path, writer: str, states: list[str], plants, capsy
     err = capsys.readouterr().err.strip().splitlines()
     after = snapshot(root)
     assert status in (0, 2), (status, err)
+    if currently_in_test_context():  # counted by --hypothesis-show-statistics
+        event(f"{writer}: {'written' if status == 0 else 'refused'}")
     if status == 2:
         assert after == before
         assert len([line for line in err if "error" in line]) == 1, err
@@ -269,12 +272,17 @@ def _run(root: Path, claims: Path, writer: str, states: list[str], plants, capsy
 
 
 def _states(writer: str):
+    """Target states, half of the draws among those a run may write (so both outcomes are
+    searched; the statistics of ``--hypothesis-show-statistics`` count them)."""
     _, files, folder = WRITERS[writer]
     if folder is not None:
-        return st.lists(st.sampled_from(FOLDER_STATES), min_size=1, max_size=1)
+        state = st.one_of(st.sampled_from(sorted(_WRITABLE_FOLDERS)),
+                          st.sampled_from(FOLDER_STATES))
+        return st.lists(state, min_size=1, max_size=1)
     # a pipe is a stream, written after the unit of regular files: drawn for one file only
     states = FILE_STATES if len(files) == 1 else tuple(s for s in FILE_STATES if s != "pipe")
-    return st.lists(st.sampled_from(states), min_size=len(files), max_size=len(files))
+    state = st.one_of(st.sampled_from(["absent", "ours"]), st.sampled_from(states))
+    return st.lists(state, min_size=len(files), max_size=len(files))
 
 
 _CASES = st.sampled_from(sorted(WRITERS)).flatmap(lambda w: st.tuples(

@@ -14,7 +14,9 @@ it implies at the module's budget (60 s of CPU, 1 GiB):
 3. ``bar_series``: the fully discrete series claim of the bar (HRZ) for p = 1, 2, 4, 8, 14
    and orders 8 to 20;
 4. ``phases``: ``critical_time_step`` of a singular plate patch (p, n) = (2, 3), (4, 24)
-   for 10^3 and 10^4 phases: seconds and bytes per phase and squared size.
+   for 10^3 and 10^4 phases: seconds and bytes per phase and squared size;
+5. ``refusals``: the requests of issue 27 item 8, each refused (wall and CPU seconds of the
+   whole child, imports included).
 
 The figures in the docstring of :mod:`dispersion.budget` come from a run on the shared
 2-core development machine (loaded by other jobs): time it again on a quiet machine.
@@ -144,7 +146,55 @@ def phases(timeout: float, quick: bool) -> None:
             print(line)
 
 
-RULES = {"bar": bar, "terms": terms, "bar_series": bar_series, "phases": phases}
+_CLI = ["-c", "import sys\nfrom dispersion.cli import main\nsys.exit(main(sys.argv[1:]))"]
+_REQUESTS = {  # issue 27 item 8: each must be refused, naming its bound, in under 2 s
+    "timestep --model bar --p 24 --mass hrz": [*_CLI, "timestep", "--model", "bar", "--p",
+                                               "24", "--mass", "hrz"],
+    "fully_discrete_series({2: 1}, 10**6)": [
+        "-c", "from dispersion.waves.fully_discrete import fully_discrete_series as f\n"
+              "f({2: 1}, 10**6)"],
+    "critical_time_step(..., n_theta=10**9)": [
+        "-c", "from dispersion.waves.timestep import critical_time_step as c\n"
+              "from dispersion.symbolic.plate import plate_patch\n"
+              "c(plate_patch(mass='singular'), 0.3, n_theta=10**9)"],
+    "parallel_map(abs, [1, -2], jobs=10**6)": [
+        "-c", "from dispersion.sweep import parallel_map\nparallel_map(abs, [1, -2], jobs=10**6)"],
+}
+_CLAIMS = {"fully_discrete_series": 'scheme = "central"\n[claim.coefficients]\n'
+                                    '"kappa^40*tau^40" = "1"\n',
+           "critical_step": "ratio = 1.5\n"}
+
+
+def refusals(timeout: float, quick: bool) -> None:
+    """Wall and CPU seconds (the child's, imports included) of each refused request."""
+    import os
+    import resource
+    import tempfile
+    import time
+
+    requests = dict(_REQUESTS)
+    with tempfile.TemporaryDirectory() as tmp:
+        for kind, body in _CLAIMS.items():
+            path = os.path.join(tmp, f"{kind}.toml")
+            with open(path, "w") as fh:
+                fh.write(f'[[claim]]\nname = "big"\nkind = "{kind}"\nmodel = "bar"\np = 24\n'
+                         f'mass = "hrz"\n{body}')
+            requests[f"verify: {kind} claim, bar p = 24"] = [*_CLI, "verify", path]
+        for label, argv in requests.items():
+            before = resource.getrusage(resource.RUSAGE_CHILDREN)
+            t0 = time.perf_counter()
+            proc = subprocess.run([sys.executable, *argv], capture_output=True, text=True,
+                                  timeout=timeout)
+            wall = time.perf_counter() - t0
+            after = resource.getrusage(resource.RUSAGE_CHILDREN)
+            cpu = after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime
+            last = (proc.stderr.strip().splitlines() or [""])[-1]
+            print(f"{wall:5.2f} s wall, {cpu:5.2f} s CPU, exit {proc.returncode}: {label}: "
+                  f"{last[:110]}")
+
+
+RULES = {"bar": bar, "terms": terms, "bar_series": bar_series, "phases": phases,
+         "refusals": refusals}
 
 
 def main() -> None:

@@ -10,13 +10,13 @@ machine shared with other jobs: the lead re-times them on a quiet machine).
 
 1. **Exact maximum of the periodic bar** (:func:`dispersion.waves.timestep.bar_omega_max`,
    ``critical_step(model="bar")``, claims of kind ``critical_step`` on the bar, ``dispersion
-   timestep --model bar``): a rational function of :math:`\\cos\\theta` of degree about p is
-   maximised exactly (its critical points are algebraic numbers). Measured CPU per call
-   (rule and the consistent reference): p = 10, 12, 13, 14 take 2.8, 6.5, 9.8, 21 s for
-   HRZ and 5.8, 11.5, 15.8, 38 s for nodal-greville, the dearest rule; a fit
-   :math:`t = a\\,b^p` over p = 8..14 gives b = 1.6 to 1.8 per degree, so p = 15 would take
-   60 to 70 s and p = 16 timed out at 120 s (HRZ, lumped, nodal-greville). Bound:
-   :data:`BAR_P_MAX` = 14.
+   timestep --model bar``): a rational function of :math:`\cos\theta` of degree about p is
+   maximised exactly (its critical points are algebraic numbers). Measured CPU of one call
+   (the rule and the consistent reference) at p = 12, 13, 14, 15, 16: nodal-greville 8.3,
+   11.4, 28.7, 63 s, over 150 s; lumped 4.7, 8.7, 18.4, 32.6 s, over 150 s; HRZ 4.4, 7.6,
+   15.1, 30.8, 65 s; consistent and nodal-lobatto stay under 4 s. From p = 13 the cost
+   about doubles with each degree. Bound: :data:`BAR_P_MAX` = 14, the largest p at which
+   every rule finished within the minute (the dearest at 29 s; at p = 15 it takes 63 s).
 2. **Fully discrete series** (:func:`dispersion.waves.fully_discrete.fully_discrete_series`,
    :func:`~dispersion.waves.fully_discrete.time_series`): the time series to m terms
    (:math:`m` = order // lowest power) is a sympy series of degree m. Measured for
@@ -40,7 +40,7 @@ machine shared with other jobs: the lead re-times them on a quiet machine).
 >>> check_bar_degree(24)
 Traceback (most recent call last):
 ...
-dispersion.errors.InputError: p = 24 is beyond the exact maximum of the periodic bar: at most p = 14 (about a minute of CPU at p = 14; the cost grows about 1.7x per degree)
+dispersion.errors.InputError: p = 24 is beyond the exact maximum of the periodic bar: at most p = 14 (from p = 13 its cost about doubles with each degree; p = 15 takes over a minute)
 """
 from __future__ import annotations
 
@@ -74,8 +74,8 @@ def check_bar_degree(p) -> int:
     p = _integer("p", p)
     if p > BAR_P_MAX:
         raise InputError(f"p = {p} is beyond the exact maximum of the periodic bar: at most "
-                         f"p = {BAR_P_MAX} (about a minute of CPU at p = {BAR_P_MAX}; the cost "
-                         "grows about 1.7x per degree)")
+                         f"p = {BAR_P_MAX} (from p = 13 its cost about doubles with each "
+                         f"degree; p = {BAR_P_MAX + 1} takes over a minute)")
     return p
 
 

@@ -51,35 +51,37 @@ from __future__ import annotations
 
 import warnings
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from fractions import Fraction
 from functools import lru_cache
 from typing import TYPE_CHECKING
 
-import numpy as np
-
 from dispersion.errors import IndefiniteMassWarning, InputError, check_positive_int
 from dispersion.symbolic.mass import redistributed_mass, row_sum_lump
+from dispersion.symbolic.explicit_cost import ExplicitCost
 from dispersion.symbolic.mass_check import MassProperties, check_mass
 from dispersion.symbolic.matrix_kind import is_exact, is_sparse, total
 
 if TYPE_CHECKING:
     import sympy
 
-# sympy (exact matrices, symbolic/spline_mass) and scipy (sparse matrices) are imported
-# where such a matrix is made: a float bar builds and checks its mass on numpy alone.
+# numpy, sympy (exact matrices, symbolic/spline_mass) and scipy (sparse matrices) are imported
+# where a matrix is made: the registry itself (RULES, RULE_NAMES, get_rule) loads without them,
+# so that the command line names the rules, and answers a mistyped one, before any of them.
 
 __all__ = [
     "MassSpace",
     "MassRule",
     "RULES",
     "RULE_NAMES",
+    "BLOCH_RULE_NAMES",
     "TranslationalMassWarning",
     "get_rule",
     "gram_space",
     "mass_matrix",
     "user_rule",
     "x_mass_coefficients",
+    "x_stiffness_factor",
     "mass_variant",
 ]
 
@@ -127,6 +129,24 @@ class MassRule:
     x_rule: str = "consistent"
     redistributes: bool = False
     description: str = ""
+    #: Periodic row ``p -> {L: a_L}`` of the rule along x (None: read off its matrix).
+    periodic: Callable | None = field(default=None, compare=False, repr=False)
+    #: Bloch factor ``p -> {L: s_L}`` multiplying the x-stiffness symbol (Petrov-Galerkin
+    #: test functions along x, :mod:`dispersion.symbolic.lumping_rules`); None: 1.
+    x_stiffness: Callable | None = field(default=None, compare=False, repr=False)
+    #: How the explicit step applies stiffness and inverse mass (None: from ``states``).
+    cost: ExplicitCost | None = field(default=None, compare=False, repr=False)
+    #: The discrete space: ``"bspline"`` (smooth B-splines) or ``"lagrange"`` (C0 elements,
+    #: :mod:`dispersion.symbolic.lagrange_sem`): such a rule changes the stiffness too.
+    basis: str = "bspline"
+
+    @property
+    def explicit_cost(self) -> ExplicitCost:
+        """The rule's :class:`~dispersion.symbolic.explicit_cost.ExplicitCost`: stated, or a
+        diagonal mass if it states diagonal and a solve otherwise."""
+        if self.cost is not None:
+            return self.cost
+        return ExplicitCost("sparse", "diagonal" if self.states.diagonal else "solve")
 
     def __post_init__(self):
         if not isinstance(self.name, str) or not self.name:
@@ -148,6 +168,7 @@ def _like(A_exact: sympy.Matrix, space: MassSpace, reference_exact: sympy.Matrix
     A float ``M`` is taken as ``scale * reference_exact`` (constant density, affine map), the
     scale being the ratio of the totals.
     """
+    import numpy as np
     if space.exact:
         return A_exact
     scale = total(space.M) / float(sum(reference_exact))
@@ -187,6 +208,7 @@ def _build_singular(space, lump: bool = False):
 
 
 def _build_hrz(space):
+    import numpy as np
     if space.kv is not None and (space.exact or space.elements is None):
         from dispersion.symbolic.spline_mass import gram_matrix, hrz_matrix
 
@@ -237,12 +259,49 @@ _BUILTIN = {
                         "singular lumped: row sums of R^T M R (paper eq 1 right)"),
 }
 
+
+def _literature():
+    # the rules of the recent lumping literature (their own module); the x-rule check of
+    # MassRule needs their names in _BUILTIN first
+    from dispersion.symbolic.lumping_rules import ENTRIES
+
+    for name, e in ENTRIES.items():
+        _BUILTIN[name] = (literature_build(e["build"]), e["states"], e["x_rule"], False,
+                          e["description"])
+    return {name: literature_rule(name, e) for name, e in ENTRIES.items()}
+
+
+def literature_build(build: Callable) -> Callable:
+    """``build`` (exact matrices from the space's knot vector) in the kind of the space."""
+    def kind_of_space(space: MassSpace):
+        A = build(space)
+        if space.exact or not is_exact(A):
+            return A
+        from dispersion.symbolic.spline_mass import gram_matrix
+
+        return _like(A, space, gram_matrix(space.kv))
+
+    return kind_of_space
+
+
+def literature_rule(name: str, e: dict) -> MassRule:
+    """A :class:`MassRule` from an entry of :data:`dispersion.symbolic.lumping_rules.ENTRIES`."""
+    return MassRule(name, literature_build(e["build"]), e["states"], e["x_rule"], False,
+                    e["description"], e.get("periodic"), e.get("x_stiffness"), e.get("cost"),
+                    e.get("basis", "bspline"))
+
+
+_LITERATURE = _literature()
+
 #: The registered rules, by name (one registry for patch, bar, contact scenes and CLI).
 RULES: dict[str, MassRule] = {
-    name: MassRule(name, build, states, x_rule, redis, desc)
+    name: _LITERATURE.get(name) or MassRule(name, build, states, x_rule, redis, desc)
     for name, (build, states, x_rule, redis, desc) in _BUILTIN.items()
 }
 RULE_NAMES = tuple(RULES)
+#: The rules that apply to the Bloch plate patch (its x-direction is one B-spline symbol; the
+#: C0 Lagrange rules carry p DOFs a cell there and apply to the x-exact model and the bar).
+BLOCH_RULE_NAMES = tuple(name for name, rule in RULES.items() if rule.basis == "bspline")
 
 
 def get_rule(mass) -> MassRule:
@@ -255,7 +314,11 @@ def get_rule(mass) -> MassRule:
         return mass
     if isinstance(mass, str) and mass in RULES:
         return RULES[mass]
-    raise InputError(f"mass must be one of {', '.join(RULE_NAMES)} or a MassRule; got {mass!r}")
+    from dispersion.errors import did_you_mean
+
+    hint = did_you_mean(mass, RULE_NAMES) if isinstance(mass, str) else ""
+    raise InputError(f"mass must be one of {', '.join(RULE_NAMES)} or a MassRule; got "
+                     f"{mass!r}{hint}")
 
 
 def gram_space(kv, R=None) -> MassSpace:
@@ -274,6 +337,7 @@ def mass_matrix(mass, space: MassSpace, *, check: bool = True):
     refuses it; warns (:class:`IndefiniteMassWarning`, :class:`TranslationalMassWarning`)
     where it only warns.
     """
+    import numpy as np
     rule = get_rule(mass)
     Mv = rule.build(space)
     if isinstance(Mv, (list, tuple)):
@@ -336,7 +400,9 @@ def x_mass_coefficients(rule, p: int) -> tuple[tuple[int, sympy.Rational], ...]:
     if rule.redistributes:
         raise InputError(f"mass rule {rule.name!r} needs a contact set; the x-direction has none")
     p = check_positive_int("degree p", p)
-    if RULES.get(rule.name) is rule and rule.name in PERIODIC_ROWS:
+    if rule.periodic is not None:
+        row = rule.periodic(p)
+    elif RULES.get(rule.name) is rule and rule.name in PERIODIC_ROWS:
         row = PERIODIC_ROWS[rule.name](p)
     else:  # any other rule: the middle row of its matrix on the open mesh
         ne = _bloch_mesh(p)
@@ -348,6 +414,25 @@ def x_mass_coefficients(rule, p: int) -> tuple[tuple[int, sympy.Rational], ...]:
                   else v) for L, v in sorted(row.items()) if v != 0)
 
 
+@lru_cache(maxsize=None)
+def x_stiffness_factor(rule, p: int) -> tuple[tuple[int, sympy.Rational], ...]:
+    """Bloch coefficients :math:`((L, s_L), ...)` of the factor multiplying a rule's x-stiffness.
+
+    1 for every Galerkin rule; the approximate-dual symbol for ``dual-lumped`` (its
+    Petrov-Galerkin test functions along x, :mod:`dispersion.symbolic.lumping_rules`).
+
+    >>> x_stiffness_factor("lumped", 2)
+    ((0, 1),)
+    """
+    import sympy
+
+    rule = get_rule(rule)
+    p = check_positive_int("degree p", p)
+    if rule.x_stiffness is None:
+        return ((0, sympy.Integer(1)),)
+    return tuple((L, sympy.Rational(v)) for L, v in sorted(rule.x_stiffness(p).items()) if v != 0)
+
+
 def mass_variant(M, variant, R=None, *, kv=None, elements=None, check: bool = True):
     """Mass matrix of rule ``variant`` from the consistent mass ``M`` and redistribution ``R``.
 
@@ -357,6 +442,7 @@ def mass_variant(M, variant, R=None, *, kv=None, elements=None, check: bool = Tr
     (or, HRZ, the float element matrices ``elements``). The result is checked against the
     rule's stated properties (:func:`dispersion.symbolic.mass_rule.mass_matrix`).
     """
+    import numpy as np
     rule = get_rule(variant)
     shape = getattr(M, "shape", None)
     if shape is None or len(shape) != 2 or shape[0] != shape[1]:

@@ -49,23 +49,24 @@ import sympy
 
 from dispersion.budget import check_bar_degree, check_phases
 from dispersion.errors import InputError, check_positive, check_positive_int
+from dispersion.rendering import Rendered
 from dispersion.symbolic.mass_rule import get_rule, x_mass_coefficients
 from dispersion.waves.bar_dispersion import bar_rule
 from dispersion.waves.materials import MATERIALS, Material
+from dispersion.waves.time_integration import CRITICAL_STEP_MODELS
 
-__all__ = ["MATERIALS", "MODELS", "EXACT_MAX_DOFS", "MAX_N", "certified_omega_max",
+__all__ = ["MATERIALS", "CRITICAL_STEP_MODELS", "EXACT_MAX_DOFS", "MAX_N", "certified_omega_max",
            "CriticalStep", "bar_omega_squared", "critical_time_step", "float_pencil",
            "bar_omega_max", "patch_omega_max", "critical_step", "matrix_critical_step"]
 
-MODELS = ("plate", "bar")
 
 _z = sympy.Symbol("z")
 
 
 def _coefficients(rule, p: int):
-    from dispersion.symbolic.plate import bloch_coefficients
+    from dispersion.waves.bar_dispersion import bar_stiffness_coefficients
 
-    return bloch_coefficients(p)["11"], dict(x_mass_coefficients(rule, p))
+    return bar_stiffness_coefficients(rule, p), dict(x_mass_coefficients(rule, p))
 
 
 def bar_omega_squared(mass, p: int) -> sympy.Expr:
@@ -76,6 +77,10 @@ def bar_omega_squared(mass, p: int) -> sympy.Expr:
     """
     rule = bar_rule(mass)
     p = check_bar_degree(check_positive_int("degree p", p))  # cost bound: dispersion.budget
+    if rule.basis == "lagrange":
+        raise InputError(f"mass {rule.name!r}: the C0 Lagrange bar has p branches, no single "
+                         "rational omega^2(cos theta) (its acoustic series: "
+                         "dispersion.symbolic.lagrange_sem.acoustic_series)")
     c11, a = _coefficients(rule, p)
     d = sum(v * sympy.chebyshevt(abs(L), _z) for L, v in c11.items())
     m = sum(v * sympy.chebyshevt(abs(L), _z) for L, v in a.items())
@@ -88,6 +93,11 @@ def bar_omega_max(mass, p: int) -> tuple[sympy.Expr, float]:
     >>> bar_omega_max("consistent", 2)      # Cottrell et al. 2006: sqrt(10) at theta = pi
     (sqrt(10), 3.141592653589793)
     """
+    if bar_rule(mass).basis == "lagrange":  # p branches: the Bloch pencil's largest root
+        from dispersion.waves.sem_bar import sem_bar_omega_max
+
+        w, exact, theta, _ = sem_bar_omega_max(bar_rule(mass).name, p)
+        return (exact if exact is not None else sympy.Float(w, 15)), theta
     f = bar_omega_squared(mass, p)
     num, den = sympy.fraction(sympy.together(f))
     crit = sympy.Poly(sympy.expand(sympy.diff(num, _z) * den - num * sympy.diff(den, _z)), _z)
@@ -104,8 +114,8 @@ def bar_omega_max(mass, p: int) -> tuple[sympy.Expr, float]:
     return sympy.simplify(exact), float(sympy.acos(best))
 
 
-@dataclass(frozen=True)
-class CriticalStep:
+@dataclass(frozen=True, repr=False)  # Rendered: a short repr
+class CriticalStep(Rendered):
     """Critical step of central differences for one rule, with what it was computed from.
 
     ``omega_max`` is dimensionless: :math:`\\omega_{max} h / c` (bar: h the element length,
@@ -142,6 +152,22 @@ class CriticalStep:
         if self.omega_certified is None:
             return None
         return self.dt * self.omega_max / self.omega_certified
+
+    # the rendering protocol: one row; the words of describe() as title and header
+    def title(self) -> str:
+        return self.describe().splitlines()[0]
+
+    def header_lines(self) -> list[str]:
+        return self.describe().splitlines()[1:]
+
+    def columns(self) -> tuple[str, ...]:
+        return ("mass", "p", "model", "omega_max", "theta", "found", "dt_crit [s]",
+                "ratio to consistent", "omega_max proven bound", "proven stable dt [s]")
+
+    def rows(self) -> list[dict]:
+        return [dict(zip(self.columns(), (self.mass, self.p, self.model, self.omega_max,
+                                          self.theta, self.method, self.dt, self.ratio,
+                                          self.omega_certified, self.dt_certified)))]
 
     def describe(self) -> str:
         """Lines for a terminal, rendered from the fields."""
@@ -305,7 +331,7 @@ def certified_omega_max(patch, nu, omega: float, rtol: float = 1e-3, max_cells: 
     """
     import flint
 
-    from dispersion.symbolic.plate import bloch_coefficients, lame, mass_block, stiffness_terms
+    from dispersion.symbolic.plate import lame, mass_block, stiffness_terms, x_coefficients
 
     if patch.model != "bloch" or isinstance(patch.r, sympy.Symbol):
         raise InputError("certification needs a Bloch patch with a numeric aspect ratio r")
@@ -324,7 +350,7 @@ def certified_omega_max(patch, nu, omega: float, rtol: float = 1e-3, max_cells: 
         n2 = 2 * patch.n
         ml = list(patch.massless)
         keep = [i for i in range(n2) if i not in ml]
-        c = bloch_coefficients(patch.p)
+        c = x_coefficients(patch)  # Petrov-Galerkin rules: times their x-factor
         r = q(patch.r)
         lam = {k: q(v) for k, v in lame(sympy.nsimplify(nu), scaled=False).items()}
         terms = [(lam[m], f, mat(B)) for m, f, B in stiffness_terms(patch)]
@@ -335,8 +361,8 @@ def certified_omega_max(patch, nu, omega: float, rtol: float = 1e-3, max_cells: 
         def definite(lo: float, hi: float) -> bool:
             th = flint.arb((lo + hi) / 2, (hi - lo) / 2)
             xf = {"m": sum((q(v) * (L * th).cos() for L, v in c["00"].items()), flint.arb(0)),
-                  "s": -2 / r * sum((q(c["10"][L]) * (L * th).sin()
-                                     for L in range(1, patch.p + 1)), flint.arb(0)),
+                  "s": -2 / r * sum((q(v) * (L * th).sin()
+                                     for L, v in c["10"].items() if L > 0), flint.arb(0)),
                   "d": sum((q(v) * (L * th).cos() for L, v in c["11"].items()),
                            flint.arb(0)) / r**2}
             mx = sum((q(v) * (L * th).cos() for L, v in patch.x_mass), flint.arb(0))
@@ -419,8 +445,8 @@ def critical_step(mass, p: int = 2, *, model: str = "plate", material: Material 
     >>> cs.omega_max_exact, round(cs.theta, 6), round(cs.ratio, 6)  # at 2 pi/3; sqrt(10)/sqrt(3/2)
     (sqrt(6)/2, 2.094395, 2.581989)
     """
-    if model not in MODELS:
-        raise InputError(f"model must be one of {', '.join(MODELS)}; got {model!r}")
+    if model not in CRITICAL_STEP_MODELS:
+        raise InputError(f"model must be one of {', '.join(CRITICAL_STEP_MODELS)}; got {model!r}")
     if isinstance(material, str):
         if material not in MATERIALS:
             raise InputError(f"material must be one of {', '.join(MATERIALS)}; got {material!r}")
@@ -433,8 +459,11 @@ def critical_step(mass, p: int = 2, *, model: str = "plate", material: Material 
         exact, theta = bar_omega_max(rule, p)
         ref, _ = bar_omega_max("consistent", p)
         w, w_ref = float(exact), float(ref)
-        return CriticalStep(rule.name, p, "bar", h, c, w, exact, theta,
-                            "exact (rational function of cos theta)", 2 * h / (c * w),
+        method = ("exact (rational function of cos theta)" if rule.basis == "bspline" else
+                  "C0 Lagrange bar: all p branches, " + ("exact at a zone end"
+                                                         if exact.is_algebraic else "numeric"))
+        return CriticalStep(rule.name, p, "bar", h, c, w, exact, theta, method,
+                            2 * h / (c * w),
                             2 * h / (c * w_ref),
                             material=None if wave_speed is not None else material.name)
     from dispersion.symbolic.patch import check_size

@@ -10,7 +10,7 @@ machine shared with other jobs: the lead re-times them on a quiet machine).
 
 1. **Exact maximum of the periodic bar** (:func:`dispersion.waves.timestep.bar_omega_max`,
    ``critical_step(model="bar")``, claims of kind ``critical_step`` on the bar, ``dispersion
-   timestep --model bar``): a rational function of :math:`\cos\theta` of degree about p is
+   timestep --model bar``): a rational function of :math:`\\cos\\theta` of degree about p is
    maximised exactly (its critical points are algebraic numbers). Measured CPU of one call
    (the rule and the consistent reference) at p = 12, 13, 14, 15, 16: nodal-greville 8.3,
    11.4, 28.7, 63 s, over 150 s; lumped 4.7, 8.7, 18.4, 32.6 s, over 150 s; HRZ 4.4, 7.6,
@@ -18,10 +18,19 @@ machine shared with other jobs: the lead re-times them on a quiet machine).
    about doubles with each degree. Bound: :data:`BAR_P_MAX` = 14, the largest p at which
    every rule finished within the minute (the dearest at 29 s; at p = 15 it takes 63 s).
 2. **Fully discrete series** (:func:`dispersion.waves.fully_discrete.fully_discrete_series`,
-   :func:`~dispersion.waves.fully_discrete.time_series`): the time series to m terms
-   (:math:`m` = order // lowest power) is a sympy series of degree m. Measured for
-   ``{2: 1}``: m = 64, 128, 256 take 0.8, 1.7, 12.6 s (growth about m^3); m = 512 timed out
-   at 120 s. Bound: :data:`TIME_TERMS_MAX` = 128 terms.
+   :func:`~dispersion.waves.fully_discrete.time_series`, claims of kind
+   ``fully_discrete_series``). (a) The time series to m terms (:math:`m` = order // lowest
+   power) is a sympy series of degree m. Measured for ``{2: 1}``: m = 64, 128, 256 take
+   0.8, 1.7, 12.6 s (growth about m^3); m = 512 timed out at 120 s. Bound:
+   :data:`TIME_TERMS_MAX` = 128 terms. (b) The semi-discrete series :math:`S` (k nonzero
+   terms up to the order) is raised to the powers 1..m and expanded in full: :math:`W =
+   \\sum_{j=1}^{m} \\binom{j + k - 1}{k - 1}` products of coefficients (:func:`series_work`).
+   Measured on the S0 and A0 series of the default patch: with a number for nu, W = 923,
+   12375, 184755 take 0.28, 2.4, 36 s (about 2e-4 s a product); with nu a symbol (its
+   coefficients rational functions), W = 9, 19, 55, 69 take 0.12, 0.37, 3.1, 8.4 s and
+   W = 126 more than 200 s. Bounds: W at most :data:`SERIES_WORK_MAX` = 200000 with numbers,
+   :data:`SYMBOLIC_SERIES_WORK_MAX` = 70 with symbols. (A truncated product, S^j from
+   S^(j-1) S to the order, would cost far less; the bound is for the code as it is.)
 3. **Fully discrete series of the bar in claims** (kind ``fully_discrete_series``, model
    ``bar``): the semi-discrete series is a sympy series of :math:`\\omega^2(\\cos\\kappa)` to
    the claim's highest power of kappa. Measured (HRZ): order 12, 16, 20 take 0.3, 2.3,
@@ -49,14 +58,19 @@ import numbers
 from dispersion import defaults
 from dispersion.errors import InputError
 
-__all__ = ["BAR_P_MAX", "TIME_TERMS_MAX", "BAR_SERIES_ORDER_MAX", "PHASE_WORK_MAX",
-           "check_bar_degree", "check_time_terms", "check_bar_series", "check_phases",
+__all__ = ["BAR_P_MAX", "TIME_TERMS_MAX", "SERIES_WORK_MAX", "SYMBOLIC_SERIES_WORK_MAX",
+           "BAR_SERIES_ORDER_MAX", "PHASE_WORK_MAX", "check_bar_degree", "check_time_terms",
+           "series_work", "check_series_work", "check_bar_series", "check_phases",
            "check_jobs", "max_jobs", "check_claim"]
 
 #: Highest degree of the exact maximum of the periodic bar (rule 1).
 BAR_P_MAX = 14
 #: Most terms of the time series of a fully discrete series (rule 2).
 TIME_TERMS_MAX = 128
+#: Most products of coefficients expanding the powers of a semi-discrete series (rule 2b),
+#: with numbers and with symbols in its coefficients.
+SERIES_WORK_MAX = 200_000
+SYMBOLIC_SERIES_WORK_MAX = 70
 #: Highest power of kappa of a fully discrete series claim on the bar (rule 3).
 BAR_SERIES_ORDER_MAX = 16
 #: Most phases x (2n)^2 of the critical-step grid (rule 4).
@@ -92,6 +106,36 @@ def check_time_terms(terms, what: str = "order") -> int:
         raise InputError(f"{what} = {terms} terms of the time series, more than the limit of "
                          f"{TIME_TERMS_MAX} (its cost grows as the cube)")
     return terms
+
+
+def series_work(k: int, m: int) -> int:
+    """Rule 2b: the terms of the full expansions of :math:`S^1, \\dots, S^m`, S a sum of k
+    terms (capped just above the larger bound).
+
+    >>> series_work(8, 8), series_work(4, 4)
+    (12869, 69)
+    """
+    from math import comb
+
+    total = 0
+    for j in range(1, m + 1):
+        total += comb(j + k - 1, k - 1)
+        if total > SERIES_WORK_MAX:
+            return SERIES_WORK_MAX + 1
+    return total
+
+
+def check_series_work(k: int, m: int, symbolic: bool) -> None:
+    """Rule 2b for a series of k nonzero terms raised to the powers 1..m."""
+    limit = SYMBOLIC_SERIES_WORK_MAX if symbolic else SERIES_WORK_MAX
+    work = series_work(k, m)
+    if work > limit:
+        count = f"more than {SERIES_WORK_MAX}" if work > SERIES_WORK_MAX else str(work)
+        kind = "symbolic" if symbolic else "numeric"
+        raise InputError(f"the fully discrete series would expand {k} terms to the powers "
+                         f"1..{m}: {count} products of {kind} coefficients, more than the "
+                         f"limit of {limit} (lower the order"
+                         + (", or give nu a value)" if symbolic else ")"))
 
 
 def check_bar_series(p, order) -> None:
@@ -140,14 +184,22 @@ def check_jobs(jobs, name: str = "jobs") -> int:
     return int(jobs)
 
 
+def _claim_order(claim) -> int:
+    return max((i for (i, _), _ in claim.printed[1:]), default=0)
+
+
 def check_claim(claim) -> None:
-    """Rules 1 and 3 for a claim of :mod:`dispersion.claims` (other kinds are bounded by
-    the series engine's own limits)."""
+    """Rules 1, 2b and 3 for a claim of :mod:`dispersion.claims` (other kinds are bounded by
+    the series engine's own limits and :data:`dispersion.claims.orders.P_TOP`)."""
     model = claim.model
     if getattr(model, "name", None) != "bar":
+        if claim.kind == "fully_discrete_series":  # a plate's S0 (kappa^2, 4, ...) or A0 (4, ...)
+            order = _claim_order(claim)
+            lowest = 2 if claim.branch == "S0" else 4
+            check_series_work(max(0, (order - lowest) // 2 + 1), order // lowest,
+                              claim.nu is None)
         return
     if claim.kind == "critical_step":
         check_bar_degree(model.p)
     elif claim.kind == "fully_discrete_series":
-        order = max((i for (i, _), _ in claim.printed[1:]), default=0)
-        check_bar_series(model.p, order)
+        check_bar_series(model.p, _claim_order(claim))

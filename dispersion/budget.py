@@ -12,11 +12,13 @@ machine shared with other jobs: the lead re-times them on a quiet machine).
    ``critical_step(model="bar")``, claims of kind ``critical_step`` on the bar, ``dispersion
    timestep --model bar``): a rational function of :math:`\\cos\\theta` of degree about p is
    maximised exactly (its critical points are algebraic numbers). Measured CPU of one call
-   (the rule and the consistent reference) at p = 12, 13, 14, 15, 16: nodal-greville 8.3,
-   11.4, 28.7, 63 s, over 150 s; lumped 4.7, 8.7, 18.4, 32.6 s, over 150 s; HRZ 4.4, 7.6,
-   15.1, 30.8, 65 s; consistent and nodal-lobatto stay under 4 s. From p = 13 the cost
-   about doubles with each degree. Bound: :data:`BAR_P_MAX` = 14, the largest p at which
-   every rule finished within the minute (the dearest at 29 s; at p = 15 it takes 63 s).
+   (the rule and the consistent reference), at p = 10, 12, 14: dual-lumped 7.5, 44 s and
+   more than 150 s (p = 13: more than 170 s); nodal-greville 4.1, 8.3, 29 s (63 s at 15);
+   interpolatory-nodal 4.1, 7.8, 28 s; lumped 2.5, 4.7, 18 s; HRZ 2.3, 4.4, 15 s (65 s at
+   16); sms 3.5, 6.1, 16 s; dual-gram and dual-consistent 2.5 to 8.8 s; consistent and
+   nodal-lobatto under 4 s up to p = 16. The cost grows several-fold per degree at the top.
+   Bound: :data:`BAR_P_MAX` = 12, the largest p at which every registered rule of the bar
+   finished within the minute (the dearest, dual-lumped, at 44 s).
 2. **Fully discrete series** (:func:`dispersion.waves.fully_discrete.fully_discrete_series`,
    :func:`~dispersion.waves.fully_discrete.time_series`, claims of kind
    ``fully_discrete_series``). (a) The time series to m terms (:math:`m` = order // lowest
@@ -49,7 +51,7 @@ machine shared with other jobs: the lead re-times them on a quiet machine).
 >>> check_bar_degree(24)
 Traceback (most recent call last):
 ...
-dispersion.errors.InputError: p = 24 is beyond the exact maximum of the periodic bar: at most p = 14 (from p = 13 its cost about doubles with each degree; p = 15 takes over a minute)
+dispersion.errors.InputError: p = 24 is beyond the exact maximum of the periodic bar: at most p = 12 (the dearest rule takes most of a minute at p = 12, and several times longer with each degree)
 """
 from __future__ import annotations
 
@@ -64,7 +66,7 @@ __all__ = ["BAR_P_MAX", "TIME_TERMS_MAX", "SERIES_WORK_MAX", "SYMBOLIC_SERIES_WO
            "check_jobs", "max_jobs", "check_claim"]
 
 #: Highest degree of the exact maximum of the periodic bar (rule 1).
-BAR_P_MAX = 14
+BAR_P_MAX = 12
 #: Most terms of the time series of a fully discrete series (rule 2).
 TIME_TERMS_MAX = 128
 #: Most products of coefficients expanding the powers of a semi-discrete series (rule 2b),
@@ -88,8 +90,8 @@ def check_bar_degree(p) -> int:
     p = _integer("p", p)
     if p > BAR_P_MAX:
         raise InputError(f"p = {p} is beyond the exact maximum of the periodic bar: at most "
-                         f"p = {BAR_P_MAX} (from p = 13 its cost about doubles with each "
-                         f"degree; p = {BAR_P_MAX + 1} takes over a minute)")
+                         f"p = {BAR_P_MAX} (the dearest rule takes most of a minute at "
+                         f"p = {BAR_P_MAX}, and several times longer with each degree)")
     return p
 
 

@@ -80,8 +80,9 @@ def _claim(kind: str, body: str, model: str = 'model = "bar"\np = 2\nmass = "hrz
 
 
 @pytest.mark.parametrize("text, bound", [
-    (_claim("critical_step", "ratio = 1.5\n", 'model = "bar"\np = 15\nmass = "hrz"\n'),
-     "at most p = 14"),
+    (_claim("critical_step", "ratio = 1.5\n",
+            f'model = "bar"\np = {budget.BAR_P_MAX + 1}\nmass = "hrz"\n'),
+     f"at most p = {budget.BAR_P_MAX}"),
     (_claim("fully_discrete_series", '[claim.coefficients]\n"kappa^18" = "1"\n'),
      r"at most kappa\^16"),
     (_claim("fully_discrete_series", 'branch = "S0"\n[claim.coefficients]\n"kappa^10" = "1"\n',
@@ -100,7 +101,8 @@ def test_claims_beyond_a_bound_are_refused_when_read(monkeypatch, text, bound):
 
 
 @pytest.mark.parametrize("text", [
-    _claim("critical_step", "ratio = 1.5\n", 'model = "bar"\np = 14\nmass = "hrz"\n'),
+    _claim("critical_step", "ratio = 1.5\n",
+           f'model = "bar"\np = {budget.BAR_P_MAX}\nmass = "hrz"\n'),
     _claim("fully_discrete_series", '[claim.coefficients]\n"kappa^16" = "1"\n'),
     _claim("fully_discrete_series", 'branch = "S0"\n[claim.coefficients]\n"kappa^8" = "1"\n',
            'model = "bloch"\n'),

@@ -347,7 +347,7 @@ def run(args) -> int:
     for mass in masses:
         patch = plate_patch(s["patch"].replace(mass=mass))
         patches[_name(mass)] = patch
-        d = discrete_branches(patch, nu, kappa, progress=tick, group=args.scheme is None)
+        d = discrete_branches(patch, nu, kappa, progress=tick, group=True)
         if args.scheme is not None:
             from dispersion.waves.fully_discrete import fully_discrete_branches
             from dispersion.waves.timestep import patch_omega_max

@@ -85,7 +85,7 @@ def run(args: argparse.Namespace) -> int:
                  "theta": r.theta, "method": r.method, "dt_crit [s]": r.dt,
                  "omega_max proven bound": r.omega_certified,
                  "proven stable dt [s]": r.dt_certified,
-                 "ratio to consistent": r.ratio} for r in results]
+                 "ratio to consistent": r.ratio, "failures": list(r.failures)} for r in results]
         print(dumps(envelope("timestep", {"rows": rows},
                              inputs={"material": material.as_dict(), "p": args.p,
                                      "model": args.model, "h [m]": args.h})), end="")

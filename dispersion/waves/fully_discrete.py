@@ -111,7 +111,8 @@ def _newmark_terms(sch: TimeScheme, w, tau: float):
 
     .. math:: b^2 - 4ac = -X\\,(4 - rX), \\qquad r = p^2 - 4\\beta q,
 
-    the roots are complex (oscillation) for :math:`rX < 4`, and :math:`|z|^2 = c/a =
+    the roots are complex (oscillation) for :math:`rX < 4` (a double root on the limit
+    :math:`rX = 4`, counted as stable as in Hughes 2000), and :math:`|z|^2 = c/a =
     (1 + qX)/(1 + \\beta X) \\le 1` for :math:`q \\le \\beta`, that is :math:`\\gamma \\ge 1/2`.
     """
     beta, gamma = float(sch.beta), float(sch.gamma)
@@ -120,7 +121,7 @@ def _newmark_terms(sch: TimeScheme, w, tau: float):
     p, q = 0.5 - 2 * beta + gamma, 0.5 + beta - gamma
     r = p * p - 4 * beta * q
     with np.errstate(invalid="ignore"):
-        ok = r * X < 4   # |z| <= 1 holds already: time_scheme keeps gamma >= 1/2
+        ok = r * X <= 4   # |z| <= 1 holds already: time_scheme keeps gamma >= 1/2
     return w, X, beta, p, q, r, ok
 
 

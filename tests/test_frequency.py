@@ -195,3 +195,76 @@ def test_frequency_exactly_at_a_cut_off(nu, W):
     for lab, kappa in zip(r.label, r.kappa):
         ref, _ = _mp_root_and_slope(lab[0], kappa, W, nu)
         assert abs(kappa - ref) <= RTOL * ref
+
+
+# --- promise: frequency-input roots certified to 1e-12 (docs/promises.md) ------------------
+from hypothesis import example, given  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+from tests.promise_search import FAST, SLOW, record  # noqa: E402
+
+
+def _mp_root_and_slope(kind, kappa, omega, nu):
+    """The root in kappa of the textbook equation near ``kappa`` and -F_k / F_W there, by
+    mpmath alone (tests/mp_lamb.py) at 60 digits plus the cosh-sized cancellation."""
+    from tests.mp_lamb import mp_F
+
+    with mpmath.workdps(60 + int(kappa / 2.3)):
+        W, m_nu = mpmath.mpf(omega), mpmath.mpf(nu)
+        k = mpmath.findroot(lambda x: mp_F(kind, x, W, m_nu), mpmath.mpf(kappa),
+                            solver="newton", tol=mpmath.mpf(10) ** -50, maxsteps=200)
+        g = -mpmath.diff(lambda x: mp_F(kind, x, W, m_nu), k) / \
+            mpmath.diff(lambda x: mp_F(kind, k, x, m_nu), W)
+        return k, g
+
+
+def _check_frequency(nu, omega):
+    from dispersion.waves.frequency import modes_at_frequency
+
+    res = modes_at_frequency(nu, [omega], kinds=("S", "A"), zgv=True)
+    listed = {(w, kind) for w, kind, _ in res.failures}
+    for lab, k, g in zip(res.label, res.kappa, res.group):
+        if (omega, lab[0]) in listed:
+            continue   # listed as a failure: allowed, never silent
+        ref, ref_g = _mp_root_and_slope(lab[0], float(k), omega, nu)
+        record("frequency-input kappa", abs(k / float(ref) - 1), 1e-12, nu=nu, omega=omega,
+               mode=lab)
+        # c_g: relative to c_T where it is small (near a ZGV point or a cut-off c_g -> 0 and
+        # its relative error is that of the root times the ratio)
+        record("frequency-input c_g", abs(g - float(ref_g)) / max(abs(float(ref_g)), 1.0),
+               1e-10, nu=nu, omega=omega, mode=lab)
+
+
+def _frequency_domain(fn):
+    """Every material of the table (by its nu) and user materials (nu in (-1, 0.5)), Omega
+    from the calculator's floor to its ceiling; issue 26's cases as examples."""
+    from dispersion.waves.frequency import FREQUENCY_OMEGA_MAX, FREQUENCY_OMEGA_MIN
+    from dispersion.waves.materials import MATERIALS
+
+    def omega(material, f_khz, d_mm):
+        m = MATERIALS[material]
+        return 2 * math.pi * f_khz * 1e3 * d_mm * 1e-3 / 2 / m.c_T, m.nu
+
+    cases = [omega("aluminium", 3129.9, 1.0)[::-1],          # S1 backward, below its cut-off
+             omega("pmma", 10.2e3, 1.0)[::-1],               # fd 10.2: A2 at kappa ~ 29
+             omega("copper", 19.5e3, 1.0)[::-1],             # fd 19.5
+             (0.3, FREQUENCY_OMEGA_MIN), (0.3, FREQUENCY_OMEGA_MAX),
+             (-0.999, 1.0), (0.4999, 2.0)]
+    for nu, w in cases:
+        fn = example(nu=nu, omega=w)(fn)
+    nus = st.one_of(st.sampled_from(sorted(m.nu for m in MATERIALS.values())),
+                    st.floats(-0.999, 0.4999))
+    return given(nu=nus, omega=st.floats(FREQUENCY_OMEGA_MIN, FREQUENCY_OMEGA_MAX))(fn)
+
+
+@FAST
+@_frequency_domain
+def test_frequency_roots_against_mpmath(nu, omega):
+    _check_frequency(nu, omega)
+
+
+@pytest.mark.slow
+@SLOW
+@_frequency_domain
+def test_frequency_roots_against_mpmath_slow(nu, omega):
+    _check_frequency(nu, omega)

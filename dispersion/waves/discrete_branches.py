@@ -116,21 +116,26 @@ def _extended_safe(patch, nu, k, basis, dps, slopes):
     return None, why
 
 
-def _refine_small(patch, nu, kappa, W, basis, G=None, failures=None):
+def _refine_small(patch, nu, kappa, W, basis, G=None, failures=None, error=None):
     """Recompute in extended precision the kappas where some float eigenvalue of W is inaccurate.
 
     Digits: 30 beyond the ratio of the largest eigenvalue to the smallest (guessed as
     kappa^4 where the float value is lost in round-off). With ``G`` (slopes) given, the
     slopes there come from the eigenvector formula in the same precision. Never raises
     from the eigen-solver: a kappa where the ball solve fails twice gets NaN and an entry
-    ``("omega", kappa, reason)`` in ``failures`` (a list, if given).
+    ``("omega", kappa, reason)`` in ``failures`` (a list, if given). ``error``: the float
+    eigen-solver's bound per root (:func:`pencil_frequencies` with ``bounds=True``).
     """
     lam = W**2
-    bad = np.flatnonzero(np.any(eigenvalue_error(lam) > RTOL, axis=1) & (kappa > 0))
+    error = eigenvalue_error(lam) if error is None else error
+    bad = np.flatnonzero(np.any(error > RTOL, axis=1) & (kappa > 0))
     for i in bad:
         top = float(np.max(lam[i]))
         small = max(min(float(np.min(lam[i])), 0.1 * kappa[i] ** 4), 1e-300)
-        dps = 30 + int(math.ceil(math.log10(max(top / small, 1.0))))
+        ratio = top / small
+        if not 1.0 <= ratio < 1e300:   # float eigenvalues lost (inf, NaN): the widest guess
+            ratio = 1e300 if not ratio < 1.0 else 1.0
+        dps = 30 + int(math.ceil(math.log10(ratio)))
         out, why = _extended_safe(patch, nu, float(kappa[i]), basis, dps, G is not None)
         if out is None:
             W[i] = np.nan
@@ -315,14 +320,16 @@ def _plan(patch: PlatePatch, nu: float) -> list[_Block]:
 
 
 def _eigen_block(patch, nu, kappa, block: _Block, vectors: bool):
-    """Float eigen-solve of one block at ``kappa``: (W, X or None, dK/dM-ready pencil)."""
+    """Float eigen-solve of one block at ``kappa``: (W, X or None, dK/dM-ready pencil, the
+    relative error bound of each W^2)."""
     K, M = numeric_pencil(patch, nu, kappa)
     if block.E is not None:
         K, M = congruence(block.E.T, K), congruence(block.E.T, M)
     if vectors:
-        W, X = pencil_frequencies(K, M, block.massless, vectors=True)
-        return W, X, M
-    return pencil_frequencies(K, M, block.massless), None, M
+        W, X, err = pencil_frequencies(K, M, block.massless, vectors=True, bounds=True)
+        return W, X, M, err
+    W, err = pencil_frequencies(K, M, block.massless, bounds=True)
+    return W, None, M, err
 
 
 def _parity_from_vectors(patch, X):
@@ -350,7 +357,7 @@ def _solve_block(patch, nu, kappa, block: _Block, group: bool, failures: list):
         order = np.argsort(u, kind="stable")
         anchors = order if n <= 4 * ANCHOR_STRIDE else \
             np.concatenate([order[::ANCHOR_STRIDE], order[-1:]])
-        Wa = _eigen_block(patch, nu, kappa[anchors], block, False)[0]
+        Wa, _, _, Ea = _eigen_block(patch, nu, kappa[anchors], block, False)
         mx = pp.mass_factor(poly, u, v)
         mua = Wa**2 * mx[anchors]
         ua = u[anchors]
@@ -365,11 +372,11 @@ def _solve_block(patch, nu, kappa, block: _Block, group: bool, failures: list):
             # certified by the eigen-solver's own bound (large roots, where float
             # eigenvalues are accurate)
             if anchors.size == n:  # every kappa is an anchor: its eigenvalues are at hand
-                Wr = np.empty_like(Wa)
-                Wr[anchors] = Wa
-                Wr = Wr[redo]
+                Wr, Er = np.empty_like(Wa), np.empty_like(Ea)
+                Wr[anchors], Er[anchors] = Wa, Ea
+                Wr, Er = Wr[redo], Er[redo]
             else:
-                Wr = _eigen_block(patch, nu, kappa[redo], block, False)[0]
+                Wr, _, _, Er = _eigen_block(patch, nu, kappa[redo], block, False)
             # where every disc is finite (hence disjoint: one root each, all roots found) the
             # roots are the right ones, only some too loosely enclosed: no second polish
             m2, r2 = mu[redo], rad[redo]
@@ -381,7 +388,7 @@ def _solve_block(patch, nu, kappa, block: _Block, group: bool, failures: list):
                                                         kappa=kappa[at])
             with np.errstate(all="ignore"):
                 by_poly = (m2 > 0) & (r2 <= 2 * CERTIFIED_RTOL * m2)
-                by_eig = eigenvalue_error(Wr**2) <= 2 * CERTIFIED_RTOL
+                by_eig = Er <= 2 * CERTIFIED_RTOL
             m2 = np.where(by_poly, m2, Wr**2 * mx[redo])
             mu[redo], rad[redo] = m2, np.where(by_poly, r2, 0.0)
             ok[redo] = np.all(by_poly | by_eig, axis=1)
@@ -414,7 +421,7 @@ def _eigen_fallback(patch, nu, kappa, block, group, idx, W, G, share, failures, 
     k = kappa[idx]
     route[idx] = 1
     try:
-        Wf, X, M = _eigen_block(patch, nu, k, block, group or mixed)
+        Wf, X, M, err = _eigen_block(patch, nu, k, block, group or mixed)
     except (np.linalg.LinAlgError, InputError) as exc:
         for kk in k:
             failures.append(("omega", float(kk), f"float eigen-solver failed ({exc})"))
@@ -430,9 +437,9 @@ def _eigen_fallback(patch, nu, kappa, block, group, idx, W, G, share, failures, 
             dK, dM = congruence(block.E.T, dK), congruence(block.E.T, dM)
         Gf = _slopes(Wf, X, dK, dM, M)
     basis = block.E
-    refine = np.any(eigenvalue_error(Wf**2) > RTOL, axis=1) & (k > 0)  # as _refine_small
+    refine = np.any(err > RTOL, axis=1) & (k > 0)  # as _refine_small
     route[idx[refine]] = 2
-    Wf = _refine_small(patch, nu, k, Wf, basis, Gf, failures)
+    Wf = _refine_small(patch, nu, k, Wf, basis, Gf, failures, err)
     if W is None:
         W = np.empty((kappa.size, Wf.shape[1]))
         G = np.empty_like(W) if group else None

@@ -228,16 +228,73 @@ def _slope_mp(kind, kappa, omega, nu) -> np.ndarray:
     import mpmath
 
     out = np.empty(kappa.size)
-    with mpmath.workdps(30):
-        m_nu = mpmath.mpf(nu)
+    for i, (k, W) in enumerate(zip(kappa, omega)):
+        with mpmath.workdps(_mp_digits(float(k))):
+            m_nu = mpmath.mpf(nu)
 
-        def F(k, W):
-            return mpmath_frequency_function(kind, k, W, m_nu)
+            def F(k, W):
+                return mpmath_frequency_function(kind, k, W, m_nu)
 
-        for i, (k, W) in enumerate(zip(kappa, omega)):
             k, W = mpmath.mpf(float(k)), mpmath.mpf(float(W))
             out[i] = float(-mpmath.diff(lambda x: F(x, W), k) / mpmath.diff(lambda x: F(k, x), W))
     return out
+
+
+#: Relative accuracy every root in kappa is certified to (or listed in ``failures``).
+ROOT_RTOL = 1e-12
+
+
+def _mp_digits(kappa: float) -> int:
+    """Digits for the frequency function at kappa: 40, plus the cosh-sized terms that cancel
+    in the evanescent region (about kappa / ln 10 digits)."""
+    return 40 + int(abs(kappa) / 2.3)
+
+
+def _certify(kind, roots, omega, nu):
+    """Each root certified to :data:`ROOT_RTOL` relative by a sign change of the frequency
+    function at :math:`\\kappa (1 \\pm \\delta)`, :math:`\\delta` = ROOT_RTOL / 4.
+
+    First in floats (the deflated function and its rounding bound: both signs certain);
+    where that cannot decide (round-off near a cut-off, where the root in kappa is
+    ill-conditioned; cosh-sized terms at large kappa), the root is redone by the secant
+    method in mpmath (:func:`_mp_digits`) and the sign change checked there. Returns the
+    roots, a mask of those redone in mpmath, and the indices that could not be certified.
+    """
+    import mpmath
+
+    delta = ROOT_RTOL / 4
+    lo, hi = roots * (1 - delta), roots * (1 + delta)
+    with np.errstate(all="ignore"):
+        g_lo, n_lo = deflated_with_noise(kind, lo, omega, nu)
+        g_hi, n_hi = deflated_with_noise(kind, hi, omega, nu)
+        sure = (np.abs(g_lo) > n_lo) & (np.abs(g_hi) > n_hi) & (np.sign(g_lo) != np.sign(g_hi))
+    out, redone, bad = roots.copy(), np.zeros(roots.size, dtype=bool), []
+    for i in np.flatnonzero(~sure):
+        k0, W = float(roots[i]), float(omega[i])
+        if not (math.isfinite(k0) and k0 > 0):
+            bad.append(i)
+            continue
+        with mpmath.workdps(_mp_digits(k0)):
+            m_nu, m_w = mpmath.mpf(nu), mpmath.mpf(W)
+
+            def F(k):
+                return mpmath_frequency_function(kind, k, m_w, m_nu)
+
+            try:
+                k = mpmath.findroot(F, (mpmath.mpf(k0) * (1 - mpmath.mpf(10) ** -8),
+                                        mpmath.mpf(k0) * (1 + mpmath.mpf(10) ** -8)),
+                                    solver="secant", tol=mpmath.mpf(10) ** (-2 * 16 - 4),
+                                    maxsteps=60)
+            except (ValueError, ZeroDivisionError):
+                bad.append(i)
+                continue
+            kf = float(k)
+            a, b = F(mpmath.mpf(kf) * (1 - delta)), F(mpmath.mpf(kf) * (1 + delta))
+            if mpmath.sign(a) * mpmath.sign(b) < 0 and abs(kf / k0 - 1) < 1e-4:
+                out[i], redone[i] = kf, True
+            else:
+                bad.append(i)
+    return out, redone, bad
 
 
 def _walk(n0: int, signs) -> list[int] | None:
@@ -292,9 +349,14 @@ def _class_roots(kind, nu, omega, step, rtol, max_depth, zgv_kappa):
     for i in np.flatnonzero(unconverged):
         failures.append((float(omega[rf[i]]), kind, "root refinement did not converge"))
     roots = _polish(kind, roots, omega[rf], nu)
+    roots, redone, uncertain = _certify(kind, roots, omega[rf], nu)
+    for i in uncertain:
+        failures.append((float(omega[rf[i]]), kind, f"root near kappa={roots[i]:.6g} not "
+                         f"certified to {ROOT_RTOL:.0e} relative"))
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         group = np.asarray(frequency_slope(kind, roots, omega[rf], nu), dtype=float)
-    low = np.flatnonzero(omega[rf] < SLOPE_OMEGA)
+    # where the root needed mpmath the float slope loses as much: it is redone there too
+    low = np.flatnonzero((omega[rf] < SLOPE_OMEGA) | redone)
     if low.size:
         group[low] = _slope_mp(kind, roots[low], omega[rf][low], nu)
     labels = [""] * roots.size

@@ -302,11 +302,11 @@ def _rows(kappa, omega, group, symmetry, source, material, thickness, omega_max,
     return rows
 
 
-def _csv(rows, inputs) -> str:
+def _csv(rows, inputs, failures=()) -> str:
     from dispersion.cli.outputs import EMPTY_NOTE, csv_text
 
     return csv_text(rows, [f"# {key}: {val}" for key, val in inputs.items()]
-                    + [f"# {EMPTY_NOTE}"])
+                    + [f"# failure: {line}" for line in failures] + [f"# {EMPTY_NOTE}"])
 
 
 def _text(rows, inputs) -> str:
@@ -382,19 +382,25 @@ def run(args) -> int:
                                           f"{p['c_p [m/s]']:.10g} m/s")
     rows = _rows(kappa, exact.omega, vel.group, lambda lab: lab[0], "exact", s["material"],
                  args.thickness, args.omega_max, nu)
+    # every value not certified, in every output format (issue 26): JSON "failures", CSV
+    # "# failure:" lines
+    failures = [f"exact {kind} branches at kappa={k:.6g}: {why}"
+                         for kind, k, why in exact.failures] + \
+        [f"exact {label} group velocity at kappa={k:.6g}: {why}" for label, k, why in vel.uncertain] \
+        + [f"discrete {mass} {line}" for mass, d in results for line in d.failure_lines()]
     for mass, d in results:
         rows += _rows(kappa, d.omega, d.group or {}, d.symmetry.get, mass, s["material"],
                       args.thickness, args.omega_max, nu)
     if not args.csv and not args.figure:
         if args.format == "csv":
-            emit("-", _csv(rows, inputs))
+            emit("-", _csv(rows, inputs, failures))
         elif args.format == "text":
             emit("-", _text(rows, inputs))
         else:
             from dispersion.results import dumps, envelope
 
             env = envelope("branches", {"rows": rows,
-                                        "failures": [list(f) for f in exact.failures],
+                                        "failures": failures,
                                         "velocity_uncertain": [list(u) for u in vel.uncertain]},
                            inputs=inputs)
             emit("-", dumps(env))
@@ -421,7 +427,7 @@ def run(args) -> int:
     # the CSV and the figure are one unit (io.write_unit): both new, or both old; a stream
     # ('-', a device) is written after the unit
     outputs = ([(args.figure, figure_bytes.getvalue())] if args.figure else []) + (
-        [(args.csv, _csv(rows, inputs))] if args.csv else [])
+        [(args.csv, _csv(rows, inputs, failures))] if args.csv else [])
     unit = {unit_target(path): data for path, data in outputs if unit_target(path) is not None}
     if unit:
         write_unit(unit, option="--csv/--figure")

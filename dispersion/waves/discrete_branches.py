@@ -97,12 +97,25 @@ class DiscreteBranches(BranchViews):
     #: the extended-precision solve, the power law below :data:`KAPPA_TINY`.
     routes: dict[str, int] = field(default_factory=dict)
 
+    def failure_lines(self) -> tuple[str, ...]:
+        """Every failure in words, one line each (for JSON ``failures`` and CSV ``# failure:``).
+
+        >>> DiscreteBranches(np.zeros(1), {}, {}, failures=[("group", 0.5, "why")]).failure_lines()
+        ('group velocity at kappa=0.5: why',)
+        """
+        what = {"omega": "frequency", "group": "group velocity"}
+        return tuple(f"{what.get(q, q)} at kappa={k:.6g}: {why}" for q, k, why in self.failures)
+
 
 #: The routes of :attr:`DiscreteBranches.routes`, cheapest first.
 ROUTES = ("polynomial", "float eigen-solver", "extended precision", "power law")
 
 
 RTOL = 1e-11
+#: Longest extended-precision work one call accepts (seconds, measured on its first kappa
+#: point): beyond it the request is refused with the count that fits. Rule: about two
+#: minutes, the scale of the command line's other work bounds.
+MAX_EXTENDED_SECONDS = 120.0
 
 
 def _extended_safe(patch, nu, k, basis, dps, slopes):
@@ -126,10 +139,21 @@ def _refine_small(patch, nu, kappa, W, basis, G=None, failures=None, error=None)
     ``("omega", kappa, reason)`` in ``failures`` (a list, if given). ``error``: the float
     eigen-solver's bound per root (:func:`pencil_frequencies` with ``bounds=True``).
     """
+    import time
+
     lam = W**2
     error = eigenvalue_error(lam) if error is None else error
     bad = np.flatnonzero(np.any(error > RTOL, axis=1) & (kappa > 0))
-    for i in bad:
+    started = time.perf_counter()
+    for done, i in enumerate(bad):
+        if done == 1 and (time.perf_counter() - started) * bad.size > MAX_EXTENDED_SECONDS:
+            each = time.perf_counter() - started
+            raise InputError(
+                f"{bad.size} kappa points need the extended-precision eigen-solver (the float "
+                f"one cannot certify them: the mass matrix of p = {patch.p} is too "
+                f"ill-conditioned), at about {each:.2g} s each: over "
+                f"{MAX_EXTENDED_SECONDS:.0f} s; ask for fewer kappa points (count <= "
+                f"{max(1, int(MAX_EXTENDED_SECONDS / each))}) or a lower p")
         top = float(np.max(lam[i]))
         small = max(min(float(np.min(lam[i])), 0.1 * kappa[i] ** 4), 1e-300)
         ratio = top / small
@@ -342,6 +366,7 @@ def _solve_block(patch, nu, kappa, block: _Block, group: bool, failures: list):
     row, route the index in :data:`ROUTES` of each kappa."""
     from dispersion.waves import pencil_polynomial as pp
     from dispersion.waves.certified_roots import certified_roots
+    from dispersion.waves.certified_slopes import ball_slopes
 
     n = kappa.size
     mixed = block.kind is None
@@ -390,29 +415,47 @@ def _solve_block(patch, nu, kappa, block: _Block, group: bool, failures: list):
                 by_poly = (m2 > 0) & (r2 <= 2 * CERTIFIED_RTOL * m2)
                 by_eig = Er <= 2 * CERTIFIED_RTOL
             m2 = np.where(by_poly, m2, Wr**2 * mx[redo])
-            mu[redo], rad[redo] = m2, np.where(by_poly, r2, 0.0)
+            mu[redo], rad[redo] = m2, np.where(by_poly, r2, Er * m2)   # the bound used
             ok[redo] = np.all(by_poly | by_eig, axis=1)
             route[redo[~np.all(by_poly, axis=1)]] = 1
         with np.errstate(all="ignore"):
             W = np.sqrt(mu / mx)
         if group:
-            G, Gerr = pp.slopes(poly, u, v, dudk, mu)
-            loose = ok & np.any(~(Gerr <= GROUP_RTOL * np.abs(G)), axis=1)
-            for i in np.flatnonzero(loose):
-                j = int(np.argmax(Gerr[i] / np.maximum(np.abs(G[i]), 1e-300)))
-                rel = Gerr[i, j] / abs(G[i, j]) if G[i, j] != 0 else np.inf
-                failures.append(("group", float(kappa[i]),
-                                 f"group velocity of root {j} ({block.kind or 'mixed'} block) "
-                                 f"certified to {rel:.1e} relative = {Gerr[i, j]:.1e} absolute, "
-                                 f"not {GROUP_RTOL:.0e} (rounding bound of P_u / P_mu; "
-                                 f"c_g = {G[i, j]:.3e})"))
+            G, Gerr = pp.slopes(poly, u, v, dudk, mu, rad)
+            loose = np.flatnonzero(ok & np.any(~(Gerr <= GROUP_RTOL * np.abs(G)), axis=1))
+            if loose.size:   # the float bound too wide: the same formula in balls
+                Gb, rel = ball_slopes(poly, kappa[loose], mu[loose])
+                sure = rel <= GROUP_RTOL
+                G[loose] = np.where(sure, Gb, G[loose])
+                _group_failures(failures, kappa[loose], rel, Gb, block.kind)
         if mixed:
             share = pp.parity_share(poly, u, v, mu)
         todo = np.flatnonzero(~ok)
     if todo.size:
         W, G, share = _eigen_fallback(patch, nu, kappa, block, group, todo, W, G, share,
                                       failures, route)
+        if group and poly is not None:   # the slopes of those roots, certified in balls
+            mx_t = pp.mass_factor(poly, *pp.u_of_kappa(patch.model, r, kappa[todo])[:2])
+            Gb, rel = ball_slopes(poly, kappa[todo], W[todo] ** 2 * mx_t)
+            G[todo] = np.where(rel <= GROUP_RTOL, Gb, G[todo])
+            _group_failures(failures, kappa[todo], rel, Gb, block.kind)
+        elif group:
+            fresh = todo[route[todo] == ROUTES.index("float eigen-solver")]
+            for kk in kappa[fresh]:
+                failures.append(("group", float(kk), "group velocity from the float "
+                                 "eigen-solver (eigenvector formula): not certified to "
+                                 f"{GROUP_RTOL:.0e}"))
     return W, G, share, route
+
+
+def _group_failures(failures, kappa, rel, G, kind):
+    """One ``("group", kappa, reason)`` per kappa where a ball slope is wider than GROUP_RTOL."""
+    for i in np.flatnonzero(np.any(~(rel <= GROUP_RTOL), axis=1)):
+        j = int(np.argmax(np.where(np.isfinite(rel[i]), rel[i], np.inf)))
+        failures.append(("group", float(kappa[i]),
+                         f"group velocity of root {j} ({kind or 'mixed'} block) not certified "
+                         f"to {GROUP_RTOL:.0e} relative (ball arithmetic: {rel[i, j]:.1e}; "
+                         f"c_g/c_T = {G[i, j]:.3e})"))
 
 
 def _eigen_fallback(patch, nu, kappa, block, group, idx, W, G, share, failures, route):

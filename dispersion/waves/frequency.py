@@ -52,6 +52,7 @@ from dispersion.waves.illinois import illinois
 from dispersion.waves.numeric_frequency import frequency_slope
 from dispersion.waves.rayleigh_lamb import (cutoff_frequencies, mpmath_frequency_function,
                                             speed_ratio_squared)
+from dispersion.waves.sh import at_cutoff
 
 __all__ = ["FREQUENCY_OMEGA_MAX", "FREQUENCY_OMEGA_MIN", "MAX_SCAN_SAMPLES", "SLOPE_OMEGA",
            "FrequencyRoots", "modes_at_frequency", "zgv_points"]
@@ -93,6 +94,10 @@ class FrequencyRoots:
     cutoffs: dict
     zgv: tuple
     failures: tuple
+    #: ``(index into omega, label)`` of every mode whose cut-off *is* the requested
+    #: frequency (:func:`dispersion.waves.sh.at_cutoff`): kappa = 0, infinite phase
+    #: velocity, not propagating, so not among the rows.
+    at_cutoff: tuple = ()
 
     @property
     def phase(self) -> np.ndarray:
@@ -360,7 +365,8 @@ def _class_roots(kind, nu, omega, step, rtol, max_depth, zgv_kappa):
     if low.size:
         group[low] = _slope_mp(kind, roots[low], omega[rf][low], nu)
     labels = [""] * roots.size
-    cut = np.array([w for w, _ in cutoff_frequencies(kind, nu, float(omega.max()))])
+    # to just above the top frequency: a cut-off that *is* it to rounding counts (at_cutoff)
+    cut = np.array([w for w, _ in cutoff_frequencies(kind, nu, float(omega.max()) * (1 + 1e-14))])
     for i in range(omega.size):
         mine = np.flatnonzero(rf == i)
         g = group[mine]
@@ -387,7 +393,22 @@ def _class_roots(kind, nu, omega, step, rtol, max_depth, zgv_kappa):
             continue
         for r, j in zip(mine, walk):
             labels[r] = f"{kind}{j}"
-    return rf, labels, roots, group, failures
+    # a branch whose cut-off is Omega to rounding: its root next to kappa = 0 is rounding
+    # (kappa ~ sqrt(eps)), the mode is at its cut-off (not propagating): dropped, named
+    keep = np.ones(roots.size, dtype=bool)
+    at = []
+    for r, lab in enumerate(labels):
+        j = lab[1:]
+        if j.isdigit() and int(j) < cut.size and at_cutoff(float(omega[rf[r]]), cut[int(j)]) \
+                and cut[int(j)] > 0 and roots[r] < 1e-6:
+            keep[r] = False
+            at.append((int(rf[r]), lab))
+    for i in range(omega.size):   # at the cut-off with no root found next to it: named too
+        for j, w in enumerate(cut):
+            if w > 0 and at_cutoff(float(omega[i]), w) and (i, f"{kind}{j}") not in at:
+                at.append((i, f"{kind}{j}"))
+    labels = [lab for lab, k in zip(labels, keep) if k]
+    return rf[keep], labels, roots[keep], group[keep], failures, at
 
 
 def zgv_points(nu: float, omega_top: float, per_unit: float = 40.0):
@@ -447,17 +468,20 @@ def modes_at_frequency(nu: float, omega, *, kinds=("S", "A", "SH"), step: float 
     points = ()
     if zgv and any(k in ("S", "A") for k in kinds):
         points = tuple(zgv_points(nu, wmax * 1.05 + 0.5))
-    rows, failures = [], []
+    rows, failures, at_cut = [], [], []
     for kind in kinds:
         if kind == "SH":
             for i, w in enumerate(omega):
                 for lab, k, g in sh_roots(float(w)):
                     rows.append((i, lab, k, g))
+                at_cut += [(i, lab) for lab, wc in sh_cutoffs(float(w) * (1 + 1e-15))
+                           if wc > 0 and at_cutoff(float(w), wc)]
             continue
         zk = [p.kappa for p in points if p.label[0] == kind]
-        rf, labels, roots, group, fails = _class_roots(kind, nu, omega, step, rtol,
-                                                       max_depth, zk)
+        rf, labels, roots, group, fails, at = _class_roots(kind, nu, omega, step, rtol,
+                                                           max_depth, zk)
         failures += fails
+        at_cut += at
         rows += list(zip(rf.tolist(), labels, roots.tolist(), group.tolist()))
     family = {"S": 0, "A": 1, "SH": 2}
     def number(label):  # "S?" (an uncertified root) sorts after every numbered mode
@@ -479,4 +503,5 @@ def modes_at_frequency(nu: float, omega, *, kinds=("S", "A", "SH"), step: float 
         label=tuple(r[1] for r in rows),
         kappa=np.array([r[2] for r in rows], dtype=float),
         group=np.array([r[3] for r in rows], dtype=float),
-        cutoffs=cutoffs, zgv=points, failures=tuple(dict.fromkeys(failures)))
+        cutoffs=cutoffs, zgv=points, failures=tuple(dict.fromkeys(failures)),
+        at_cutoff=tuple(sorted(set(at_cut))))

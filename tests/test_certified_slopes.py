@@ -14,8 +14,8 @@ from hypothesis import strategies as st
 
 from dispersion.symbolic.plate import mirror_bases, plate_patch
 from dispersion.waves.discrete_branches import GROUP_RTOL, discrete_branches
-from tests.mp_pencil import mp_frequencies
-from tests.promise_search import FAST, SLOW, record
+from mp_pencil import mp_frequencies
+from promise_search import FAST, SLOW, record
 
 
 def test_readme_python_example_certifies_every_group_velocity():

@@ -201,13 +201,13 @@ def test_frequency_exactly_at_a_cut_off(nu, W):
 from hypothesis import example, given  # noqa: E402
 from hypothesis import strategies as st  # noqa: E402
 
-from tests.promise_search import FAST, SLOW, record  # noqa: E402
+from promise_search import FAST, SLOW, record  # noqa: E402
 
 
 def _mp_root_and_slope(kind, kappa, omega, nu):
     """The root in kappa of the textbook equation near ``kappa`` and -F_k / F_W there, by
     mpmath alone (tests/mp_lamb.py) at 60 digits plus the cosh-sized cancellation."""
-    from tests.mp_lamb import mp_F
+    from mp_lamb import mp_F
 
     with mpmath.workdps(60 + int(kappa / 2.3)):
         W, m_nu = mpmath.mpf(omega), mpmath.mpf(nu)

@@ -89,7 +89,7 @@ import math  # noqa: E402
 import mpmath  # noqa: E402
 from hypothesis import example  # noqa: E402
 
-from tests.promise_search import FAST, FAST_FEW, SLOW, record  # noqa: E402
+from promise_search import FAST, FAST_FEW, SLOW, record  # noqa: E402
 
 _SCHEMES = ("central", "average-acceleration", "linear-acceleration", "fox-goodwin")
 
@@ -171,7 +171,7 @@ def _check_branches(mass, p, log_kappa, scheme_index, courant_frac):
     from dispersion.waves.discrete_branches import discrete_branches
     from dispersion.waves.fully_discrete import fully_discrete_branches
     from dispersion.waves.timestep import patch_omega_max
-    from tests.mp_pencil import mp_frequencies
+    from mp_pencil import mp_frequencies
 
     n = max(p + 1, 3)
     patch = plate_patch(p, n, "bloch", 2, mass)

@@ -215,7 +215,7 @@ import mpmath  # noqa: E402
 from hypothesis import example, given  # noqa: E402
 from hypothesis import strategies as st  # noqa: E402
 
-from tests.promise_search import FAST_FEW, SLOW, record  # noqa: E402
+from promise_search import FAST_FEW, SLOW, record  # noqa: E402
 
 
 def _mp_omega_max(patch, nu, theta):
@@ -227,7 +227,7 @@ def _mp_omega_max(patch, nu, theta):
     largest value of an independent float grid (plain numpy eigenvalues on 257 phases) must
     not exceed it."""
     from dispersion.symbolic.plate import numeric_pencil
-    from tests.mp_pencil import mp_frequencies
+    from mp_pencil import mp_frequencies
 
     r = mpmath.mpf(sympy.Rational(patch.r).p) / sympy.Rational(patch.r).q
     K, M = numeric_pencil(patch, nu, np.linspace(0, np.pi, 257) / float(r))

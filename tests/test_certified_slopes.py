@@ -104,3 +104,35 @@ def test_readme_branches_command_lists_no_failure(tmp_path, capsys):
                  str(tmp_path / "branches.csv")]) == 0
     assert "warning" not in capsys.readouterr().err
     assert "# failure:" not in (tmp_path / "branches.csv").read_text()
+
+
+def test_failures_reach_json_and_csv(tmp_path, capsys, monkeypatch):
+    # issue 26: "failures": [] in JSON while 1200 group velocities were not certified. With
+    # the tolerance made unreachable every group velocity is a failure: each must reach the
+    # JSON "failures" and a CSV "# failure:" line (never only stderr)
+    import json
+
+    from dispersion.cli import main
+    from dispersion.waves import discrete_branches as db
+
+    monkeypatch.setattr(db, "GROUP_RTOL", 1e-300)
+    args = ["branches", "--mass", "consistent", "--count", "3", "--kappa-max", "0.5"]
+    assert main(args + ["--format", "json"]) == 0
+    failures = json.loads(capsys.readouterr().out)["result"]["failures"]
+    assert any(f.startswith("discrete consistent group velocity at kappa=") for f in failures)
+    assert main(args + ["--csv", str(tmp_path / "b.csv")]) == 0
+    text = (tmp_path / "b.csv").read_text()
+    assert "# failure: discrete consistent group velocity at kappa=" in text
+
+
+def test_extended_precision_work_is_refused_up_front(monkeypatch):
+    # p = 12: every kappa needs the extended-precision solver once the float bound counts the
+    # mass matrix's conditioning; work beyond the bound is refused after the first point,
+    # naming the count that fits (never hours of silent work)
+    from dispersion.errors import InputError
+    from dispersion.waves import discrete_branches as db
+
+    monkeypatch.setattr(db, "MAX_EXTENDED_SECONDS", 1e-3)
+    patch = plate_patch(12, 13, "bloch", 2, "consistent")
+    with pytest.raises(InputError, match="extended-precision eigen-solver.*count <="):
+        discrete_branches(patch, 0.3, np.linspace(0.1, 1.5, 6))

@@ -131,9 +131,9 @@ def test_extended_precision_work_is_refused_up_front(monkeypatch):
     # the mass matrix's conditioning; here small kappa on the eigen-solver path), work beyond
     # the bound is refused after the first point, naming the count that fits (never hours)
     from dispersion.errors import InputError
-    from dispersion.waves import discrete_branches as db
+    from dispersion.waves import extended_pencil
 
-    monkeypatch.setattr(db, "MAX_EXTENDED_SECONDS", 1e-3)
+    monkeypatch.setattr(extended_pencil, "MAX_EXTENDED_SECONDS", 1e-3)
     patch = plate_patch(2, 14, "bloch", 2, "consistent")   # blocks of 14: the eigen-solver
     with pytest.raises(InputError, match="extended-precision eigen-solver.*count <="):
         discrete_branches(patch, 0.3, np.geomspace(1e-4, 1e-3, 4))   # A0 lost in floats

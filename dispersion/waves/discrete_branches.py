@@ -19,8 +19,11 @@ from guesses interpolated between anchors (every :data:`ANCHOR_STRIDE`-th kappa 
 float eigen-solver) and *certified* by an inclusion radius from a running error bound:
 :math:`\\Omega` to :data:`CERTIFIED_RTOL` relative, A0 (:math:`\\Omega^2 \\sim \\kappa^4`) and S0
 (:math:`\\kappa^2`) included. Where the polynomial cannot certify a root, the float eigenvalue
-is used if its backward-error bound :math:`m\\epsilon\\lambda_{max}/\\lambda` is small enough,
-else that kappa is solved in ball arithmetic (:func:`extended_frequencies`), and where that
+is used if its error bound :math:`m\\epsilon \\max(\\lambda_{max}, \\|K\\| \\|M^{-1}\\|)/\\lambda`
+(the conditioning of M counts, :func:`~dispersion.waves.pencil_frequencies.eigenvalue_error`)
+is small enough,
+else that kappa is solved in ball arithmetic
+(:func:`~dispersion.waves.extended_pencil.extended_frequencies`), and where that
 fails too the kappa is listed in ``DiscreteBranches.failures`` with the reason: nothing
 raises from an eigen-solver. Below :data:`KAPPA_TINY` every branch follows its leading power
 law exactly to the precision of floats; a frequency that underflows is listed, not guessed.
@@ -62,8 +65,8 @@ from dispersion.symbolic.plate import (
     numeric_terms,
     x_functions,
 )
-from dispersion.waves.extended_pencil import extended_frequencies
-from dispersion.waves.pencil_frequencies import congruence, eigenvalue_error, pencil_frequencies
+from dispersion.waves.extended_pencil import refine_inaccurate
+from dispersion.waves.pencil_frequencies import congruence, pencil_frequencies
 
 __all__ = [
     "DiscreteBranches",
@@ -112,65 +115,6 @@ ROUTES = ("polynomial", "float eigen-solver", "extended precision", "power law")
 
 
 RTOL = 1e-11
-#: Longest extended-precision work one call accepts (seconds, measured on its first kappa
-#: point): beyond it the request is refused with the count that fits. Rule: about two
-#: minutes, the scale of the command line's other work bounds.
-MAX_EXTENDED_SECONDS = 120.0
-
-
-def _extended_safe(patch, nu, k, basis, dps, slopes):
-    """:func:`extended_frequencies`, retried at twice the digits; ``(None, reason)`` if both fail."""
-    why = ""
-    for digits in (dps, 2 * dps):
-        try:
-            return extended_frequencies(patch, nu, k, basis, dps=digits, slopes=slopes), ""
-        except (ValueError, ZeroDivisionError, ArithmeticError) as exc:  # flint: eig failed
-            why = f"extended-precision eigen-solver failed at {digits} digits ({exc})"
-    return None, why
-
-
-def _refine_small(patch, nu, kappa, W, basis, G=None, failures=None, error=None):
-    """Recompute in extended precision the kappas where some float eigenvalue of W is inaccurate.
-
-    Digits: 30 beyond the ratio of the largest eigenvalue to the smallest (guessed as
-    kappa^4 where the float value is lost in round-off). With ``G`` (slopes) given, the
-    slopes there come from the eigenvector formula in the same precision. Never raises
-    from the eigen-solver: a kappa where the ball solve fails twice gets NaN and an entry
-    ``("omega", kappa, reason)`` in ``failures`` (a list, if given). ``error``: the float
-    eigen-solver's bound per root (:func:`pencil_frequencies` with ``bounds=True``).
-    """
-    import time
-
-    lam = W**2
-    error = eigenvalue_error(lam) if error is None else error
-    bad = np.flatnonzero(np.any(error > RTOL, axis=1) & (kappa > 0))
-    started = time.perf_counter()
-    for done, i in enumerate(bad):
-        if done == 1 and (time.perf_counter() - started) * bad.size > MAX_EXTENDED_SECONDS:
-            each = time.perf_counter() - started
-            raise InputError(
-                f"{bad.size} kappa points need the extended-precision eigen-solver (the float "
-                f"one cannot certify them: the mass matrix of p = {patch.p} is too "
-                f"ill-conditioned), at about {each:.2g} s each: over "
-                f"{MAX_EXTENDED_SECONDS:.0f} s; ask for fewer kappa points (count <= "
-                f"{max(1, int(MAX_EXTENDED_SECONDS / each))}) or a lower p")
-        top = float(np.max(lam[i]))
-        small = max(min(float(np.min(lam[i])), 0.1 * kappa[i] ** 4), 1e-300)
-        ratio = top / small
-        if not 1.0 <= ratio < 1e300:   # float eigenvalues lost (inf, NaN): the widest guess
-            ratio = 1e300 if not ratio < 1.0 else 1.0
-        dps = 30 + int(math.ceil(math.log10(ratio)))
-        out, why = _extended_safe(patch, nu, float(kappa[i]), basis, dps, G is not None)
-        if out is None:
-            W[i] = np.nan
-            if failures is not None:
-                failures.append(("omega", float(kappa[i]), why))
-            continue
-        if G is None:
-            W[i] = out
-        else:
-            W[i], G[i] = out
-    return W
 
 
 def pencil_derivative(patch: PlatePatch, nu: float, kappa) -> tuple[np.ndarray, np.ndarray]:
@@ -480,9 +424,9 @@ def _eigen_fallback(patch, nu, kappa, block, group, idx, W, G, share, failures, 
             dK, dM = congruence(block.E.T, dK), congruence(block.E.T, dM)
         Gf = _slopes(Wf, X, dK, dM, M)
     basis = block.E
-    refine = np.any(err > RTOL, axis=1) & (k > 0)  # as _refine_small
+    refine = np.any(err > RTOL, axis=1) & (k > 0)  # as refine_inaccurate
     route[idx[refine]] = 2
-    Wf = _refine_small(patch, nu, k, Wf, basis, Gf, failures, err)
+    Wf = refine_inaccurate(patch, nu, k, Wf, basis, Gf, failures, err, RTOL)
     if W is None:
         W = np.empty((kappa.size, Wf.shape[1]))
         G = np.empty_like(W) if group else None

@@ -245,8 +245,6 @@ def patch_omega_max(patch, nu: float, n_theta: int = 65, exact: bool = True
     ``exact`` (returned) is a sympy number where the maximum sits at a zone end (else None);
     ``exact=False`` skips that symbolic check and reports the float maximum of the grid.
     """
-    from scipy.optimize import minimize_scalar
-
     from dispersion.waves.pencil_frequencies import pencil_frequencies
 
     n_theta = check_positive_int("n_theta", n_theta, minimum=3)

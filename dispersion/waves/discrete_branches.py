@@ -359,7 +359,9 @@ def _solve_block(patch, nu, kappa, block: _Block, group: bool, failures: list):
                 by_poly = (m2 > 0) & (r2 <= 2 * CERTIFIED_RTOL * m2)
                 by_eig = Er <= 2 * CERTIFIED_RTOL
             m2 = np.where(by_poly, m2, Wr**2 * mx[redo])
-            mu[redo], rad[redo] = m2, np.where(by_poly, r2, Er * m2)   # the bound used
+            with np.errstate(all="ignore"):   # the bound used (inf where there is none)
+                rad[redo] = np.where(by_poly, r2, np.where(np.isfinite(Er), Er * m2, np.inf))
+            mu[redo] = m2
             ok[redo] = np.all(by_poly | by_eig, axis=1)
             route[redo[~np.all(by_poly, axis=1)]] = 1
         with np.errstate(all="ignore"):

@@ -51,7 +51,8 @@ def ball_slopes(poly, kappa: np.ndarray, mu: np.ndarray):
 
     ``poly`` must carry its exact coefficients (``PencilPolynomial.exact``). The relative
     radius is ``inf`` where a root could not be enclosed (a guess too far, two roots in one
-    ball); with ``mu`` exactly 0 (kappa = 0) the slope is returned as NaN, radius inf.
+    ball, two guesses drawn to the same root); with ``mu`` exactly 0 (kappa = 0) the slope
+    is returned as NaN, radius inf.
     """
     import flint
 
@@ -68,9 +69,14 @@ def ball_slopes(poly, kappa: np.ndarray, mu: np.ndarray):
             c = [p(u) for p in P]
             cu = [p(u) for p in dP]
             m, mxp = mx(u), dmx(u)
-            for j, guess in enumerate(mu[i]):
-                root = _enclose(c, float(guess))
+            roots = [_enclose(c, float(guess)) for guess in mu[i]]
+            for j, root in enumerate(roots):
                 if root is None or not root > 0:
+                    continue
+                # two guesses drawn to one root (a pair closer than the floats can tell,
+                # such as a degenerate pair at kappa -> 0): neither slope is known
+                if any(o is not None and jj != j and o.overlaps(root)
+                       for jj, o in enumerate(roots)):
                     continue
                 pm = _horner(c, root, deriv=True)
                 pu = _horner(cu, root)

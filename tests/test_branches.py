@@ -251,3 +251,13 @@ def test_discrete_branches_against_mpmath(mass, p, extra_n, r, nu, kappa_frac):
     ("consistent", 24, 0, "2", 0.3, 0.5)])
 def test_discrete_branches_against_mpmath_slow(mass, p, extra_n, r, nu, kappa_frac):
     _check_discrete(mass, p, extra_n, r, nu, kappa_frac)
+
+
+@pytest.mark.slow
+def test_p23_near_incompressible_tiny_kappa_is_no_traceback():
+    # issue 26: `branches --p 23 --n 24 --nu 0.4999 --mass consistent --kappa-max 1e-6
+    # --count 2` ended in OverflowError in the extended-precision fallback
+    patch = plate_patch(23, 24, "bloch", 2, "consistent")
+    br = discrete_branches(patch, 0.4999, [0.0, 1e-6])
+    listed = {k for _, k, _ in br.failures}
+    assert all(np.isfinite(w[1]) or 1e-6 in listed for w in br.omega.values())

@@ -40,9 +40,11 @@ def _mp_slopes(patch, nu, kappa, basis):
         k = mpmath.mpf(kappa)
         h = (k if kappa > 0 else 1) * mpmath.mpf(10) ** -30
         up = mp_frequencies(patch, nu, k + h, dps, basis)
-        if kappa == 0:
+        if kappa == 0:   # one-sided, Richardson-extrapolated (the O(h Omega'') term
+            # cancels: it is large beside a near-degenerate pair, Omega'' ~ 1/gap)
             mid = mp_frequencies(patch, nu, k, dps, basis)
-            return [(a - b) / h for a, b in zip(up, mid)]
+            up2 = mp_frequencies(patch, nu, k + 2 * h, dps, basis)
+            return [2 * (a - b) / h - (c - b) / (2 * h) for a, b, c in zip(up, mid, up2)]
         dn = mp_frequencies(patch, nu, k - h, dps, basis)
         return [(a - b) / (2 * h) for a, b in zip(up, dn)]
 

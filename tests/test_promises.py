@@ -18,7 +18,9 @@ def _tables(register: Path = REGISTER):
     """Rows of the register's two tables as lists of cells."""
     promises, exempt, current = [], [], None
     for line in register.read_text(encoding="utf-8").splitlines():
-        if line.startswith("| id |"):
+        if line.startswith("#"):   # a section (other owners' tables have their own columns)
+            current = None
+        elif line.startswith("| id |"):
             current = promises
         elif line.startswith("| README fragment |"):
             current = exempt

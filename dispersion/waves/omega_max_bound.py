@@ -119,7 +119,7 @@ class _BallPencil:
         import flint
 
         from dispersion.symbolic.patch import rational
-        from dispersion.symbolic.plate import bloch_coefficients, lame, mass_block, stiffness_terms
+        from dispersion.symbolic.plate import lame, mass_block, stiffness_terms, x_coefficients
 
         def q(v):
             v = sympy.Rational(v)
@@ -136,12 +136,12 @@ class _BallPencil:
         self.terms = [(lam[m], f, arb_mat(B)) for m, f, B in stiffness_terms(patch)]
         self.M0 = arb_mat(mass_block(patch))
         self.upper = flint.arb(bound) ** 2
-        c = bloch_coefficients(patch.p)
+        c = x_coefficients(patch)  # Petrov-Galerkin rules: times their x-factor
         r = q(patch.r)
         self.cos_sums = {"m": ([(L, q(v)) for L, v in c["00"].items()], 1),
                          "d": ([(L, q(v)) for L, v in c["11"].items()], 1 / r**2),
                          "mx": ([(L, q(v)) for L, v in patch.x_mass], 1)}
-        self.sin_sum = ([(L, q(c["10"][L])) for L in range(1, patch.p + 1)], -2 / r)
+        self.sin_sum = ([(L, q(v)) for L, v in c["10"].items() if L > 0], -2 / r)
         self.n2 = n2
 
     def _x(self, th, k: int) -> dict:

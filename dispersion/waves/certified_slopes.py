@@ -23,10 +23,12 @@ to the caller's ``failures``.
 >>> from dispersion.symbolic.plate import plate_patch, mirror_bases
 >>> from dispersion.waves.pencil_polynomial import pencil_polynomial
 >>> poly = pencil_polynomial(plate_patch(), 0.3, mirror_bases(3, exact=True)["S"])
->>> mu = np.array([[0.0, 8.6, 9.9]])            # rough guesses: interval Newton closes them
+>>> mu = np.array([[3e-6, 10.4, 14.8]])   # rough guesses of Omega^2 m_x: Newton closes them
 >>> G, rel = ball_slopes(poly, np.array([1e-3]), mu)
 >>> bool(rel[0, 1] < 1e-30), round(float(G[0, 1]), 8)   # S1 near its cut-off: c_g ~ kappa
 (True, -0.00052169)
+>>> bool(np.isinf(ball_slopes(poly, np.array([1e-3]), np.array([[3e-6, 10.4, 12.1]]))[1][0, 2]))
+True
 
 References
 ----------
@@ -51,8 +53,8 @@ def ball_slopes(poly, kappa: np.ndarray, mu: np.ndarray):
 
     ``poly`` must carry its exact coefficients (``PencilPolynomial.exact``). The relative
     radius is ``inf`` where a root could not be enclosed (a guess too far, two roots in one
-    ball, two guesses drawn to the same root); with ``mu`` exactly 0 (kappa = 0) the slope
-    is returned as NaN, radius inf.
+    ball, two guesses drawn to the same root: the last line of the example); with ``mu``
+    exactly 0 (kappa = 0) the slope is returned as NaN, radius inf.
     """
     import flint
 

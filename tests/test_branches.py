@@ -221,7 +221,7 @@ def _check_discrete(mass, p, extra_n, r, nu, kappa_frac):
 def _discrete_domain(p_max, extra_max, examples):
     """Every mass rule, p = 1..p_max, n = p + 1 .. p + 1 + extra_max, r in {1/2, 2}, nu in
     (-1, 0.5), kappa over a whole period; ``examples`` (the ends, issue 26's case)."""
-    from dispersion.defaults import MASS_VARIANTS
+    from dispersion.symbolic.mass_rule import BLOCH_RULE_NAMES as MASS_VARIANTS
 
     def decorate(fn):
         for ex in examples:

@@ -76,7 +76,7 @@ def _check_slopes(mass, r, nu, kappa_frac):
 def _slope_domain(fn, full=False):
     """Every mass rule, r in {1/2, 2} (the README's two figures), nu in (-1, 0.5), kappa over a
     whole period (0 and the zone edge as examples)."""
-    from dispersion.defaults import MASS_VARIANTS
+    from dispersion.symbolic.mass_rule import BLOCH_RULE_NAMES as MASS_VARIANTS
 
     ends = [("consistent", 2, 0.3, 0.0), ("singular", 2, 0.3, 0.0601504 / math.pi),
             ("singular", 2, 0.3, 0.0), ("consistent", 2, 0.3, 0.0200501 / math.pi),

@@ -204,7 +204,7 @@ def _branch_domain(fn, full=False):
             dict(mass="hrz", p=1, log_kappa=1.0, scheme_index=1, courant_frac=1.0)]
     for ex in ends if full else ends[:2]:
         fn = example(**ex)(fn)
-    from dispersion.defaults import MASS_VARIANTS
+    from dispersion.symbolic.mass_rule import BLOCH_RULE_NAMES as MASS_VARIANTS
 
     return given(mass=st.sampled_from(MASS_VARIANTS), p=st.integers(1, 4),
                  log_kappa=st.floats(-40, 0.2), scheme_index=st.integers(0, len(_SCHEMES) - 1),

@@ -274,7 +274,7 @@ def _check_step(mass, p, material):
 def _step_domain(p_max):
     """Every rule, p = 1..p_max, every material; the crash of issue 26 (p = 4, singular, which
     also failed with copper, brass, glass, pmma, aluminium-rolled) as examples."""
-    from dispersion.defaults import MASS_VARIANTS
+    from dispersion.symbolic.mass_rule import BLOCH_RULE_NAMES as MASS_VARIANTS
     from dispersion.waves.materials import MATERIALS
 
     def decorate(fn):

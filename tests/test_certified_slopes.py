@@ -53,8 +53,8 @@ def _check_slopes(mass, r, nu, kappa_frac):
     patch = plate_patch(2, 3, "bloch", r, mass)   # the README's patch: p = 2, n = 3
     kappa = kappa_frac * 2 * math.pi / float(r)  # a whole period (beyond the zone: folded)
     br = discrete_branches(patch, nu, [kappa], group=True)
-    if any(what == "group" for what, _, _ in br.failures):
-        return   # listed: allowed, never silent
+    if br.failures:   # listed (a slope, or a frequency that underflows): allowed, never silent
+        return
     bases = mirror_bases(patch.n, exact=True) if set(br.symmetry.values()) <= {"S", "A"} \
         else None
     groups = {"S": [], "A": []} if bases else {"all": []}

@@ -58,7 +58,7 @@ def test_readme_has_the_main_job_and_the_commands_of_each_part():
 
 def _named_outputs(args: list[str]) -> list[str]:
     return [args[i + 1] for i, a in enumerate(args[:-1])
-            if a in ("--out", "--figure", "--csv", "--junit") and args[i + 1] != "-"]
+            if a in ("--out", "--figure", "--csv", "--json", "--junit") and args[i + 1] != "-"]
 
 
 @pytest.mark.parametrize(("command", "status"), [_param(*c) for c in readme_commands()])

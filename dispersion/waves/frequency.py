@@ -265,8 +265,6 @@ def _certify(kind, roots, omega, nu):
     method in mpmath (:func:`_mp_digits`) and the sign change checked there. Returns the
     roots, a mask of those redone in mpmath, and the indices that could not be certified.
     """
-    import mpmath
-
     delta = ROOT_RTOL / 4
     lo, hi = roots * (1 - delta), roots * (1 + delta)
     with np.errstate(all="ignore"):
@@ -279,6 +277,8 @@ def _certify(kind, roots, omega, nu):
         if not (math.isfinite(k0) and k0 > 0):
             bad.append(i)
             continue
+        import mpmath   # only where floats cannot decide (the calculator's start-up stays lean)
+
         with mpmath.workdps(_mp_digits(k0)):
             m_nu, m_w = mpmath.mpf(nu), mpmath.mpf(W)
 

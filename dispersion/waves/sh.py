@@ -64,27 +64,33 @@ def at_cutoff(Omega: float, cutoff: float) -> bool:
 def sh_roots(Omega: float) -> list[tuple[str, float, float]]:
     """Propagating SH modes at :math:`\\Omega > 0`: ``(label, kappa, dOmega/dkappa)``.
 
-    :math:`\\kappa = \\sqrt{(\\Omega - n\\pi/2)(\\Omega + n\\pi/2)}`, the difference taken with
-    pi to 40 digits (mpmath), so kappa keeps its relative accuracy next to a cut-off (with
-    the float pi the rounding of :math:`n\\pi/2` alone would be :math:`\\epsilon / 2\\delta`
-    of kappa at a relative distance delta). A mode at its cut-off (:func:`at_cutoff`) has
+    :math:`\\kappa = \\sqrt{(\\Omega - n\\pi/2)(\\Omega + n\\pi/2)}`; within 1e-3 relative
+    of a cut-off the difference is taken with pi to 40 digits (mpmath), so kappa keeps its
+    relative accuracy there (with the float pi the rounding of :math:`n\\pi/2` alone moves
+    kappa by :math:`\\epsilon / 2\\delta` at a relative distance delta). A mode at its cut-off (:func:`at_cutoff`) has
     kappa = 0 and is not propagating: it is not listed.
     """
-    import mpmath
-
     Omega = float(check_real_in_range("Omega", Omega, 0, SH_OMEGA_MAX, lo_open=True))
     out = []
-    with mpmath.workdps(40):
-        W = mpmath.mpf(Omega)
-        for label, wc in sh_cutoffs(min(Omega * (1 + 2 * AT_CUTOFF_RTOL), SH_OMEGA_MAX)):
-            if at_cutoff(Omega, wc):
+    for label, wc in sh_cutoffs(min(Omega * (1 + 2 * AT_CUTOFF_RTOL), SH_OMEGA_MAX)):
+        if at_cutoff(Omega, wc):
+            continue
+        n = int(label[2:])
+        if abs(Omega - wc) > 1e-3 * Omega:
+            # the float pi's rounding moves kappa by eps wc / (2 (Omega - wc)) < 1e-13
+            if Omega <= wc:
                 continue
-            n = int(label[2:])
-            d = W - n * mpmath.pi / 2
-            if d <= 0:
-                continue
-            kappa = float(mpmath.sqrt(d * (W + n * mpmath.pi / 2)))
-            out.append((label, kappa, kappa / Omega))
+            kappa = math.sqrt((Omega - wc) * (Omega + wc))
+        else:   # next to the cut-off: the difference with pi to 40 digits
+            import mpmath
+
+            with mpmath.workdps(40):
+                W = mpmath.mpf(Omega)
+                d = W - n * mpmath.pi / 2
+                if d <= 0:
+                    continue
+                kappa = float(mpmath.sqrt(d * (W + n * mpmath.pi / 2)))
+        out.append((label, kappa, kappa / Omega))
     return out
 
 

@@ -204,7 +204,8 @@ RULES = {"bar": bar, "terms": terms, "bar_series": bar_series, "phases": phases,
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = argparse.ArgumentParser(description="The cost growth behind the bounds of "
+                                 "dispersion.budget, measured and fitted.")
     ap.add_argument("--quick", action="store_true", help="fewer points")
     ap.add_argument("--timeout", type=float, default=120.0, help="seconds per point")
     ap.add_argument("--only", choices=sorted(RULES), action="append")

@@ -1,4 +1,4 @@
-"""Benchmark of the explicit loop of the guided-wave simulation (issue 30, item 6).
+"""Benchmark of the explicit loop of the guided-wave simulation against the bare sparse loop.
 
 For strips of the study's size (S0, kappa_c = 0.5, 40 wavelengths, N elements per
 wavelength), each case builds the mesh, the mass operator and the step (0.9 of the mesh's

@@ -247,10 +247,11 @@ def refine_inaccurate(patch, nu, kappa, W, basis, G=None, failures=None, error=N
     for done, i in enumerate(bad):
         if done == 1 and (time.perf_counter() - started) * bad.size > MAX_EXTENDED_SECONDS:
             each = time.perf_counter() - started
+            worst = float(np.max(error[bad]))
             raise InputError(
                 f"{bad.size} kappa points need the extended-precision eigen-solver (the float "
-                f"one cannot certify them: the mass matrix of p = {patch.p} is too "
-                f"ill-conditioned), at about {each:.2g} s each: over "
+                f"one certifies their eigenvalues to {worst:.1g} relative only, not {rtol:g}: "
+                f"p = {patch.p}, n = {patch.n}), at about {each:.2g} s each: over "
                 f"{MAX_EXTENDED_SECONDS:.0f} s; ask for fewer kappa points (count <= "
                 f"{max(1, int(MAX_EXTENDED_SECONDS / each))}) or a lower p")
         top = float(np.max(lam[i]))

@@ -32,6 +32,8 @@ def test_notebook_executes(path, tmp_path):
         resources={"metadata": {"path": str(tmp_path)}},
     )
     client.execute()  # raises CellExecutionError on the first failing cell
+    # a user runs it from notebooks/ in the checkout: it leaves nothing in its folder
+    assert sorted(p.name for p in tmp_path.iterdir()) == []
     errors = [
         out
         for cell in nb.cells

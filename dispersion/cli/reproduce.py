@@ -112,7 +112,7 @@ def handler(args: argparse.Namespace) -> int:
     extra = "" if args.update_reference else ", comparison.md"
     print(f"{verb} {run.out / 'index.md'}{extra} ({len(run.sections)} sections, "
           f"{run.seconds:.1f} s)")
-    print(run.verdict.line())
+    print(run.text())  # the verdict line, the peers not run, a short summary
     if args.update_reference:
         return 0  # replacing the reference is the maintainer's decision; the line informs it
     return 0 if run.verdict.reproduced else 1

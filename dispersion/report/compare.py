@@ -18,9 +18,19 @@ a section that declares nothing is held to the strictest standard. The kinds:
     a wall time or a quantity fitted to wall times: listed as the ratio new/ref, never judged.
 ``unjudged``
     recorded for the reader, not compared (the ``why`` says why).
+``machine``
+    describes the machine that ran, not the physics (a peer program present or not, its
+    version, status and messages, notes on the installation, paths): recorded, never
+    compared, counted with the values not judged. A reproduction judges physics only, so
+    a machine without an optional peer reproduces as well as one with it.
 
 Missing or extra keys, lists of other lengths and ``null`` against a number are
-disagreements unless the rule is ``timing`` or ``unjudged``.
+disagreements unless the rule is ``timing``, ``unjudged`` or ``machine``.
+
+What the machine lacked is said in the verdict instead: a section may define
+``missing_peers(result) -> tuple[Peer, ...]`` (the peers its stored result shows were not
+installed or failed), and :attr:`Verdict.peers` carries them into the verdict, one line
+each, with the command that installs the peer.
 
 >>> rules = (close("x", rel=1e-12), timing("seconds"))
 >>> c = compare_results("demo", {"x": 1.0, "n": 3, "seconds": 2.0},
@@ -40,9 +50,9 @@ from fnmatch import fnmatchcase
 from pathlib import Path
 
 __all__ = [
-    "Rule", "exact", "close", "within", "timing", "unjudged",
-    "Difference", "Timing", "SectionComparison", "Verdict",
-    "compare_results", "compare_envelopes", "rules_of",
+    "Rule", "exact", "close", "within", "timing", "unjudged", "machine",
+    "Difference", "Timing", "SectionComparison", "Verdict", "Peer",
+    "compare_results", "compare_envelopes", "rules_of", "missing_peers",
 ]
 
 
@@ -71,6 +81,8 @@ class Rule:
         if self.kind == "within":
             return (f"within reference [{self.lo}, {self.hi}] widened by {self.widen:g} x its "
                     f"width (at least {self.abs:g})")
+        if self.kind == "machine":
+            return "machine (not judged)"
         return self.kind
 
 
@@ -105,6 +117,34 @@ def timing(pattern: str, why: str = "") -> Rule:
 def unjudged(pattern: str, why: str) -> Rule:
     """Not compared; ``why`` says why."""
     return Rule(pattern, "unjudged", why=why)
+
+
+def machine(pattern: str, what: str) -> Rule:
+    """A field that describes the machine, not the physics (``what`` says which): not judged.
+
+    >>> machine("maxima", "version of Maxima").describe()
+    'machine (not judged)'
+    """
+    if not what:
+        raise ValueError("machine() needs a description of what the field records")
+    return Rule(pattern, "machine", why=f"describes the machine: {what}")
+
+
+@dataclass(frozen=True)
+class Peer:
+    """An optional program a section runs beside ours that this machine lacked, or that failed.
+
+    >>> Peer("Maxima", "not installed", "race not run", "apt-get install maxima maxima-share").line()
+    'Maxima not installed: race not run; apt-get install maxima maxima-share'
+    """
+
+    name: str
+    problem: str
+    consequence: str
+    remedy: str
+
+    def line(self) -> str:
+        return f"{self.name} {self.problem}: {self.consequence}; {self.remedy}"
 
 
 @dataclass(frozen=True)
@@ -156,6 +196,7 @@ class Verdict:
 
     reference: str
     sections: list[SectionComparison]
+    peers: tuple[Peer, ...] = ()
 
     @property
     def agree(self) -> int:
@@ -196,15 +237,25 @@ class Verdict:
         unjudged_count = sum(s.unjudged for s in self.sections)
         if unjudged_count:
             times += f", {unjudged_count} values not judged (comparison.md says why)"
+        if self.peers:
+            names = ", ".join(dict.fromkeys(p.name for p in self.peers))
+            tail += f"; peers not run here: {names} (below)"
         if self.reproduced:
             return f"reproduced: {self.agree} figures agree with {where}, {times}{tail}"
         d = self.disagree
         return (f"NOT reproduced: {len(d)} of {self.agree + len(d)} figures disagree with "
                 f"{where} (first: {d[0].section} {d[0].path}), {times}{tail}")
 
+    def lines(self) -> list[str]:
+        """The verdict line, then one line per peer this machine lacked (with its remedy)."""
+        return [self.line(), *(p.line() for p in self.peers)]
+
     def markdown(self) -> str:
         """Every disagreement, every timing ratio and every skipped section, as Markdown."""
         lines = ["# Comparison with the reference", "", self.line(), ""]
+        if self.peers:
+            lines += ["Peers not run on this machine (their fields describe the machine and "
+                      "are not judged):", "", *(f"- {p.line()}" for p in self.peers), ""]
         for s in self.sections:
             lines += [f"## {s.section}", ""]
             if s.skipped is not None:
@@ -295,7 +346,7 @@ def compare_results(section: str, reference, new, rules: Sequence[Rule] = ()) ->
         rule = _rule(rules, path)
         a = ref_leaves.get(path, _MISSING)
         b = new_leaves.get(path, _MISSING)
-        if rule.kind == "unjudged":
+        if rule.kind in ("unjudged", "machine"):
             unjudged_count += 1
             continue
         if rule.kind == "timing":
@@ -349,6 +400,15 @@ def rules_of(name: str) -> tuple[Rule, ...]:
     return tuple(getattr(section_module(name), "TOLERANCES", ()))
 
 
+def missing_peers(name: str, result) -> tuple[Peer, ...]:
+    """The peers the stored ``result`` of section ``name`` shows were not run (its
+    ``missing_peers``; none if the section runs no peer)."""
+    from dispersion.report import section_module
+
+    find = getattr(section_module(name), "missing_peers", None)
+    return tuple(find(result)) if callable(find) else ()
+
+
 def compare_envelopes(name: str, reference: Mapping, new: Mapping,
                       rules: Sequence[Rule] | None = None) -> SectionComparison:
     """Compare two stored envelopes of section ``name``; skipped if their inputs differ.
@@ -383,4 +443,6 @@ def compare_folders(reference: Path, new: Path, names: Sequence[str]) -> Verdict
         else:
             sections.append(compare_envelopes(name, results.load(ref_path),
                                               results.load(new_path)))
-    return Verdict(f"{reference.name}/", sections)
+    peers = tuple(p for name in names if (new / f"{name}.json").is_file()
+                  for p in missing_peers(name, results.load(new / f"{name}.json")["result"]))
+    return Verdict(f"{reference.name}/", sections, peers)

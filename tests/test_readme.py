@@ -107,27 +107,103 @@ def test_quick_start_is_the_main_job_then_the_tests():
     assert first.endswith("&& dispersion reproduce") and "python -m pytest -q" in second
 
 
-def _sh(command: str, cwd: Path, timeout: int = 3600) -> subprocess.CompletedProcess:
+def test_quick_start_names_the_optional_packages_and_what_each_adds():
+    from dispersion.studies.peers import PEERS_INSTALL
+    from dispersion.studies.series_race import MAXIMA_INSTALL
+
+    section = README.read_text().split("## Quick start", 1)[1].split("\n## ", 1)[0]
+    rows = dict(re.findall(r"^\| `([^`]+)` \| (.+) \|$", section, re.M))
+    # what the verdict tells a user to install is what the quick start lists
+    assert MAXIMA_INSTALL in rows and PEERS_INSTALL in rows
+    # every Debian package .ci/run installs, and GetFEM, is listed with what it adds
+    debian = re.findall(r"need\+=\(([\w.-]+)\)", (ROOT / ".ci" / "run").read_text())
+    assert "maxima-share" in debian
+    listed = {pkg for install in rows if install.startswith("apt-get install ")
+              for pkg in install.split()[2:]}
+    assert set(debian) | {"python3-getfem"} <= listed, set(debian) - listed
+    assert all(len(what.split()) >= 4 for what in rows.values()), rows
+
+
+def _sh(command: str, cwd: Path, timeout: int = 3600,
+        path: str | None = None) -> subprocess.CompletedProcess:
     env = {k: v for k, v in os.environ.items() if k not in ("VIRTUAL_ENV", "PYTHONPATH")}
+    if path is not None:
+        env["PATH"] = path
     return subprocess.run(["bash", "-c", command], cwd=cwd, capture_output=True, text=True,
                           env=env, timeout=timeout, check=False)
 
 
+#: Programs of the optional system packages (README quick start) that a new user's machine
+#: lacks: Maxima (maxima, maxima-share) and pdflatex (texlive-latex-base). GetFEM (Debian's
+#: python3-getfem) is a module of the system Python, which no virtual environment sees.
+OPTIONAL_PROGRAMS = ("maxima", "rmaxima", "xmaxima", "pdflatex", "latex", "lualatex", "xelatex")
+
+
+def bare_path(folder: Path) -> str:
+    """A ``PATH`` of one new folder holding a link to the first of every program on this
+    ``PATH``, except :data:`OPTIONAL_PROGRAMS` and the virtual environment the tests run in
+    (a new user has neither)."""
+    folder.mkdir()
+    ours = Path(sys.prefix) / "bin" if sys.prefix != sys.base_prefix else None
+    for entry in os.environ.get("PATH", os.defpath).split(os.pathsep):
+        where = Path(entry or ".")
+        if not where.is_dir() or (ours is not None and where.resolve() == ours.resolve()):
+            continue
+        for program in sorted(where.iterdir()):
+            link = folder / program.name
+            if (program.name in OPTIONAL_PROGRAMS or link.is_symlink() or program.is_dir()
+                    or not os.access(program, os.X_OK)):
+                continue
+            link.symlink_to(program)
+    return str(folder)
+
+
+def test_a_bare_path_hides_the_optional_programs_and_keeps_the_rest(tmp_path):
+    path = bare_path(tmp_path / "bin")
+    for program in OPTIONAL_PROGRAMS:
+        assert shutil.which(program, path=path) is None
+    for program in ("bash", "git", "python3"):
+        assert shutil.which(program, path=path) is not None, program
+    assert Path(shutil.which("python3", path=path)).resolve() != Path(sys.executable).resolve() \
+        or sys.prefix == sys.base_prefix  # not the tests' own virtual environment
+
+
+MACHINES = ("bare", "as installed")
+
+
 @pytest.mark.slow
-def test_quick_start_in_a_fresh_clone_passes_and_leaves_the_checkout_clean(tmp_path):
+@pytest.mark.parametrize("machine", MACHINES)
+def test_quick_start_in_a_fresh_clone_passes_and_leaves_the_checkout_clean(tmp_path, machine):
+    """The quick start's two commands in order in a fresh clone: once on a bare machine (the
+    optional programs hidden from PATH), once with PATH as it is; both reproduce the
+    committed reports (exit 0) and leave ``git status`` clean."""
+    from dispersion.studies.series_race import MAXIMA_INSTALL
+
     clone = tmp_path / "clone"
     subprocess.run(["git", "clone", "-q", str(ROOT), str(clone)], check=True)
+    path = bare_path(tmp_path / "bare-bin") if machine == "bare" else None
+    has_maxima = shutil.which("maxima", path=path) is not None
     first, second = quick_start()
-    main_job = _sh(first, clone)
+    main_job = _sh(first, clone, path=path)
     assert main_job.returncode == 0, main_job.stdout[-3000:] + main_job.stderr[-3000:]
-    verdict = main_job.stdout.strip().splitlines()[-1]
-    assert verdict.startswith("reproduced: "), verdict
+    lines = main_job.stdout.strip().splitlines()
+    verdict = [ln for ln in lines if ln.startswith(("reproduced: ", "NOT reproduced: "))]
+    assert len(verdict) == 1 and verdict[0].startswith("reproduced: "), lines[-8:]
+    missing = f"Maxima not installed: race not run; {MAXIMA_INSTALL}"
+    assert (missing in lines) == (not has_maxima), lines[-8:]
+    assert any(ln.startswith("Errata (coefficients.md): ") for ln in lines)
+    assert lines[-1].startswith("Pages: reproduced/index.md")
     assert "Traceback" not in main_job.stderr and "\r" not in main_job.stderr  # no tqdm codes
-    tests = _sh(second, clone)
+    if machine == "bare":  # GetFEM: the clone's environment does not see the system's
+        getfem = _sh(". .venv/bin/activate && python -c 'import getfem'", clone, path=path)
+        assert getfem.returncode != 0
+    tests = _sh(second, clone, path=path)
     assert tests.returncode == 0, tests.stdout[-3000:]
     status = subprocess.run(["git", "status", "--porcelain", "--ignored=no"], cwd=clone,
                             capture_output=True, text=True, check=True).stdout
     assert status == "", status
+    if machine != "bare":
+        return
 
     # docs/ci/verify.yml, its run: steps as written, in a manuscript folder beside the clone
     yml = (ROOT / "docs" / "ci" / "verify.yml").read_text()
@@ -139,6 +215,6 @@ def test_quick_start_in_a_fresh_clone_passes_and_leaves_the_checkout_clean(tmp_p
     (paper / "dispersion-iga").symlink_to(clone)  # the workflow's second checkout
     venv = tmp_path / "ci-venv"
     for step in [f"python3 -m venv {venv}"] + [f". {venv}/bin/activate && {s}" for s in steps]:
-        done = _sh(step, paper)
+        done = _sh(step, paper, path=path)
         assert done.returncode == 0, (step, done.stdout[-2000:], done.stderr[-2000:])
     assert (paper / "verify-junit.xml").is_file()

@@ -18,7 +18,14 @@ CELL_TIMEOUT = 900
 EXPECTED = {"01_series", "02_errata", "03_branches", "04_ring", "05_verify"}
 
 
-@pytest.mark.parametrize("path", NOTEBOOKS, ids=[p.stem for p in NOTEBOOKS])
+#: Notebooks that take more than about 10 s on 2 cores (a branch sweep, ring simulations):
+#: they run in the slow run; the others (series, errata, verify) keep the machinery checked
+#: in the default run.
+SLOW = {"03_branches", "04_ring"}
+
+
+@pytest.mark.parametrize("path", [pytest.param(p, marks=[pytest.mark.slow] * (p.stem in SLOW),
+                                               id=p.stem) for p in NOTEBOOKS])
 def test_notebook_executes(path, tmp_path):
     import jupytext
     import nbclient

@@ -2,8 +2,10 @@
 
 - Every ``dispersion ...`` command in the README's bash blocks runs in a fresh directory
   through ``python -m dispersion`` (the console script's entry point) and must exit 0, print
-  something and write the files it names. The quick start's main job (``dispersion
-  reproduce``) is a slow check; the quick start's test command is this test suite itself.
+  something and write the files it names. The long ones (:func:`is_slow`: the quick start's
+  main job, simulations, the whole paper's checks, figures, exact time steps) run in the slow
+  run; in the default run every command is parsed by the command line's parser. The quick
+  start's test command is this test suite itself.
 - The quick start's two commands run in that order in a fresh ``git clone`` (slow): both pass,
   the first says the run reproduced the committed reports, and ``git status`` stays clean. The
   install and verify steps of ``docs/ci/verify.yml`` run there too.
@@ -27,6 +29,17 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 README = ROOT / "README.md"
 SLOW = {"reproduce", "bench"}  # minutes each: run by .ci/run, not by default
+#: Commands that take more than a few seconds on 2 cores (ring and impact simulate, timestep
+#: works in exact arithmetic) and options that do: the whole paper's claims, a figure.
+SLOW_COMMANDS = {"ring", "impact", "timestep"}
+SLOW_OPTIONS = {"--paper", "--figure"}
+
+
+def is_slow(command: str) -> bool:
+    """Whether a README command runs in the slow run only (parsed by default)."""
+    words = shlex.split(command)
+    return (words[1] in SLOW | SLOW_COMMANDS
+            or any(w.split("=")[0] in SLOW_OPTIONS for w in words[2:]))
 
 
 def readme_commands() -> list[tuple[str, int]]:
@@ -47,13 +60,26 @@ def readme_commands() -> list[tuple[str, int]]:
 
 
 def _param(command: str, status: int):
-    marks = [pytest.mark.slow] if shlex.split(command)[1] in SLOW else []
+    marks = [pytest.mark.slow] if is_slow(command) else []
     return pytest.param(command, status, marks=marks, id=command)
 
 
 def test_readme_has_the_main_job_and_the_commands_of_each_part():
     names = {shlex.split(c)[1] for c, _ in readme_commands()}
     assert {"reproduce", "series", "branches", "ring"} <= names
+
+
+def test_every_readme_command_parses():
+    # the fast representative of the commands that run only in the slow run: each parses
+    # (its subcommand and options exist and take the values written)
+    from dispersion.cli import build_parser
+
+    commands = [c for c, _ in readme_commands()]
+    assert any(is_slow(c) for c in commands) and not all(is_slow(c) for c in commands)
+    for command in commands:
+        args = shlex.split(command)[1:]
+        parsed = build_parser(args[0]).parse_args(args)
+        assert parsed.command == args[0] and callable(parsed.func), command
 
 
 def _named_outputs(args: list[str]) -> list[str]:

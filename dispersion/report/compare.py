@@ -42,11 +42,12 @@ each, with the command that installs the peer.
 """
 from __future__ import annotations
 
+import fnmatch
+import functools
 import math
 import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from fnmatch import fnmatchcase
 from pathlib import Path
 
 __all__ = [
@@ -70,10 +71,11 @@ class Rule:
     why: str = ""
 
     def matches(self, path: str) -> bool:
-        # "[]" in a pattern is the literal list marker of _generic, not an fnmatch character
-        # set ("curves[].error[]" would read "].error[" as one); only "*" and "?" are wild
-        literal = self.pattern.replace("[", "\0").replace("]", "[]]").replace("\0", "[[]")
-        return fnmatchcase(_generic(path), literal)
+        return self.matches_generic(_generic(path))
+
+    def matches_generic(self, generic: str) -> bool:
+        """:meth:`matches` for a path whose list indices are already ``[]``."""
+        return _compiled(self.pattern).match(generic) is not None
 
     def describe(self) -> str:
         if self.kind == "close":
@@ -297,19 +299,20 @@ def _number(x) -> bool:
     return isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x)
 
 
+_INDEX = re.compile(r"\[[^\]]*\]")
+
+
 def _generic(path: str) -> str:
     """``a[3].b`` -> ``a[].b``: rules name list items without their index."""
-    out, skip = [], False
-    for ch in path:
-        if ch == "[":
-            out.append("[")
-            skip = True
-        elif ch == "]":
-            out.append("]")
-            skip = False
-        elif not skip:
-            out.append(ch)
-    return "".join(out)
+    return _INDEX.sub("[]", path)
+
+
+@functools.lru_cache(maxsize=1024)
+def _compiled(pattern: str) -> re.Pattern:
+    # "[]" in a pattern is the literal list marker of _generic, not an fnmatch character
+    # set ("curves[].error[]" would read "].error[" as one); only "*" and "?" are wild
+    literal = pattern.replace("[", "\0").replace("]", "[]]").replace("\0", "[[]")
+    return re.compile(fnmatch.translate(literal), re.DOTALL)
 
 
 def _get(data, path: str):
@@ -330,20 +333,28 @@ def _leaves(data, prefix: str = ""):
         yield prefix, data
 
 
-def _rule(rules: Sequence[Rule], path: str) -> Rule:
-    for rule in rules:
-        if rule.matches(path):
-            return rule
-    return Rule("*", "exact")
+_EXACT = Rule("*", "exact")
+
+
+def _rule(rules: Sequence[Rule], path: str, seen: dict | None = None) -> Rule:
+    """The first rule matching ``path`` (identical values if none); ``seen`` memoizes the
+    answer per generic path (the leaves of a list share it)."""
+    generic = _generic(path)
+    if seen is not None and generic in seen:
+        return seen[generic]
+    rule = next((r for r in rules if r.matches_generic(generic)), _EXACT)
+    if seen is not None:
+        seen[generic] = rule
+    return rule
 
 
 def compare_results(section: str, reference, new, rules: Sequence[Rule] = ()) -> SectionComparison:
     """Compare two stored results (plain JSON data) leaf by leaf under ``rules``."""
     ref_leaves = dict(_leaves(reference))
     new_leaves = dict(_leaves(new))
-    agree, unjudged_count, disagree, timings = 0, 0, [], []
+    agree, unjudged_count, disagree, timings, seen = 0, 0, [], [], {}
     for path in list(ref_leaves) + [p for p in new_leaves if p not in ref_leaves]:
-        rule = _rule(rules, path)
+        rule = _rule(rules, path, seen)
         a = ref_leaves.get(path, _MISSING)
         b = new_leaves.get(path, _MISSING)
         if rule.kind in ("unjudged", "machine"):

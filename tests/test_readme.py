@@ -59,9 +59,16 @@ def readme_commands() -> list[tuple[str, int]]:
     return out
 
 
-def _param(command: str, status: int):
-    marks = [pytest.mark.slow] if is_slow(command) else []
-    return pytest.param(command, status, marks=marks, id=command)
+#: How a README command is run: as a user runs it (a new ``python -m dispersion`` process,
+#: the console script's entry point) in the slow run; in the default run the short ones also
+#: run in this process (``dispersion.cli.main``), without a new interpreter's start-up.
+PROCESS, IN_PROCESS = "process", "in-process"
+
+
+def _params(command: str, status: int) -> list:
+    entries = (PROCESS,) if is_slow(command) else (IN_PROCESS, PROCESS)
+    return [pytest.param(command, status, entry, id=f"{command} [{entry}]",
+                         marks=[pytest.mark.slow] * (entry == PROCESS)) for entry in entries]
 
 
 def test_readme_has_the_main_job_and_the_commands_of_each_part():
@@ -87,16 +94,25 @@ def _named_outputs(args: list[str]) -> list[str]:
             if a in ("--out", "--figure", "--csv", "--junit") and args[i + 1] != "-"]
 
 
-@pytest.mark.parametrize(("command", "status"), [_param(*c) for c in readme_commands()])
-def test_readme_command_runs(command, status, tmp_path):
+@pytest.mark.parametrize(("command", "status", "entry"),
+                         [p for c in readme_commands() for p in _params(*c)])
+def test_readme_command_runs(command, status, entry, tmp_path, monkeypatch, capsys):
     args = shlex.split(command)[1:]
     shutil.copytree(ROOT / "examples", tmp_path / "examples")  # inputs the README names
-    proc = subprocess.run([sys.executable, "-m", "dispersion", *args], cwd=tmp_path,
-                          capture_output=True, text=True, check=False)
-    assert proc.returncode == status, proc.stderr[-2000:]
-    assert "Traceback" not in proc.stderr
+    if entry == PROCESS:
+        proc = subprocess.run([sys.executable, "-m", "dispersion", *args], cwd=tmp_path,
+                              capture_output=True, text=True, check=False)
+        returncode, stdout, stderr = proc.returncode, proc.stdout, proc.stderr
+    else:
+        from dispersion.cli import main
+
+        monkeypatch.chdir(tmp_path)
+        returncode = main(args)  # a traceback here fails the test
+        stdout, stderr = capsys.readouterr()
+    assert returncode == status, stderr[-2000:]
+    assert "Traceback" not in stderr
     written = _named_outputs(args) or (["reproduced/index.md"] if args[0] == "reproduce" else [])
-    assert proc.stdout.strip() or written
+    assert stdout.strip() or written
     for name in written:
         assert (tmp_path / name).exists(), f"{command!r} did not write {name}"
 

@@ -62,6 +62,14 @@ _MODULES = {
     "discrete_error": "waves.discrete_error", "pencil_frequencies": "waves.pencil_frequencies",
     "illinois": "waves.illinois", "mass_check": "symbolic.mass_check",
     "matrix_kind": "symbolic.matrix_kind", "certified_roots": "waves.certified_roots",
+    # the mass rules of the lumping literature (issue 29)
+    "approximate_dual": "symbolic.approximate_dual", "explicit_cost": "symbolic.explicit_cost",
+    "interpolatory_spline": "symbolic.interpolatory_spline",
+    "lagrange_sem": "symbolic.lagrange_sem", "lumping_rules": "symbolic.lumping_rules",
+    "mass_scaling": "symbolic.mass_scaling", "leading_error": "waves.leading_error",
+    "sem_bar": "waves.sem_bar", "lumping_orders": "studies.lumping_orders",
+    "orders": "claims.orders", "derivative_gram": "symbolic.derivative_gram",
+    "rule_families": "symbolic.rule_families",
 }
 _SUBMODULES = tuple(_MODULES)
 

@@ -43,7 +43,8 @@ CONTACT = "top"
 #: (:data:`dispersion.symbolic.mass_rule.RULE_NAMES` is built to equal it, tested): the
 #: command line offers them without importing the rules.
 MASS_VARIANTS = ("consistent", "lumped", "hrz", "nodal-greville", "nodal-lobatto", "singular",
-                 "singular-lumped")
+                 "singular-lumped", "dual-lumped", "dual-gram", "dual-consistent",
+                 "interpolatory-nodal", "sms", "sem-consistent", "sem-lumped")
 #: Named Newmark members of the fully discrete branches
 #: (:data:`dispersion.waves.fully_discrete.SCHEMES` holds their beta and gamma; tested equal).
 TIME_SCHEMES = ("central", "average-acceleration", "linear-acceleration", "fox-goodwin")

@@ -43,6 +43,9 @@ def mp_pencil(patch, nu, kappa):
     K = mpmath.zeros(n2, n2)
     for m, f, B in stiffness_terms(patch):
         K += mat[m] * xf[f] * mpmath.matrix([[_mpf(v) for v in row] for row in B.tolist()])
+    if patch.model == "bloch":  # a Petrov-Galerkin rule's test functions along x: K times
+        # the Bloch symbol of its x-factor (1 for every Galerkin rule)
+        K *= sum(_mpf(v) * mpmath.cos(L * th) for L, v in patch.x_stiffness)
     M = mx * mpmath.matrix([[_mpf(v) for v in row] for row in mass_block(patch).tolist()])
     return K, M
 

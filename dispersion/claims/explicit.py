@@ -11,6 +11,7 @@ model and the mass)::
     mass = "hrz"
     nu = 0.3                        # plate only
     ratio = 2.9766                  # dt_crit / dt_crit(consistent), same patch
+    relative_to = "consistent"      # the ratio's reference rule (optional)
     rtol = 1e-4                     # default 1e-9
     # or: omega_max = "2*sqrt(14)/3"  (largest Omega = omega h / c_T (plate) or omega h / c
     #     (bar) over the Brillouin zone, compared to rtol)
@@ -51,7 +52,7 @@ __all__ = ["KINDS", "KIND_FIELDS", "step_claim", "series_claim", "task", "run", 
 KINDS = ("critical_step", "fully_discrete_series")
 #: The keys of each kind (a claim of another kind refuses them,
 #: :data:`dispersion.claims.schema.KIND_FIELDS`).
-KIND_FIELDS = {"critical_step": ("ratio", "omega_max", "nu", "rtol"),
+KIND_FIELDS = {"critical_step": ("ratio", "omega_max", "nu", "rtol", "relative_to"),
                "fully_discrete_series": ("coefficients", "scheme", "nu", "syntax")}
 _KEY = re.compile(r"\s*kappa\^(\d{1,3})\s*(?:\*\s*tau\^(\d{1,3}))?\s*")
 
@@ -81,8 +82,17 @@ def step_claim(entry: dict, common: dict, fail) -> Claim:
         sympy.Float(repr(_number(entry, key, fail)), 17)
     if not value.is_number or not value.is_positive:
         fail(key, f"must be a positive number, got {entry[key]!r}")
-    return Claim(**common, printed=((key, value),), nu=nu, rtol=rtol,
-                 written=f"{key} = {entry[key]}")
+    ref = entry.get("relative_to", "consistent")
+    from dispersion.symbolic.mass_rule import RULES
+
+    if not isinstance(ref, str) or ref not in RULES:
+        fail("relative_to", f"must name a registered rule, got {ref!r}")
+    if key != "ratio" and "relative_to" in entry:
+        fail("relative_to", "applies to a ratio claim only")
+    return Claim(**common, printed=((key, value),) + ((("relative_to", ref),)
+                                                       if ref != "consistent" else ()),
+                 nu=nu, rtol=rtol, written=f"{key} = {entry[key]}"
+                 + (f" (relative to {ref})" if ref != "consistent" else ""))
 
 
 def series_claim(entry: dict, common: dict, fail) -> Claim:
@@ -119,7 +129,8 @@ def series_claim(entry: dict, common: dict, fail) -> Claim:
 def task(claim) -> tuple:
     """The derivation a claim needs, hashable (shared between equal claims)."""
     if claim.kind == "critical_step":
-        return ("critical_step", claim.model, claim.nu)
+        ref = dict(claim.printed[1:]).get("relative_to", "consistent")
+        return ("critical_step", claim.model, claim.nu) + ((ref,) if ref != "consistent" else ())
     scheme = dict(claim.printed[:1])["scheme"]
     order = max(i for (i, _), _ in claim.printed[1:])
     return ("fully_discrete_series", claim.model, claim.branch, scheme, order, claim.nu)
@@ -131,13 +142,16 @@ def run(t: tuple):
 
     model = t[1]
     if t[0] == "critical_step":
+        other = t[3] if len(t) > 3 else "consistent"  # the ratio's reference rule
         if isinstance(model, BarModel):
             cs = timestep.critical_step(model.mass, model.p, model="bar", wave_speed=1.0)
-            return (cs.omega_max_exact, cs.ratio)
+            ratio = cs.ratio if other == "consistent" else float(
+                timestep.bar_omega_max(other, model.p)[0]) / cs.omega_max
+            return (cs.omega_max_exact, ratio)
         from dispersion.symbolic.plate import plate_patch
 
         w, exact, _, _ = timestep.patch_omega_max(plate_patch(model), t[2])
-        ref = timestep.patch_omega_max(plate_patch(model.replace(mass="consistent")), t[2])[0]
+        ref = timestep.patch_omega_max(plate_patch(model.replace(mass=other)), t[2])[0]
         return (exact if exact is not None else w, ref / w)
     from dispersion.waves.fully_discrete import SCHEMES, fully_discrete_series
 
@@ -159,7 +173,7 @@ def run(t: tuple):
 def verdict(claim, derived) -> tuple[bool, str, str, str]:
     """``(holds, printed, derived, difference)`` as text."""
     if claim.kind == "critical_step":
-        (key, value), = claim.printed
+        key, value = claim.printed[0]
         omega, ratio = derived
         got = ratio if key == "ratio" else omega
         err = abs(float(got) - float(value)) / float(value)

@@ -18,7 +18,7 @@ import re
 
 import sympy
 
-from dispersion.claims import explicit, reader
+from dispersion.claims import explicit, orders, reader
 from dispersion.claims.claim import Claim
 from dispersion.claims.claim_model import PATCH_KEYS, check_patch, claim_model
 from dispersion.claims.claims_file import Lines, paper_claims_path, read_text, read_toml
@@ -34,13 +34,13 @@ __all__ = ["KINDS", "KAPPA", "KIND_FIELDS", "CLAIM_KEYS", "TOP_KEYS", "MAX_VALUE
            # where they are read, here for the readers of this module's documentation
            "EXACT", "Claim", "paper_claims_path"]
 
-KINDS = ("series", "error_order", "value", *explicit.KINDS)
+KINDS = ("series", "error_order", "value", *explicit.KINDS, *orders.KINDS)
 KAPPA = sympy.Symbol("kappa")
 #: The keys that belong to one kind of claim only (a claim of another kind refuses them).
 KIND_FIELDS = {"series": ("syntax", "coefficients", "series", "nu", "rtol"),
                "error_order": ("error_order", "bound"),
                "value": ("kappa", "nu", "omega", "rtol"),
-               **explicit.KIND_FIELDS}
+               **explicit.KIND_FIELDS, **orders.KIND_FIELDS}
 _KIND_KEYS = {key for keys in KIND_FIELDS.values() for key in keys}
 CLAIM_KEYS = {"name", "source", "note", "kind", "branch", "model", *PATCH_KEYS, "expect",
               *_KIND_KEYS}
@@ -116,7 +116,7 @@ def _claim(entry: dict, own: dict, i: int, lines: Lines) -> Claim:
     kind = entry.get("kind", "series")
     if kind not in KINDS:
         fail("kind", f"must be one of {', '.join(KINDS)}, got {shown(kind)}")
-    dynamic = kind in explicit.KINDS
+    dynamic = kind in explicit.KINDS or kind in orders.KINDS
     branch = entry.get("branch")
     if dynamic:  # checked with the model (the bar has one branch)
         branch = str(entry.get("branch", "-"))[:20]
@@ -124,6 +124,8 @@ def _claim(entry: dict, own: dict, i: int, lines: Lines) -> Claim:
             re.fullmatch(r"[SA]\d{1,3}", branch) if kind == "value" else branch in BRANCHES):
         fail("branch", "must be S0 or A0" + (" (or S1, A1, ...)" if kind == "value" else "")
              + f", got {shown(branch)}")
+    if kind in orders.KINDS:  # the square-element patch of the claim's top degree
+        entry = orders.prepare(entry, fail)
     model = claim_model(entry, own, fail, bar=dynamic)
     if dynamic and isinstance(model, ExactModel):
         fail("model", f"a {kind} claim needs a discretisation: a patch or 'bar'")
@@ -280,4 +282,5 @@ def _series_claim(entry: dict, common: dict, fail) -> Claim:
 #: and its derivation and verdict in :data:`dispersion.claims.verify.KIND_RULES`.
 KIND_PARSERS = {"series": _series_claim, "error_order": _error_order_claim,
                 "value": _value_claim, "critical_step": explicit.step_claim,
-                "fully_discrete_series": explicit.series_claim}
+                "fully_discrete_series": explicit.series_claim,
+                "order_range": orders.order_claim}

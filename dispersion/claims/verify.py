@@ -15,7 +15,7 @@ from typing import Callable
 
 import sympy
 
-from dispersion.claims import explicit
+from dispersion.claims import explicit, orders
 from dispersion.claims.claim import Claim
 from dispersion.claims.claim_model import ClaimModel
 from dispersion.claims.claims_file import paper_claims_path
@@ -123,6 +123,8 @@ def _key(task: tuple) -> tuple:
 def _run_task(task: tuple):
     if task[0] in explicit.KINDS:
         return explicit.run(task)
+    if task[0] in orders.KINDS:
+        return orders.run(task)
     if task[0] == "series":
         return _series(*task[1:])
     if task[0] == "value":
@@ -325,6 +327,8 @@ KIND_RULES = {
     "value": KindRule(_value_tasks, _value_verdict),
     "critical_step": KindRule(_explicit_tasks, _explicit_verdict),
     "fully_discrete_series": KindRule(_explicit_tasks, _explicit_verdict),
+    "order_range": KindRule(lambda c: [orders.task(c)],
+                            lambda c, d: verdict(c, *orders.verdict(c, d))),
 }
 
 

@@ -63,7 +63,11 @@ def run(args: argparse.Namespace) -> int:
     if args.certify and args.model != "plate":
         raise InputError("--certify applies to --model plate only (the bar's maximum is exact)")
     material = material_from_args(args, default="steel")
-    rules = list(args.mass or ([] if args.mass_rule else RULE_NAMES))
+    from dispersion.symbolic.mass_rule import BLOCH_RULE_NAMES
+
+    # every rule by default; the Bloch plate takes those with one B-spline symbol along x
+    rules = list(args.mass or ([] if args.mass_rule else
+                               (BLOCH_RULE_NAMES if args.model == "plate" else RULE_NAMES)))
     rules += [rule_from_toml(path) for path in args.mass_rule]
     if args.model == "bar":
         from dispersion.symbolic.mass_rule import get_rule

@@ -5,7 +5,7 @@ from dispersion.plotting import axes
 
 __all__ = ["plot_cost_accuracy"]
 
-_MARKERS = "osD^v<>pPX*h"
+_MARKERS = "osD^v<>pPX*hH8d"
 
 
 def plot_cost_accuracy(data: dict, ax=None):
@@ -32,7 +32,7 @@ def plot_cost_accuracy(data: dict, ax=None):
         ax.scatter([], [], color="0.4", marker=_MARKERS[i % len(_MARKERS)], label=rule)
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlabel("cost: steps per unit time x DOFs per unit area  [c_T / H^3]")
+    ax.set_xlabel("modelled cost: steps per unit time x DOFs per unit area x work per DOF")
     ax.set_ylabel("phase-velocity error, worse of S0 and A0")
     ax.set_title(f"central differences at {data['courant']:g} x the critical step, "
                  f"{data['elements_per_wavelength']} elements per wavelength, "

@@ -36,7 +36,7 @@ __all__ = ["SECTIONS", "section_module"]
 
 #: Report sections in the order they run (module names in :mod:`dispersion.report`).
 SECTIONS = ("coefficients", "branches", "ring", "series_speed", "studies", "peers",
-            "cost_accuracy")
+            "cost_accuracy", "lumping")
 
 
 def section_module(name: str) -> ModuleType:

@@ -131,7 +131,7 @@ def _per_wavelength(nu: float, quick: bool) -> dict:
     exact = {b: exact_fundamental(b[0], kappa, nu) for b in ("S0", "A0")}
     curves = []
     for p, n in ((2, 3), (3, 4)):
-        for mass in ("consistent", "lumped", "singular"):
+        for mass in ("consistent", "lumped", "singular", "dual-lumped"):
             patch = plate_patch(p=p, n=n, model="bloch", r=_R_SQUARE, mass=mass)
             disc = fundamental_branches(patch, nu, kappa)
             for b in ("S0", "A0"):
@@ -241,7 +241,7 @@ def measure_branches(quick: bool = False, executor: Executor | None = None) -> B
     configs = ([(2, 3, "consistent"), (2, 3, "singular"), (3, 4, "consistent")] if quick else
                [(p, n, m) for p in (2, 3) for n in (p + 1, p + 3)
                 for m in ("consistent", "lumped", "singular")])
-    bd = bar_dispersion((1, 2, 3, 4))
+    bd = bar_dispersion((1, 2, 3, 4), ("consistent", "lumped", "dual-lumped"))
     return BranchesStudy(
         quick=quick, nu=nu, r_figure2=_R_FIG2, kappa=tuple(_arr(kappa)), omega_max=omega_max,
         exact=fig2["exact"], exact_failures=tuple(tuple(f) for f in exact.failures),

@@ -10,17 +10,24 @@ points through the thickness, :math:`r = b/H = 2/(n - p)`, plane strain, Poisson
   (:math:`\\kappa = 2\\pi / (N r)`), *fully discrete* at the largest stable step
   (:math:`\\tau = \\tau_{crit}`, :func:`dispersion.waves.fully_discrete.time_frequency`),
   against the exact Rayleigh-Lamb roots; the signed errors and the worse of the two;
-* **cost**: time steps per unit time times degrees of freedom per unit area,
-  :math:`(1/\\tau_{crit}) \\cdot 2n / (2 r)` in units :math:`c_T / H^3` (all 2n DOFs of the
-  cell counted, massless ones too: the explicit update of the singular masses still solves
-  for them).
+* **cost** (modelled): time steps per unit time times degrees of freedom per unit area times
+  the work of one explicit step per DOF,
+  :math:`(1/\\tau_{crit}) \\cdot 2n / (2 r) \\cdot w`, in multiply-adds
+  :math:`\\cdot c_T / H^3` (all 2n DOFs of the cell counted, massless ones too: the explicit
+  update of the singular masses still solves for them). The work per DOF
+  :math:`w` is the rule's :class:`~dispersion.symbolic.explicit_cost.ExplicitCost` in two
+  dimensions: stiffness row plus inverse mass (a diagonal, the banded approximate dual, or a
+  solve with a non-diagonal mass); a dense stiffness costs every DOF of a model problem of
+  :data:`MODEL_ELEMENTS` x :data:`MODEL_ELEMENTS` elements. It is a model, not a measurement.
 
 A point is on the Pareto front if no other point is both cheaper and more accurate (worse of
 S0/A0). The result carries its inputs; the report renders from it alone.
 
 >>> res = cost_accuracy((1,), ("lumped", "consistent"))
->>> [round(pt.tau_crit * pt.cost, 12) for pt in res.points]   # 2n / (2r) with n = 3, r = 1
+>>> [round(pt.tau_crit * pt.cost / pt.work, 12) for pt in res.points]   # 2n/(2r), n = 3, r = 1
 [3.0, 3.0]
+>>> [pt.work for pt in res.points]        # 2 * 3^2 stiffness + 1 (diagonal) or 2 * 3^2 (solve)
+[19, 36]
 """
 from __future__ import annotations
 
@@ -32,9 +39,12 @@ import sympy
 
 __all__ = ["CostAccuracyPoint", "CostAccuracy", "cost_accuracy", "pareto_front", "measure"]
 
-#: Rules of the chart (the registry's built-in rules, in its order).
-RULES = ("consistent", "lumped", "hrz", "nodal-greville", "nodal-lobatto", "singular",
-         "singular-lumped")
+#: Rules of the chart: None stands for the registry's rules that apply to the Bloch patch
+#: (:data:`dispersion.symbolic.mass_rule.BLOCH_RULE_NAMES`, read at call time; the C0
+#: Lagrange rules carry p DOFs a cell along x and are on the bar's charts only).
+RULES = None
+#: Elements per direction of the model problem whose DOFs a dense stiffness row couples.
+MODEL_ELEMENTS = 100
 
 
 @dataclass(frozen=True)
@@ -52,6 +62,10 @@ class CostAccuracyPoint:
     semi_error_S0: float
     semi_error_A0: float
     pareto: bool
+    #: Modelled multiply-adds per DOF and step (stiffness row plus inverse mass).
+    work: int = 1
+    #: The rule's explicit step in words (stiffness and inverse mass).
+    step_kind: str = ""
 
     @property
     def error(self) -> float:
@@ -86,7 +100,7 @@ def pareto_front(cost, error) -> np.ndarray:
     return keep
 
 
-def cost_accuracy(degrees=(1, 2, 3, 4), rules=RULES, *, nu: float = 0.3,
+def cost_accuracy(degrees=(1, 2, 3, 4), rules=None, *, nu: float = 0.3,
                   elements_per_wavelength: int = 8, courant: float = 1.0,
                   contact: str = "top", gamma_s=sympy.Rational(1, 2),
                   n_theta: int = 33) -> CostAccuracy:
@@ -100,6 +114,9 @@ def cost_accuracy(degrees=(1, 2, 3, 4), rules=RULES, *, nu: float = 0.3,
 
     N = check_positive_int("elements_per_wavelength", elements_per_wavelength, minimum=2)
     courant = check_real_in_range("courant", courant, 0, 1, lo_open=True)
+    from dispersion.symbolic.mass_rule import BLOCH_RULE_NAMES, get_rule
+
+    rules = BLOCH_RULE_NAMES if rules is None else rules
     if not degrees or not rules:
         raise InputError("degrees and rules must be non-empty")
     raw = []
@@ -118,13 +135,16 @@ def cost_accuracy(degrees=(1, 2, 3, 4), rules=RULES, *, nu: float = 0.3,
                 ref = float(exact[label][0])
                 full = float(time_frequency(semi[label], courant * tau)[0])
                 errs[label] = (full / ref - 1, float(semi[label][0]) / ref - 1)
-            cost = (1 / (courant * tau)) * (2 * n) / (2 * float(r))
-            raw.append((p, mass, n, float(r), tau, cost, errs["S0"][0], errs["A0"][0],
-                        errs["S0"][1], errs["A0"][1]))
+            step = get_rule(mass).explicit_cost
+            work = step.work_per_dof(p, 2, dofs=2 * (MODEL_ELEMENTS + p) ** 2)
+            cost = (1 / (courant * tau)) * (2 * n) / (2 * float(r)) * work
+            raw.append((p, getattr(mass, "name", mass), n, float(r), tau, cost, errs["S0"][0],
+                        errs["A0"][0], errs["S0"][1], errs["A0"][1], work, step.describe()))
     front = pareto_front([row[5] for row in raw],
                          [max(abs(row[6]), abs(row[7])) for row in raw])
-    points = tuple(CostAccuracyPoint(*row, bool(f)) for row, f in zip(raw, front))
-    return CostAccuracy(float(nu), N, float(courant), tuple(degrees), tuple(rules), contact,
+    points = tuple(CostAccuracyPoint(*row[:10], bool(f), *row[10:]) for row, f in zip(raw, front))
+    return CostAccuracy(float(nu), N, float(courant), tuple(degrees),
+                        tuple(getattr(m, "name", m) for m in rules), contact,
                         float(gamma_s), points)
 
 

@@ -51,7 +51,7 @@ from __future__ import annotations
 import math
 import warnings
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from fractions import Fraction
 from functools import lru_cache
 from typing import TYPE_CHECKING
@@ -60,6 +60,7 @@ import numpy as np
 
 from dispersion.errors import IndefiniteMassWarning, InputError, check_positive_int
 from dispersion.symbolic.mass import redistributed_mass, redistribution_matrix, row_sum_lump
+from dispersion.symbolic.explicit_cost import ExplicitCost
 from dispersion.symbolic.mass_check import MassProperties, check_mass
 from dispersion.symbolic.matrix_kind import is_exact, is_sparse, total
 
@@ -74,6 +75,7 @@ __all__ = [
     "MassRule",
     "RULES",
     "RULE_NAMES",
+    "BLOCH_RULE_NAMES",
     "TranslationalMassWarning",
     "get_rule",
     "gram_space",
@@ -81,6 +83,7 @@ __all__ = [
     "user_rule",
     "rule_from_toml",
     "x_mass_coefficients",
+    "x_stiffness_factor",
     "mass_variant",
 ]
 
@@ -128,6 +131,24 @@ class MassRule:
     x_rule: str = "consistent"
     redistributes: bool = False
     description: str = ""
+    #: Periodic row ``p -> {L: a_L}`` of the rule along x (None: read off its matrix).
+    periodic: Callable | None = field(default=None, compare=False, repr=False)
+    #: Bloch factor ``p -> {L: s_L}`` multiplying the x-stiffness symbol (Petrov-Galerkin
+    #: test functions along x, :mod:`dispersion.symbolic.lumping_rules`); None: 1.
+    x_stiffness: Callable | None = field(default=None, compare=False, repr=False)
+    #: How the explicit step applies stiffness and inverse mass (None: from ``states``).
+    cost: ExplicitCost | None = field(default=None, compare=False, repr=False)
+    #: The discrete space: ``"bspline"`` (smooth B-splines) or ``"lagrange"`` (C0 elements,
+    #: :mod:`dispersion.symbolic.lagrange_sem`): such a rule changes the stiffness too.
+    basis: str = "bspline"
+
+    @property
+    def explicit_cost(self) -> ExplicitCost:
+        """The rule's :class:`~dispersion.symbolic.explicit_cost.ExplicitCost`: stated, or a
+        diagonal mass if it states diagonal and a solve otherwise."""
+        if self.cost is not None:
+            return self.cost
+        return ExplicitCost("sparse", "diagonal" if self.states.diagonal else "solve")
 
     def __post_init__(self):
         if not isinstance(self.name, str) or not self.name:
@@ -238,12 +259,49 @@ _BUILTIN = {
                         "singular lumped: row sums of R^T M R (paper eq 1 right)"),
 }
 
+
+def _literature():
+    # the rules of the recent lumping literature (their own module); the x-rule check of
+    # MassRule needs their names in _BUILTIN first
+    from dispersion.symbolic.lumping_rules import ENTRIES
+
+    for name, e in ENTRIES.items():
+        _BUILTIN[name] = (literature_build(e["build"]), e["states"], e["x_rule"], False,
+                          e["description"])
+    return {name: literature_rule(name, e) for name, e in ENTRIES.items()}
+
+
+def literature_build(build: Callable) -> Callable:
+    """``build`` (exact matrices from the space's knot vector) in the kind of the space."""
+    def kind_of_space(space: MassSpace):
+        A = build(space)
+        if space.exact or not is_exact(A):
+            return A
+        from dispersion.symbolic.spline_mass import gram_matrix
+
+        return _like(A, space, gram_matrix(space.kv))
+
+    return kind_of_space
+
+
+def literature_rule(name: str, e: dict) -> MassRule:
+    """A :class:`MassRule` from an entry of :data:`dispersion.symbolic.lumping_rules.ENTRIES`."""
+    return MassRule(name, literature_build(e["build"]), e["states"], e["x_rule"], False,
+                    e["description"], e.get("periodic"), e.get("x_stiffness"), e.get("cost"),
+                    e.get("basis", "bspline"))
+
+
+_LITERATURE = _literature()
+
 #: The registered rules, by name (one registry for patch, bar, contact scenes and CLI).
 RULES: dict[str, MassRule] = {
-    name: MassRule(name, build, states, x_rule, redis, desc)
+    name: _LITERATURE.get(name) or MassRule(name, build, states, x_rule, redis, desc)
     for name, (build, states, x_rule, redis, desc) in _BUILTIN.items()
 }
 RULE_NAMES = tuple(RULES)
+#: The rules that apply to the Bloch plate patch (its x-direction is one B-spline symbol; the
+#: C0 Lagrange rules carry p DOFs a cell there and apply to the x-exact model and the bar).
+BLOCH_RULE_NAMES = tuple(name for name, rule in RULES.items() if rule.basis == "bspline")
 
 
 def get_rule(mass) -> MassRule:
@@ -424,7 +482,9 @@ def x_mass_coefficients(rule, p: int) -> tuple[tuple[int, sympy.Rational], ...]:
     if rule.redistributes:
         raise InputError(f"mass rule {rule.name!r} needs a contact set; the x-direction has none")
     p = check_positive_int("degree p", p)
-    if RULES.get(rule.name) is rule and rule.name in PERIODIC_ROWS:
+    if rule.periodic is not None:
+        row = rule.periodic(p)
+    elif RULES.get(rule.name) is rule and rule.name in PERIODIC_ROWS:
         row = PERIODIC_ROWS[rule.name](p)
     else:  # any other rule: the middle row of its matrix on the open mesh
         ne = _bloch_mesh(p)
@@ -434,6 +494,25 @@ def x_mass_coefficients(rule, p: int) -> tuple[tuple[int, sympy.Rational], ...]:
         row = {L: M[mid, mid + L] for L in range(-p, p + 1)}
     return tuple((L, sympy.Rational(v.numerator, v.denominator) if isinstance(v, Fraction)
                   else v) for L, v in sorted(row.items()) if v != 0)
+
+
+@lru_cache(maxsize=None)
+def x_stiffness_factor(rule, p: int) -> tuple[tuple[int, sympy.Rational], ...]:
+    """Bloch coefficients :math:`((L, s_L), ...)` of the factor multiplying a rule's x-stiffness.
+
+    1 for every Galerkin rule; the approximate-dual symbol for ``dual-lumped`` (its
+    Petrov-Galerkin test functions along x, :mod:`dispersion.symbolic.lumping_rules`).
+
+    >>> x_stiffness_factor("lumped", 2)
+    ((0, 1),)
+    """
+    import sympy
+
+    rule = get_rule(rule)
+    p = check_positive_int("degree p", p)
+    if rule.x_stiffness is None:
+        return ((0, sympy.Integer(1)),)
+    return tuple((L, sympy.Rational(v)) for L, v in sorted(rule.x_stiffness(p).items()) if v != 0)
 
 
 def mass_variant(M, variant, R=None, *, kv=None, elements=None, check: bool = True):

@@ -143,7 +143,15 @@ class Patch:
         if self.model not in defaults.MODELS:
             raise InputError(f"model must be one of {', '.join(defaults.MODELS)}; "
                              f"got {self.model!r}")
-        get_rule(self.mass)  # a registered name or a MassRule, else InputError
+        rule = get_rule(self.mass)  # a registered name or a MassRule, else InputError
+        if rule.basis == "lagrange":  # C0 elements: p DOFs a cell along x, n = p e + 1
+            from dispersion.symbolic.lagrange_sem import c0_elements
+
+            if self.model == "bloch":
+                raise InputError(f"mass {rule.name!r} uses C0 Lagrange elements, which carry "
+                                 "p DOFs a cell along x; the Bloch patch has one B-spline "
+                                 "symbol there: use model='x-exact' or the periodic bar")
+            c0_elements(p, n)
         r = self.r
         if self.model == "x-exact":
             if r is not None and r != defaults.R:
@@ -186,6 +194,14 @@ class Patch:
         from dispersion.symbolic.mass_rule import get_rule
 
         return get_rule(self.mass).redistributes
+
+    @property
+    def basis(self) -> str:
+        """The discrete space through the thickness: ``"bspline"`` or ``"lagrange"`` (C0
+        elements, set by the rule, :attr:`dispersion.symbolic.mass_rule.MassRule.basis`)."""
+        from dispersion.symbolic.mass_rule import get_rule
+
+        return get_rule(self.mass).basis
 
     @property
     def mass_name(self) -> str:

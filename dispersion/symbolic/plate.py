@@ -53,7 +53,8 @@ import sympy
 from dispersion.symbolic import bspline
 from dispersion.errors import InputError, check_nu, check_positive_int
 from dispersion.symbolic.mass import contact_weights, redistribution_matrix
-from dispersion.symbolic.mass_rule import get_rule, mass_variant, x_mass_coefficients
+from dispersion.symbolic.mass_rule import (get_rule, mass_variant, x_mass_coefficients,
+                                           x_stiffness_factor)
 
 __all__ = [
     "MODELS",
@@ -62,8 +63,10 @@ __all__ = [
     "PlatePatch",
     "plate_patch",
     "thickness_matrices",
+    "thickness_knot_vector",
     "bloch_coefficients",
     "x_functions",
+    "x_coefficients",
     "lame",
     "stiffness_terms",
     "dynamic_stiffness",
@@ -80,19 +83,38 @@ from dispersion.symbolic.patch import (  # noqa: E402  (the patch's own rules, s
 _y = sympy.Symbol("y")
 
 
-def thickness_matrices(p: int, n: int) -> dict[str, sympy.ImmutableMatrix]:
+def thickness_matrices(p: int, n: int, basis: str = "bspline") -> dict[str, sympy.ImmutableMatrix]:
     """Exact :math:`Y_{ab} = \\int_{-1}^{1} N^{(a)}_i N^{(b)}_j dy` for ``n`` open B-splines of degree p.
+
+    ``basis="lagrange"``: the C0 space of degree p with ``n = p * elements + 1`` DOFs
+    (:func:`thickness_knot_vector`).
 
     >>> thickness_matrices(1, 2)["11"].tolist()
     [[1/2, -1/2], [-1/2, 1/2]]
     """
-    return dict(zip(("00", "01", "10", "11"), _thickness_matrices(p, n)))
+    return dict(zip(("00", "01", "10", "11"), _thickness_matrices(p, n, basis)))
+
+
+def thickness_knot_vector(p: int, n: int, basis: str = "bspline"):
+    """The knot vector through the thickness [-1, 1]: open uniform B-splines, or the C0
+    (Lagrange) space, interior knots repeated p times.
+
+    >>> [str(k) for k in thickness_knot_vector(2, 5, "lagrange").knots]
+    ['-1', '-1', '-1', '0', '0', '1', '1', '1']
+    """
+    if basis == "lagrange":
+        from dispersion.symbolic.lagrange_sem import c0_elements, c0_knot_vector
+
+        return c0_knot_vector(p, c0_elements(p, n), -1, 1)
+    if basis != "bspline":
+        raise InputError(f"basis must be 'bspline' or 'lagrange', got {basis!r}")
+    return bspline.open_knot_vector(p, n - p, -1, 1)
 
 
 @lru_cache(maxsize=None)
-def _thickness_matrices(p: int, n: int) -> tuple[sympy.ImmutableMatrix, ...]:
+def _thickness_matrices(p: int, n: int, basis: str = "bspline") -> tuple[sympy.ImmutableMatrix, ...]:
     # cached and shared, hence immutable
-    kv = bspline.open_knot_vector(p, n - p, -1, 1)
+    kv = thickness_knot_vector(p, n, basis)
     Y = {k: sympy.zeros(n, n) for k in ("00", "01", "10", "11")}
     for (a, b), polys, active in bspline.basis_polynomials(kv, _y, local=False):
         ders = [[sympy.Poly(f, _y) for f in polys], [sympy.Poly(f, _y).diff(_y) for f in polys]]
@@ -174,6 +196,9 @@ class PlatePatch:
     spec: object = field(default=None, compare=False)
     x_mass: tuple = ()
     rule: object = field(default=None, repr=False, compare=False)
+    #: Bloch factor ``((L, s_L), ...)`` of the x-stiffness (1 but for Petrov-Galerkin rules,
+    #: :func:`dispersion.symbolic.mass_rule.x_stiffness_factor`).
+    x_stiffness: tuple = ((0, 1),)
 
     @property
     def massless(self) -> tuple[int, ...]:
@@ -210,20 +235,40 @@ def plate_patch(*args, allow_negative: bool = False, **fields) -> PlatePatch:
 
 @lru_cache(maxsize=64)
 def _build(spec, allow_negative: bool) -> PlatePatch:
-    Y = thickness_matrices(spec.p, spec.n)
-    R = None
     rule = get_rule(spec.mass)
+    Y = thickness_matrices(spec.p, spec.n, rule.basis)
+    R = None
     if rule.redistributes:
         weights = spec.weights_dict
         if weights is None:
             weights = contact_weights(spec.n, spec.contact, spec.gamma_s)
         R = redistribution_matrix(spec.n, weights, allow_negative=allow_negative)
-    kv = bspline.open_knot_vector(spec.p, spec.n - spec.p, -1, 1)
+    kv = thickness_knot_vector(spec.p, spec.n, rule.basis)
     My = mass_variant(Y["00"], rule, R, kv=kv)
-    x_mass = x_mass_coefficients(rule.x_rule, spec.p)
+    # a rule with its own periodic row (a family member: sms_rule(beta)) uses it along x
+    x_mass = x_mass_coefficients(rule if rule.periodic is not None else rule.x_rule, spec.p)
     return PlatePatch(spec.p, spec.n, spec.model, spec.r, rule.name, R, Y, My,
                       x_lumped=x_mass == ((0, sympy.Integer(1)),), spec=spec, x_mass=x_mass,
-                      rule=rule)
+                      rule=rule, x_stiffness=x_stiffness_factor(
+                          rule if rule.x_stiffness is not None else rule.x_rule, spec.p))
+
+
+def x_coefficients(patch) -> dict[str, dict[int, sympy.Rational]]:
+    """The Bloch coefficients of the x-stiffness of ``patch``: :func:`bloch_coefficients`
+    times its factor :attr:`PlatePatch.x_stiffness` (a Laurent product; unchanged for every
+    Galerkin rule).
+
+    >>> x_coefficients(plate_patch(p=1, mass="dual-lumped"))["00"]
+    {-2: -1/36, -1: 1/9, 0: 5/6, 1: 1/9, 2: -1/36}
+    """
+    from dispersion.symbolic.approximate_dual import bloch_product
+
+    c = bloch_coefficients(patch.p)
+    factor = dict(getattr(patch, "x_stiffness", ((0, 1),)))
+    if factor == {0: 1}:
+        return c
+    return {key: {L: v for L, v in bloch_product(val, factor).items() if v != 0}
+            for key, val in c.items()}
 
 
 def x_functions(patch: PlatePatch, kappa) -> dict[str, object]:
@@ -237,13 +282,13 @@ def x_functions(patch: PlatePatch, kappa) -> dict[str, object]:
         one = np.ones_like(kappa, dtype=float) if numeric else sympy.Integer(1)
         out = {"m": one, "s": kappa, "d": kappa**2}
     else:
-        c = bloch_coefficients(patch.p)
+        c = x_coefficients(patch)
         r = float(patch.r) if numeric else patch.r
         th = kappa * r
         conv = float if numeric else (lambda v: v)
         out = {
             "m": sum(conv(v) * cos(L * th) for L, v in c["00"].items()),
-            "s": -2 / r * sum(conv(c["10"][L]) * sin(L * th) for L in range(1, patch.p + 1)),
+            "s": -2 / r * sum(conv(v) * sin(L * th) for L, v in c["10"].items() if L > 0),
             "d": sum(conv(v) * cos(L * th) for L, v in c["11"].items()) / r**2,
         }
     if patch.model == "x-exact" or patch.x_lumped:
@@ -273,14 +318,14 @@ def x_taylor(patch: PlatePatch, D: int) -> dict[str, list[tuple[sympy.Rational, 
                "d": [(sympy.Integer(0), 0), (sympy.Integer(1), 0)][: D + 1]
                + [(sympy.Integer(0), 0)] * (D - 1)}
     else:
-        c = bloch_coefficients(patch.p)
+        c = x_coefficients(patch)
         out = {"m": [], "s": [], "d": []}
         for k in range(D + 1):
             sign = (-1) ** k
             out["m"].append((sign * sum(v * L ** (2 * k) for L, v in c["00"].items())
                              / sympy.factorial(2 * k), 2 * k))
-            out["s"].append((-2 * sign * sum(c["10"][L] * L ** (2 * k + 1)
-                                             for L in range(1, patch.p + 1))
+            out["s"].append((-2 * sign * sum(v * L ** (2 * k + 1)
+                                             for L, v in c["10"].items() if L > 0)
                              / sympy.factorial(2 * k + 1), 2 * k))
             out["d"].append((sign * sum(v * L ** (2 * k) for L, v in c["11"].items())
                              / sympy.factorial(2 * k), 2 * k - 2))
@@ -365,14 +410,16 @@ def numeric_terms(patch: PlatePatch) -> tuple[tuple[tuple[str, str, np.ndarray],
     >>> len(terms), M0.shape
     (6, (6, 6))
     """
-    return _numeric_terms(patch.p, patch.n, tuple(patch.My))
+    rule = getattr(patch, "rule", None)
+    return _numeric_terms(patch.p, patch.n, tuple(patch.My),
+                          getattr(rule, "basis", "bspline"))
 
 
 @lru_cache(maxsize=64)
-def _numeric_terms(p: int, n: int, my: tuple):
+def _numeric_terms(p: int, n: int, my: tuple, basis: str = "bspline"):
     from types import SimpleNamespace
 
-    terms = stiffness_terms(SimpleNamespace(Y=thickness_matrices(p, n), n=n))
+    terms = stiffness_terms(SimpleNamespace(Y=thickness_matrices(p, n, basis), n=n))
     out = []
     for m, f, B in terms:
         arr = np.array(B, dtype=float)

@@ -42,7 +42,8 @@ import numpy as np
 from dispersion.errors import InputError, check_positive_int
 from dispersion.symbolic.plate import bloch_coefficients
 
-__all__ = ["BAR_MASSES", "BarDispersion", "bar_dispersion", "bar_frequency", "bar_rule"]
+__all__ = ["BAR_MASSES", "BarDispersion", "bar_dispersion", "bar_frequency", "bar_rule",
+           "bar_stiffness_coefficients"]
 
 #: Mass variants of the periodic bar shown by default (the registry's rules without a contact
 #: set also apply: hrz, nodal-greville, nodal-lobatto, user rules).
@@ -71,15 +72,41 @@ def bar_frequency(p: int, mass: str, theta) -> np.ndarray:
     """Discrete :math:`\\omega h / c` at :math:`\\theta = kh` (module docstring), float array."""
     p = check_positive_int("degree p", p)
     rule = bar_rule(mass)
+    if rule.basis == "lagrange":  # C0 elements: p branches, the acoustic one
+        from dispersion.waves.sem_bar import sem_bar_frequency
+
+        return sem_bar_frequency(rule.name, p, theta)
     from dispersion.symbolic.mass_rule import x_mass_coefficients
 
     theta = np.asarray(theta, dtype=float)
-    c = bloch_coefficients(p)
     # sum_L c11_L = 0 (derivatives of a partition of unity), so d = -2 sum c11_L sin^2(L theta/2)
     # without the cancellation that 1 - cos costs at small theta
-    d = -2 * sum(float(v) * np.sin(L * theta / 2) ** 2 for L, v in c["11"].items())
+    d = -2 * sum(float(v) * np.sin(L * theta / 2) ** 2
+                 for L, v in bar_stiffness_coefficients(rule, p).items())
     m = sum(float(v) * np.cos(L * theta) for L, v in x_mass_coefficients(rule, p))
     return np.sqrt(np.clip(d, 0, None) / m)
+
+
+def bar_stiffness_coefficients(mass, p: int) -> dict:
+    """Bloch coefficients of the bar's stiffness symbol :math:`d(\\theta)` for rule ``mass``:
+    :math:`c^{11}_L`, times the rule's x-factor for a Petrov-Galerkin rule
+    (:func:`dispersion.symbolic.mass_rule.x_stiffness_factor`; ``dual-lumped``).
+
+    >>> bar_stiffness_coefficients("consistent", 1)
+    {-1: -1, 0: 2, 1: -1}
+    """
+    from dispersion.symbolic.approximate_dual import bloch_product
+    from dispersion.symbolic.mass_rule import x_stiffness_factor
+
+    c11 = bloch_coefficients(check_positive_int("degree p", p))["11"]
+    rule = bar_rule(mass)
+    if rule.basis != "bspline":
+        raise InputError(f"mass {rule.name!r} uses C0 Lagrange elements: the bar has p "
+                         "branches, not one B-spline symbol (dispersion.waves.sem_bar)")
+    factor = dict(x_stiffness_factor(rule, p))
+    if factor == {0: 1}:
+        return c11
+    return {L: v for L, v in bloch_product(c11, factor).items() if v != 0}
 
 
 @dataclass(frozen=True)

@@ -117,7 +117,7 @@ def _cheb(L: int, kind: str):
     return b
 
 
-def _x_polys(model: str, p: int, r: Fraction | None, x_mass):
+def _x_polys(model: str, p: int, r: Fraction | None, x_mass, x_factor=((0, 1),)):
     """``m, d, s2, mx`` as flint fmpq_poly in u (see the module docstring); ``x_mass`` is the
     patch's ``((L, c_L), ...)`` with :math:`m_x = \\sum_L c_L \\cos L\\theta` (Bloch)."""
     import flint
@@ -129,12 +129,16 @@ def _x_polys(model: str, p: int, r: Fraction | None, x_mass):
     if model == "x-exact":
         return {"m": one, "d": u, "s2": u, "mx": one}
     c = bloch_coefficients(p)
+    if dict(x_factor) != {0: 1}:  # a Petrov-Galerkin rule: its x-factor times the symbols
+        from dispersion.symbolic.approximate_dual import bloch_product
+
+        c = {k: bloch_product(v, dict(x_factor)) for k, v in c.items()}
     q = flint.fmpq(r.numerator, r.denominator)
 
     m = sum((_q(v) * _cheb(abs(L), "T") for L, v in c["00"].items()), flint.fmpq_poly([0]))
     d = sum((_q(v) * _cheb(abs(L), "T") for L, v in c["11"].items()), flint.fmpq_poly([0])) \
         / (q * q)
-    sh = sum((_q(c["10"][L]) * _cheb(L - 1, "U") for L in range(1, p + 1)),
+    sh = sum((_q(v) * _cheb(L - 1, "U") for L, v in c["10"].items() if L > 0),
              flint.fmpq_poly([0])) * (-2) / q
     s2 = u * (2 - u) * sh * sh
     mx = sum((_q(v) * _cheb(abs(L), "T") for L, v in x_mass), flint.fmpq_poly([0]))
@@ -156,19 +160,19 @@ def _fmpq_mat(rows):
 
 @functools.lru_cache(maxsize=64)
 def _build(key):
-    (p, n, model, r, my, x_mass, nu, basis, parity) = key
+    (p, n, model, r, my, x_mass, nu, basis, parity, x_factor, space) = key
     import flint
     import sympy
 
     from dispersion.symbolic.plate import lame, stiffness_terms, thickness_matrices
 
-    Y = thickness_matrices(p, n)
+    Y = thickness_matrices(p, n, space)
     n2 = 2 * n
     My = sympy.Matrix(n, n, list(my))
     M0 = sympy.diag(My, My)
     nuq = sympy.Rational(nu.numerator, nu.denominator)
     mat = lame(nuq)
-    xp = _x_polys(model, p, r, x_mass)
+    xp = _x_polys(model, p, r, x_mass, x_factor)
     E = sympy.eye(n2) if basis is None else sympy.Matrix(len(basis), len(basis[0]),
                                                          [v for row in basis for v in row])
     nb = E.shape[1]
@@ -284,7 +288,9 @@ def pencil_polynomial(patch, nu: float, basis=None, parity: bool = False) -> Pen
     key = (patch.p, patch.n, patch.model, r, tuple(patch.My), x_mass,
            Fraction(repr(float(nu))),
            None if basis is None else tuple(tuple(int(v) for v in basis.row(i))
-                                            for i in range(basis.shape[0])), bool(parity))
+                                            for i in range(basis.shape[0])), bool(parity),
+           tuple(patch.x_stiffness) if patch.model == "bloch" else ((0, 1),),
+           getattr(patch.rule, "basis", "bspline"))
     return _build(key)
 
 

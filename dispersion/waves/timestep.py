@@ -62,9 +62,9 @@ _z = sympy.Symbol("z")
 
 
 def _coefficients(rule, p: int):
-    from dispersion.symbolic.plate import bloch_coefficients
+    from dispersion.waves.bar_dispersion import bar_stiffness_coefficients
 
-    return bloch_coefficients(p)["11"], dict(x_mass_coefficients(rule, p))
+    return bar_stiffness_coefficients(rule, p), dict(x_mass_coefficients(rule, p))
 
 
 def bar_omega_squared(mass, p: int) -> sympy.Expr:
@@ -75,6 +75,10 @@ def bar_omega_squared(mass, p: int) -> sympy.Expr:
     """
     rule = bar_rule(mass)
     p = check_positive_int("degree p", p)
+    if rule.basis == "lagrange":
+        raise InputError(f"mass {rule.name!r}: the C0 Lagrange bar has p branches, no single "
+                         "rational omega^2(cos theta) (its acoustic series: "
+                         "dispersion.symbolic.lagrange_sem.acoustic_series)")
     c11, a = _coefficients(rule, p)
     d = sum(v * sympy.chebyshevt(abs(L), _z) for L, v in c11.items())
     m = sum(v * sympy.chebyshevt(abs(L), _z) for L, v in a.items())
@@ -87,6 +91,11 @@ def bar_omega_max(mass, p: int) -> tuple[sympy.Expr, float]:
     >>> bar_omega_max("consistent", 2)      # Cottrell et al. 2006: sqrt(10) at theta = pi
     (sqrt(10), 3.141592653589793)
     """
+    if bar_rule(mass).basis == "lagrange":  # p branches: the Bloch pencil's largest root
+        from dispersion.waves.sem_bar import sem_bar_omega_max
+
+        w, exact, theta, _ = sem_bar_omega_max(bar_rule(mass).name, p)
+        return (exact if exact is not None else sympy.Float(w, 15)), theta
     f = bar_omega_squared(mass, p)
     num, den = sympy.fraction(sympy.together(f))
     crit = sympy.Poly(sympy.expand(sympy.diff(num, _z) * den - num * sympy.diff(den, _z)), _z)
@@ -304,7 +313,7 @@ def certified_omega_max(patch, nu, omega: float, rtol: float = 1e-3, max_cells: 
     """
     import flint
 
-    from dispersion.symbolic.plate import bloch_coefficients, lame, mass_block, stiffness_terms
+    from dispersion.symbolic.plate import lame, mass_block, stiffness_terms, x_coefficients
 
     if patch.model != "bloch" or isinstance(patch.r, sympy.Symbol):
         raise InputError("certification needs a Bloch patch with a numeric aspect ratio r")
@@ -323,7 +332,7 @@ def certified_omega_max(patch, nu, omega: float, rtol: float = 1e-3, max_cells: 
         n2 = 2 * patch.n
         ml = list(patch.massless)
         keep = [i for i in range(n2) if i not in ml]
-        c = bloch_coefficients(patch.p)
+        c = x_coefficients(patch)  # Petrov-Galerkin rules: times their x-factor
         r = q(patch.r)
         lam = {k: q(v) for k, v in lame(sympy.nsimplify(nu), scaled=False).items()}
         terms = [(lam[m], f, mat(B)) for m, f, B in stiffness_terms(patch)]
@@ -334,8 +343,8 @@ def certified_omega_max(patch, nu, omega: float, rtol: float = 1e-3, max_cells: 
         def definite(lo: float, hi: float) -> bool:
             th = flint.arb((lo + hi) / 2, (hi - lo) / 2)
             xf = {"m": sum((q(v) * (L * th).cos() for L, v in c["00"].items()), flint.arb(0)),
-                  "s": -2 / r * sum((q(c["10"][L]) * (L * th).sin()
-                                     for L in range(1, patch.p + 1)), flint.arb(0)),
+                  "s": -2 / r * sum((q(v) * (L * th).sin()
+                                     for L, v in c["10"].items() if L > 0), flint.arb(0)),
                   "d": sum((q(v) * (L * th).cos() for L, v in c["11"].items()),
                            flint.arb(0)) / r**2}
             mx = sum((q(v) * (L * th).cos() for L, v in patch.x_mass), flint.arb(0))
@@ -432,8 +441,11 @@ def critical_step(mass, p: int = 2, *, model: str = "plate", material: Material 
         exact, theta = bar_omega_max(rule, p)
         ref, _ = bar_omega_max("consistent", p)
         w, w_ref = float(exact), float(ref)
-        return CriticalStep(rule.name, p, "bar", h, c, w, exact, theta,
-                            "exact (rational function of cos theta)", 2 * h / (c * w),
+        method = ("exact (rational function of cos theta)" if rule.basis == "bspline" else
+                  "C0 Lagrange bar: all p branches, " + ("exact at a zone end"
+                                                         if exact.is_algebraic else "numeric"))
+        return CriticalStep(rule.name, p, "bar", h, c, w, exact, theta, method,
+                            2 * h / (c * w),
                             2 * h / (c * w_ref),
                             material=None if wave_speed is not None else material.name)
     from dispersion.symbolic.patch import check_size

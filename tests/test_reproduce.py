@@ -369,18 +369,31 @@ _PROGRESS_CHILD = textwrap.dedent("""
     """)
 
 
-def test_progress_bars_stay_out_of_logs(tmp_path):
-    """stderr that is not a terminal gets no tqdm control codes (nested bars included)."""
+def test_progress_bars_stay_out_of_logs(stubs, tmp_path, capsys, monkeypatch):
+    """stderr that is not a terminal gets no tqdm control codes (nested bars included); in
+    this process (a captured stderr is no terminal), as a child process in the slow run."""
+    from dispersion.sweep import parallel_map
+
+    stubs()
+    for name in SECTIONS:
+        def measure(quick=False, executor=None):
+            parallel_map(abs, [-1, -2], jobs=1, desc="inner")
+            return {"v": 1}
+        monkeypatch.setattr(sys.modules[f"dispersion.report.{name}"], "measure", measure)
+        monkeypatch.setattr(sys.modules[f"dispersion.report.{name}"], "render",
+                            lambda data, out: "## x")
+    assert main(["reproduce", "--out", str(tmp_path / "a"), "--jobs", "1"]) == 0
+    err = capsys.readouterr().err
+    assert "\r" not in err and "%|" not in err
+
+
+@pytest.mark.slow  # two child processes
+def test_progress_flag_forces_the_bar_and_a_log_gets_none(tmp_path):
     script = _PROGRESS_CHILD
     quiet = subprocess.run([sys.executable, "-c", script, str(tmp_path / "a")], cwd=tmp_path,
                            capture_output=True, text=True, check=False)
     assert quiet.returncode == 0, quiet.stderr
     assert "\r" not in quiet.stderr and "%|" not in quiet.stderr
-
-
-@pytest.mark.slow  # a second child process
-def test_progress_flag_forces_the_bar(tmp_path):
-    script = _PROGRESS_CHILD
     loud = subprocess.run([sys.executable, "-c", script, str(tmp_path / "b"), "--progress"],
                           cwd=tmp_path, capture_output=True, text=True, check=False)
     assert loud.returncode == 0 and "reproduce" in loud.stderr and "%|" in loud.stderr

@@ -149,6 +149,14 @@ def test_quick_start_is_the_main_job_then_the_tests():
     assert first.endswith("&& dispersion reproduce") and "python -m pytest -q" in second
 
 
+def test_quick_start_shows_the_verdict_of_every_section():
+    from dispersion.report import SECTIONS
+
+    section = README.read_text().split("## Quick start", 1)[1].split("\n## ", 1)[0]
+    shown = re.search(r"^reproduced: N figures agree with reports/ \(([^)]*)\)", section, re.M)
+    assert shown and tuple(shown.group(1).split(", ")) == SECTIONS
+
+
 def test_quick_start_names_the_optional_packages_and_what_each_adds():
     from dispersion.studies.peers import PEERS_INSTALL
     from dispersion.studies.series_race import MAXIMA_INSTALL

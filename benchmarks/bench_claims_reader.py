@@ -1,4 +1,4 @@
-"""Worst cases of a claims coefficient within the reader's limits (issue 17 item 2).
+"""Worst cases of a claims coefficient within the reader's limits.
 
 A coefficient that passes :func:`dispersion.claims.reader.check_size` is read, factored for
 display (:func:`dispersion.claims.schema.readable`) and compared with a derived coefficient

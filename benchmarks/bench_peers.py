@@ -1,4 +1,4 @@
-"""Side by side with the Lamb-wave calculators on the package index (issue 20).
+"""Side by side with the Lamb-wave calculators on the package index.
 
 Run:  python benchmarks/bench_peers.py [--quick] [--repeat N] [--out DIR]
 

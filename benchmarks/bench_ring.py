@@ -1,4 +1,4 @@
-"""Benchmark of the ring solver (issue 12): time per step vs elements against named baselines.
+"""Benchmark of the ring solver: time per step vs elements against named baselines.
 
 Run:  python benchmarks/bench_ring.py [--quick]
 

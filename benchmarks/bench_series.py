@@ -1,4 +1,6 @@
-"""Series benchmark: ``python benchmarks/bench_series.py [--quick] [--out DIR] [--textbook S]``.
+"""Series benchmark: ours against Maxima, and the discrete series against the patch size.
+
+Usage: ``python benchmarks/bench_series.py [--quick] [--out DIR] [--textbook S]``.
 
 Runs :func:`dispersion.studies.series_race.measure` (ours against Maxima, whole process and compute
 only, peak memory; time against the patch size with fitted growth exponents) and prints the

@@ -8,6 +8,10 @@ The public API (see :mod:`dispersion.api`), with the defaults of :mod:`dispersio
 - :func:`patch` -> :class:`Patch` with ``K()``, ``M()``, ``K_dyn()``, ``series()``,
   ``branches()``;
 - :func:`series` (discrete or ``exact=True`` Rayleigh-Lamb), :func:`exact_branches`;
+- the commands as functions: :func:`branch_table` (``dispersion branches``),
+  :func:`lamb_modes` and :func:`mode_shapes` (its calculator), :func:`series_table`,
+  :func:`critical_steps` (``dispersion timestep``); every result renders itself
+  (:mod:`dispersion.rendering`: ``to_text``, ``to_csv``, ``to_json``, ``to_dataframe``);
 - :func:`simulate_ring` (Figure 4) and :func:`simulate_bar`;
 - the errors :class:`InputError`, :class:`DispersionError`, ...
 
@@ -27,8 +31,9 @@ from dispersion.errors import ConvergenceError, DispersionError, IndefiniteMassW
 #: Distribution name on the package index (the import name is ``dispersion``).
 DISTRIBUTION = "dispersion-iga"
 
-_API = ("Patch", "PatchModel", "patch", "series", "exact_branches", "lamb_modes", "material", "simulate_ring",
-        "simulate_bar")
+_API = ("Patch", "PatchModel", "patch", "series", "exact_branches", "lamb_modes", "material",
+        "simulate_ring", "simulate_bar", "branch_table", "mode_shapes", "series_table",
+        "critical_steps", "figure")
 #: Public modules by their short names (``dispersion.plate``), wherever they live in the wings.
 _MODULES = {
     "api": "api", "patch_model": "patch_model", "defaults": "defaults", "errors": "errors", "io": "io", "results": "results",
@@ -59,6 +64,10 @@ _MODULES = {
     "mode_table": "waves.mode_table",
     "mass_rule": "symbolic.mass_rule", "timestep": "waves.timestep",
     "fully_discrete": "waves.fully_discrete", "cost_accuracy": "studies.cost_accuracy",
+    "time_integration": "waves.time_integration", "branch_table": "waves.branch_table",
+    "mode_shape_table": "waves.mode_shape_table", "unit_mixups": "waves.unit_mixups",
+    "rendering": "rendering", "critical_steps": "waves.critical_steps",
+    "series_table": "waves.series_table", "errata_sheet": "claims.errata_sheet",
     "discrete_error": "waves.discrete_error", "pencil_frequencies": "waves.pencil_frequencies",
     "illinois": "waves.illinois", "mass_check": "symbolic.mass_check",
     "matrix_kind": "symbolic.matrix_kind", "certified_roots": "waves.certified_roots",

@@ -29,14 +29,16 @@ from typing import TYPE_CHECKING
 
 from dispersion import defaults
 from dispersion.errors import InputError
-from dispersion.patch_model import PatchModel
-from dispersion.symbolic.patch import Patch
 
 if TYPE_CHECKING:  # pragma: no cover
     import sympy
 
-__all__ = ["Patch", "PatchModel", "patch", "series", "exact_branches", "lamb_modes", "material", "simulate_ring",
-           "simulate_bar"]
+    from dispersion.patch_model import PatchModel
+    from dispersion.symbolic.patch import Patch
+
+__all__ = ["Patch", "PatchModel", "patch", "series", "exact_branches", "lamb_modes", "material",
+           "simulate_ring", "simulate_bar", "branch_table", "mode_shapes", "series_table",
+           "critical_steps", "figure"]
 
 
 def patch(*args, **fields) -> PatchModel:
@@ -46,10 +48,14 @@ def patch(*args, **fields) -> PatchModel:
     checked at once (bad parameters raise :class:`InputError` here), with its matrices, series
     and branches. ``r="r"`` keeps the aspect ratio symbolic.
 
+    >>> from dispersion.symbolic.patch import Patch
     >>> pt = patch(mass="singular", gamma_s=0)
     >>> pt.plate.massless, pt.spec == Patch(mass="singular", gamma_s=0)
     ((2, 5), True)
     """
+    from dispersion.patch_model import PatchModel
+    from dispersion.symbolic.patch import Patch
+
     try:
         spec = Patch(*args, **fields)
     except TypeError as exc:  # an unknown field or too many values: named, one line
@@ -108,6 +114,75 @@ def lamb_modes(material, thickness_mm: float, *, frequency_khz=None, fd_mhz_mm=N
                        fd_mhz_mm=fd_mhz_mm, **kwargs)
 
 
+def branch_table(**request):
+    """``dispersion branches`` as a function: exact and discrete branches on a kappa grid, in
+    units with a material, bounded as the command bounds them
+    (:func:`dispersion.waves.branch_table.branch_table`; a
+    :class:`~dispersion.waves.branch_table.BranchTable` that renders itself).
+
+    >>> t = branch_table(exact_only=True, count=3, kappa_max=1.0, omega_max=2.0)
+    >>> t.title()
+    'Rayleigh-Lamb branches, nu = 0.3, 3 kappa in [0, 1], Omega <= 2'
+    """
+    from dispersion.waves.branch_table import branch_table as _branch_table
+
+    return _branch_table(**request)
+
+
+def mode_shapes(table, mode: str, points: int = 41):
+    """Displacements and stresses through the thickness of ``mode`` of a one-frequency
+    :func:`lamb_modes` table (:func:`dispersion.waves.mode_shape_table.mode_shapes`)."""
+    from dispersion.waves.mode_shape_table import mode_shapes as _mode_shapes
+
+    return _mode_shapes(table, mode, points)
+
+
+def series_table(branches=("S0", "A0"), order: int = 8, **request):
+    """``dispersion series`` as a function (:func:`dispersion.waves.series_table.series_table`:
+    a :class:`~dispersion.waves.series_table.SeriesTable` that prints itself)."""
+    from dispersion.waves.series_table import series_table as _series_table
+
+    return _series_table(branches, order, **request)
+
+
+def critical_steps(masses=None, p: int = 2, **request):
+    """``dispersion timestep`` as a function (:func:`dispersion.waves.critical_steps.critical_steps`)."""
+    from dispersion.waves.critical_steps import critical_steps as _critical_steps
+
+    return _critical_steps(masses, p, **request)
+
+
+def figure(result):
+    """The figure of a result (the ``plots`` extra), drawn from the result alone, as the
+    command's ``--figure`` draws it: a :class:`~dispersion.waves.branch_table.BranchTable`,
+    a :func:`lamb_modes` table, its :func:`mode_shapes`, a ring or a Signorini run.
+
+    >>> fig = figure(lamb_modes("steel", 3.0, frequency_khz=[100, 200, 300]))
+    >>> fig.get_suptitle()
+    'steel, d = 3 mm, nu = 0.2912'
+    """
+    from dispersion import plotting
+
+    plotting.require_matplotlib("figure()")
+    kind = type(result).__name__
+    if kind == "BranchTable":
+        from dispersion.plotting.branches import figure_branch_table as draw
+    elif kind == "ModeTable":
+        from dispersion.plotting.lamb import figure_mode_table as draw
+    elif kind == "ModeShapeTable":
+        from dispersion.plotting.lamb import figure_mode_shapes as draw
+    elif kind == "SignoriniResult":
+        from dispersion.plotting.ring import plot_impact as draw
+    elif kind == "RingResult":
+        from dispersion.plotting.ring import plot_contact_energy
+
+        return plot_contact_energy(result.to_dict())
+    else:
+        raise InputError(f"figure() draws a BranchTable, ModeTable, ModeShapeTable, RingResult "
+                         f"or SignoriniResult, got {kind}")
+    return draw(result)
+
+
 def simulate_ring(mass: str = "singular", scheme: str = "kane", scenario=None, **changes):
     """The ring benchmark (Figure 4): :func:`dispersion.contact.simulate.simulate_ring` on
     ``scenario`` (default: the reconstructed :class:`~dispersion.contact.scenario.Scenario`)
@@ -130,3 +205,17 @@ def simulate_bar(n_elements: int = 40, p: int = defaults.P, mass: str = "lumped"
     from dispersion.contact.bar import simulate_bar as _simulate
 
     return _simulate(n_elements, p, mass, **kwargs)
+
+
+def __getattr__(name: str):
+    # the patch value and its model load sympy (the exact defaults): only when asked for, so
+    # that ``dispersion.lamb_modes`` and the other numeric doors do not pay for it
+    if name == "Patch":
+        from dispersion.symbolic.patch import Patch
+
+        return Patch
+    if name == "PatchModel":
+        from dispersion.patch_model import PatchModel
+
+        return PatchModel
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

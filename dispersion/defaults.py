@@ -25,31 +25,21 @@ from __future__ import annotations
 
 from fractions import Fraction
 
-__all__ = ["P", "N", "MODELS", "MODEL", "R", "MASS", "CONTACT", "GAMMA_S", "GAMMA_S_FLOAT", "NU",  # noqa: F822
-           "NU_FLOAT", "FIGURE2_R", "MASS_VARIANTS", "TIME_SCHEMES", "TIMESTEP_MODELS", "CONTACT_SETS",
+__all__ = ["P", "N", "PATCH_MODELS", "MODEL", "R", "MASS", "CONTACT", "GAMMA_S", "GAMMA_S_FLOAT", "NU",  # noqa: F822
+           "NU_FLOAT", "FIGURE2_R", "CONTACT_SETS",
            "REPORT_OUT", "REPORT_REFERENCE", "MAX_JOBS_PER_CPU", "P_MAX", "N_MAX",
            "R_RANGE"]  # GAMMA_S, NU, FIGURE2_R: module __getattr__
 
 P = 2
 N = 3
-#: The patch models along x (``MODEL`` is one of them); stated here so that the command line
-#: lists them without importing the symbolic patch.
-MODELS = ("x-exact", "bloch")
+#: The patch models along x (``MODEL`` is one of them): the registry that
+#: :class:`dispersion.symbolic.patch.Patch` checks against, here so that the command line lists
+#: them without importing the symbolic patch.
+PATCH_MODELS = ("x-exact", "bloch")
 MODEL = "bloch"
 R = 2
 MASS = "consistent"
 CONTACT = "top"
-#: Names of the registered mass rules, in the registry's order
-#: (:data:`dispersion.symbolic.mass_rule.RULE_NAMES` is built to equal it, tested): the
-#: command line offers them without importing the rules.
-MASS_VARIANTS = ("consistent", "lumped", "hrz", "nodal-greville", "nodal-lobatto", "singular",
-                 "singular-lumped", "dual-lumped", "dual-gram", "dual-consistent",
-                 "interpolatory-nodal", "sms", "sem-consistent", "sem-lumped")
-#: Named Newmark members of the fully discrete branches
-#: (:data:`dispersion.waves.fully_discrete.SCHEMES` holds their beta and gamma; tested equal).
-TIME_SCHEMES = ("central", "average-acceleration", "linear-acceleration", "fox-goodwin")
-#: Models of ``dispersion timestep`` (:data:`dispersion.waves.timestep.MODELS`; tested equal).
-TIMESTEP_MODELS = ("plate", "bar")
 #: ``dispersion reproduce``: where a user's run goes (untracked; listed in .gitignore) and the
 #: committed reference it is compared with (:mod:`dispersion.report.run`).
 REPORT_OUT = "reproduced"

@@ -27,6 +27,7 @@ __all__ = [
     "check_real_in_range",
     "check_int_in_range",
     "check_choice",
+    "did_you_mean",
     "check_memory",
     "physical_memory",
 ]
@@ -166,6 +167,22 @@ def check_int_in_range(name: str, value, lo: int | None = None, hi: int | None =
     return value
 
 
+def did_you_mean(word, valid) -> str:
+    """``; did you mean 'x'?`` for the valid name nearest to ``word`` (any letter case), or
+    nothing when none is near.
+
+    >>> did_you_mean("singlar", ("consistent", "singular"))
+    "; did you mean 'singular'?"
+    >>> did_you_mean("zzz", ("consistent", "singular"))
+    ''
+    """
+    import difflib
+
+    lower = {str(v).lower(): str(v) for v in valid}
+    near = difflib.get_close_matches(str(word).strip().lower(), list(lower), n=1, cutoff=0.6)
+    return f"; did you mean {lower[near[0]]!r}?" if near else ""
+
+
 def check_choice(name: str, value, choices) -> str:
     """Return ``value`` if it is one of ``choices``; raise naming them otherwise.
 
@@ -179,7 +196,8 @@ def check_choice(name: str, value, choices) -> str:
     except TypeError:
         ok = False
     if not ok or not isinstance(value, str):
-        raise InputError(f"{name} must be one of {', '.join(map(str, choices))}; got {value!r}")
+        raise InputError(f"{name} must be one of {', '.join(map(str, choices))}; got {value!r}"
+                         f"{did_you_mean(value, choices) if isinstance(value, str) else ''}")
     return value
 
 

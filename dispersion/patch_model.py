@@ -106,12 +106,27 @@ class PatchModel:
     def branches(self, kappa, nu=None, group: bool = False):
         """All discrete branches on the grid ``kappa``
         (:func:`dispersion.waves.discrete_branches.discrete_branches`); ``group=True`` adds the
-        group velocities (``DiscreteBranches.group``)."""
+        group velocities (``DiscreteBranches.group``). The request is bounded as ``dispersion
+        branches`` bounds it (:data:`dispersion.waves.branch_table.MAX_COUNT`,
+        :func:`~dispersion.waves.branch_table.check_discrete_work`), before any work.
+
+        >>> PatchModel(Patch(n=30)).branches(range(20000))
+        Traceback (most recent call last):
+        ...
+        dispersion.errors.InputError: count * (mass rules) * n^3 must be <= 11059200 (about a minute), got 540000000
+        """
+        import numpy as np
+
+        from dispersion.waves.branch_table import MAX_COUNT, check_discrete_work
         from dispersion.waves.discrete_branches import discrete_branches
 
         if self.spec.symbolic_r:
             raise InputError(f"r must be a number > 0 for numeric branches, got the symbol "
                              f"{self.spec.r}")
+        size = np.size(kappa)
+        if size > MAX_COUNT:
+            raise InputError(f"kappa must have at most {MAX_COUNT} points, got {size}")
+        check_discrete_work(size, 1, self.spec.n)
         nu = float(self.spec.nu_value if nu is None else nu)
         return discrete_branches(self.plate, nu, kappa, group=group)
 

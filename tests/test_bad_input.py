@@ -231,7 +231,7 @@ BRANCHES += [
     Cli("branches", f"{CSV} --exact --material steel --frequency 200", r"thickness"),
     Cli("branches", f"{CSV} --exact --material unobtainium", r"material"),
     Cli("branches", f"{CSV} --exact --mode-shape S0", r"--mode-shape"),
-    Cli("branches", f"{CSV} --exact --json out.json", r"--json"),
+    Cli("branches", "--csv - --exact --json -", r"--json"),
     Cli("branches", f"{CSV} --exact --cl 6000 --ct 3000 --rho -1 --thickness 1", r"rho"),
     Cli("branches", f"{CSV} --exact --cl 3000 --ct 3000 --thickness 1", r"--cl"),
     Cli("branches", f"{CSV} --exact --cl 6000 --thickness 1", r"--cl"),
@@ -364,7 +364,7 @@ TIMESTEP = [
     Cli("timestep", "--c 5", r"--c\b"),
     Cli("timestep", "--model bar --c -3 --mass lumped", r"wave_speed|--c"),
     Cli("timestep", "--mass-rule nosuch.toml", r"nosuch\.toml"),
-    Cli("timestep", "--mass singular --gamma-s 2", r"gamma_s"),
+    Cli("timestep", "--mass singular --gamma-s 2", r"gamma.s"),
     Cli("timestep", "--format xml", r"format"),
 ]
 

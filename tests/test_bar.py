@@ -9,7 +9,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from dispersion.contact.bar import MAX_STEPS, Bar, bar_model, check_steps, simulate_bar
+from dispersion.contact.bar import MAX_STEPS, Bar, assemble_bar, check_steps, simulate_bar
 from dispersion.contact.newmark import critical_step, integrate
 from dispersion.contact.newmark_scheme import Newmark
 from dispersion.errors import InputError
@@ -82,7 +82,7 @@ def test_bad_bar_rejected_naming_the_parameter(kwargs, name):
 
 def test_explicit_step_above_the_limit_is_refused():
     # P1 lumped bar: omega_max = 2 c / h (Hughes, The FEM, sec. 9.3), limit dt = h / c
-    model = bar_model(Bar(10, 1, mass="lumped"))
+    model = assemble_bar(Bar(10, 1, mass="lumped"))
     prob = model.problem
     assert np.isclose(critical_step(prob), 0.1, rtol=1e-12)
     with pytest.raises(InputError, match="dt"):
@@ -92,7 +92,7 @@ def test_explicit_step_above_the_limit_is_refused():
 def test_body_force_energy_is_conserved_in_free_flight():
     # clamped-free bar under a uniform body force, no contact reached (gap 1 m):
     # trapezoidal rule conserves kinetic + strain - f_ext . u of a linear system exactly
-    model = bar_model(Bar(8, 2, mass="consistent", clamped=("right",), gap=1.0,
+    model = assemble_bar(Bar(8, 2, mass="consistent", clamped=("right",), gap=1.0,
                           body_force=-0.5))
     prob = model.problem
     hist = integrate(prob, np.zeros(prob.n), np.zeros(prob.n), 0.01, 300)
@@ -102,8 +102,8 @@ def test_body_force_energy_is_conserved_in_free_flight():
 
 def test_right_end_contact_mirrors_left_end_contact():
     # the bar moving right into a wall at x = L is the mirror image of the standard test
-    left = bar_model(Bar(10, 2, mass="singular")).problem
-    right = bar_model(Bar(10, 2, mass="singular", contact="right")).problem
+    left = assemble_bar(Bar(10, 2, mass="singular")).problem
+    right = assemble_bar(Bar(10, 2, mass="singular", contact="right")).problem
     a = integrate(left, np.zeros(left.n), -np.ones(left.n), 0.02, 100)
     b = integrate(right, np.zeros(right.n), np.ones(right.n), 0.02, 100)
     assert np.allclose(a.contact_force, b.contact_force, rtol=1e-10, atol=1e-12)
@@ -112,7 +112,7 @@ def test_right_end_contact_mirrors_left_end_contact():
 def test_linear_fast_path_equals_the_newton_path():
     # the factorized linear step (Schur complement on the contact DOF) and the general
     # semismooth Newton solve the same step equations
-    prob = bar_model(Bar(10, 2, mass="lumped")).problem
+    prob = assemble_bar(Bar(10, 2, mass="lumped")).problem
     slow = replace(prob, K=None)
     args = (np.zeros(prob.n), -np.ones(prob.n), 0.02, 60)
     a, b = integrate(prob, *args), integrate(slow, *args)

@@ -37,7 +37,7 @@ def test_empty_output_path_is_refused_everywhere(args, tmp_path, monkeypatch, ca
 def test_impact_elements_times_steps_bounded_before_work(monkeypatch, capsys):
     import dispersion.contact.signorini as sig
 
-    monkeypatch.setattr(sig, "bar_model", _never)
+    monkeypatch.setattr(sig, "assemble_bar", _never)
     assert main(["impact", "signorini-1d", "--elements", "100000", "--t-end", "0.002"]) == 2
     assert "min, more than the bound" in _one_line(capsys)
     assert main(["impact", "signorini-1d", "--elements", "100000"]) == 2  # memory first
@@ -115,7 +115,7 @@ def test_impact_before_the_first_contact_states_no_nan(capsys):
     import json
 
     assert main(["impact", "signorini-1d", "--t-end", "0.1", "--format", "json"]) == 0
-    summary = json.loads(capsys.readouterr().out)
+    summary = json.loads(capsys.readouterr().out)["summary"]
     assert summary["stress_rel_l2"] is None and summary["u0_rel_l2"] > 0
     assert main(["impact", "signorini-1d", "--t-end", "0.1"]) == 0
     out = capsys.readouterr().out

@@ -71,7 +71,7 @@ def test_ring_result_repr_and_dataframe():
 
     sc = Scenario().scaled(0.125)
     res = simulate_ring(sc.__class__(**{**sc.__dict__, "t_end": 4 * sc.dt}), "lumped")
-    assert repr(res).startswith("RingResult(lumped mass, kane, 5 steps") and len(repr(res)) < 200
+    assert repr(res).startswith("<RingResult: lumped mass, kane, 5 steps") and len(repr(res)) < 200
     frame = res.to_dataframe()
     assert len(frame) == 5 and "t [s]" in frame.columns and "total [J/m]" in frame.columns
 

@@ -85,12 +85,12 @@ def test_stdout_formats_carry_inputs(capsys):
     argv = ["branches", "--exact", "--kappa-max", "1", "--count", "3", "--omega-max", "2"]
     assert main([*argv, "--format", "csv"]) == 0
     text = capsys.readouterr().out
-    assert "# nu: 0.3" in text and "# dispersion-iga:" in text
+    assert "# Poisson's ratio: nu = 0.3" in text and "# dispersion-iga:" in text
     rows = _rows(text)
     assert {"c_p/c_T", "c_g/c_T"} <= set(rows[0])
     assert main([*argv, "--format", "json"]) == 0
     data = json.loads(capsys.readouterr().out)
-    assert data["inputs"]["nu"] == 0.3 and len(data["result"]["rows"]) == len(rows)
+    assert "Poisson's ratio: nu = 0.3" in data["header"] and len(data["rows"]) == len(rows)
     assert main([*argv, "--format", "text"]) == 0
     assert "Omega" in capsys.readouterr().out
 
@@ -100,7 +100,10 @@ def test_aluminium_columns_in_units(capsys):
     assert main(["branches", "--exact", "--material", "aluminium", "--thickness", "1",
                  "--kappa-max", "1", "--count", "2", "--omega-max", "2", "--csv", "-"]) == 0
     text = capsys.readouterr().out
-    assert "# material: {'name': 'aluminium'" in text
+    # the inputs in words with units, never a Python repr (issue 28)
+    assert "# material: aluminium (c_L 6320 m/s, c_T 3130 m/s, rho 2700 kg/m^3" in text
+    assert "{" not in text and "[" not in "".join(ln for ln in text.splitlines()
+                                                 if ln.startswith("#") and "kappa" not in ln)
     a1 = [r for r in _rows(text) if r["branch"] == "A1" and float(r["kappa"]) == 0][0]
     assert float(a1["fd [MHz mm]"]) == pytest.approx(1.565, rel=1e-12)
     assert float(a1["f [kHz]"]) == pytest.approx(1565.0, rel=1e-12)  # d = 1 mm
@@ -119,7 +122,7 @@ def test_discrete_rows_have_group_velocity(tmp_path):
 def test_largest_discrete_patch_is_accepted(tmp_path, capsys):
     # the size limits are the patch's own (patch.check_size), the same as for the series;
     # the numeric work bound count * masses * n^3 is the branches' own
-    from dispersion.cli.branches import MAX_DISCRETE_WORK
+    from dispersion.waves.branch_table import MAX_DISCRETE_WORK
     from dispersion.symbolic.plate import N_MAX
 
     out = tmp_path / "o.csv"

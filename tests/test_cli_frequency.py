@@ -41,9 +41,9 @@ def test_help_states_units(capsys):
 def test_units_lists_and_grids_agree(capsys):
     base = ["branches", "--exact", "--material", "aluminium", "--thickness", "2"]
     assert main([*base, "--frequency", "0.5MHz,750kHz", "--format", "json"]) == 0
-    a = json.loads(capsys.readouterr().out)["result"]["rows"]
+    a = json.loads(capsys.readouterr().out)["rows"]
     assert main([*base, "--fd", "1:1.5:2", "--format", "json"]) == 0
-    b = json.loads(capsys.readouterr().out)["result"]["rows"]
+    b = json.loads(capsys.readouterr().out)["rows"]
     assert [(r["mode"], r["c_p [m/s]"]) for r in a] == [(r["mode"], r["c_p [m/s]"]) for r in b]
     assert {r["f [kHz]"] for r in a} == {500.0, 750.0}
 
@@ -138,9 +138,9 @@ def test_user_material_from_moduli_matches_speeds(capsys):
     base = ["branches", "--exact", "--thickness", "3", "--frequency", "200", "--format", "json"]
     assert main([*base, "--youngs-modulus", repr(E / 1e9), "--nu", repr(m.nu),
                  "--rho", repr(m.rho)]) == 0
-    a = json.loads(capsys.readouterr().out)["result"]["rows"]
+    a = json.loads(capsys.readouterr().out)["rows"]
     assert main([*base, "--cl", repr(m.c_L), "--ct", repr(m.c_T)]) == 0
-    b = json.loads(capsys.readouterr().out)["result"]["rows"]
+    b = json.loads(capsys.readouterr().out)["rows"]
     np.testing.assert_allclose([r["c_p [m/s]"] for r in a], [r["c_p [m/s]"] for r in b],
                                rtol=1e-12)
 
@@ -151,8 +151,6 @@ def test_csv_never_has_nan_or_inf_over_random_plates():
     from hypothesis import given, settings
     from hypothesis import strategies as st
 
-    from dispersion.cli.outputs import csv_text as render_csv
-
     @settings(max_examples=25, deadline=None)
     @given(ct=st.floats(1000.0, 4000.0), ratio=st.floats(1.2, 3.0), d=st.floats(0.2, 10.0),
            fd=st.lists(st.floats(0.01, 8.0), min_size=1, max_size=4))
@@ -160,7 +158,7 @@ def test_csv_never_has_nan_or_inf_over_random_plates():
         from dispersion.waves.materials import user_material
 
         t = lamb_modes(user_material(c_L=ct * ratio, c_T=ct), d, fd_mhz_mm=fd)
-        text = render_csv(t.rows(), [])
+        text = t.to_csv()
         for r in _rows(text):
             for key, v in r.items():
                 if key not in ("mode", "family"):

@@ -49,7 +49,7 @@ def test_fractions_give_the_same_series_as_decimals(capsys):
 
 @pytest.mark.parametrize("argv, words", [
     (["series", "--nu", "1e-999999999"], ("nu", "decimal exponent")),
-    (["series", "--gamma-s", "9" * 100], ("gamma_s", "digits")),
+    (["series", "--gamma-s", "9" * 100], ("--gamma-s", "digits")),
     (["series", "--r", "kappa"], ("r", "'r'")),
     (["branches", "--nu", "1e-999999999"], ("nu", "decimal exponent")),
     (["branches", "--omega-max", "nan"], ("omega-max", "nan")),

@@ -15,7 +15,7 @@ from dispersion.contact.simulate import simulate_ring
 def test_json_summary_is_the_api_summary(capsys):
     assert main(["ring", "--mass", "lumped", "--t-end", "0.5", "--format", "json",
                  "--no-progress"]) == 0
-    summary = json.loads(capsys.readouterr().out)
+    summary = json.loads(capsys.readouterr().out)["summary"]
     api = simulate_ring(replace(Scenario(), t_end=0.5), "lumped").summary
     assert summary["mass"] == "lumped" and summary["t_end"] == 0.5
     assert summary["energy_change_percent"] == pytest.approx(api["energy_change_percent"],
@@ -27,8 +27,8 @@ def test_json_is_strict_when_the_run_ends_in_contact(capsys):
     # t_end 2 s ends during the first impact: no free flight, no NaN in the output
     assert main(["ring", "--t-end", "2", "--format", "json", "--no-progress"]) == 0
     text = capsys.readouterr().out
-    summary = json.loads(text, parse_constant=lambda c: pytest.fail(f"non-strict {c}"))
-    assert summary["free_flight_energy_spread_percent"] is None
+    data = json.loads(text, parse_constant=lambda c: pytest.fail(f"non-strict {c}"))
+    assert data["summary"]["free_flight_energy_spread_percent"] is None
 
 
 def test_out_dir_files_and_csv_rows(tmp_path, capsys):
@@ -37,7 +37,7 @@ def test_out_dir_files_and_csv_rows(tmp_path, capsys):
     assert {p.name for p in out.iterdir()} == {"summary.json", "result.json", "history.csv",
                                                "figure.png"}
     lines = (out / "history.csv").read_text().splitlines()
-    assert lines[0].startswith("# ring: singular mass, scheme kane")
+    assert lines[0] == "# ring on a rigid plane: singular mass, Kane's contact-modified Newmark"
     assert any(line.startswith("# scene: r_inner = ") and "dt = 0.1 s" in line for line in lines)
     rows = list(csv.DictReader(line for line in lines if not line.startswith("#")))
     assert len(rows) == 4 and float(rows[0]["t [s]"]) == 0.0  # 3 steps + initial state
@@ -49,7 +49,7 @@ def test_out_dir_files_and_csv_rows(tmp_path, capsys):
 def test_material_and_geometry_options_reach_the_scenario(capsys):
     assert main(["ring", "--t-end", "0.1", "--rho", "2000", "--r-outer", "170",
                  "--format", "json", "--no-progress"]) == 0
-    summary = json.loads(capsys.readouterr().out)
+    summary = json.loads(capsys.readouterr().out)["summary"]
     assert summary["E"] == pytest.approx(Scenario(rho=2000.0).E)
 
 
@@ -77,8 +77,8 @@ def test_out_that_is_a_file_is_refused_before_the_run(tmp_path, capsys):
 
 
 @pytest.mark.parametrize("argv, stated", [
-    (["--level", "abc"], "level must be an integer in [0, 4]"),
-    (["--level", "5"], "level must be an integer in [0, 4]"),
+    (["--level", "abc"], "--level must be an integer in [0, 4]"),
+    (["--level", "5"], "--level must be an integer in [0, 4]"),
     (["--out", ""], "--out must be a folder path"),
     (["--out", "-"], "--out must be a folder path"),
 ])

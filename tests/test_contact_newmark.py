@@ -7,7 +7,7 @@ import scipy.sparse as sp
 
 from dataclasses import replace
 
-from dispersion.contact.bar import Bar, bar_model, bar_problem
+from dispersion.contact.bar import Bar, assemble_bar, bar_problem
 from dispersion.contact.contact_problem import ContactProblem
 from dispersion.contact.newmark import critical_step, integrate
 from dispersion.contact.newmark_scheme import Newmark
@@ -117,7 +117,7 @@ def test_critical_step_is_two_over_omega_max():
 def test_consistent_state_removes_the_first_element_strain_energy():
     # P1 bar, singular mass, u0 = (1 - x)/2: the massless end DOF relaxes to u_1, removing
     # the first element's strain energy h (1/2)^2 / 2 = h/8 (issue 12, GetFEM's 1D demo)
-    model = bar_model(Bar(20, 1, mass="singular", clamped=("right",)))
+    model = assemble_bar(Bar(20, 1, mass="singular", clamped=("right",)))
     prob = model.problem
     u0 = model.coefficients(lambda x: 0.5 * (1 - x))
     hist = integrate(prob, u0, np.zeros(prob.n), 0.002, 5)

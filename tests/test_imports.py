@@ -29,10 +29,15 @@ sys.stderr.write("\\nHEAVY " + json.dumps(sorted({{m.split(".")[0] for m in sys.
 NEEDS = {
     # builds every subcommand's parser: each register() stays light
     "--help": set(),
-    # a subcommand's own help builds only its parser (series --help: series-race's area)
+    # a subcommand's own help builds only its parser (series --help: series-race's area);
+    # a help that lists the mass rules reads them from their registry, which loads light
     **{f"{c} --help": set() for c in ("branches", "ring", "impact", "verify", "reproduce",
                                       "bench", "timestep")},
     "series --exact --order 8": {"flint"},
+    # the Lamb-wave calculator (issue 28): no sympy, no scipy, no matplotlib
+    "branches --exact --material steel --thickness 3 --frequency 200": {"numpy", "flint"},
+    # a usage error answers before the heavy imports (the mass registry loads light)
+    "branches --mass singlar": set(), "series --order x": {"flint"},  # (the bounds)
     # a numeric 1D bar of 20 elements: numpy only (no sympy through the B-splines, no scipy)
     "impact signorini-1d --t-end 0.5": {"numpy"},
 }

@@ -39,19 +39,24 @@ def test_discrete_series_derives_the_default_patch(monkeypatch):
 
 
 @pytest.mark.parametrize("argv", [["series"], ["series", "--branch", "A0", "--order", "6"]])
-def test_series_command_builds_the_default_patch(argv):
-    from dispersion.cli import build_parser
-    from dispersion.cli.series import _resolve
+def test_series_command_builds_the_default_patch(argv, capsys):
+    from dispersion.cli import main
+    from dispersion.waves.series_table import series_table
 
-    assert _resolve(build_parser("series").parse_args(argv)) == DEFAULT
+    assert series_table(("A0",), 4).patch == DEFAULT
+    assert main([*argv, "--format", "csv"]) == 0
+    assert f"# model: {DEFAULT.title()}" in capsys.readouterr().out
 
 
-def test_branches_command_builds_the_default_patch():
-    from dispersion.cli import build_parser
-    from dispersion.cli.branches import _settings
+def test_branches_command_builds_the_default_patch(capsys):
+    from dispersion.cli import main
+    from dispersion.waves.branch_table import branch_table
 
-    s = _settings(build_parser("branches").parse_args(["branches", "--count", "3"]))
-    assert s["patch"] == DEFAULT
+    table = branch_table(masses=["consistent"], count=2, kappa_max=0.5, omega_max=1.0)
+    assert table.base_patch == DEFAULT
+    assert main(["branches", "--mass", "consistent", "--count", "2", "--kappa-max", "0.5",
+                 "--omega-max", "1", "--format", "csv"]) == 0
+    assert f"# patch: {DEFAULT.geometry_title()}" in capsys.readouterr().out
 
 
 @pytest.mark.parametrize("model_line", ["", 'model = "bloch"\n'])

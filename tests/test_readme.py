@@ -91,7 +91,7 @@ def test_every_readme_command_parses():
 
 def _named_outputs(args: list[str]) -> list[str]:
     return [args[i + 1] for i, a in enumerate(args[:-1])
-            if a in ("--out", "--figure", "--csv", "--junit") and args[i + 1] != "-"]
+            if a in ("--out", "--figure", "--csv", "--json", "--junit") and args[i + 1] != "-"]
 
 
 @pytest.mark.parametrize(("command", "status", "entry"),

@@ -43,19 +43,19 @@ DATA = {
                      "all_runs": 4, "energy_min": -0.036, "energy_max": -0.016,
                      "events_min": 15, "events_max": 15}},
     "signorini": [_sig("lumped", "kane", 1.169), _sig("consistent", "kane", 0.779),
-                  _sig("singular", "kane", 0.31), _sig("lumped", "explicit", 1.001),
-                  _sig("consistent", "explicit", 0.709), _sig("singular", "explicit", 0.31),
+                  _sig("singular", "kane", 0.31), _sig("lumped", "central", 1.001),
+                  _sig("consistent", "central", 0.709), _sig("singular", "central", 0.31),
                   _sig("lumped", "standard", 9.9, flag="grows")],
 }
 
 
 def test_signorini_figures_are_per_scheme_never_the_best_of():
     text = ring.summary(DATA)
-    # issue 18: under "Kane's Newmark" the README quoted the explicit scheme's 1.001 / 0.709
+    # issue 18: under "Kane's Newmark" the README quoted the central scheme's 1.001 / 0.709
     kane = next(ln for ln in text.splitlines() if ln.strip().startswith("- kane:"))
-    explicit = next(ln for ln in text.splitlines() if ln.strip().startswith("- explicit:"))
+    central = next(ln for ln in text.splitlines() if ln.strip().startswith("- central:"))
     assert "lumped 1.169" in kane and "consistent 0.779" in kane and "1.001" not in kane
-    assert "lumped 1.001" in explicit and "consistent 0.709" in explicit
+    assert "lumped 1.001" in central and "consistent 0.709" in central
     standard = next(ln for ln in text.splitlines() if ln.strip().startswith("- standard:"))
     assert "UNSTABLE" in standard
 

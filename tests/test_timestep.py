@@ -1,6 +1,7 @@
 """Critical time step (dispersion.waves.timestep): closed forms, two ways, and the contact solver."""
 from __future__ import annotations
 
+import csv
 import math
 
 import numpy as np
@@ -8,7 +9,7 @@ import pytest
 import sympy
 
 from dispersion.contact import newmark
-from dispersion.contact.bar import Bar, bar_model, simulate_bar
+from dispersion.contact.bar import Bar, assemble_bar, simulate_bar
 from dispersion.errors import InputError
 from dispersion.symbolic.mass_rule import user_rule
 from dispersion.symbolic.plate import plate_patch
@@ -93,7 +94,7 @@ def test_plate_maximum_two_ways(mass):
 
 
 def test_finite_bar_lumped_p1_equals_bloch_and_solver():
-    bar = bar_model(Bar(20, 1, mass="lumped"))
+    bar = assemble_bar(Bar(20, 1, mass="lumped"))
     h = 1 / 20
     assert matrix_critical_step(bar.problem.K, bar.problem.M) == pytest.approx(h, rel=1e-12)
     assert newmark.critical_step(bar.problem) == pytest.approx(h, rel=1e-12)
@@ -106,19 +107,19 @@ def test_central_differences_blow_up_just_above_the_critical_step(mass, p, monke
     # the solver refuses dt > dt_crit; lift that guard to watch the run: 1.01 dt_crit
     # must grow without bound, 0.99 dt_crit stays bounded (energy within a few percent)
     dtc = matrix_critical_step(*_bar_KM(mass, p))
-    assert newmark.critical_step(bar_model(Bar(20, p, mass=mass)).problem) == \
+    assert newmark.critical_step(assemble_bar(Bar(20, p, mass=mass)).problem) == \
         pytest.approx(dtc, rel=1e-10)
     with pytest.raises(InputError, match="stability limit"):
-        simulate_bar(20, p, mass, dt=1.01 * dtc, scheme="explicit")
-    ok = simulate_bar(20, p, mass, dt=0.99 * dtc, scheme="explicit", t_end_factor=6)
+        simulate_bar(20, p, mass, dt=1.01 * dtc, scheme="central")
+    ok = simulate_bar(20, p, mass, dt=0.99 * dtc, scheme="central", t_end_factor=6)
     assert abs(ok.metrics["energy_change_percent"]) < 5
     monkeypatch.setattr(newmark, "critical_step", lambda prob, u=None: math.inf)
-    bad = simulate_bar(20, p, mass, dt=1.01 * dtc, scheme="explicit", t_end_factor=6)
+    bad = simulate_bar(20, p, mass, dt=1.01 * dtc, scheme="central", t_end_factor=6)
     assert not abs(bad.metrics["energy_change_percent"]) < 1e3
 
 
 def _bar_KM(mass, p):
-    prob = bar_model(Bar(20, p, mass=mass)).problem
+    prob = assemble_bar(Bar(20, p, mass=mass)).problem
     return prob.K, prob.M
 
 
@@ -140,17 +141,22 @@ def test_user_rule_end_to_end():
     cs = critical_step(rule, 2)
     lumped, consistent = critical_step("lumped", 2), critical_step("consistent", 2)
     assert consistent.dt < cs.dt < lumped.dt
-    res = simulate_bar(20, 2, rule, courant=0.3, scheme="explicit")
+    res = simulate_bar(20, 2, rule, courant=0.3, scheme="central")
     assert abs(res.metrics["energy_change_percent"]) < 5
 
 
 def test_cli_timestep_prints_step_and_ratio(capsys):
     from dispersion.cli import main
 
-    assert main(["timestep", "--mass", "hrz", "--p", "2", "--material", "steel", "--h", "1"]) == 0
+    assert main(["timestep", "--mass", "hrz", "--p", "2", "--material", "steel", "--h", "1",
+                 "--format", "csv"]) == 0
     out = capsys.readouterr().out
     cs = critical_step("hrz", 2, material="steel", h=1.0)
-    assert f"{cs.dt:.6g} s" in out and f"{cs.ratio:.6g}" in out and "mass hrz, p = 2" in out
+    row = next(csv.DictReader(ln for ln in out.splitlines() if not ln.startswith("#")))
+    assert (row["mass"], float(row["dt_crit [s]"]), float(row["ratio to consistent"])) == \
+        ("hrz", cs.dt, cs.ratio)
+    # the setting once, every symbol defined (issue 28: no repeated preamble, h and H defined)
+    assert out.count("# model:") == 1 and "# H: half the plate thickness" in out
     assert main(["timestep", "--model", "bar", "--mass", "singular"]) == 2
     assert "periodic bar" in capsys.readouterr().err
 
@@ -161,7 +167,7 @@ def test_cli_branches_fully_discrete(capsys):
     assert main(["branches", "--scheme", "central", "--courant", "0.9", "--mass", "lumped",
                  "--count", "3", "--kappa-max", "0.5", "--omega-max", "2"]) == 0
     out = capsys.readouterr().out
-    assert "lumped central C=0.9" in out and "# scheme: central" in out
+    assert "lumped central C=0.9" in out and "# time integration: Newmark member central" in out
     assert main(["branches", "--scheme", "central", "--courant", "1.5"]) == 2
 
 
@@ -174,8 +180,8 @@ def test_cli_user_rule_from_toml(tmp_path, capsys):
     assert main(["branches", "--mass-rule", str(rule), "--count", "2", "--kappa-max", "0.5",
                  "--omega-max", "1"]) == 0
     assert ",far-quarter," in capsys.readouterr().out
-    assert main(["timestep", "--mass-rule", str(rule), "--p", "2"]) == 0
-    assert "mass far-quarter, p = 2" in capsys.readouterr().out
+    assert main(["timestep", "--mass-rule", str(rule), "--p", "2", "--format", "csv"]) == 0
+    assert "\nfar-quarter," in capsys.readouterr().out
 
 
 @pytest.mark.slow  # the default run proves the lumped bound in the doctest

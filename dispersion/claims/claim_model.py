@@ -53,8 +53,8 @@ def claim_model(entry: dict, own: dict, fail, bar: bool = False) -> ClaimModel:
         return ExactModel()
     if bar and name == BarModel.name:
         return _bar(entry, own, fail)
-    if name not in defaults.MODELS:
-        fail("model", f"must be {EXACT!r} or a patch model ({', '.join(defaults.MODELS)})"
+    if name not in defaults.PATCH_MODELS:
+        fail("model", f"must be {EXACT!r} or a patch model ({', '.join(defaults.PATCH_MODELS)})"
                       + (f" or {BarModel.name!r}" if bar else "") + f", got {shown(name)}")
     kw = _integers(entry, fail)
     for key in ("mass", "contact"):

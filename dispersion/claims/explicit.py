@@ -97,11 +97,11 @@ def step_claim(entry: dict, common: dict, fail) -> Claim:
 
 def series_claim(entry: dict, common: dict, fail) -> Claim:
     """A ``fully_discrete_series`` claim (``common`` as in :func:`step_claim`)."""
-    from dispersion.waves.fully_discrete import SCHEMES
+    from dispersion.waves.time_integration import NEWMARK_MEMBERS
 
     scheme = entry.get("scheme", "central")
-    if scheme not in SCHEMES:
-        fail("scheme", f"must be one of {', '.join(SCHEMES)}, got {scheme!r}")
+    if scheme not in NEWMARK_MEMBERS:
+        fail("scheme", f"must be one of {', '.join(NEWMARK_MEMBERS)}, got {scheme!r}")
     if not isinstance(common["model"], BarModel) and common["branch"] not in ("S0", "A0"):
         fail("branch", f"must be S0 or A0, got {common['branch']!r}")
     coeffs = entry.get("coefficients")
@@ -153,7 +153,7 @@ def run(t: tuple):
         w, exact, _, _ = timestep.patch_omega_max(plate_patch(model), t[2])
         ref = timestep.patch_omega_max(plate_patch(model.replace(mass=other)), t[2])[0]
         return (exact if exact is not None else w, ref / w)
-    from dispersion.waves.fully_discrete import SCHEMES, fully_discrete_series
+    from dispersion.waves.fully_discrete import fully_discrete_series, time_scheme
 
     _, _, branch, scheme, order, nu = t
     if isinstance(model, BarModel):
@@ -165,7 +165,7 @@ def run(t: tuple):
         from dispersion.symbolic.power_balance import discrete_series
 
         semi = discrete_series(branch, order, model, nu=nu)
-    poly = sympy.Poly(fully_discrete_series(semi, order, SCHEMES[scheme][0]),
+    poly = sympy.Poly(fully_discrete_series(semi, order, time_scheme(scheme).beta),
                       sympy.Symbol("kappa"), sympy.Symbol("tau"))
     return {m: c for m, c in zip(poly.monoms(), poly.coeffs())}
 

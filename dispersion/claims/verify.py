@@ -24,6 +24,7 @@ from dispersion.claims.limits import MAX_JOBS
 from dispersion.claims.report import readable
 from dispersion.claims.schema import load_claims
 from dispersion.errors import DispersionError, InputError, check_int_in_range
+from dispersion.rendering import Rendered
 from dispersion.symbolic.power_balance import NU
 
 __all__ = ["MAX_JOBS", "MAX_DERIVATIONS", "Term", "ClaimResult", "Verification", "KIND_RULES",
@@ -74,9 +75,14 @@ class ClaimResult:
     note: str | None = None
 
 
-@dataclass(frozen=True)
-class Verification:
-    """Every claim of one or more files, checked; ``passed`` if each holds as expected."""
+@dataclass(frozen=True, repr=False)  # Rendered: short repr; text, CSV, JSON from the rows
+class Verification(Rendered):
+    """Every claim of one or more files, checked; ``passed`` if each holds as expected.
+
+    Renders itself (:class:`dispersion.rendering.Rendered`): one row per claim; the claims
+    that do not hold as recorded are its ``failures``; text and Markdown are those of
+    :func:`dispersion.claims.report.format_results`, with the count of claims that hold.
+    """
 
     files: tuple[str, ...]
     results: tuple[ClaimResult, ...]
@@ -85,6 +91,42 @@ class Verification:
 
     def __post_init__(self):
         object.__setattr__(self, "passed", all(r.passed for r in self.results))
+
+    def title(self) -> str:
+        held = sum(r.passed for r in self.results)
+        return f"{held} of {len(self.results)} claims hold as recorded"
+
+    def header_lines(self) -> list[str]:
+        return [f"claims file: {f}" for f in dict.fromkeys(self.files)]
+
+    def columns(self) -> tuple[str, ...]:
+        return ("claim", "source", "kind", "branch", "model", "printed", "derived", "status",
+                "difference", "file", "line")
+
+    def rows(self) -> list[dict]:
+        return [{"claim": r.name, "source": r.source or "", "kind": r.kind, "branch": r.branch,
+                 "model": r.model, "printed": r.printed, "derived": r.derived,
+                 "status": r.status, "difference": r.difference, "file": r.file,
+                 "line": r.line} for r in self.results]
+
+    @property
+    def failures(self) -> tuple[str, ...]:
+        return tuple(f"claim {r.name!r} ({r.file}:{r.line}) {r.status}"
+                     + (f": {r.difference}" if r.difference else "")
+                     for r in self.results if not r.passed)
+
+    def to_text(self, digits: int = 7) -> str:
+        from dispersion.claims.report import format_results, plain
+
+        failed = [r for r in self.results if not r.passed]
+        summary = self.title() + (": not " + ", ".join(repr(r.name) for r in failed)
+                                  if failed else "")
+        return format_results(self.results, "text") + "\n" + plain(summary)
+
+    def to_markdown(self, digits: int = 7) -> str:
+        from dispersion.claims.report import format_results, plain
+
+        return format_results(self.results, "markdown") + "\n\n" + plain(self.title())
 
 
 # --------------------------------------------------------------------------- deriving

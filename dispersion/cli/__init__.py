@@ -16,6 +16,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import importlib
+import re
 import signal
 import sys
 import threading
@@ -24,14 +25,6 @@ from dispersion.errors import DispersionError, InputError
 
 _SUBCOMMANDS = ("series", "branches", "ring", "impact", "verify", "reproduce", "bench",
                "timestep")
-
-
-def number(name: str, convert=float):
-    """argparse ``type`` of a number option; see :mod:`dispersion.cli.options` (one grammar
-    for every command: ``0.3``, ``3/10``, ``1e-3``, bounded digits)."""
-    from dispersion.cli.options import number as typed
-
-    return typed(name, convert)
 
 
 class Terminated(KeyboardInterrupt):
@@ -56,6 +49,8 @@ def _sigterm_unwinds():
 
 class _Parser(argparse.ArgumentParser):
     def error(self, message):  # one line, exit 2, like InputError
+        # "argument --mass: --mass must be ..." says the option once
+        message = re.sub(r"^argument (\S+?)(?:/\S+)?: (?=\1 )", "", message)
         self.exit(2, f"{self.prog}: error: {message}\n")
 
 
@@ -118,8 +113,10 @@ def run_parsed(args: argparse.Namespace) -> int:
     """Run a parsed subcommand: its exit status, or one line on stderr for every failure."""
     try:
         return int(args.func(args) or 0)
-    except InputError as exc:
-        print(f"dispersion {args.command}: error: {exc}", file=sys.stderr)
+    except InputError as exc:  # in the command's words: its options, not Python parameters
+        from dispersion.cli.options import cli_words
+
+        print(f"dispersion {args.command}: error: {cli_words(str(exc))}", file=sys.stderr)
         return 2
     except DispersionError as exc:
         print(f"dispersion {args.command}: {type(exc).__name__}: {exc}", file=sys.stderr)

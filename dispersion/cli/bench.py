@@ -6,36 +6,37 @@ import sys
 import time
 from pathlib import Path
 
+from dispersion.cli.options import choice, integer, lazy_help, real
 from dispersion.errors import InputError
 
 
-def _budget(text: str) -> float:
-    """argparse ``type`` of ``--budget``: a float; on failure the message states the range."""
-    try:
-        return float(text)
-    except ValueError:
-        from dispersion.studies.series_race import TIMEOUT_MAX
 
-        raise argparse.ArgumentTypeError(f"budget must be a number of seconds in "
-                                         f"(0, {TIMEOUT_MAX:g}], got {text!r}") from None
+
+def _timeout_max():
+    from dispersion.studies.series_race import TIMEOUT_MAX
+
+    return (f"{TIMEOUT_MAX:g}",)
 
 
 def register(subparsers) -> None:
     parser = subparsers.add_parser(
         "bench", help="time the series engine against Maxima (whole process and compute)",
-        description=__doc__.splitlines()[0].replace("``", "") + " Maxima runs if installed.",
-        formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+        description="The exact series engine against Maxima (whole process and compute), and "
+                    "the discrete series' growth with the patch size. Maxima runs if installed.")
     parser.add_argument("--quick", action="store_true",
                         help="kappa^8 and kappa^16 only, n = 3 to 6 (CI, a few seconds)")
-    parser.add_argument("--budget", type=_budget, default=120.0,
-                        help="seconds allowed to each child process, in (0, 600]")
-    parser.add_argument("--maxima", default="maxima", help="maxima executable")
-    parser.add_argument("--repeats", type=int, choices=range(1, 11), default=None,
-                        metavar="{1..10}",
-                        help="runs of each side of the race, in turn, medians reported "
-                             "(default: 3, --quick: 1)")
-    parser.add_argument("--format", choices=("text", "json"), default="text",
-                        help="what goes to stdout: the Markdown tables or the JSON record")
+    parser.add_argument("--budget", type=real("--budget", 0, lo_open=True), default=120.0,
+                        help=lazy_help("seconds allowed to each child process, in (0, {names}] "
+                                       "(default: 120)", _timeout_max))
+    parser.add_argument("--maxima", default="maxima",
+                        help="the Maxima executable (default: maxima, on the PATH)")
+    parser.add_argument("--repeats", type=integer("--repeats", 1, 10), default=None,
+                        help="runs of each side of the race, in turn, medians reported, in "
+                             "[1, 10] (default: 3, with --quick 1)")
+    parser.add_argument("--format", type=choice("--format", lambda: ("text", "json", "markdown")),
+                        default=None, metavar="FORMAT",
+                        help="what goes to stdout: text or markdown (the tables, in Markdown), "
+                             "or json (the record) (default: text)")
     parser.add_argument("--out", default=None, metavar="DIR",
                         help="folder to write: series_speed.json (the measurement with inputs, "
                              "versions, machine), series_speed.md (tables) and series_speed.png "
@@ -47,8 +48,8 @@ def handler(args: argparse.Namespace) -> int:
     from dispersion.studies.series_race import TIMEOUT_MAX, measure
 
     if not (0 < args.budget <= TIMEOUT_MAX):
-        raise InputError(f"budget (seconds per child process) must lie in (0, {TIMEOUT_MAX:g}], "
-                         f"got {args.budget:g}")
+        raise InputError(f"--budget (seconds per child process) must lie in (0, "
+                         f"{TIMEOUT_MAX:g}], got {args.budget:g}")
     out = None
     if args.out is not None:  # a str, not a Path: Path("") would be "." and pass
         from dispersion.io import check_output_dir

@@ -23,12 +23,15 @@ argparse.ArgumentTypeError: count must be an integer in [2, 10], got 11
 from __future__ import annotations
 
 import argparse
+import math
 import re
 from fractions import Fraction
 
-from dispersion.errors import InputError
+from dispersion.errors import InputError, did_you_mean
 
-__all__ = ["rational", "real", "integer", "number", "span", "material_from_args"]
+__all__ = ["rational", "real", "integer", "span", "choice", "lazy_help",
+           "material_from_args", "masses_from_args", "frequencies", "given", "check_applies",
+           "cli_words"]
 
 #: Most digits of an integer option (the largest meaningful count has 7).
 MAX_INT_DIGITS = 18
@@ -131,10 +134,48 @@ def integer(name: str, lo: int | None = None, hi: int | None = None, *, valid=No
     return parse
 
 
-def number(name: str, convert=float):
-    """argparse ``type`` of the older form ``number(name, int | float)``: see :func:`integer`
-    and :func:`real` (same grammar; kept for callers not yet moved)."""
-    return integer(name) if convert is int else real(name)
+def choice(option: str, names):
+    """argparse ``type``: one of the names ``names()`` returns (read from a registry when a
+    value is checked, never copied), any letter case; otherwise the names and the nearest.
+
+    >>> choice("--mass", lambda: ("consistent", "singular"))("Singular")
+    'singular'
+    >>> choice("--mass", lambda: ("consistent", "singular"))("singlar")
+    Traceback (most recent call last):
+    ...
+    argparse.ArgumentTypeError: --mass must be one of consistent, singular, got 'singlar'; did you mean 'singular'?
+    """
+    def parse(text: str) -> str:
+        valid = tuple(names())
+        word = text.strip()
+        for name in valid:
+            if name.lower() == word.lower():
+                return name
+        raise argparse.ArgumentTypeError(f"{option} must be one of {', '.join(valid)}, got "
+                                         f"{text[:40]!r}{did_you_mean(word, valid)}")
+    return parse
+
+
+class _LazyHelp(str):
+    """A help text whose ``{names}`` are filled in only when help is printed (argparse formats
+    a help text with ``%``), so that building a parser reads no registry."""
+
+    def __new__(cls, template: str, names):
+        obj = super().__new__(cls, template.replace("{names}", "..."))
+        obj.template, obj.names = template, names
+        return obj
+
+    def __mod__(self, params):
+        return self.template.replace("{names}", ", ".join(self.names())) % params
+
+
+def lazy_help(template: str, names) -> str:
+    """Help text ``template`` with ``{names}`` replaced by ``names()`` when help is printed.
+
+    >>> lazy_help("mass rule: {names}", lambda: ("a", "b")) % {}
+    'mass rule: a, b'
+    """
+    return _LazyHelp(template, names)
 
 
 #: Option of each input of :func:`dispersion.waves.materials.user_material` (E in GPa there).
@@ -179,6 +220,11 @@ def material_from_args(args: argparse.Namespace, default: str | None = None):
         return material(name)
     if not given:
         return None if default is None else material(default)
+    from dispersion.waves.unit_mixups import unit_mixups
+
+    # valid, but likely not what was meant: said after the run (an error states them itself)
+    args.unit_hints = [cli_words(h) for h in unit_mixups(c_L=values["c_L"], c_T=values["c_T"],
+                                                          rho=values["rho"], E_gpa=values["E"])]
     if values["E"] is not None:
         values["E"] = values["E"] * 1e9  # GPa on the command line, Pa in the API
     try:
@@ -189,3 +235,136 @@ def material_from_args(args: argparse.Namespace, default: str | None = None):
             if key != "nu":  # "nu" in a message is Poisson's ratio, whichever input fixed it
                 msg = re.sub(rf"\b{key}\b", opt, msg)
         raise InputError(msg) from None
+
+
+def masses_from_args(args: argparse.Namespace) -> list | None:
+    """The mass rules of ``--mass NAME`` and ``--mass-rule FILE`` (user rules read from TOML),
+    in that order; None when neither is given (the command's default rules)."""
+    rules = list(getattr(args, "mass", None) or ())
+    if getattr(args, "mass_rule", None):
+        from dispersion.symbolic.mass_rule import rule_from_toml
+
+        rules += [rule_from_toml(path) for path in args.mass_rule]
+    return rules or None
+
+
+# ---------------------------------------------------------------------- frequency lists
+
+#: Most frequencies of one request (a grid's COUNT included).
+MAX_FREQUENCIES = 100_000
+_UNITS = {"hz": 1e-3, "khz": 1.0, "mhz": 1e3}
+_VALUE = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d{1,3})?)\s*([a-zA-Z]*)\s*$")
+
+
+def _value(text: str, option: str, units: dict | None) -> float:
+    m = _VALUE.match(text)
+    unit = m.group(2).lower() if m else ""
+    if not m or (unit and (units is None or unit not in units)):
+        allowed = " with an optional unit (Hz, kHz, MHz)" if units else ""
+        raise InputError(f"{option} must be numbers{allowed}, lists a,b,c or grids "
+                         f"START:STOP:COUNT; got {text[:40]!r}")
+    return float(m.group(1)) * (units[unit] if unit else 1.0)
+
+
+def frequencies(text: str, option: str, units: dict | None = _UNITS) -> list[float]:
+    """Numbers, lists and ``START:STOP:COUNT`` grids of ``text`` (kHz unless a unit is given;
+    a grid has both ends, so COUNT >= 2).
+
+    >>> frequencies("200", "--frequency"), frequencies("0.1MHz,150", "--frequency")
+    ([200.0], [100.0, 150.0])
+    >>> frequencies("10kHz:1MHz:3", "--frequency")
+    [10.0, 505.0, 1000.0]
+    >>> frequencies("100:200:1", "--frequency")
+    Traceback (most recent call last):
+    ...
+    dispersion.errors.InputError: --frequency: COUNT of START:STOP:COUNT must be an integer in [2, 100000] (both ends are included), got 1
+    """
+    out: list[float] = []
+    for token in str(text).split(","):
+        parts = token.split(":")
+        if len(parts) == 1:
+            out.append(_value(parts[0], option, units))
+        elif len(parts) == 3:
+            lo, hi = _value(parts[0], option, units), _value(parts[1], option, units)
+            if not re.fullmatch(r"\s*\d{1,7}\s*", parts[2]) or not \
+                    2 <= int(parts[2]) <= MAX_FREQUENCIES:
+                raise InputError(f"{option}: COUNT of START:STOP:COUNT must be an integer in "
+                                 f"[2, {MAX_FREQUENCIES}] (both ends are included), got "
+                                 f"{parts[2].strip()[:20]}")
+            if not hi > lo:
+                raise InputError(f"{option}: a grid START:STOP:COUNT needs STOP > START, got "
+                                 f"{token.strip()[:40]!r}")
+            count = int(parts[2])
+            out += [lo + (hi - lo) * i / (count - 1) for i in range(count - 1)] + [hi]
+        else:
+            raise InputError(f"{option} must be numbers, lists a,b,c or grids START:STOP:COUNT;"
+                             f" got {token[:40]!r}")
+        if len(out) > MAX_FREQUENCIES:
+            raise InputError(f"{option} must give at most {MAX_FREQUENCIES} values")
+    if not all(math.isfinite(v) and v > 0 for v in out):
+        raise InputError(f"{option} values must be finite and > 0, got {text[:40]!r}")
+    return out
+
+
+# ---------------------------------------------------------------------- one grammar
+
+def given(args: argparse.Namespace, dest: str) -> bool:
+    """True if the option stored in ``dest`` was given (its default is None, False or []; a
+    given 0 counts).
+
+    >>> given(argparse.Namespace(gamma_s=0), "gamma_s"), given(argparse.Namespace(x=[]), "x")
+    (True, False)
+    """
+    value = getattr(args, dest, None)
+    return not (value is None or value is False or (isinstance(value, list) and not value))
+
+
+def check_applies(args: argparse.Namespace, rules) -> None:
+    """Refuse, in one line, every option given where it does not apply.
+
+    ``rules``: ``(option, applies(args) -> bool, where it applies)`` for every option whose
+    use depends on the others. The grammar test reads the same rules.
+
+    >>> rules = [("--courant", lambda a: a.scheme is not None, "with --scheme")]
+    >>> check_applies(argparse.Namespace(courant=0.5, scheme=None), rules)
+    Traceback (most recent call last):
+    ...
+    dispersion.errors.InputError: --courant applies only with --scheme
+    """
+    for option, applies, where in rules:
+        if given(args, option[2:].replace("-", "_")) and not applies(args):
+            raise InputError(f"{option} applies only {where}")
+
+
+#: Python parameters of the package functions and the options that set them. Names with an
+#: underscore or a space are replaced wherever they stand; plain words (nu, p, material, ...)
+#: only as the subject that starts a message, where they cannot be read as prose.
+PARAMETER_OPTIONS = {
+    "thickness_mm": "--thickness", "thickness": "--thickness",
+    "frequency_khz": "--frequency", "fd_mhz_mm": "--fd",
+    "kappa_min": "--kappa-min", "kappa_max": "--kappa-max", "omega_max": "--omega-max",
+    "count": "--count", "courant": "--courant", "scheme": "--scheme", "gamma_s": "--gamma-s",
+    "masses": "--mass", "mass": "--mass", "contact": "--contact", "model": "--model",
+    "degree p": "--p", "control points n": "--n", "c_L": "--cl", "c_T": "--ct",
+    "E_gpa": "--youngs-modulus", "E": "--youngs-modulus", "rho": "--rho", "nu": "--nu",
+    "r": "--r", "p": "--p", "n": "--n", "material": "--material", "order": "--order",
+    "branch": "--branch", "mode": "--mode-shape", "h": "--h",
+}
+
+
+def cli_words(message: str, options: dict | None = None) -> str:
+    """``message`` of the package with its parameter names replaced by the command's options.
+
+    >>> cli_words("kappa_max must exceed kappa_min >= 0, got [1, 1]")
+    '--kappa-max must exceed --kappa-min >= 0, got [1, 1]'
+    >>> cli_words("nu must not be given with a material (nu = 0.29 follows from c_L)")
+    '--nu must not be given with a material (nu = 0.29 follows from --cl)'
+    """
+    words = PARAMETER_OPTIONS if options is None else options
+    for name in sorted(words, key=len, reverse=True):
+        option = words[name]
+        if "_" in name or " " in name:
+            message = re.sub(rf"(?<![-\w]){re.escape(name)}(?![\w])", option, message)
+        elif re.match(rf"{re.escape(name)}(?![\w])", message):
+            message = option + message[len(name):]
+    return message

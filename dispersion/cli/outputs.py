@@ -1,30 +1,71 @@
-"""What the commands write: a figure path checked before any work, text to a file or stdout,
-and CSV tables that start with ``#`` lines naming their inputs.
+"""What a command writes, drawn from its result: one ``--format`` vocabulary, files checked
+before any work, at most one stream on standard output.
 
-One helper per job, shared by ``branches`` (kappa and frequency axes) and ``impact``, so a
-figure path is refused with the same one-line message everywhere and every CSV cell of an
-undefined value is written the same way (empty, never ``nan`` or ``inf``).
+Every command that answers with a table adds the same options (:func:`add_outputs`):
+``--format`` (what goes to stdout: :data:`dispersion.rendering.FORMATS`; default: an aligned
+table on a terminal, CSV when piped), and named files ``--csv FILE``, ``--json FILE``,
+``--figure FILE`` (``-``: stdout, except for a figure). With named files nothing else goes to
+stdout unless ``--format`` is given too; two outputs never share stdout. The result renders
+itself (:class:`dispersion.rendering.Rendered`); a figure is drawn by the function the command
+names. The CSV and the figure are written as one unit (both new, or both old).
 
->>> print(csv_text([{"kappa": 0.5, "c_g/c_T": float("nan")}], ["# nu: 0.3"]), end="")
-# nu: 0.3
-kappa,c_g/c_T
-0.5,
+>>> import argparse
+>>> stdout_format(argparse.Namespace(format=None), piped="csv")   # stdout is not a terminal
+'csv'
 """
 from __future__ import annotations
 
-import csv
 import io
-import math
+import os
 import sys
 
 from dispersion.errors import InputError
 
-__all__ = ["FIGURE_SUFFIXES", "EMPTY_NOTE", "check_figure", "cell", "csv_text", "emit"]
+__all__ = ["FIGURE_SUFFIXES", "add_outputs", "check_figure", "check_outputs", "emit",
+           "progress_bar", "stdout_format", "warn_failures", "write_outputs"]
 
 #: File endings a ``--figure`` may have (matplotlib writes each of them without extras).
 FIGURE_SUFFIXES = (".png", ".pdf", ".svg")
-#: The ``#`` line every CSV of the commands carries about empty cells.
-EMPTY_NOTE = "empty cell: not defined (no value is written as nan or inf)"
+
+
+def _formats():
+    from dispersion.rendering import FORMATS
+
+    return FORMATS
+
+
+def add_outputs(p, *, csv: bool = True, json: bool = True, figure: str | None = None,
+                piped: str = "csv", formats=None) -> None:
+    """``--format`` and the named files of a command; ``figure`` says what its figure shows
+    (None: the command has none)."""
+    from dispersion.cli.options import choice, lazy_help
+
+    names = formats or _formats
+    p.add_argument("--format", type=choice("--format", names), default=None, metavar="FORMAT",
+                   help=lazy_help("what goes to stdout, one of {names} (default: an aligned "
+                                  f"table on a terminal, {piped} when piped; with a named file, "
+                                  "nothing unless given)", names))
+    if csv:
+        p.add_argument("--csv", metavar="FILE",
+                       help="write the table as CSV to FILE ('-': stdout), after # lines "
+                            "naming the inputs and every failure")
+    if json:
+        p.add_argument("--json", metavar="FILE",
+                       help="write the result as JSON to FILE ('-': stdout)")
+    if figure:
+        p.add_argument("--figure", metavar="FILE",
+                       help=f"write the figure ({figure}) to FILE (.png, .pdf or .svg)")
+    p.set_defaults(piped_format=piped)
+
+
+def stdout_format(args, piped: str = "csv") -> str | None:
+    """What goes to stdout: ``--format``, else text on a terminal and ``piped`` otherwise;
+    None when named files are written and ``--format`` was not given."""
+    if args.format is not None:
+        return args.format
+    if any(getattr(args, opt, None) for opt in ("csv", "json", "figure")):
+        return None
+    return "text" if sys.stdout.isatty() else piped
 
 
 def check_figure(path: str, command: str, option: str = "--figure") -> None:
@@ -46,6 +87,35 @@ def check_figure(path: str, command: str, option: str = "--figure") -> None:
     require_matplotlib(f"{command} {option}")
 
 
+def check_outputs(args, command: str) -> None:
+    """Every named output checked before any work: writable, distinct, one stdout stream."""
+    from dispersion.io import check_output_file, unit_target
+
+    files = {opt: getattr(args, opt[2:], None) for opt in ("--csv", "--json", "--figure")}
+    files = {opt: path for opt, path in files.items() if path is not None}
+    streams = [opt for opt, path in files.items() if path == "-"]
+    if args.format is not None and files:
+        streams.append("--format")
+    if len(streams) > 1:
+        raise InputError(f"{' and '.join(streams)} would both write to stdout: give one of "
+                         "them, and the other a FILE")
+    for opt, path in files.items():
+        if opt == "--figure":
+            check_figure(path, command)
+        else:
+            check_output_file(path, option=opt)
+    targets = {}
+    for opt, path in files.items():
+        target = None if path == "-" else unit_target(path)
+        if target is None:
+            continue
+        key = os.path.abspath(target)
+        if key in targets:
+            raise InputError(f"{targets[key]} and {opt} must name two different files, got "
+                             f"{path!r} for both")
+        targets[key] = opt
+
+
 def emit(path: str, text: str) -> None:
     """Write ``text`` to ``path`` atomically, or to standard output for ``-``."""
     if path == "-":
@@ -56,22 +126,53 @@ def emit(path: str, text: str) -> None:
         write_text(path, text)
 
 
-def cell(value) -> str:
-    """A CSV cell: floats by ``repr`` (round-trip exact), undefined values empty."""
-    if isinstance(value, float):
-        return repr(value) if math.isfinite(value) else ""
-    return "" if value is None else str(value)
+def write_outputs(args, result, figure=None) -> None:
+    """``result`` to stdout in :func:`stdout_format`, and to each named file; ``figure``
+    (a function of the result returning a Figure) for ``--figure``. The CSV, JSON and the
+    figure are one unit; a stream (``-``, a device) is written after it."""
+    from dispersion.io import unit_target, write_bytes, write_unit
+    from dispersion.rendering import render
+
+    fmt = stdout_format(args, getattr(args, "piped_format", "csv"))
+    if fmt is not None:
+        sys.stdout.write(render(result, fmt))
+    outputs = []
+    if getattr(args, "figure", None):
+        buf = io.BytesIO()
+        figure(result).savefig(buf, format=args.figure.rsplit(".", 1)[-1].lower(), dpi=150)
+        outputs.append((args.figure, buf.getvalue()))
+    for opt, fmt in (("csv", "csv"), ("json", "json")):
+        if getattr(args, opt, None):
+            outputs.append((getattr(args, opt), render(result, fmt)))
+    unit = {unit_target(p): data for p, data in outputs if unit_target(p) is not None}
+    if unit:
+        write_unit(unit, option="/".join(f"--{o}" for o in ("csv", "json", "figure")
+                                         if getattr(args, o, None)))
+    for path, data in outputs:
+        if unit_target(path) is None:
+            emit(path, data) if isinstance(data, str) else write_bytes(path, data)
 
 
-def csv_text(rows: list[dict], header: list[str]) -> str:
-    """``header`` lines (each a ``# ...`` line), then the rows as CSV with a column line;
-    no rows: the header lines alone."""
-    buf = io.StringIO()
-    for line in header:
-        buf.write(line + "\n")
-    if rows:
-        w = csv.DictWriter(buf, fieldnames=list(rows[0]), lineterminator="\n")
-        w.writeheader()
-        for row in rows:
-            w.writerow({k: cell(v) for k, v in row.items()})
-    return buf.getvalue()
+def warn_failures(result, args=None) -> None:
+    """One line on stderr when values were not certified (every one is in every output), and
+    one per input that looks like a unit mix-up (``args.unit_hints``)."""
+    from dispersion.rendering import failure_lines
+
+    for hint in getattr(args, "unit_hints", None) or ():
+        print(f"warning: {hint}", file=sys.stderr)
+    fails = failure_lines(result)
+    if len(fails) == 1:
+        print(f"warning: {fails[0]}", file=sys.stderr)
+    elif fails:
+        print(f"warning: {len(fails)} values not certified, each listed in the output "
+              f"('# failure:' lines of CSV, 'failures' of JSON); first: {fails[0]}",
+              file=sys.stderr)
+
+
+def progress_bar(flag, desc: str, unit: str, total: int | None = None):
+    """A tqdm bar on stderr (``flag`` None: when stderr is a terminal), or None."""
+    if not (sys.stderr.isatty() if flag is None else flag):
+        return None
+    from tqdm import tqdm
+
+    return tqdm(total=total, desc=desc, unit=unit, file=sys.stderr)

@@ -22,7 +22,7 @@ import argparse
 import shlex
 from pathlib import Path
 
-from dispersion.cli.options import number
+from dispersion.cli.options import integer
 from dispersion.defaults import MAX_JOBS_PER_CPU
 from dispersion.defaults import REPORT_OUT as DEFAULT_OUT
 from dispersion.defaults import REPORT_REFERENCE as DEFAULT_REFERENCE
@@ -47,8 +47,15 @@ def register(subparsers) -> None:
     parser = subparsers.add_parser(
         "reproduce",
         help="rerun the paper's results and the studies; say whether they match reports/",
-        description=__doc__.split("\n\n")[0] + " " + __doc__.split("\n\n")[1].split(
-            " The orchestration")[0].replace("\n", " "),
+        description="Measure every result of the paper and the studies, render them, and "
+                    "compare with the committed reference: each report section is measured "
+                    "and saved as <section>.json (result, inputs, versions, machine, seconds, "
+                    "command); every section present is rendered into Markdown and figures, "
+                    "with index.md. The run goes to reproduced/ (untracked), never into the "
+                    "committed reports/; one verdict line says whether it reproduced them "
+                    "(exit status 1 if a physics figure disagrees; timings are listed as "
+                    "ratios, never judged). Maintainers regenerate reports/ and the README's "
+                    "generated blocks with --update-reference.",
     )
     parser.add_argument("--out", default=None, metavar="DIR",
                         help=f"folder of this run (default: {DEFAULT_OUT}/; new, empty, or "
@@ -69,7 +76,7 @@ def register(subparsers) -> None:
     parser.add_argument("--readme", default=None, metavar="FILE",
                         help="also rewrite the generated blocks of this Markdown file "
                              "(e.g. README.md) from the new results")
-    parser.add_argument("--jobs", type=number("--jobs", int), default=None,
+    parser.add_argument("--jobs", type=integer("--jobs", 1), default=None,
                         help=f"worker processes for sweeps, 1 to {MAX_JOBS_PER_CPU} x the usable "
                              "CPUs (default: the usable CPU count)")
     parser.add_argument("--sections", default=",".join(SECTIONS),

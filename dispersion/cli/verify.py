@@ -1,11 +1,10 @@
-"""``dispersion verify FILE...``: check every claim of claims files against the derivation.
+"""``dispersion verify FILE...``: :func:`dispersion.claims.verify_claims` on the command line.
 
 Exit status 0 if every claim holds as recorded, 1 if any does not, 2 for a malformed file
 (one line naming the file, line, entry and field). ``--junit FILE`` (``-``: stdout) writes a
-JUnit XML report, one test case per claim. The file format is described in
-:mod:`dispersion.claims`; the paper's eqs 14-20 are ``--paper``. Claims files may come from
-strangers: their text is read by a whitelist and never run, and nothing from them reaches
-the terminal as a control sequence.
+JUnit XML report, one test case per claim. Claims files may come from strangers: their text
+is read by a whitelist and never run, and nothing from them reaches the terminal as a
+control sequence.
 """
 from __future__ import annotations
 
@@ -14,10 +13,11 @@ from pathlib import Path
 
 from dispersion.cli.options import integer
 from dispersion.errors import InputError
-from dispersion.io import check_output_file, write_text
+
 
 def register(sub) -> None:
     from dispersion.claims.limits import MAX_JOBS  # light: --help loads no sympy
+    from dispersion.cli.outputs import add_outputs
 
     p = sub.add_parser("verify", help="check claimed series/values against the derivation",
                        description="Derive every claim of the claims files (TOML, see "
@@ -25,19 +25,20 @@ def register(sub) -> None:
                                    "claim does not hold, 2 for a malformed file.")
     p.add_argument("files", nargs="*", metavar="FILE", help="claims files (TOML)")
     p.add_argument("--paper", action="store_true",
-                   help="also verify the paper's eqs 14-20 (the claims file shipped with the package)")
-    p.add_argument("--junit", metavar="FILE", help="write a JUnit XML report ('-' for stdout)")
-    p.add_argument("--format", choices=("text", "markdown"), default="text",
-                   help="how the results are printed: text (one block per claim, wrapped to "
-                        "the terminal) or a Markdown table (default: text)")
+                   help="also verify the paper's eqs 14-20 (the claims file shipped with the "
+                        "package)")
+    p.add_argument("--junit", metavar="FILE", help="write a JUnit XML report ('-': stdout)")
     p.add_argument("--jobs", type=integer("--jobs", 1, MAX_JOBS), default=None,
-                   help=f"worker processes for independent derivations, 1 to {MAX_JOBS} "
+                   help=f"worker processes for independent derivations, in [1, {MAX_JOBS}] "
                         "(default: in-process for series to kappa^8 or less, else the CPU "
                         "count)")
+    add_outputs(p, figure=None, piped="text")
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
+    if not (args.files or args.paper):  # a usage error: before the claims machinery loads
+        raise InputError("give at least one claims FILE (or --paper)")
     from dispersion.claims.report import plain
 
     try:
@@ -47,32 +48,24 @@ def run(args) -> int:
 
 
 def _run(args) -> int:
-    from dispersion.claims import (MAX_JOBS, format_results, junit_xml, load_claims,
-                                   paper_claims_path, verify_claims)
-    from dispersion.claims.report import plain
-    from dispersion.errors import check_int_in_range
+    from dispersion.claims import junit_xml, load_claims, paper_claims_path, verify_claims
+    from dispersion.cli.outputs import check_outputs, write_outputs
+    from dispersion.io import check_output_file, write_text
 
     # every option is checked before a claims file is read or a derivation starts
     paths = list(args.files) + ([paper_claims_path()] if args.paper else [])
-    if not paths:
-        raise InputError("give at least one claims FILE (or --paper)")
-    if args.jobs is not None:
-        check_int_in_range("--jobs", args.jobs, 1, MAX_JOBS)
+    check_outputs(args, "verify")
     if args.junit is not None:
         junit = check_output_file(args.junit, option="--junit")
+        if junit == "-" and ("-" in (args.csv, args.json) or args.format is not None):
+            raise InputError("--junit - and another output would both write to stdout")
         if junit != "-" and any(_same_file(junit, path) for path in paths):
             raise InputError(f"--junit must not name a claims file being verified: {junit}")
-    claims = [c for path in paths for c in load_claims(path)]
-    result = verify_claims(claims, jobs=args.jobs)
+    result = verify_claims([c for path in paths for c in load_claims(path)], jobs=args.jobs)
     if args.junit == "-":
         sys.stdout.write(junit_xml(result))
     else:
-        sys.stdout.write(format_results(result.results, args.format) + "\n")
-        failed = [r for r in result.results if not r.passed]
-        summary = (f"{len(result.results) - len(failed)} of {len(result.results)} claims hold "
-                   "as recorded" + (": not " + ", ".join(repr(r.name) for r in failed)
-                                    if failed else ""))
-        print(plain(summary))
+        write_outputs(args, result)
         if args.junit:
             write_text(args.junit, junit_xml(result))
     return 0 if result.passed else 1

@@ -51,9 +51,10 @@ from dispersion.contact.contact_problem import ContactProblem
 from dispersion.contact.newmark import History, integrate
 from dispersion.contact.newmark_scheme import Newmark
 from dispersion.contact.redistribution import float_redistribution
+from dispersion.rendering import Rendered
 
-__all__ = ["ENDS", "MAX_STEPS", "DENSE_DOFS", "NUMERIC_RULES", "Bar", "BarModel", "BarResult",
-           "bar_model", "bar_problem", "check_steps", "simulate_bar"]
+__all__ = ["ENDS", "MAX_STEPS", "DENSE_DOFS", "NUMERIC_RULES", "Bar", "BarAssembly", "BarResult",
+           "assemble_bar", "bar_problem", "check_steps", "simulate_bar"]
 
 ENDS = ("left", "right")
 
@@ -130,7 +131,7 @@ class Bar:
 
 
 @dataclass(frozen=True)
-class BarModel:
+class BarAssembly:
     """The bar's :class:`~.contact_problem.ContactProblem` on the free DOFs ``free`` of ``basis``."""
 
     bar: Bar
@@ -175,7 +176,7 @@ def _assemble(values: np.ndarray, rows: np.ndarray, cols: np.ndarray, n: int, de
     return sp.csr_matrix((values, (rows, cols)), shape=(n, n))
 
 
-def bar_model(bar: Bar) -> BarModel:
+def assemble_bar(bar: Bar) -> BarAssembly:
     """Assemble the bar: stiffness, mass variant, wall constraint, body force, clamped ends."""
     p, L = bar.p, bar.L
     basis = SplineBasis1D.uniform(p, bar.n_elements)
@@ -237,23 +238,55 @@ def bar_model(bar: Bar) -> BarModel:
                           lambda u: 0.5 * float(u @ (Kf @ u)),
                           None if f_ext is None else f_ext[free], None, Kf,
                           lambda u: Kf @ u)
-    return BarModel(bar, prob, basis, free, dof)
+    return BarAssembly(bar, prob, basis, free, dof)
 
 
 def bar_problem(n_elements: int, p: int = 2, mass: str = "lumped", L: float = 1.0,
                 E: float = 1.0, rho: float = 1.0, gamma_s: float = GAMMA_S_FLOAT
                 ) -> ContactProblem:
     """Free bar on ``[0, L]`` (unit area) with the wall constraint ``g = u_0 >= 0``."""
-    return bar_model(Bar(n_elements, p, L, E, rho, mass, gamma_s=gamma_s)).problem
+    return assemble_bar(Bar(n_elements, p, L, E, rho, mass, gamma_s=gamma_s)).problem
 
 
-@dataclass(frozen=True)
-class BarResult:
-    """History of a bar run and its errors against the exact solution."""
+@dataclass(frozen=True, repr=False)  # Rendered: a short repr; rows are the history
+class BarResult(Rendered):
+    """History of a bar run and its errors against the exact solution, with the ``bar`` and
+    the ``scheme`` it was computed from."""
 
     history: History
     exact: dict
     metrics: dict
+    bar: Bar | None = None
+    scheme: str = ""
+
+    def title(self) -> str:
+        b = self.bar
+        return (f"bar impact: p = {b.p}, {b.n_elements} elements, "
+                f"{getattr(b.mass, 'name', b.mass)} mass, "
+                f"{self.scheme}, dt = {self.metrics['dt']:g} s")
+
+    def header_lines(self) -> list[str]:
+        b = self.bar
+        m = self.metrics
+        return [f"bar: length L = {b.L:g} m, Young's modulus E = {b.E:g} Pa, density "
+                f"rho = {b.rho:g} kg/m^3 (unit area), wave speed c = {b.wave_speed:g} m/s",
+                f"exact: contact duration 2L/c = {self.exact['duration']:g} s, contact stress "
+                f"rho c v0 = {self.exact['stress']:g} Pa",
+                "errors (relative): contact duration "
+                f"{m['duration_error']:.3g}, contact stress {m['stress_error']:.3g}, rebound "
+                f"velocity {m['rebound_error']:.3g}; energy change "
+                f"{m['energy_change_percent']:.3g} %"]
+
+    def columns(self) -> tuple[str, ...]:
+        return ("t [s]", "contact force [N]", "kinetic [J]", "strain [J]", "total [J]")
+
+    def rows(self) -> list[dict]:
+        a = self.history.arrays()
+        keys = ("t", "contact_force", "kinetic", "strain", "total")
+        return [dict(zip(self.columns(), map(float, vals))) for vals in zip(*(a[k] for k in keys))]
+
+    def json_extra(self) -> dict:
+        return {"metrics": self.metrics, "exact": self.exact}
 
 
 def simulate_bar(n_elements: int = 40, p: int = 2, mass: str = "lumped", *,
@@ -279,9 +312,9 @@ def simulate_bar(n_elements: int = 40, p: int = 2, mass: str = "lumped", *,
         dt = courant * h / c
     check_positive("dt", dt)
     n_steps = check_steps(t_end_factor * L / c, dt, "t_end_factor * L / c")
-    prob = bar_model(bar).problem
+    prob = assemble_bar(bar).problem
     n = prob.n
-    nm = Newmark(beta=0.0, gamma=0.5) if scheme == "explicit" else Newmark(scheme=scheme)
+    nm = Newmark(beta=0.0, gamma=0.5) if scheme == "central" else Newmark(scheme=scheme)
     hist = integrate(prob, np.zeros(n), -v0 * np.ones(n), dt, n_steps, nm)
     arr = hist.arrays()
     exact = {"duration": 2 * L / c, "stress": rho * c * v0, "rebound_velocity": v0,
@@ -303,4 +336,4 @@ def simulate_bar(n_elements: int = 40, p: int = 2, mass: str = "lumped", *,
         "energy_change_percent": 100 * (arr["total"][-1] - arr["total"][0]) / arr["total"][0],
         "in_contact_at_end": bool(on[-1]),
     }
-    return BarResult(hist, exact, metrics)
+    return BarResult(hist, exact, metrics, bar, scheme)

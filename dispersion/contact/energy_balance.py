@@ -15,7 +15,7 @@ unstable scheme (an impact of plain Newmark adds energy of the order of the impa
 Which schemes are stable with which masses (:data:`STABILITY_NOTE`, printed by the CLI help):
 
 - ``kane`` (Kane's contact-modified Newmark, beta = 1/4): every mass; contact only dissipates.
-- ``explicit`` (central differences, beta = 0, Kane's contact impulse): every mass below the
+- ``central`` (central differences, explicit, beta = 0, Kane's contact impulse): every mass below the
   critical time step; contact only dissipates.
 - ``standard`` (plain Newmark, beta = 1/4, contact forces in the trapezoidal rule): unstable
   with a mass that has inertia at the contact nodes (``lumped``, ``consistent``): each impact
@@ -57,7 +57,7 @@ KNOWN_UNSTABLE = frozenset({("standard", "lumped"), ("standard", "consistent")})
 #: One paragraph for the command-line help: which schemes are stable with which masses.
 STABILITY_NOTE = (
     "Stability with contact: kane (contact-modified Newmark) is stable with every mass; "
-    "explicit (central differences) with every mass below the critical time step; standard "
+    "central (explicit central differences) with every mass below the critical time step; standard "
     "(plain Newmark) is unstable with the lumped and consistent masses (each impact adds "
     "energy) and conserves energy only with the singular mass (massless contact nodes). "
     f"A run whose total energy grows by more than {GROWTH_BOUND_PERCENT:g} % of its initial "

@@ -1,4 +1,4 @@
-"""Time stepping with Lagrange-multiplier contact: Kane's Newmark, standard Newmark, explicit.
+"""Time stepping with Lagrange-multiplier contact: Kane's Newmark, standard Newmark, central differences.
 
 Semi-discrete problem (paper eq 5) with a linear gap :math:`\\mathbf g = \\mathbf g_0 + \\mathbf G
 \\mathbf U \\ge 0` (rigid frictionless obstacle) and contact force

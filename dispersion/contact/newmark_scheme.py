@@ -1,18 +1,17 @@
 """The time integrators by name and their parameters: Kane's contact-modified Newmark
-(paper eqs 6-10), standard Newmark, explicit central differences (``beta = 0``).
+(paper eqs 6-10), standard Newmark, central differences (``beta = 0``, explicit).
 
->>> newmark_for("explicit").explicit, SCHEME_TEXT["kane"]
+>>> newmark_for("central").explicit, SCHEME_TEXT["kane"]
 (True, "Kane's contact-modified Newmark")
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
-
-import numpy as np
 
 from dispersion.errors import InputError, check_positive, check_positive_int
 
-__all__ = ["SCHEMES", "RING_SCHEMES", "SCHEME_TEXT", "DENSE_MAX", "Newmark", "newmark_for"]
+__all__ = ["CONTACT_TREATMENTS", "CONTACT_SCHEMES", "SCHEME_TEXT", "DENSE_MAX", "Newmark", "newmark_for"]
 
 #: Largest step matrix factorized with dense LAPACK; sparse SuperLU above. Chosen by
 #: measurement (``python benchmarks/bench_ring.py``, table 1, 2-core machine): at the ring's
@@ -21,7 +20,9 @@ __all__ = ["SCHEMES", "RING_SCHEMES", "SCHEME_TEXT", "DENSE_MAX", "Newmark", "ne
 #: outright (0.74 vs 1.6 ms, 12 vs 74 ms at 1320). Dense stays for the bar's few dozen DOFs.
 DENSE_MAX = 64
 
-SCHEMES = ("kane", "standard")
+#: How an implicit Newmark step treats contact: Kane's contact-modified update or the
+#: standard one (:class:`Newmark` ``scheme``).
+CONTACT_TREATMENTS = ("kane", "standard")
 
 
 @dataclass(frozen=True)
@@ -45,11 +46,11 @@ class Newmark:
     reuse_tangent: bool = True
 
     def __post_init__(self):
-        if not (np.isfinite(self.beta) and 0 <= self.beta <= 0.5):
+        if not (math.isfinite(self.beta) and 0 <= self.beta <= 0.5):
             raise InputError(f"beta must lie in [0, 0.5] (0: explicit), got {self.beta}")
         check_positive("gamma", self.gamma)
-        if self.scheme not in SCHEMES:
-            raise InputError(f"scheme must be one of {', '.join(SCHEMES)}; got {self.scheme!r}")
+        if self.scheme not in CONTACT_TREATMENTS:
+            raise InputError(f"scheme must be one of {', '.join(CONTACT_TREATMENTS)}; got {self.scheme!r}")
         if self.explicit and (self.gamma != 0.5 or self.scheme != "kane"):
             raise InputError("beta = 0 (explicit) needs gamma = 0.5 and scheme 'kane', got "
                              f"gamma = {self.gamma}, scheme {self.scheme!r}")
@@ -64,18 +65,19 @@ class Newmark:
         return self.beta == 0
 
 
-#: Time integrators by name: Kane's contact-modified Newmark, standard Newmark, explicit
-#: central differences (beta = 0, Kane's contact impulse).
-RING_SCHEMES = ("kane", "standard", "explicit")
+#: Time integrators of contact problems by name: Kane's contact-modified Newmark, standard
+#: Newmark, central differences (beta = 0, explicit, Kane's contact impulse; the same member
+#: is "central" in :data:`dispersion.waves.time_integration.NEWMARK_MEMBERS`).
+CONTACT_SCHEMES = ("kane", "standard", "central")
 #: How pages and figures name them.
 SCHEME_TEXT = {"kane": "Kane's contact-modified Newmark", "standard": "standard Newmark",
-               "explicit": "explicit central differences"}
+               "central": "explicit central differences"}
 
 
 def newmark_for(scheme: str, **kwargs) -> Newmark:
-    """:class:`Newmark` of the scheme named ``scheme`` (see :data:`RING_SCHEMES`)."""
-    if scheme not in RING_SCHEMES:
-        raise InputError(f"scheme must be one of {', '.join(RING_SCHEMES)}; got {scheme!r}")
-    if scheme == "explicit":
+    """:class:`Newmark` of the scheme named ``scheme`` (see :data:`CONTACT_SCHEMES`)."""
+    if scheme not in CONTACT_SCHEMES:
+        raise InputError(f"scheme must be one of {', '.join(CONTACT_SCHEMES)}; got {scheme!r}")
+    if scheme == "central":
         return Newmark(beta=0.0, gamma=0.5, scheme="kane", **kwargs)
     return Newmark(scheme=scheme, **kwargs)

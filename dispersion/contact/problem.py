@@ -34,7 +34,7 @@ from dispersion.contact.contact_problem import ContactProblem
 from dispersion.contact.newmark_scheme import DENSE_MAX
 from dispersion.contact.nurbs import RingPatch, SplineBasis1D
 
-__all__ = ["SIDES", "Plane", "PatchModel", "patch_problem", "rectangle_patch", "restrict",
+__all__ = ["SIDES", "Plane", "PatchProblem", "patch_problem", "rectangle_patch", "restrict",
            "side_basis", "side_points"]
 
 #: Sides of a patch: ``eta1`` is the last row of control points across ``eta`` (the ring's
@@ -65,7 +65,7 @@ class Plane:
 
 
 @dataclass(frozen=True)
-class PatchModel:
+class PatchProblem:
     """A 2D problem ready to integrate: ``problem`` on the free DOFs ``free`` (indices into
     the interleaved DOFs ``2 * point + component`` of ``patch``), the contact side's
     Greville abscissae ``contact_xi`` and the discretization ``disc``."""
@@ -151,7 +151,7 @@ def restrict(prob: ContactProblem, free: np.ndarray) -> ContactProblem:
 def patch_problem(patch: RingPatch, material: StVenantKirchhoff, rho: float,
                   mass: str = "consistent", contact_side: str = "eta1",
                   obstacle: Plane | None = None, dirichlet: Sequence[tuple[str, int]] = (),
-                  gamma_s: float = 0.5) -> PatchModel:
+                  gamma_s: float = 0.5) -> PatchProblem:
     """Contact problem of a NURBS ``patch`` against a rigid ``obstacle`` plane.
 
     Parameters
@@ -208,4 +208,4 @@ def patch_problem(patch: RingPatch, material: StVenantKirchhoff, rho: float,
                           lambda u: strain_energy(disc, material, u), None, directions,
                           force=lambda u: internal_force(disc, material, u, tangent=False))
     free = np.flatnonzero(~fixed)
-    return PatchModel(restrict(prob, free), patch, free, contact_side, s, disc)
+    return PatchProblem(restrict(prob, free), patch, free, contact_side, s, disc)

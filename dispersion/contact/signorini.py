@@ -38,10 +38,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from dispersion.errors import InputError, check_memory, check_positive, check_positive_int
-from dispersion.contact.bar import Bar, bar_model, check_steps
+from dispersion.contact.bar import Bar, assemble_bar, check_steps
 from dispersion.contact.energy_balance import energy_balance
 from dispersion.contact.newmark import integrate
 from dispersion.contact.newmark_scheme import newmark_for
+from dispersion.rendering import Rendered
 
 __all__ = ["ExactSignorini", "SignoriniResult", "exact_solution", "signorini_1d",
            "MAX_T_EXACT", "MAX_SECONDS", "SIGNORINI_SPREAD_RULE", "SPREAD_FIELDS", "gap_ulps",
@@ -207,8 +208,8 @@ def exact_solution(t_max: float, amplitude: float = 0.5) -> ExactSignorini:
     return ExactSignorini(np.array(a_k), np.array(a_v), b_knots, b_vals)
 
 
-@dataclass(frozen=True)
-class SignoriniResult:
+@dataclass(frozen=True, repr=False)  # Rendered: a short repr, no whole arrays
+class SignoriniResult(Rendered):
     """One run of the 1D Signorini scene: inputs, histories at ``x = 0`` and errors.
 
     ``errors``: relative L2-in-time errors of ``u(0, t)``, ``u_t(0, t)`` and the contact
@@ -238,25 +239,57 @@ class SignoriniResult:
     errors: dict
     seconds: float
 
-    def csv_text(self) -> str:
-        """History as CSV: ``#`` lines with the inputs, then t, u(0), v(0), contact stress,
-        kinetic, strain, total energy; the problem is dimensionless (unit length, unit wave
-        speed, unit density and stiffness), so every unit is ``[-]``."""
-        from dispersion.results import package_versions
+    @property
+    def failures(self) -> tuple[str, ...]:
+        flag = self.errors.get("energy_flag")
+        return ((f"signorini-1d ({self.mass} mass, {self.scheme}): {flag}; the figures of this "
+                 "run are not a result",) if flag else ())
 
+    def summary(self) -> dict:
+        """Inputs, errors and wall time of the run (strict-JSON ready)."""
+        return {"scene": "signorini-1d", "p": self.p, "n_elements": self.n_elements,
+                "mass": self.mass, "scheme": self.scheme, "dt": self.dt, "t_end": self.t_end,
+                "consistent": self.consistent, "steps": len(self.t) - 1,
+                "seconds": self.seconds, **self.errors}
+
+    def title(self) -> str:
+        return (f"signorini-1d: P{self.p}, {self.n_elements} elements, {self.mass} mass, "
+                f"{self.scheme}, dt = {self.dt:g}, t_end = {self.t_end:g}")
+
+    def header_lines(self) -> list[str]:
+        return [f"consistent initial state: {self.consistent}",
+                "dimensionless: unit bar length, wave speed, density and stiffness; the "
+                "history at the contact point x = 0"]
+
+    def columns(self) -> tuple[str, ...]:
+        return tuple(f"{c} [-]" for c in HISTORY_COLUMNS)
+
+    def rows(self) -> list[dict]:
         cols = np.column_stack([self.t, self.u0, self.v0, self.stress, self.kinetic,
                                 self.strain, self.total])
-        head = "\n".join([
-            f"# signorini-1d: p = {self.p}, {self.n_elements} elements, {self.mass} mass, "
-            f"scheme {self.scheme}, dt = {self.dt:g}, t_end = {self.t_end:g}, "
-            f"consistent initial state: {self.consistent}",
-            "# dimensionless: unit bar length, wave speed, density and stiffness; dispersion-iga "
-            + package_versions(("dispersion-iga",))["dispersion-iga"],
-            ",".join(f"{c} [-]" for c in HISTORY_COLUMNS)])
-        return head + "\n" + "\n".join(",".join(f"{x:.12g}" for x in row) for row in cols) + "\n"
+        return [dict(zip(self.columns(), map(float, row))) for row in cols]
+
+    def json_extra(self) -> dict:
+        return {"summary": self.summary()}
+
+    def to_text(self, digits: int = 7) -> str:
+        """The run in one line: energy drift and the errors against the exact solution."""
+        s = self.summary()
+
+        def rel(value) -> str:  # None: the exact value is 0 throughout
+            return "n/a (exact value 0)" if value is None else f"{value:.3g}"
+        return (f"signorini-1d (P{self.p}, {self.n_elements} elements, {self.mass} mass, "
+                f"{self.scheme}, dt {self.dt:g}): energy drift {s['energy_drift_percent']:.2g} "
+                f"% of 1/8 (initial state {s['initial_energy_change_percent']:+.3g} %), rel. L2 "
+                f"errors u(0) {rel(s['u0_rel_l2'])}, v(0) {rel(s['v0_rel_l2'])}, contact stress "
+                f"{rel(s['stress_rel_l2'])}; {s['seconds']:.2f} s"
+                + (" [UNSTABLE: energy grows; not a result]" if s.get("energy_flag") else ""))
+
+    def __repr__(self) -> str:
+        return f"<SignoriniResult: {self.title()} ({len(self.t)} samples)>"
 
 
-#: Columns of :meth:`SignoriniResult.csv_text`.
+#: Columns of :meth:`SignoriniResult.rows` (every unit is ``[-]``).
 HISTORY_COLUMNS = ("t", "u0", "v0", "contact_stress", "kinetic", "strain", "total")
 
 
@@ -273,7 +306,7 @@ def signorini_1d(p: int = 1, n_elements: int = 20, mass: str = "singular",
     """Solve GetFEM's 1D Signorini problem with the bar API and compare with the exact solution.
 
     ``scheme``: ``"kane"`` (contact-modified Newmark, beta = 1/4), ``"standard"`` or
-    ``"explicit"`` (central differences, refused above the stability limit). ``gap`` moves
+    ``"central"`` (central differences, explicit; refused above the stability limit). ``gap`` moves
     the rigid wall that far beyond x = 0 (default 0, the problem's); a round-off-sized gap
     (a few units of 2**-53, the last place of the initial gap u(0, 0) = 1/2) measures how
     much a run's figures move with round-off (:data:`SIGNORINI_SPREAD_RULE`); the exact
@@ -299,7 +332,7 @@ def signorini_1d(p: int = 1, n_elements: int = 20, mass: str = "singular",
                          f"steps would take about {seconds / 60:.0f} min, more than the bound "
                          f"of {MAX_SECONDS / 60:.0f} min (fewer elements, a lower p or fewer "
                          "steps)")
-    model = bar_model(Bar(n_elements, p, 1.0, 1.0, 1.0, mass, clamped=("right",),
+    model = assemble_bar(Bar(n_elements, p, 1.0, 1.0, 1.0, mass, clamped=("right",),
                           contact="left", gap=gap))
     prob = model.problem
     u_init = model.coefficients(lambda x: 0.5 * (1 - x))

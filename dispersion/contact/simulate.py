@@ -26,12 +26,13 @@ from dispersion.contact.energy_balance import energy_balance
 from dispersion.contact.material import StVenantKirchhoff
 from dispersion.contact.contact_problem import ContactProblem
 from dispersion.contact.newmark import integrate
-from dispersion.contact.newmark_scheme import RING_SCHEMES, newmark_for
+from dispersion.contact.newmark_scheme import CONTACT_SCHEMES, newmark_for
+from dispersion.rendering import Rendered
 from dispersion.contact.nurbs import RingPatch, quarter_ring
 from dispersion.contact.problem import Plane, patch_problem
 from dispersion.contact.scenario import Scenario
 
-__all__ = ["RING_SCHEMES", "RingResult", "Scenario", "newmark_for", "ring_patch", "ring_problem",
+__all__ = ["CONTACT_SCHEMES", "RingResult", "Scenario", "newmark_for", "ring_patch", "ring_problem",
            "simulate_ring"]
 
 _SAMPLES_PER_ELEMENT = 8
@@ -56,9 +57,14 @@ def ring_problem(sc: Scenario, mass: str = "singular") -> tuple[ContactProblem, 
     return model.problem, patch
 
 
-@dataclass(frozen=True, repr=False)  # a short repr: no whole arrays
-class RingResult:
-    """Time histories (``series``: name -> array) and the ``summary`` of one ring run."""
+@dataclass(frozen=True, repr=False)  # Rendered: a short repr, no whole arrays
+class RingResult(Rendered):
+    """Time histories (``series``: name -> array) and the ``summary`` of one ring run.
+
+    Renders itself (:class:`dispersion.rendering.Rendered`): the text form is the run's
+    summary in one line, CSV and the DataFrame the histories with units
+    (:data:`SERIES_UNITS`), JSON the summary with the histories.
+    """
 
     scenario: Scenario
     mass: str
@@ -66,44 +72,57 @@ class RingResult:
     series: dict
     summary: dict
 
+    @property
+    def failures(self) -> tuple[str, ...]:
+        flag = self.summary.get("energy_flag")
+        return ((f"ring ({self.mass} mass, {self.scheme}): {flag}; the figures of this run are "
+                 "not a result",) if flag else ())
+
     def to_dict(self) -> dict:
         """JSON-ready dict: scenario, summary and the time histories as lists."""
         return {"scenario": dict(asdict(self.scenario), E=self.scenario.E),
                 "summary": self.summary,
                 "series": {k: np.asarray(v).tolist() for k, v in self.series.items()}}
 
+    def title(self) -> str:
+        from dispersion.contact.newmark_scheme import SCHEME_TEXT
+
+        return (f"ring on a rigid plane: {self.mass} mass, "
+                f"{SCHEME_TEXT.get(self.scheme, self.scheme)}")
+
+    def header_lines(self) -> list[str]:
+        scene = dict(asdict(self.scenario), E=self.scenario.E)
+        return ["scene: " + ", ".join(f"{k} = {v:g}{SCENE_UNITS.get(k, '')}"
+                                      if isinstance(v, float) else f"{k} = {v}"
+                                      for k, v in scene.items()),
+                "plane strain: forces and energies per metre of thickness"]
+
+    def columns(self) -> tuple[str, ...]:
+        return tuple(f"{k} [{SERIES_UNITS.get(k, '-')}]" for k in self.series)
+
+    def rows(self) -> list[dict]:
+        cols = self.columns()
+        arrays = [np.asarray(v, dtype=float) for v in self.series.values()]
+        return [dict(zip(cols, map(float, values))) for values in zip(*arrays)]
+
+    def json_extra(self) -> dict:
+        return {"summary": self.summary}
+
+    def to_text(self, digits: int = 7) -> str:
+        """The run in one line: energy change, penetration, contact events, rotation."""
+        s = self.summary
+        text = (f"ring ({s['mass']} mass, {s['scheme']}): energy change "
+                f"{s['energy_change_percent']:+.3f} %, max penetration "
+                f"{s['max_penetration_greville']:.2e} m at the Greville points, "
+                f"{s['max_penetration']:.2e} m between them, {s['contact_events']} contact "
+                f"events, rotation {s['final_rotation_deg']:.1f} deg")
+        return text + (" [UNSTABLE: energy grows; not a result]" if s.get("energy_flag") else "")
+
     def __repr__(self) -> str:
         s = self.summary
-        return (f"RingResult({self.mass} mass, {self.scheme}, {len(self.series['t'])} steps, "
+        return (f"<RingResult: {self.mass} mass, {self.scheme}, {len(self.series['t'])} steps, "
                 f"energy change {s['energy_change_percent']:+.4g} %, "
-                f"{s['contact_events']} contact events)")
-
-    def to_dataframe(self):
-        """The time histories, one row per step, columns named with their units
-        (:data:`SERIES_UNITS`); needs pandas (the ``dataframe`` extra)."""
-        from dispersion.waves.branch_views import require_pandas
-
-        pd = require_pandas()
-        return pd.DataFrame({f"{k} [{SERIES_UNITS.get(k, '-')}]": np.asarray(v)
-                             for k, v in self.series.items()})
-
-    def csv_text(self) -> str:
-        """Time histories as CSV text, one row per step: ``#`` lines with the inputs (scene,
-        mass, scheme, package version), then a header with units (:data:`SERIES_UNITS`)."""
-        from dispersion.results import package_versions
-
-        names = list(self.series)
-        rows = np.column_stack([np.asarray(self.series[k], dtype=float) for k in names])
-        scene = dict(asdict(self.scenario), E=self.scenario.E)
-        lines = [f"# ring: {self.mass} mass, scheme {self.scheme}",
-                 "# scene: " + ", ".join(f"{k} = {v:g}{SCENE_UNITS.get(k, '')}"
-                                         if isinstance(v, float) else f"{k} = {v}"
-                                         for k, v in scene.items()),
-                 "# per unit thickness (plane strain); dispersion-iga "
-                 + package_versions(("dispersion-iga",))["dispersion-iga"],
-                 ",".join(f"{k} [{SERIES_UNITS.get(k, '-')}]" for k in names)]
-        lines += [",".join(f"{x:.10g}" for x in row) for row in rows]
-        return "\n".join(lines) + "\n"
+                f"{s['contact_events']} contact events>")
 
 
 #: Units of the ring's time histories (plane strain: per metre of thickness).

@@ -2,8 +2,8 @@
 
 The data come from :mod:`dispersion.studies.branch_study` (``figure2_data``, ``measure_branches``).
 Conventions shared by every figure: exact branches black, S solid and A dashed, labelled at
-their ends; one colour per mass variant (consistent C0, singular C1, lumped C2) in every
-panel; errors signed on a symmetric-log axis; values at round-off level (below
+their ends; one colour and marker per mass rule in every panel, from the rule registry
+(:func:`dispersion.plotting.styles.mass_style`); errors signed on a symmetric-log axis; values at round-off level (below
 ``ROUND_OFF``) are not drawn as data.
 
 >>> import numpy as np
@@ -20,8 +20,8 @@ import numpy as np
 from dispersion.plotting import axes, new_figure
 
 __all__ = [
-    "MASS_COLOURS",
     "figure2",
+    "figure_branch_table",
     "figure_per_wavelength",
     "figure_shapes",
     "figure_speed_accuracy",
@@ -33,7 +33,6 @@ __all__ = [
     "plot_zone_edge",
 ]
 
-MASS_COLOURS = {"consistent": "C0", "singular": "C1", "lumped": "C2", "singular-lumped": "C3"}
 ROUND_OFF = 1e-13
 _BRANCH_STYLE = {"S0": "-", "A0": "--", "S1": "-.", "A1": ":"}
 
@@ -47,7 +46,15 @@ def _a(values) -> np.ndarray:
 
 
 def _colour(name: str, i: int = 0) -> str:
-    return MASS_COLOURS.get(name, f"C{4 + i}")
+    from dispersion.plotting.styles import mass_style
+
+    return mass_style(name).colour
+
+
+def _marker(name: str) -> str:
+    from dispersion.plotting.styles import mass_style
+
+    return mass_style(name).marker
 
 
 #: Labels whose anchors lie closer than this fraction of the Omega axis form a group whose
@@ -207,7 +214,7 @@ def figure2(data: Mapping, title: str = ""):
     kappa = data["kappa"]
     plot_exact(kappa, {k: v["omega"] for k, v in data["exact"].items()}, data["omega_max"], ax)
     for i, (name, d) in enumerate(data["discrete"].items()):
-        plot_discrete(kappa, d["omega"], d["symmetry"], ax, name, _colour(name, i), "os^v"[i % 4])
+        plot_discrete(kappa, d["omega"], d["symmetry"], ax, name, _colour(name, i), _marker(name))
         plot_paired_errors(kappa, d["paired_error"], ax_err, name, _colour(name, i))
     edges = {d["zone_edge"] for d in data["discrete"].values() if d["zone_edge"] is not None}
     for edge in edges:
@@ -220,6 +227,66 @@ def figure2(data: Mapping, title: str = ""):
                      "(MAC >= 0.5; no curve: no discrete mode resembles it)", fontsize="small")
     if title:
         fig.suptitle(title, fontsize="medium")
+    return fig
+
+
+def figure_branch_table(table):
+    """The figure of a :class:`~dispersion.waves.branch_table.BranchTable`, titled from it.
+
+    With a material: phase and group velocity against fd and wavenumber against f in units,
+    ZGV points and cut-offs marked, every discrete branch set as markers in its mass rule's
+    style (first Brillouin zone). Without: the branches against kappa (Figure 2), each
+    discrete set in its rule's style, and the panel of shape-paired errors when the table
+    holds them (``branch_table(..., paired=True)``).
+    """
+    import numpy as np
+
+    if table.material is not None:
+        from dispersion.plotting.lamb import figure_dispersion
+        from dispersion.waves.units import zgv_in_units
+
+        discrete = {}
+        for d, pb in zip(table.discrete, table.physical_discrete().values()):
+            edge = d.branches.zone_edge
+            inside = table.kappa <= (edge if edge is not None else np.inf)
+            curves = {lab: {k: np.where(inside, v, np.nan) for k, v in c.items()}
+                      for lab, c in pb.curves().items()}
+            discrete[d.words()] = (d.patch.mass, curves)
+        return figure_dispersion(table.physical().curves(), table.title(),
+                                 zgv_in_units(table.zgv, table.material, table.thickness_mm),
+                                 table.cutoffs_khz(), discrete=discrete)
+    paired = any(d.paired_error is not None for d in table.discrete)
+    fig = new_figure(figsize=(12, 5.2) if paired else (7.5, 5.6))
+    if paired:
+        ax, ax_err = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1.25, 1]})
+    else:
+        ax, ax_err = fig.add_subplot(), None
+    plot_exact(table.kappa, table.exact.omega, table.omega_max, ax)
+    for d in table.discrete:
+        colour, marker = _colour(d.patch.mass_name), _marker(d.patch.mass_name)
+        plot_discrete(table.kappa, d.branches.omega, d.branches.symmetry, ax, d.words(),
+                      colour, marker)
+        if d.paired_error is not None:
+            plot_paired_errors(table.kappa, d.paired_error, ax_err, d.patch.mass_name, colour)
+    for edge in {d.branches.zone_edge for d in table.discrete} - {None}:
+        plot_zone_edge(edge, ax)
+    if table.discrete:
+        fig.legend(*ax.get_legend_handles_labels(), loc="outside lower center", ncol=2,
+                   fontsize="small")
+    else:
+        ax.legend(fontsize="small")
+    if ax_err is not None:
+        if ax_err.get_legend_handles_labels()[0]:
+            ax_err.legend(fontsize="x-small", ncol=2)
+        ax_err.set_title("error of each exact branch against the discrete mode of the same "
+                         "shape\n(MAC >= 0.5; no curve: no discrete mode resembles it)",
+                         fontsize="small")
+    import re
+    import textwrap
+
+    # an interval "[0, 8]" is never split over two lines (a no-break space inside it)
+    title = re.sub(r"\[([^\]]*?), ", "[\\1,\u00a0", table.title())
+    fig.suptitle(textwrap.fill(title, 110), fontsize="medium")
     return fig
 
 

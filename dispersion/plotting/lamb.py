@@ -24,7 +24,8 @@ import numpy as np
 
 from dispersion.plotting import new_figure
 
-__all__ = ["figure_dispersion", "figure_mode_fields", "plot_curves"]
+__all__ = ["figure_dispersion", "figure_mode_fields", "figure_mode_shapes", "figure_mode_table",
+           "plot_curves"]
 
 _STYLE = {"S": ("C0", "-"), "A": ("C3", "--"), "SH": ("C2", ":")}
 _PANELS = (("fd", "c_p", "fd [MHz mm]", "phase velocity c_p [m/s]"),
@@ -36,8 +37,10 @@ def _family(label: str) -> str:
     return label.rstrip("0123456789?")
 
 
-def plot_curves(curves: Mapping, x: str, y: str, ax=None, ymax: float | None = None):
-    """One line per mode of ``curves[label][y]`` against ``[x]``, labelled at its end."""
+def plot_curves(curves: Mapping, x: str, y: str, ax=None, ymax: float | None = None,
+                colour: str | None = None):
+    """One line per mode of ``curves[label][y]`` against ``[x]``, labelled at its end (in its
+    family's colour, or all in ``colour``)."""
     from dispersion.plotting import axes
 
     ax = axes(ax)
@@ -49,20 +52,23 @@ def plot_curves(curves: Mapping, x: str, y: str, ax=None, ymax: float | None = N
             ok &= np.isfinite(ys)
         if not np.any(ok):
             continue
-        colour, ls = _STYLE.get(_family(label), ("k", "-"))
-        ax.plot(xs, ys, color=colour, ls=ls, lw=1.1)
+        own, ls = _STYLE.get(_family(label), ("k", "-"))
+        ax.plot(xs, ys, color=colour or own, ls=ls, lw=1.1)
         i = np.flatnonzero(ok)[-1] if y != "c_p" else np.flatnonzero(ok)[0]
-        ax.annotate(label, (xs[i], ys[i]), fontsize=7, color=colour,
+        ax.annotate(label, (xs[i], ys[i]), fontsize=7, color=colour or own,
                     xytext=(2, 2), textcoords="offset points")
     return ax.figure
 
 
 def figure_dispersion(curves: Mapping, title: str, zgv: Sequence[Mapping] = (),
-                      cutoffs: Mapping | None = None, c_max: float | None = None):
+                      cutoffs: Mapping | None = None, c_max: float | None = None,
+                      discrete: Mapping | None = None):
     """Phase and group velocity against fd, wavenumber against f; ZGV and cut-offs marked.
 
     ``c_max`` caps the phase-velocity axis (it diverges at each cut-off); default: three
-    times the largest group velocity drawn.
+    times the largest group velocity drawn. ``discrete`` maps a legend name to ``(mass rule,
+    curves)`` of discrete branches, drawn as markers in the rule's style
+    (:func:`dispersion.plotting.styles.mass_style`).
     """
     fig = new_figure(figsize=(12.0, 4.0))
     axs = fig.subplots(1, 3)
@@ -70,7 +76,12 @@ def figure_dispersion(curves: Mapping, title: str, zgv: Sequence[Mapping] = (),
         cg = [np.nanmax(np.abs(d["c_g"])) for d in curves.values() if len(d["c_g"])]
         c_max = 3 * max(cg) if cg else None
     for ax, (x, y, xl, yl) in zip(axs, _PANELS):
-        plot_curves(curves, x, y, ax, ymax=c_max if y == "c_p" else None)
+        # beside discrete markers (coloured by mass rule) the exact curves are black
+        plot_curves(curves, x, y, ax, ymax=c_max if y == "c_p" else None,
+                    colour="k" if discrete else None)
+        for name, (mass, dcurves) in (discrete or {}).items():
+            _plot_markers(dcurves, x, y, ax, mass, name if y == "c_p" else None,
+                          ymax=c_max if y == "c_p" else None)
         ax.set_xlabel(xl)
         ax.set_ylabel(yl)
         ax.set_xlim(left=0)
@@ -99,10 +110,32 @@ def figure_dispersion(curves: Mapping, title: str, zgv: Sequence[Mapping] = (),
         axs[2].plot([], [], "o", mfc="none", color="k", ms=6, label="ZGV point")
     for fam, (colour, ls) in _STYLE.items():
         if any(_family(lab) == fam for lab in curves):
-            axs[2].plot([], [], color=colour, ls=ls, label=f"{fam} modes")
+            axs[2].plot([], [], color="k" if discrete else colour, ls=ls,
+                        label=f"{fam} modes" + (", exact" if discrete else ""))
+    if discrete:  # the discrete sets' markers, once, beside the figure
+        fig.legend(*axs[0].get_legend_handles_labels(), loc="outside lower center",
+                   ncol=min(len(discrete), 3), fontsize="small")
     axs[2].legend(fontsize="small", loc="upper left")
     fig.suptitle(title, fontsize="medium")
     return fig
+
+
+def _plot_markers(curves: Mapping, x: str, y: str, ax, mass, name: str | None,
+                  ymax: float | None = None) -> None:
+    """Discrete branches as markers in the style of their mass rule (S filled, A open)."""
+    from dispersion.plotting.styles import mass_style
+
+    style = mass_style(mass)
+    first = True
+    for label, d in curves.items():
+        xs, ys = np.asarray(d[x], float), np.asarray(d[y], float)
+        if ymax is not None:
+            ys = np.where(ys <= ymax, ys, np.nan)
+        every = max(1, xs.size // 40)
+        ax.plot(xs[::every], ys[::every], ls="none", marker=style.marker, ms=3.2,
+                color=style.colour, mfc=style.colour if label[0] == "S" else "none",
+                label=f"{name} (S filled, A open)" if first and name else None)
+        first = False
 
 
 def _fd_per_khz(curves: Mapping) -> float | None:
@@ -139,3 +172,13 @@ def figure_mode_fields(fields: Sequence[Mapping], title: str):
             ax.legend(fontsize="small")
     fig.suptitle(title, fontsize="medium")
     return fig
+
+
+def figure_mode_table(table):
+    """The figure of a :class:`~dispersion.waves.mode_table.ModeTable`, titled from it."""
+    return figure_dispersion(table.curves(), table.title(), table.zgv(), table.cutoffs_khz())
+
+
+def figure_mode_shapes(shapes):
+    """The figure of a :class:`~dispersion.waves.mode_shape_table.ModeShapeTable`."""
+    return figure_mode_fields(shapes.figure_data(), shapes.title())

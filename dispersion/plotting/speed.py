@@ -10,6 +10,7 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 
 from dispersion.plotting import axes
+from dispersion.plotting.styles import mass_style
 
 __all__ = ["plot_race", "plot_scaling"]
 
@@ -18,7 +19,6 @@ _RACE = (("ours_process_s", "ours, whole process (cold)", "C0", "o", "-"),
          ("maxima_process_s", "Maxima, whole process (cold)", "C2", "s", "-"),
          ("ours_compute_s", "ours, compute only", "C0", "o", ":"),
          ("maxima_compute_s", "Maxima, compute only (its own timer)", "C2", "s", ":"))
-_MASS = {"consistent": "C0", "lumped": "C1", "singular": "C3"}
 _DEGREE = {2: ("o", "-"), 3: ("s", "--"), 4: ("^", ":")}
 
 
@@ -48,7 +48,7 @@ def plot_scaling(points: Sequence[Mapping], fits: Sequence[Mapping] = (), ax=Non
         marker, line = _DEGREE.get(p, ("x", "-."))
         fit = exponent.get((mass, p))
         label = f"{mass}, p = {p}" + (f" (t ~ n^{fit:.1f})" if fit is not None else "")
-        ax.plot(n, s, color=_MASS.get(mass, "C7"), marker=marker, linestyle=line, label=label)
+        ax.plot(n, s, color=mass_style(mass).colour, marker=marker, linestyle=line, label=label)
     ax.set_xscale("log")
     ax.set_yscale("log")
     ns = sorted({q["n"] for q in points})

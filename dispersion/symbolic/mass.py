@@ -36,8 +36,6 @@ from collections.abc import Mapping
 
 from typing import TYPE_CHECKING
 
-import numpy as np
-
 from dispersion import defaults
 from dispersion.errors import (IndefiniteMassWarning, InputError, as_real, check_choice,
                      check_positive_int, check_real_in_range)
@@ -47,7 +45,6 @@ if TYPE_CHECKING:
     import sympy
 
 __all__ = [
-    "MASS_VARIANTS",
     "CONTACT_SETS",
     "contact_weights",
     "redistribution_matrix",
@@ -55,8 +52,6 @@ __all__ = [
     "row_sum_lump",
 ]
 
-#: Names of the registered mass rules (:mod:`dispersion.symbolic.mass_rule`).
-MASS_VARIANTS = defaults.MASS_VARIANTS
 CONTACT_SETS = defaults.CONTACT_SETS
 
 
@@ -98,6 +93,7 @@ def redistribution_matrix(
         Weights outside [0, 1] raise :class:`InputError` unless this is set; then they give
         an :class:`IndefiniteMassWarning` (the lumped singular mass loses definiteness).
     """
+    import numpy as np
     import sympy
 
     n = check_positive_int("n (number of basis functions)", n, minimum=2)
@@ -146,6 +142,7 @@ def redistribution_matrix(
 
 def row_sum_lump(M):
     """Diagonal matrix of row sums of ``M`` (sympy, numpy or scipy.sparse in, same kind out)."""
+    import numpy as np
     if is_exact(M):
         import sympy
 
@@ -159,6 +156,7 @@ def row_sum_lump(M):
 
 def redistributed_mass(M, R, lumped: bool = False):
     """:math:`R^T M R` (eq 1 left), or its row sums with ``lumped=True`` (eq 1 right)."""
+    import numpy as np
     if is_exact(M):
         import sympy
 

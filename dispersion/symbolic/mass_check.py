@@ -17,8 +17,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass, fields
 
-import numpy as np
-
 from dispersion.errors import InputError
 from dispersion.symbolic.matrix_kind import dense, is_exact, total
 
@@ -60,6 +58,7 @@ def check_mass(rule, Mv, M, tol: float = 1e-10) -> MassCheck:
     (the warning says if the rule stated otherwise). ``tol`` is relative to the largest entry (float matrices; exact ones compare
     exactly, except the eigenvalues).
     """
+    import numpy as np
     exact = is_exact(Mv)
     if exact:
         import sympy
@@ -114,6 +113,7 @@ DENSE_CHECK_MAX = 2000
 
 def _check_large(rule, Mv, M, tol: float) -> MassCheck:
     """:func:`check_mass` of a large float matrix without forming it densely."""
+    import numpy as np
     import scipy.sparse as sp
     from scipy.sparse.linalg import splu
 

@@ -56,8 +56,6 @@ from fractions import Fraction
 from functools import lru_cache
 from typing import TYPE_CHECKING
 
-import numpy as np
-
 from dispersion.errors import IndefiniteMassWarning, InputError, check_positive_int
 from dispersion.symbolic.mass import redistributed_mass, redistribution_matrix, row_sum_lump
 from dispersion.symbolic.explicit_cost import ExplicitCost
@@ -67,8 +65,9 @@ from dispersion.symbolic.matrix_kind import is_exact, is_sparse, total
 if TYPE_CHECKING:
     import sympy
 
-# sympy (exact matrices, symbolic/spline_mass) and scipy (sparse matrices) are imported
-# where such a matrix is made: a float bar builds and checks its mass on numpy alone.
+# numpy, sympy (exact matrices, symbolic/spline_mass) and scipy (sparse matrices) are imported
+# where a matrix is made: the registry itself (RULES, RULE_NAMES, get_rule) loads without them,
+# so that the command line names the rules, and answers a mistyped one, before any of them.
 
 __all__ = [
     "MassSpace",
@@ -170,6 +169,7 @@ def _like(A_exact: sympy.Matrix, space: MassSpace, reference_exact: sympy.Matrix
     A float ``M`` is taken as ``scale * reference_exact`` (constant density, affine map), the
     scale being the ratio of the totals.
     """
+    import numpy as np
     if space.exact:
         return A_exact
     scale = total(space.M) / float(sum(reference_exact))
@@ -209,6 +209,7 @@ def _build_singular(space, lump: bool = False):
 
 
 def _build_hrz(space):
+    import numpy as np
     if space.kv is not None and (space.exact or space.elements is None):
         from dispersion.symbolic.spline_mass import gram_matrix, hrz_matrix
 
@@ -314,7 +315,11 @@ def get_rule(mass) -> MassRule:
         return mass
     if isinstance(mass, str) and mass in RULES:
         return RULES[mass]
-    raise InputError(f"mass must be one of {', '.join(RULE_NAMES)} or a MassRule; got {mass!r}")
+    from dispersion.errors import did_you_mean
+
+    hint = did_you_mean(mass, RULE_NAMES) if isinstance(mass, str) else ""
+    raise InputError(f"mass must be one of {', '.join(RULE_NAMES)} or a MassRule; got "
+                     f"{mass!r}{hint}")
 
 
 def gram_space(kv, R=None) -> MassSpace:
@@ -333,6 +338,7 @@ def mass_matrix(mass, space: MassSpace, *, check: bool = True):
     refuses it; warns (:class:`IndefiniteMassWarning`, :class:`TranslationalMassWarning`)
     where it only warns.
     """
+    import numpy as np
     rule = get_rule(mass)
     Mv = rule.build(space)
     if isinstance(Mv, (list, tuple)):
@@ -438,6 +444,7 @@ def rule_from_toml(source) -> MassRule:
                                  f"got {w!r}")
 
     def build(space: MassSpace):
+        import numpy as np
         n = space.n
         weights = {}
         for c, ws in table.items():
@@ -524,6 +531,7 @@ def mass_variant(M, variant, R=None, *, kv=None, elements=None, check: bool = Tr
     (or, HRZ, the float element matrices ``elements``). The result is checked against the
     rule's stated properties (:func:`dispersion.symbolic.mass_rule.mass_matrix`).
     """
+    import numpy as np
     rule = get_rule(variant)
     shape = getattr(M, "shape", None)
     if shape is None or len(shape) != 2 or shape[0] != shape[1]:

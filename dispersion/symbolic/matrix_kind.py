@@ -10,8 +10,10 @@ already, so a float scene that never makes one runs on numpy alone.
 from __future__ import annotations
 
 import sys
+from typing import TYPE_CHECKING
 
-import numpy as np
+if TYPE_CHECKING:  # numpy is imported where a float matrix is handled
+    import numpy as np
 
 __all__ = ["is_exact", "is_sparse", "total", "dense"]
 
@@ -30,6 +32,7 @@ def is_sparse(M) -> bool:
 
 def total(M):
     """Sum of all entries (exact for a sympy matrix, a float otherwise)."""
+    import numpy as np
     if is_exact(M):
         return sum(M)
     return float(np.asarray(M.sum()))
@@ -37,6 +40,7 @@ def total(M):
 
 def dense(M) -> np.ndarray:
     """``M`` as a dense float numpy array."""
+    import numpy as np
     if is_exact(M):
         return np.array(M.tolist(), dtype=float)
     return M.toarray() if is_sparse(M) else np.asarray(M, dtype=float)

@@ -140,8 +140,8 @@ class Patch:
         from dispersion.symbolic.mass_rule import get_rule
 
         p, n = check_size(self.p, self.n)
-        if self.model not in defaults.MODELS:
-            raise InputError(f"model must be one of {', '.join(defaults.MODELS)}; "
+        if self.model not in defaults.PATCH_MODELS:
+            raise InputError(f"model must be one of {', '.join(defaults.PATCH_MODELS)}; "
                              f"got {self.model!r}")
         rule = get_rule(self.mass)  # a registered name or a MassRule, else InputError
         if rule.basis == "lagrange":  # C0 elements: p DOFs a cell along x, n = p e + 1

@@ -57,7 +57,7 @@ from dispersion.symbolic.mass_rule import (get_rule, mass_variant, x_mass_coeffi
                                            x_stiffness_factor)
 
 __all__ = [
-    "MODELS",
+    "PATCH_MODELS",
     "P_MAX",
     "N_MAX",
     "PlatePatch",
@@ -77,7 +77,7 @@ __all__ = [
 ]
 
 # stated with the defaults (a light module the command line reads without sympy)
-from dispersion.defaults import MODELS, N_MAX, P_MAX  # noqa: E402
+from dispersion.defaults import N_MAX, P_MAX, PATCH_MODELS  # noqa: E402
 from dispersion.symbolic.patch import (  # noqa: E402  (the patch's own rules, stated there)
     PATCH_FIELDS, Patch, as_patch)
 _y = sympy.Symbol("y")

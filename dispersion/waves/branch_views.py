@@ -21,30 +21,16 @@ import math
 
 import numpy as np
 
-from dispersion.errors import InputError
+from dispersion.rendering import DATAFRAME_EXTRA, Rendered, require_pandas
 
 __all__ = ["BranchViews", "DATAFRAME_EXTRA", "require_pandas"]
-
-#: What to install for ``to_dataframe()``.
-DATAFRAME_EXTRA = 'pip install "dispersion-iga[dataframe]"'
-
-
-def require_pandas():
-    """pandas, or :class:`InputError` naming the ``dataframe`` extra."""
-    try:
-        import pandas
-    except ImportError:
-        raise InputError(f"to_dataframe() needs pandas, which is not installed: "
-                         f"{DATAFRAME_EXTRA}") from None
-    return pandas
-
 
 def _g(x) -> str:
     return "nan" if x is None or (isinstance(x, float) and math.isnan(x)) else f"{x:.4g}"
 
 
-class BranchViews:
-    """Short ``repr``, ``_repr_html_`` and ``to_dataframe`` of a branch set (see module)."""
+class BranchViews(Rendered):
+    """Short ``repr``, ``_repr_html_``, and the rendering protocol of a branch set (see module)."""
 
     def _facts(self) -> list[str]:
         kappa = np.asarray(self.kappa, dtype=float)
@@ -92,22 +78,40 @@ class BranchViews:
                 "<th>symmetry</th><th>points</th><th>min Omega</th><th>max Omega</th></tr>"
                 "</thead><tbody>" + "".join(rows) + "</tbody></table>")
 
-    def to_dataframe(self):
+    # ------------------------------------------------------------------ the rendering protocol
+
+    def title(self) -> str:
+        what = {"ExactBranches": "exact Rayleigh-Lamb branches",
+                "DiscreteBranches": "discrete branches"}.get(type(self).__name__, "branches")
+        return f"{what}: {', '.join(self._facts()[:-1])}"
+
+    def header_lines(self) -> list[str]:
+        lines = ["kappa = k h, Omega = omega h / c_T (h: half the thickness)"]
+        if getattr(self, "zone_edge", None) is not None:
+            lines.append(f"Bloch zone edge: kappa = pi/r = {_g(self.zone_edge)} (beyond it the "
+                         "branches are folded)")
+        if getattr(self, "group", None):
+            lines.append("c_g/c_T: group velocity over the shear wave speed")
+        return lines
+
+    def columns(self) -> tuple[str, ...]:
+        cols = ("kappa", "branch", "symmetry", "Omega")
+        return cols + (("c_g/c_T",) if getattr(self, "group", None) else ())
+
+    def rows(self) -> list[dict]:
         """One row per (kappa, branch) where the branch exists: ``kappa, branch, symmetry,
         Omega`` and, where computed, ``c_g/c_T`` (group velocity over the shear speed)."""
-        pd = require_pandas()
         kappa = np.asarray(self.kappa, dtype=float)
         group = getattr(self, "group", None) or {}
-        frames = []
+        out = []
         for label, w in self.omega.items():
             w = np.asarray(w, dtype=float)
-            ok = np.isfinite(w)
             sym = self._symmetry_of(label)
-            cols = {"kappa": kappa[ok], "branch": label, "symmetry": sym, "Omega": w[ok]}
-            if group:
-                g = np.asarray(group.get(label, np.full(kappa.shape, np.nan)), dtype=float)
-                cols["c_g/c_T"] = g[ok]
-            frames.append(pd.DataFrame(cols))
-        if not frames:
-            return pd.DataFrame(columns=["kappa", "branch", "symmetry", "Omega"])
-        return pd.concat(frames, ignore_index=True)
+            g = np.asarray(group.get(label, np.full(kappa.shape, np.nan)), dtype=float)
+            for i in np.flatnonzero(np.isfinite(w)):
+                row = {"kappa": float(kappa[i]), "branch": label, "symmetry": sym,
+                       "Omega": float(w[i])}
+                if group:
+                    row["c_g/c_T"] = float(g[i])
+                out.append(row)
+        return out

@@ -54,7 +54,7 @@ from dispersion.waves.rayleigh_lamb import (cutoff_frequencies, mpmath_frequency
                                             speed_ratio_squared)
 
 __all__ = ["FREQUENCY_OMEGA_MAX", "FREQUENCY_OMEGA_MIN", "MAX_SCAN_SAMPLES", "SLOPE_OMEGA",
-           "FrequencyRoots", "modes_at_frequency", "zgv_points"]
+           "FrequencyRoots", "modes_at_frequency", "zgv_points_below"]
 
 #: Smallest Omega accepted. Rule: the fundamental roots must stay above kappa = 1e-3, below
 #: which the tracer itself leaves the frequency function for the series (round-off); S0 has
@@ -328,14 +328,14 @@ def _class_roots(kind, nu, omega, step, rtol, max_depth, zgv_kappa):
     return rf, labels, roots, group, failures
 
 
-def zgv_points(nu: float, omega_top: float, per_unit: float = 40.0):
+def zgv_points_below(nu: float, omega_top: float, per_unit: float = 40.0):
     """Zero-group-velocity points of the exact branches with :math:`\\Omega \\le` omega_top.
 
     :func:`dispersion.waves.velocities.zgv_points` on ``per_unit`` kappa samples per unit of
     kappa up to omega_top (120 to 4000 samples): a ZGV point has :math:`c_p > c_T`, so
     :math:`\\kappa < \\Omega`.
 
-    >>> [(p.label, round(p.kappa, 6), round(p.omega, 6)) for p in zgv_points(0.3, 3.0)]
+    >>> [(p.label, round(p.kappa, 6), round(p.omega, 6)) for p in zgv_points_below(0.3, 3.0)]
     [('S1', 0.838288, 2.730307)]
     """
     from dispersion.waves.velocities import zgv_points as zgv_on_grid
@@ -384,7 +384,7 @@ def modes_at_frequency(nu: float, omega, *, kinds=("S", "A", "SH"), step: float 
     wmax = float(omega.max())
     points = ()
     if zgv and any(k in ("S", "A") for k in kinds):
-        points = tuple(zgv_points(nu, wmax * 1.05 + 0.5))
+        points = tuple(zgv_points_below(nu, wmax * 1.05 + 0.5))
     rows, failures = [], []
     for kind in kinds:
         if kind == "SH":

@@ -49,15 +49,11 @@ import numpy as np
 import sympy
 
 from dispersion.errors import InputError, check_positive, check_positive_int, check_real_in_range
+from dispersion.waves.time_integration import NEWMARK_MEMBERS
 
-__all__ = ["SCHEMES", "TimeScheme", "time_scheme", "time_frequency", "fully_discrete_branches",
+__all__ = ["NEWMARK_MEMBERS", "TimeScheme", "time_scheme", "time_frequency", "fully_discrete_branches",
            "fully_discrete_error", "time_series", "fully_discrete_series"]
 
-#: Named Newmark members (beta, gamma).
-SCHEMES = {"central": (0, sympy.Rational(1, 2)),
-           "average-acceleration": (sympy.Rational(1, 4), sympy.Rational(1, 2)),
-           "linear-acceleration": (sympy.Rational(1, 6), sympy.Rational(1, 2)),
-           "fox-goodwin": (sympy.Rational(1, 12), sympy.Rational(1, 2))}
 
 
 @dataclass(frozen=True)
@@ -83,16 +79,17 @@ class TimeScheme:
 
 
 def time_scheme(name: str = "central", beta=None, gamma=None) -> TimeScheme:
-    """A :class:`TimeScheme` by name (:data:`SCHEMES`) or ``"newmark"`` with ``beta``, ``gamma``.
+    """A :class:`TimeScheme` by name (:data:`~dispersion.waves.time_integration.NEWMARK_MEMBERS`) or ``"newmark"`` with ``beta``, ``gamma``.
 
     ``gamma >= 1/2`` and ``beta`` in [0, 1/2] (Hughes 2000, 9.3: stability needs gamma >= 1/2).
     """
-    if name in SCHEMES:
+    if name in NEWMARK_MEMBERS:
         if beta is not None or gamma is not None:
             raise InputError(f"scheme {name!r} fixes beta and gamma; use scheme 'newmark' to set them")
-        return TimeScheme(name, *SCHEMES[name])
+        return TimeScheme(name, *(sympy.Rational(x.numerator, x.denominator)
+                                  for x in NEWMARK_MEMBERS[name]))
     if name != "newmark":
-        raise InputError(f"scheme must be one of {', '.join(list(SCHEMES) + ['newmark'])}; "
+        raise InputError(f"scheme must be one of {', '.join(list(NEWMARK_MEMBERS) + ['newmark'])}; "
                          f"got {name!r}")
     if beta is None or gamma is None:
         raise InputError("scheme 'newmark' needs beta and gamma")

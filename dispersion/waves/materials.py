@@ -80,6 +80,15 @@ class Material:
         """:math:`\\mu = \\rho c_T^2` in Pa (None without a density)."""
         return None if self.rho is None else self.rho * self.c_T**2
 
+    def describe(self) -> str:
+        """The material in words with units, for headers and titles (its source: ``source``).
+
+        >>> MATERIALS["steel"].describe()
+        'steel (c_L 5960 m/s, c_T 3235 m/s, rho 7850 kg/m^3, nu 0.2912)'
+        """
+        rho = "" if self.rho is None else f", rho {self.rho:g} kg/m^3"
+        return f"{self.name} (c_L {self.c_L:g} m/s, c_T {self.c_T:g} m/s{rho}, nu {self.nu:.4f})"
+
     def as_dict(self) -> dict:
         """Inputs as plain data (for CSV headers and JSON)."""
         return {"name": self.name, "c_L [m/s]": self.c_L, "c_T [m/s]": self.c_T,

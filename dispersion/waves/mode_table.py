@@ -31,6 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from dispersion.errors import InputError, check_positive
+from dispersion.rendering import Rendered
 from dispersion.waves.frequency import FREQUENCY_OMEGA_MAX, FREQUENCY_OMEGA_MIN, FrequencyRoots
 from dispersion.waves.materials import Material
 
@@ -41,8 +42,8 @@ COLUMNS = ("f [kHz]", "fd [MHz mm]", "mode", "family", "k [rad/mm]", "c_p [m/s]"
            "c_g [m/s]", "wavelength [mm]", "kappa = kh", "Omega = omega h / c_T")
 
 
-@dataclass(frozen=True)
-class ModeTable:
+@dataclass(frozen=True, repr=False)  # Rendered: a short repr; text, CSV, JSON from the rows
+class ModeTable(Rendered):
     """Modes of one plate (``material``, ``thickness_mm``) at the frequencies ``frequency_khz``.
 
     ``roots`` holds the dimensionless result; its ``nu`` is the material's.
@@ -64,6 +65,29 @@ class ModeTable:
     def title(self) -> str:
         """Material, thickness and nu, for captions and headers."""
         return f"{self.material.name}, d = {self.thickness_mm:g} mm, nu = {self.nu:.4f}"
+
+    def header_lines(self) -> list[str]:
+        """The inputs in words with units, the cut-offs and the ZGV points (CSV ``#`` lines)."""
+        f = self.frequency_khz
+        span = (f"{f.size} frequencies from {f.min():.10g} to {f.max():.10g} kHz" if f.size > 1
+                else f"f = {f[0]:.10g} kHz")
+        lines = [f"material: {self.material.describe()}",
+                 f"material source: {self.material.source}",
+                 f"thickness: d = 2h = {self.thickness_mm:g} mm", f"frequency: {span}",
+                 "kappa = k h, Omega = omega h / c_T (h: half the thickness); family S, A, SH"]
+        lines += [f"cut-off {lab}: {f_c:.10g} kHz" for lab, f_c in self.cutoffs_khz().items()]
+        lines += [f"ZGV {p['mode']}: f = {p['f [kHz]']:.10g} kHz, fd = {p['fd [MHz mm]']:.10g}"
+                  f" MHz mm, c_p = {p['c_p [m/s]']:.10g} m/s" for p in self.zgv()]
+        return lines
+
+    def columns(self) -> tuple[str, ...]:
+        return COLUMNS
+
+    def text_columns(self) -> tuple[str, ...]:
+        return ("f [kHz]", "mode", "k [rad/mm]", "c_p [m/s]", "c_g [m/s]", "wavelength [mm]")
+
+    def json_extra(self) -> dict:
+        return {"cutoffs [kHz]": self.cutoffs_khz(), "zgv": self.zgv()}
 
     def _khz(self, Omega):
         return np.asarray(Omega, dtype=float) * self.material.c_T / (2 * math.pi * self.h_mm)
@@ -163,10 +187,18 @@ def lamb_modes(material: Material, thickness_mm: float, *, frequency_khz=None,
               for w in (FREQUENCY_OMEGA_MIN, FREQUENCY_OMEGA_MAX))
     bad = ~np.isfinite(omega) | (omega < FREQUENCY_OMEGA_MIN) | (omega > FREQUENCY_OMEGA_MAX)
     if np.any(bad):
+        from dispersion.waves.unit_mixups import frequency_mixup, unit_mixups
+
         scale = 1.0 if fd_mhz_mm is None else thickness_mm * 1e-3
         unit = "kHz" if fd_mhz_mm is None else "MHz mm"
+        mu = material.shear_modulus
+        hints = unit_mixups(thickness_mm=thickness_mm, c_L=material.c_L, c_T=material.c_T,
+                            rho=material.rho,
+                            E_gpa=None if mu is None else 2 * mu * (1 + material.nu) / 1e9)
+        if fd_mhz_mm is None and not hints:
+            hints = frequency_mixup(float(f_khz[bad][0]), lo, hi)
         raise InputError(f"{name} must lie in [{lo * scale:.4g}, {hi * scale:.4g}] {unit} for "
                          f"this plate ({material.name}, d = {thickness_mm:g} mm), got "
-                         f"{values[bad][0]!r}")
+                         f"{float(values[bad][0]):.6g} {unit}" + "".join(f"; {h}" for h in hints))
     roots = modes_at_frequency(material.nu, omega, kinds=tuple(kinds), zgv=zgv)
     return ModeTable(material, thickness_mm, f_khz, roots)

@@ -48,15 +48,16 @@ import numpy as np
 import sympy
 
 from dispersion.errors import InputError, check_positive, check_positive_int
+from dispersion.rendering import Rendered
 from dispersion.symbolic.mass_rule import get_rule, x_mass_coefficients
 from dispersion.waves.bar_dispersion import bar_rule
 from dispersion.waves.materials import MATERIALS, Material
+from dispersion.waves.time_integration import CRITICAL_STEP_MODELS
 
-__all__ = ["MATERIALS", "MODELS", "EXACT_MAX_DOFS", "MAX_N", "certified_omega_max",
+__all__ = ["MATERIALS", "CRITICAL_STEP_MODELS", "EXACT_MAX_DOFS", "MAX_N", "certified_omega_max",
            "CriticalStep", "bar_omega_squared", "critical_time_step", "float_pencil",
            "bar_omega_max", "patch_omega_max", "critical_step", "matrix_critical_step"]
 
-MODELS = ("plate", "bar")
 
 _z = sympy.Symbol("z")
 
@@ -112,8 +113,8 @@ def bar_omega_max(mass, p: int) -> tuple[sympy.Expr, float]:
     return sympy.simplify(exact), float(sympy.acos(best))
 
 
-@dataclass(frozen=True)
-class CriticalStep:
+@dataclass(frozen=True, repr=False)  # Rendered: a short repr
+class CriticalStep(Rendered):
     """Critical step of central differences for one rule, with what it was computed from.
 
     ``omega_max`` is dimensionless: :math:`\\omega_{max} h / c` (bar: h the element length,
@@ -150,6 +151,22 @@ class CriticalStep:
         if self.omega_certified is None:
             return None
         return self.dt * self.omega_max / self.omega_certified
+
+    # the rendering protocol: one row; the words of describe() as title and header
+    def title(self) -> str:
+        return self.describe().splitlines()[0]
+
+    def header_lines(self) -> list[str]:
+        return self.describe().splitlines()[1:]
+
+    def columns(self) -> tuple[str, ...]:
+        return ("mass", "p", "model", "omega_max", "theta", "found", "dt_crit [s]",
+                "ratio to consistent", "omega_max proven bound", "proven stable dt [s]")
+
+    def rows(self) -> list[dict]:
+        return [dict(zip(self.columns(), (self.mass, self.p, self.model, self.omega_max,
+                                          self.theta, self.method, self.dt, self.ratio,
+                                          self.omega_certified, self.dt_certified)))]
 
     def describe(self) -> str:
         """Lines for a terminal, rendered from the fields."""
@@ -427,8 +444,8 @@ def critical_step(mass, p: int = 2, *, model: str = "plate", material: Material 
     >>> cs.omega_max_exact, round(cs.theta, 6), round(cs.ratio, 6)  # at 2 pi/3; sqrt(10)/sqrt(3/2)
     (sqrt(6)/2, 2.094395, 2.581989)
     """
-    if model not in MODELS:
-        raise InputError(f"model must be one of {', '.join(MODELS)}; got {model!r}")
+    if model not in CRITICAL_STEP_MODELS:
+        raise InputError(f"model must be one of {', '.join(CRITICAL_STEP_MODELS)}; got {model!r}")
     if isinstance(material, str):
         if material not in MATERIALS:
             raise InputError(f"material must be one of {', '.join(MATERIALS)}; got {material!r}")

@@ -50,6 +50,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from dispersion.errors import InputError
+from dispersion.rendering import Rendered
 from dispersion.waves.exact_branches import (ExactBranches, fundamental_series, series_region,
                                              trace_branches)
 from dispersion.waves.deflated_frequency import deflated_frequency_function
@@ -69,18 +70,47 @@ VELOCITY_ATOL = 1e-14
 EXTENDED_DPS = 40
 
 
-@dataclass(frozen=True)
-class Velocities:
+@dataclass(frozen=True, repr=False)  # Rendered: a short repr, no whole arrays
+class Velocities(Rendered):
     """Phase and group velocity over :math:`c_T` per branch label, on the branches' kappa grid.
 
     ``uncertain``: ``(label, kappa, reason)`` where the group velocity could not be certified to
     :data:`VELOCITY_RTOL` (or :data:`VELOCITY_ATOL` absolute); empty for discrete branches.
+    They are the result's ``failures`` in every rendered format.
     """
 
     kappa: np.ndarray
     phase: dict[str, np.ndarray]
     group: dict[str, np.ndarray]
     uncertain: tuple = ()
+
+    @property
+    def failures(self) -> tuple:
+        return tuple(self.uncertain)
+
+    def title(self) -> str:
+        k = np.asarray(self.kappa, dtype=float)
+        span = f" in [{k.min():g}, {k.max():g}]" if k.size else ""
+        return (f"phase and group velocities of {len(self.phase)} branches on {k.size} "
+                f"kappa{span}")
+
+    def header_lines(self) -> list[str]:
+        return ["c_p/c_T = Omega/kappa, c_g/c_T = dOmega/dkappa (over the shear wave speed); "
+                "kappa = k h"]
+
+    def columns(self) -> tuple[str, ...]:
+        return ("kappa", "branch", "c_p/c_T", "c_g/c_T")
+
+    def rows(self) -> list[dict]:
+        k = np.asarray(self.kappa, dtype=float)
+        out = []
+        for label, cp in self.phase.items():
+            cp = np.asarray(cp, dtype=float)
+            cg = np.asarray(self.group.get(label, np.full(k.shape, np.nan)), dtype=float)
+            for i in np.flatnonzero(np.isfinite(cp) | np.isfinite(cg)):
+                out.append({"kappa": float(k[i]), "branch": label, "c_p/c_T": float(cp[i]),
+                            "c_g/c_T": float(cg[i])})
+        return out
 
 
 @dataclass(frozen=True)
@@ -252,7 +282,7 @@ def zgv_points(nu: float, kappa_max: float, omega_max: float, count: int = 400) 
     (:func:`~dispersion.waves.deflated_frequency.deflated_frequency_function`). ZGV points are
     where a backward wave (e.g. S1 for most nu) turns; S0 and A0 rise monotonically, and the
     points at :math:`\\kappa = 0` (cut-offs, slope zero by symmetry) are not listed. The one
-    implementation behind :func:`dispersion.waves.frequency.zgv_points` too.
+    implementation behind :func:`dispersion.waves.frequency.zgv_points_below` too.
 
     >>> [(p.label, round(p.kappa, 4), round(p.omega, 4)) for p in zgv_points(0.3, 2.0, 4.0)]
     [('S1', 0.8383, 2.7303)]

@@ -501,11 +501,12 @@ def _real_parts(name: str) -> dict:
 
 def test_without_maxima_and_the_peers_extra_the_run_reproduces_and_says_so(
         stubs, tmp_path, capsys, monkeypatch):
-    # the real comparison rules, peer reports and headlines of four sections; their measure
-    # gives the committed result first (the reference), then a bare machine's
+    # the real comparison rules, peer reports and headlines of three sections; their measure
+    # gives the committed result first (the reference), then a bare machine's (the ring's
+    # headline: test_headlines_are_rendered_from_the_results)
     bare = {"series_speed": _series_speed_without_maxima(monkeypatch)["result"],
             "peers": _peers_without_the_extra()["result"]}
-    names = ("coefficients", "ring", "series_speed", "peers")
+    names = ("coefficients", "series_speed", "peers")
     parts = {name: _real_parts(name) for name in names}
     stubs()
 
@@ -533,8 +534,7 @@ def test_without_maxima_and_the_peers_extra_the_run_reproduces_and_says_so(
                          'disba, displam not installed: side-by-side runs not run; '
                          'pip install -e ".[peers]"']
     assert after[2].startswith("Errata (coefficients.md): eq 17 (kappa^6: factor")
-    assert after[3].startswith("Ring (Figure 4, figure4.png), energy change: lumped ")
-    assert after[4].startswith("Pages: reproduced/index.md") and len(after) == 5
+    assert after[3].startswith("Pages: reproduced/index.md") and len(after) == 4
     comparison = (tmp_path / "reproduced" / "comparison.md").read_text()
     assert "- Maxima not installed: race not run" in comparison
 

@@ -71,6 +71,7 @@ _MODULES = {
     "discrete_error": "waves.discrete_error", "pencil_frequencies": "waves.pencil_frequencies",
     "illinois": "waves.illinois", "mass_check": "symbolic.mass_check",
     "matrix_kind": "symbolic.matrix_kind", "certified_roots": "waves.certified_roots",
+    "certified_slopes": "waves.certified_slopes", "omega_max_bound": "waves.omega_max_bound",
     # the mass rules of the lumping literature (issue 29)
     "approximate_dual": "symbolic.approximate_dual", "explicit_cost": "symbolic.explicit_cost",
     "interpolatory_spline": "symbolic.interpolatory_spline",

@@ -109,3 +109,14 @@ def test_a_signorini_row_carries_the_spread_of_its_perturbed_runs():
     for name in SPREAD_FIELDS:
         s = row["spread"][name]
         assert s["min"] <= row[name] <= s["max"], name
+
+
+def test_time_axis_is_k_dt_not_a_running_sum():
+    # issue 26: the accumulated axis had t[1500] = 2.999999999999891 at dt = 0.002, so the
+    # samples at the exact solution's jumps (t = 1, 3, ...) were judged on the wrong side.
+    # Each t_k must be the float nearest k * dt (dt by its decimal, exact rationals here)
+    from fractions import Fraction
+
+    res = signorini_1d(mass="singular", dt=0.002, t_end=4.0)
+    assert res.t[1500] == 3.0 and res.t[500] == 1.0
+    assert all(t == float(k * Fraction("0.002")) for k, t in enumerate(res.t))

@@ -132,3 +132,77 @@ def test_every_branch_on_a_grid_straddling_every_switch(nu):
 def test_group_velocity_property(log_kappa, nu, omega_max):
     # searched, not listed: any nu, kappa in [1e-8, 20], every branch below omega_max
     _check(nu, [10.0**log_kappa], omega_max)
+
+
+# --- promise: exact roots to 1e-12 relative for kappa up to 300, group velocities to 1e-12 or
+# listed (docs/promises.md) ----------------------------------------------------------------
+from hypothesis import example  # noqa: E402
+
+from promise_search import FAST_FEW, SLOW, record  # noqa: E402
+
+
+def _mp_exact(kind, kappa, omega, nu):
+    """Root in Omega of the textbook equation at fixed kappa near ``omega`` and its slope,
+    mpmath at 60 digits plus the cancellation of cosh-sized terms (kappa / ln 10) and of
+    small kappa (4 log10 1/kappa)."""
+    dps = 60 + int(kappa / 2.3) + int(4 * max(0.0, -math.log10(kappa)))
+    with mpmath.workdps(dps):
+        k, n = mpmath.mpf(kappa), mpmath.mpf(nu)
+
+        def F(kk, W):
+            return mpmath.re(frequency_function(
+                kind, kk**2, W**2, n, lambda z: mpmath.cos(mpmath.sqrt(z)),
+                lambda z: mpmath.sinc(mpmath.sqrt(z))))
+
+        W = mpmath.findroot(lambda x: F(k, x), mpmath.mpf(omega), solver="newton",
+                            verify=False, maxsteps=100)
+        # certified by a sign change within 1e-25 relative (a root, and the one meant)
+        assert F(k, W * (1 - mpmath.mpf("1e-25"))) * F(k, W * (1 + mpmath.mpf("1e-25"))) < 0
+        slope = -mpmath.diff(lambda x: F(x, W), k) / mpmath.diff(lambda x: F(k, x), W)
+        return float(W), float(slope)
+
+
+def _check_exact(nu, log_kappa, omega_max):
+    kappa = min(10.0**log_kappa, 300.0)
+    br = trace_branches(nu, [kappa], omega_max)
+    failed = {k for _, k, _ in br.failures}
+    v = exact_velocities(br)
+    uncertain = {(lab, k) for lab, k, _ in v.uncertain}
+    for lab, om in br.omega.items():
+        w = om[0]
+        if not np.isfinite(w) or kappa in failed:
+            continue
+        W, g = _mp_exact(lab[0], kappa, w, nu)
+        record("exact root", abs(w / W - 1), 1e-12, nu=nu, kappa=kappa, mode=lab)
+        if (lab, kappa) not in uncertain:
+            G = v.group[lab][0]
+            # the stated tolerance: 1e-12 relative, 1e-14 absolute (units of c_T) below 0.01
+            record("exact group velocity", abs(G - g) / max(abs(g), 1e-2), 1e-12, nu=nu,
+                   kappa=kappa, mode=lab)
+
+
+def _exact_domain(fn, full=False):
+    """nu in (-1, 0.5) and every material, kappa from 1e-8 to 300 (the tracer's limit; the
+    ends as examples), every branch below omega_max <= 40."""
+    from dispersion.waves.materials import MATERIALS
+
+    ends = [(0.3, -8.0, 8.0), (0.3, math.log10(300.0), 300.0 * 0.95), (-0.999, 0.0, 40.0),
+            (0.4999, 1.0, 40.0), (0.3, math.log10(40.0), 40.0)]
+    for ex in ends if full else ends[:2]:
+        fn = example(*ex)(fn)
+    nus = st.one_of(st.sampled_from(sorted(m.nu for m in MATERIALS.values())),
+                    st.floats(-0.999, 0.4999))
+    return given(nus, st.floats(-8.0, math.log10(300.0)), st.floats(0.5, 40.0))(fn)
+
+
+@FAST_FEW
+@_exact_domain
+def test_exact_roots_and_group_velocities_against_mpmath(nu, log_kappa, omega_max):
+    _check_exact(nu, log_kappa, omega_max)
+
+
+@pytest.mark.slow
+@SLOW
+@lambda fn: _exact_domain(fn, full=True)
+def test_exact_roots_and_group_velocities_against_mpmath_slow(nu, log_kappa, omega_max):
+    _check_exact(nu, log_kappa, omega_max)

@@ -195,3 +195,158 @@ def test_frequency_exactly_at_a_cut_off(nu, W):
     for lab, kappa in zip(r.label, r.kappa):
         ref, _ = _mp_root_and_slope(lab[0], kappa, W, nu)
         assert abs(kappa - ref) <= RTOL * ref
+
+
+# --- promise: frequency-input roots certified to 1e-12 (docs/promises.md) ------------------
+from hypothesis import example, given  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+from promise_search import FAST_FEW, SLOW, record  # noqa: E402
+
+
+def _mp_root_and_slope(kind, kappa, omega, nu):
+    """The root in kappa of the textbook equation near ``kappa`` and -F_k / F_W there, by
+    mpmath alone (tests/mp_lamb.py) at 60 digits plus the cosh-sized cancellation."""
+    from mp_lamb import mp_F
+
+    with mpmath.workdps(60 + int(kappa / 2.3)):
+        W, m_nu = mpmath.mpf(omega), mpmath.mpf(nu)
+        k = mpmath.findroot(lambda x: mp_F(kind, x, W, m_nu), mpmath.mpf(kappa),
+                            solver="newton", tol=mpmath.mpf(10) ** -50, maxsteps=200)
+        g = -mpmath.diff(lambda x: mp_F(kind, x, W, m_nu), k) / \
+            mpmath.diff(lambda x: mp_F(kind, k, x, m_nu), W)
+        return k, g
+
+
+def _check_frequency(nu, omega):
+    from dispersion.waves.frequency import modes_at_frequency
+
+    res = modes_at_frequency(nu, [omega], kinds=("S", "A"), zgv=True)
+    listed = {(w, kind) for w, kind, _ in res.failures}
+    for lab, k, g in zip(res.label, res.kappa, res.group):
+        if (omega, lab[0]) in listed:
+            continue   # listed as a failure: allowed, never silent
+        ref, ref_g = _mp_root_and_slope(lab[0], float(k), omega, nu)
+        record("frequency-input kappa", abs(k / float(ref) - 1), 1e-12, nu=nu, omega=omega,
+               mode=lab)
+        # c_g: relative to c_T where it is small (near a ZGV point or a cut-off c_g -> 0 and
+        # its relative error is that of the root times the ratio)
+        record("frequency-input c_g", abs(g - float(ref_g)) / max(abs(float(ref_g)), 1.0),
+               1e-10, nu=nu, omega=omega, mode=lab)
+
+
+def _frequency_domain(fn, full=False):
+    """Every material of the table (by its nu) and user materials (nu in (-1, 0.5)), Omega
+    from the calculator's floor to its ceiling; issue 26's cases as examples."""
+    from dispersion.waves.frequency import FREQUENCY_OMEGA_MAX, FREQUENCY_OMEGA_MIN
+    from dispersion.waves.materials import MATERIALS
+
+    def omega(material, f_khz, d_mm):
+        m = MATERIALS[material]
+        return 2 * math.pi * f_khz * 1e3 * d_mm * 1e-3 / 2 / m.c_T, m.nu
+
+    cases = [omega("aluminium", 3129.9, 1.0)[::-1],          # S1 backward, below its cut-off
+             omega("pmma", 10.2e3, 1.0)[::-1],               # fd 10.2: A2 at kappa ~ 29
+             (0.3, FREQUENCY_OMEGA_MIN),
+             omega("copper", 19.5e3, 1.0)[::-1],             # fd 19.5
+             (0.3, FREQUENCY_OMEGA_MAX)]
+    for nu, w in cases if full else cases[:3]:   # the default run: the cheaper ends
+        fn = example(nu=nu, omega=w)(fn)
+    nus = st.one_of(st.sampled_from(sorted(m.nu for m in MATERIALS.values())),
+                    st.floats(-0.999, 0.4999))
+    return given(nu=nus, omega=st.floats(FREQUENCY_OMEGA_MIN, FREQUENCY_OMEGA_MAX))(fn)
+
+
+@FAST_FEW
+@_frequency_domain
+def test_frequency_roots_against_mpmath(nu, omega):
+    _check_frequency(nu, omega)
+
+
+@pytest.mark.slow
+@SLOW
+@lambda fn: _frequency_domain(fn, full=True)
+def test_frequency_roots_against_mpmath_slow(nu, omega):
+    _check_frequency(nu, omega)
+
+
+# --- promise: SH and Lamb modes at and next to every cut-off (docs/promises.md) -------------
+_EPS = 2.0**-52
+
+
+def _mp_cutoff(family, n, nu):
+    """Cut-off Omega of a family at 50 digits: SH n pi/2; Lamb from F at kappa = 0 (S: m pi and
+    (2m+1) pi / (2 sqrt s); A: (2m+1) pi / 2 and m pi / sqrt s), sqrt s = c_T / c_L."""
+    with mpmath.workdps(50):
+        rs = mpmath.sqrt((1 - 2 * mpmath.mpf(nu)) / (2 * (1 - mpmath.mpf(nu))))
+        if family == "SH":
+            return n * mpmath.pi / 2
+        m, kind = divmod(n, 2)
+        if family == "S":
+            return (m + 1) * mpmath.pi if kind else (2 * m + 1) * mpmath.pi / (2 * rs)
+        return (2 * m + 1) * mpmath.pi / 2 if kind else (m + 1) * mpmath.pi / rs
+
+
+def _check_cutoff(nu, family, n, delta):
+    from dispersion.waves.frequency import FREQUENCY_OMEGA_MAX, modes_at_frequency
+
+    wc = _mp_cutoff(family, n, nu)
+    omega = float(wc * (1 + mpmath.mpf(delta)))
+    if not 0.01 < omega <= FREQUENCY_OMEGA_MAX:
+        return
+    with mpmath.workdps(50):
+        true_delta = float((mpmath.mpf(omega) - wc) / wc)
+    res = modes_at_frequency(nu, [omega], kinds=(family,) if family == "SH" else ("S", "A"))
+    at = {lab for _, lab in res.at_cutoff}
+    fam = [lab for lab in at if lab.rstrip("0123456789") == family]
+    if abs(true_delta) <= 6 * _EPS:   # at the cut-off (to rounding): named, no noise row
+        assert fam, f"{family} cut-off {float(wc)} at Omega {omega} not named"
+    elif abs(true_delta) >= 10 * _EPS:
+        assert not fam, f"{fam} named at a relative distance {true_delta:.3g}"
+    listed = {(w, kind) for w, kind, _ in res.failures}
+    for lab, k, g in zip(res.label, res.kappa, res.group):
+        if lab.rstrip("0123456789") != family or k > 0.1 or (omega, lab[0]) in listed:
+            continue
+        # every root next to a cut-off: against the textbook equation at 60 digits
+        if family == "SH":
+            with mpmath.workdps(60):
+                m = int(lab[2:])
+                ref = mpmath.sqrt(mpmath.mpf(omega) ** 2 - (m * mpmath.pi / 2) ** 2)
+        else:
+            ref = _mp_root_and_slope(lab[0], float(k), omega, nu)[0]
+        record("kappa next to a cut-off", abs(k / float(ref) - 1), 1e-12, nu=nu,
+               family=family, n=n, delta=delta, mode=lab)
+        assert 2 * math.pi / k < 1e15   # never a wavelength of rounding noise
+    if family == "SH" and true_delta >= 10 * _EPS:   # SH exists above its cut-off: listed
+        assert f"SH{n}" in res.label
+
+
+def _cutoff_domain(fn, full=False):
+    """Every family's cut-offs below the ceiling, every nu (materials and user), relative
+    distances from 0 (at) through a few ulp to 1e-3 on both sides; issue 26's cases."""
+    from dispersion.waves.materials import MATERIALS
+
+    nu_5900 = (1 - 2 * (3200 / 5900) ** 2) / (2 * (1 - (3200 / 5900) ** 2))
+    nu_5640 = (1 - 2 * (3400 / 5640) ** 2) / (2 * (1 - (3400 / 5640) ** 2))
+    ends = [(nu_5900, "SH", 11, 0.0), (nu_5640, "SH", 3, 0.0), (0.3, "S", 1, -1e-6),
+            (0.3, "A", 2, 0.0), (0.3, "S", 2, 1e-12), (0.3, "SH", 1, 16 * _EPS)]
+    for ex in ends if full else ends[:3]:
+        fn = example(*ex)(fn)
+    nus = st.one_of(st.sampled_from(sorted(m.nu for m in MATERIALS.values())),
+                    st.floats(-0.99, 0.49))
+    deltas = st.sampled_from([0.0, _EPS, -_EPS, 4 * _EPS, 16 * _EPS, -16 * _EPS, 1e-14,
+                              -1e-12, 1e-12, 1e-10, -1e-8, 1e-8, 1e-6, -1e-3, 1e-3])
+    return given(nus, st.sampled_from(["S", "A", "SH"]), st.integers(1, 18), deltas)(fn)
+
+
+@FAST_FEW
+@_cutoff_domain
+def test_modes_at_and_next_to_every_cutoff(nu, family, n, delta):
+    _check_cutoff(nu, family, n, delta)
+
+
+@pytest.mark.slow
+@SLOW
+@lambda fn: _cutoff_domain(fn, full=True)
+def test_modes_at_and_next_to_every_cutoff_slow(nu, family, n, delta):
+    _check_cutoff(nu, family, n, delta)

@@ -16,6 +16,7 @@ from dispersion.symbolic.mass_rule import BLOCH_RULE_NAMES
 from dispersion.symbolic.plate import dynamic_stiffness, mirror_bases, plate_patch
 from dispersion.waves import discrete_branches as db
 from dispersion.waves import certified_roots as cr
+from dispersion.waves import extended_pencil
 from dispersion.waves import pencil_polynomial as pp
 from mp_pencil import mp_frequencies, mp_group_velocity
 
@@ -166,7 +167,7 @@ def test_failing_ball_solver_is_reported_not_raised(monkeypatch):
         raise ValueError("failed to isolate eigenvalues")
 
     monkeypatch.setattr(pp, "MAX_BLOCK", 0)
-    monkeypatch.setattr(db, "extended_frequencies", broken)
+    monkeypatch.setattr(extended_pencil, "extended_frequencies", broken)
     br = db.discrete_branches(plate_patch(), 0.3, [1e-6, 0.5])
     bad = [f for f in br.failures if f[0] == "omega"]
     assert [f[1] for f in bad] == [1e-6, 1e-6]  # S and A block at the small kappa

@@ -407,7 +407,7 @@ def _discrete(patch, nu, kappa, exact, scheme, courant, paired, progress) -> Dis
     from dispersion.waves.discrete_branches import discrete_branches
 
     plate = plate_patch(patch)
-    d = discrete_branches(plate, nu, kappa, progress=progress, group=scheme is None)
+    d = discrete_branches(plate, nu, kappa, progress=progress, group=True)  # fully discrete: by the chain rule
     name = _name(patch.mass)
     if scheme is not None:
         from dispersion.waves.fully_discrete import fully_discrete_branches

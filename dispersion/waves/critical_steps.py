@@ -39,6 +39,11 @@ class CriticalSteps(Rendered):
     gamma_s: object = None
 
     @property
+    def failures(self) -> tuple[str, ...]:
+        """Every step's failures (a proof that did not close), named by its rule."""
+        return tuple(f"mass {s.mass}: {why}" for s in self.steps for why in s.failures)
+
+    @property
     def _unit(self) -> str:
         return "omega_max h / c" if self.model == "bar" else "omega_max H / c_T"
 

@@ -19,8 +19,11 @@ from guesses interpolated between anchors (every :data:`ANCHOR_STRIDE`-th kappa 
 float eigen-solver) and *certified* by an inclusion radius from a running error bound:
 :math:`\\Omega` to :data:`CERTIFIED_RTOL` relative, A0 (:math:`\\Omega^2 \\sim \\kappa^4`) and S0
 (:math:`\\kappa^2`) included. Where the polynomial cannot certify a root, the float eigenvalue
-is used if its backward-error bound :math:`m\\epsilon\\lambda_{max}/\\lambda` is small enough,
-else that kappa is solved in ball arithmetic (:func:`extended_frequencies`), and where that
+is used if its error bound :math:`m\\epsilon \\max(\\lambda_{max}, \\|K\\| \\|M^{-1}\\|)/\\lambda`
+(the conditioning of M counts, :func:`~dispersion.waves.pencil_frequencies.eigenvalue_error`)
+is small enough,
+else that kappa is solved in ball arithmetic
+(:func:`~dispersion.waves.extended_pencil.extended_frequencies`), and where that
 fails too the kappa is listed in ``DiscreteBranches.failures`` with the reason: nothing
 raises from an eigen-solver. Below :data:`KAPPA_TINY` every branch follows its leading power
 law exactly to the precision of floats; a frequency that underflows is listed, not guessed.
@@ -62,8 +65,8 @@ from dispersion.symbolic.plate import (
     numeric_terms,
     x_functions,
 )
-from dispersion.waves.extended_pencil import extended_frequencies
-from dispersion.waves.pencil_frequencies import congruence, eigenvalue_error, pencil_frequencies
+from dispersion.waves.extended_pencil import refine_inaccurate
+from dispersion.waves.pencil_frequencies import congruence, pencil_frequencies
 
 __all__ = [
     "DiscreteBranches",
@@ -97,51 +100,21 @@ class DiscreteBranches(BranchViews):
     #: the extended-precision solve, the power law below :data:`KAPPA_TINY`.
     routes: dict[str, int] = field(default_factory=dict)
 
+    def failure_lines(self) -> tuple[str, ...]:
+        """Every failure in words, one line each (for JSON ``failures`` and CSV ``# failure:``).
+
+        >>> DiscreteBranches(np.zeros(1), {}, {}, failures=[("group", 0.5, "why")]).failure_lines()
+        ('group velocity at kappa=0.5: why',)
+        """
+        what = {"omega": "frequency", "group": "group velocity"}
+        return tuple(f"{what.get(q, q)} at kappa={k:.6g}: {why}" for q, k, why in self.failures)
+
 
 #: The routes of :attr:`DiscreteBranches.routes`, cheapest first.
 ROUTES = ("polynomial", "float eigen-solver", "extended precision", "power law")
 
 
 RTOL = 1e-11
-
-
-def _extended_safe(patch, nu, k, basis, dps, slopes):
-    """:func:`extended_frequencies`, retried at twice the digits; ``(None, reason)`` if both fail."""
-    why = ""
-    for digits in (dps, 2 * dps):
-        try:
-            return extended_frequencies(patch, nu, k, basis, dps=digits, slopes=slopes), ""
-        except (ValueError, ZeroDivisionError, ArithmeticError) as exc:  # flint: eig failed
-            why = f"extended-precision eigen-solver failed at {digits} digits ({exc})"
-    return None, why
-
-
-def _refine_small(patch, nu, kappa, W, basis, G=None, failures=None):
-    """Recompute in extended precision the kappas where some float eigenvalue of W is inaccurate.
-
-    Digits: 30 beyond the ratio of the largest eigenvalue to the smallest (guessed as
-    kappa^4 where the float value is lost in round-off). With ``G`` (slopes) given, the
-    slopes there come from the eigenvector formula in the same precision. Never raises
-    from the eigen-solver: a kappa where the ball solve fails twice gets NaN and an entry
-    ``("omega", kappa, reason)`` in ``failures`` (a list, if given).
-    """
-    lam = W**2
-    bad = np.flatnonzero(np.any(eigenvalue_error(lam) > RTOL, axis=1) & (kappa > 0))
-    for i in bad:
-        top = float(np.max(lam[i]))
-        small = max(min(float(np.min(lam[i])), 0.1 * kappa[i] ** 4), 1e-300)
-        dps = 30 + int(math.ceil(math.log10(max(top / small, 1.0))))
-        out, why = _extended_safe(patch, nu, float(kappa[i]), basis, dps, G is not None)
-        if out is None:
-            W[i] = np.nan
-            if failures is not None:
-                failures.append(("omega", float(kappa[i]), why))
-            continue
-        if G is None:
-            W[i] = out
-        else:
-            W[i], G[i] = out
-    return W
 
 
 def pencil_derivative(patch: PlatePatch, nu: float, kappa) -> tuple[np.ndarray, np.ndarray]:
@@ -315,14 +288,16 @@ def _plan(patch: PlatePatch, nu: float) -> list[_Block]:
 
 
 def _eigen_block(patch, nu, kappa, block: _Block, vectors: bool):
-    """Float eigen-solve of one block at ``kappa``: (W, X or None, dK/dM-ready pencil)."""
+    """Float eigen-solve of one block at ``kappa``: (W, X or None, dK/dM-ready pencil, the
+    relative error bound of each W^2)."""
     K, M = numeric_pencil(patch, nu, kappa)
     if block.E is not None:
         K, M = congruence(block.E.T, K), congruence(block.E.T, M)
     if vectors:
-        W, X = pencil_frequencies(K, M, block.massless, vectors=True)
-        return W, X, M
-    return pencil_frequencies(K, M, block.massless), None, M
+        W, X, err = pencil_frequencies(K, M, block.massless, vectors=True, bounds=True)
+        return W, X, M, err
+    W, err = pencil_frequencies(K, M, block.massless, bounds=True)
+    return W, None, M, err
 
 
 def _parity_from_vectors(patch, X):
@@ -335,6 +310,7 @@ def _solve_block(patch, nu, kappa, block: _Block, group: bool, failures: list):
     row, route the index in :data:`ROUTES` of each kappa."""
     from dispersion.waves import pencil_polynomial as pp
     from dispersion.waves.certified_roots import certified_roots
+    from dispersion.waves.certified_slopes import ball_slopes
 
     n = kappa.size
     mixed = block.kind is None
@@ -350,7 +326,7 @@ def _solve_block(patch, nu, kappa, block: _Block, group: bool, failures: list):
         order = np.argsort(u, kind="stable")
         anchors = order if n <= 4 * ANCHOR_STRIDE else \
             np.concatenate([order[::ANCHOR_STRIDE], order[-1:]])
-        Wa = _eigen_block(patch, nu, kappa[anchors], block, False)[0]
+        Wa, _, _, Ea = _eigen_block(patch, nu, kappa[anchors], block, False)
         mx = pp.mass_factor(poly, u, v)
         mua = Wa**2 * mx[anchors]
         ua = u[anchors]
@@ -365,11 +341,11 @@ def _solve_block(patch, nu, kappa, block: _Block, group: bool, failures: list):
             # certified by the eigen-solver's own bound (large roots, where float
             # eigenvalues are accurate)
             if anchors.size == n:  # every kappa is an anchor: its eigenvalues are at hand
-                Wr = np.empty_like(Wa)
-                Wr[anchors] = Wa
-                Wr = Wr[redo]
+                Wr, Er = np.empty_like(Wa), np.empty_like(Ea)
+                Wr[anchors], Er[anchors] = Wa, Ea
+                Wr, Er = Wr[redo], Er[redo]
             else:
-                Wr = _eigen_block(patch, nu, kappa[redo], block, False)[0]
+                Wr, _, _, Er = _eigen_block(patch, nu, kappa[redo], block, False)
             # where every disc is finite (hence disjoint: one root each, all roots found) the
             # roots are the right ones, only some too loosely enclosed: no second polish
             m2, r2 = mu[redo], rad[redo]
@@ -381,31 +357,51 @@ def _solve_block(patch, nu, kappa, block: _Block, group: bool, failures: list):
                                                         kappa=kappa[at])
             with np.errstate(all="ignore"):
                 by_poly = (m2 > 0) & (r2 <= 2 * CERTIFIED_RTOL * m2)
-                by_eig = eigenvalue_error(Wr**2) <= 2 * CERTIFIED_RTOL
+                by_eig = Er <= 2 * CERTIFIED_RTOL
             m2 = np.where(by_poly, m2, Wr**2 * mx[redo])
-            mu[redo], rad[redo] = m2, np.where(by_poly, r2, 0.0)
+            with np.errstate(all="ignore"):   # the bound used (inf where there is none)
+                rad[redo] = np.where(by_poly, r2, np.where(np.isfinite(Er), Er * m2, np.inf))
+            mu[redo] = m2
             ok[redo] = np.all(by_poly | by_eig, axis=1)
             route[redo[~np.all(by_poly, axis=1)]] = 1
         with np.errstate(all="ignore"):
             W = np.sqrt(mu / mx)
         if group:
-            G, Gerr = pp.slopes(poly, u, v, dudk, mu)
-            loose = ok & np.any(~(Gerr <= GROUP_RTOL * np.abs(G)), axis=1)
-            for i in np.flatnonzero(loose):
-                j = int(np.argmax(Gerr[i] / np.maximum(np.abs(G[i]), 1e-300)))
-                rel = Gerr[i, j] / abs(G[i, j]) if G[i, j] != 0 else np.inf
-                failures.append(("group", float(kappa[i]),
-                                 f"group velocity of root {j} ({block.kind or 'mixed'} block) "
-                                 f"certified to {rel:.1e} relative = {Gerr[i, j]:.1e} absolute, "
-                                 f"not {GROUP_RTOL:.0e} (rounding bound of P_u / P_mu; "
-                                 f"c_g = {G[i, j]:.3e})"))
+            G, Gerr = pp.slopes(poly, u, v, dudk, mu, rad)
+            loose = np.flatnonzero(ok & np.any(~(Gerr <= GROUP_RTOL * np.abs(G)), axis=1))
+            if loose.size:   # the float bound too wide: the same formula in balls
+                Gb, rel = ball_slopes(poly, kappa[loose], mu[loose])
+                sure = rel <= GROUP_RTOL
+                G[loose] = np.where(sure, Gb, G[loose])
+                _group_failures(failures, kappa[loose], rel, Gb, block.kind)
         if mixed:
             share = pp.parity_share(poly, u, v, mu)
         todo = np.flatnonzero(~ok)
     if todo.size:
         W, G, share = _eigen_fallback(patch, nu, kappa, block, group, todo, W, G, share,
                                       failures, route)
+        if group and poly is not None:   # the slopes of those roots, certified in balls
+            mx_t = pp.mass_factor(poly, *pp.u_of_kappa(patch.model, r, kappa[todo])[:2])
+            Gb, rel = ball_slopes(poly, kappa[todo], W[todo] ** 2 * mx_t)
+            G[todo] = np.where(rel <= GROUP_RTOL, Gb, G[todo])
+            _group_failures(failures, kappa[todo], rel, Gb, block.kind)
+        elif group:
+            fresh = todo[route[todo] == ROUTES.index("float eigen-solver")]
+            for kk in kappa[fresh]:
+                failures.append(("group", float(kk), "group velocity from the float "
+                                 "eigen-solver (eigenvector formula): not certified to "
+                                 f"{GROUP_RTOL:.0e}"))
     return W, G, share, route
+
+
+def _group_failures(failures, kappa, rel, G, kind):
+    """One ``("group", kappa, reason)`` per kappa where a ball slope is wider than GROUP_RTOL."""
+    for i in np.flatnonzero(np.any(~(rel <= GROUP_RTOL), axis=1)):
+        j = int(np.argmax(np.where(np.isfinite(rel[i]), rel[i], np.inf)))
+        failures.append(("group", float(kappa[i]),
+                         f"group velocity of root {j} ({kind or 'mixed'} block) not certified "
+                         f"to {GROUP_RTOL:.0e} relative (ball arithmetic: {rel[i, j]:.1e}; "
+                         f"c_g/c_T = {G[i, j]:.3e})"))
 
 
 def _eigen_fallback(patch, nu, kappa, block, group, idx, W, G, share, failures, route):
@@ -414,7 +410,7 @@ def _eigen_fallback(patch, nu, kappa, block, group, idx, W, G, share, failures, 
     k = kappa[idx]
     route[idx] = 1
     try:
-        Wf, X, M = _eigen_block(patch, nu, k, block, group or mixed)
+        Wf, X, M, err = _eigen_block(patch, nu, k, block, group or mixed)
     except (np.linalg.LinAlgError, InputError) as exc:
         for kk in k:
             failures.append(("omega", float(kk), f"float eigen-solver failed ({exc})"))
@@ -430,9 +426,9 @@ def _eigen_fallback(patch, nu, kappa, block, group, idx, W, G, share, failures, 
             dK, dM = congruence(block.E.T, dK), congruence(block.E.T, dM)
         Gf = _slopes(Wf, X, dK, dM, M)
     basis = block.E
-    refine = np.any(eigenvalue_error(Wf**2) > RTOL, axis=1) & (k > 0)  # as _refine_small
+    refine = np.any(err > RTOL, axis=1) & (k > 0)  # as refine_inaccurate
     route[idx[refine]] = 2
-    Wf = _refine_small(patch, nu, k, Wf, basis, Gf, failures)
+    Wf = refine_inaccurate(patch, nu, k, Wf, basis, Gf, failures, err, RTOL)
     if W is None:
         W = np.empty((kappa.size, Wf.shape[1]))
         G = np.empty_like(W) if group else None

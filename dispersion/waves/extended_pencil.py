@@ -21,6 +21,7 @@ import numpy as np
 import sympy
 
 from dispersion.errors import InputError
+from dispersion.waves.pencil_frequencies import eigenvalue_error
 from dispersion.symbolic.plate import (
     PlatePatch,
     lame,
@@ -29,7 +30,12 @@ from dispersion.symbolic.plate import (
     x_functions,
 )
 
-__all__ = ["extended_frequencies"]
+__all__ = ["MAX_EXTENDED_SECONDS", "extended_frequencies", "refine_inaccurate"]
+
+#: Longest extended-precision work one call of :func:`refine_inaccurate` accepts (seconds,
+#: measured on its first kappa point): beyond it the request is refused with the count that
+#: fits. Rule: about two minutes, the scale of the command line's other work bounds.
+MAX_EXTENDED_SECONDS = 120.0
 
 
 class _Key:
@@ -206,3 +212,61 @@ def _arb_sub(A, rows, cols):
     import flint
 
     return flint.arb_mat([[A[i, j] for j in cols] for i in rows])
+
+
+def _extended_safe(patch, nu, k, basis, dps, slopes):
+    """:func:`extended_frequencies`, retried at twice the digits; ``(None, reason)`` if both fail."""
+    why = ""
+    for digits in (dps, 2 * dps):
+        try:
+            return extended_frequencies(patch, nu, k, basis, dps=digits, slopes=slopes), ""
+        except (ValueError, ZeroDivisionError, ArithmeticError) as exc:  # flint: eig failed
+            why = f"extended-precision eigen-solver failed at {digits} digits ({exc})"
+    return None, why
+
+
+def refine_inaccurate(patch, nu, kappa, W, basis, G=None, failures=None, error=None,
+                      rtol: float = 1e-11):
+    """Recompute in extended precision the kappas where some float eigenvalue of W is inaccurate.
+
+    Digits: 30 beyond the ratio of the largest eigenvalue to the smallest (guessed as
+    kappa^4 where the float value is lost in round-off). With ``G`` (slopes) given, the
+    slopes there come from the eigenvector formula in the same precision. Never raises
+    from the eigen-solver: a kappa where the ball solve fails twice gets NaN and an entry
+    ``("omega", kappa, reason)`` in ``failures`` (a list, if given). ``error``: the float
+    eigen-solver's bound per root (:func:`~dispersion.waves.pencil_frequencies.pencil_frequencies`
+    with ``bounds=True``); ``rtol`` the accuracy asked of it. Work beyond
+    :data:`MAX_EXTENDED_SECONDS` (estimated on the first kappa) is refused.
+    """
+    import time
+
+    lam = W**2
+    error = eigenvalue_error(lam) if error is None else error
+    bad = np.flatnonzero(np.any(error > rtol, axis=1) & (kappa > 0))
+    started = time.perf_counter()
+    for done, i in enumerate(bad):
+        if done == 1 and (time.perf_counter() - started) * bad.size > MAX_EXTENDED_SECONDS:
+            each = time.perf_counter() - started
+            raise InputError(
+                f"{bad.size} kappa points need the extended-precision eigen-solver (the float "
+                f"one cannot certify them: the mass matrix of p = {patch.p} is too "
+                f"ill-conditioned), at about {each:.2g} s each: over "
+                f"{MAX_EXTENDED_SECONDS:.0f} s; ask for fewer kappa points (count <= "
+                f"{max(1, int(MAX_EXTENDED_SECONDS / each))}) or a lower p")
+        top = float(np.max(lam[i]))
+        small = max(min(float(np.min(lam[i])), 0.1 * kappa[i] ** 4), 1e-300)
+        ratio = top / small
+        if not 1.0 <= ratio < 1e300:   # float eigenvalues lost (inf, NaN): the widest guess
+            ratio = 1e300 if not ratio < 1.0 else 1.0
+        dps = 30 + int(math.ceil(math.log10(ratio)))
+        out, why = _extended_safe(patch, nu, float(kappa[i]), basis, dps, G is not None)
+        if out is None:
+            W[i] = np.nan
+            if failures is not None:
+                failures.append(("omega", float(kappa[i]), why))
+            continue
+        if G is None:
+            W[i] = out
+        else:
+            W[i], G[i] = out
+    return W

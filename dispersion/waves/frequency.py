@@ -52,6 +52,7 @@ from dispersion.waves.illinois import illinois
 from dispersion.waves.numeric_frequency import frequency_slope
 from dispersion.waves.rayleigh_lamb import (cutoff_frequencies, mpmath_frequency_function,
                                             speed_ratio_squared)
+from dispersion.waves.sh import at_cutoff
 
 __all__ = ["FREQUENCY_OMEGA_MAX", "FREQUENCY_OMEGA_MIN", "MAX_SCAN_SAMPLES", "SLOPE_OMEGA",
            "FrequencyRoots", "modes_at_frequency", "zgv_points_below"]
@@ -93,6 +94,10 @@ class FrequencyRoots:
     cutoffs: dict
     zgv: tuple
     failures: tuple
+    #: ``(index into omega, label)`` of every mode whose cut-off *is* the requested
+    #: frequency (:func:`dispersion.waves.sh.at_cutoff`): kappa = 0, infinite phase
+    #: velocity, not propagating, so not among the rows.
+    at_cutoff: tuple = ()
 
     @property
     def phase(self) -> np.ndarray:
@@ -228,16 +233,73 @@ def _slope_mp(kind, kappa, omega, nu) -> np.ndarray:
     import mpmath
 
     out = np.empty(kappa.size)
-    with mpmath.workdps(30):
-        m_nu = mpmath.mpf(nu)
+    for i, (k, W) in enumerate(zip(kappa, omega)):
+        with mpmath.workdps(_mp_digits(float(k))):
+            m_nu = mpmath.mpf(nu)
 
-        def F(k, W):
-            return mpmath_frequency_function(kind, k, W, m_nu)
+            def F(k, W):
+                return mpmath_frequency_function(kind, k, W, m_nu)
 
-        for i, (k, W) in enumerate(zip(kappa, omega)):
             k, W = mpmath.mpf(float(k)), mpmath.mpf(float(W))
             out[i] = float(-mpmath.diff(lambda x: F(x, W), k) / mpmath.diff(lambda x: F(k, x), W))
     return out
+
+
+#: Relative accuracy every root in kappa is certified to (or listed in ``failures``).
+ROOT_RTOL = 1e-12
+
+
+def _mp_digits(kappa: float) -> int:
+    """Digits for the frequency function at kappa: 40, plus the cosh-sized terms that cancel
+    in the evanescent region (about kappa / ln 10 digits)."""
+    return 40 + int(abs(kappa) / 2.3)
+
+
+def _certify(kind, roots, omega, nu):
+    """Each root certified to :data:`ROOT_RTOL` relative by a sign change of the frequency
+    function at :math:`\\kappa (1 \\pm \\delta)`, :math:`\\delta` = ROOT_RTOL / 4.
+
+    First in floats (the deflated function and its rounding bound: both signs certain);
+    where that cannot decide (round-off near a cut-off, where the root in kappa is
+    ill-conditioned; cosh-sized terms at large kappa), the root is redone by the secant
+    method in mpmath (:func:`_mp_digits`) and the sign change checked there. Returns the
+    roots, a mask of those redone in mpmath, and the indices that could not be certified.
+    """
+    delta = ROOT_RTOL / 4
+    lo, hi = roots * (1 - delta), roots * (1 + delta)
+    with np.errstate(all="ignore"):
+        g_lo, n_lo = deflated_with_noise(kind, lo, omega, nu)
+        g_hi, n_hi = deflated_with_noise(kind, hi, omega, nu)
+        sure = (np.abs(g_lo) > n_lo) & (np.abs(g_hi) > n_hi) & (np.sign(g_lo) != np.sign(g_hi))
+    out, redone, bad = roots.copy(), np.zeros(roots.size, dtype=bool), []
+    for i in np.flatnonzero(~sure):
+        k0, W = float(roots[i]), float(omega[i])
+        if not (math.isfinite(k0) and k0 > 0):
+            bad.append(i)
+            continue
+        import mpmath   # only where floats cannot decide (the calculator's start-up stays lean)
+
+        with mpmath.workdps(_mp_digits(k0)):
+            m_nu, m_w = mpmath.mpf(nu), mpmath.mpf(W)
+
+            def F(k):
+                return mpmath_frequency_function(kind, k, m_w, m_nu)
+
+            try:
+                k = mpmath.findroot(F, (mpmath.mpf(k0) * (1 - mpmath.mpf(10) ** -8),
+                                        mpmath.mpf(k0) * (1 + mpmath.mpf(10) ** -8)),
+                                    solver="secant", tol=mpmath.mpf(10) ** (-2 * 16 - 4),
+                                    maxsteps=60)
+            except (ValueError, ZeroDivisionError):
+                bad.append(i)
+                continue
+            kf = float(k)
+            a, b = F(mpmath.mpf(kf) * (1 - delta)), F(mpmath.mpf(kf) * (1 + delta))
+            if mpmath.sign(a) * mpmath.sign(b) < 0 and abs(kf / k0 - 1) < 1e-4:
+                out[i], redone[i] = kf, True
+            else:
+                bad.append(i)
+    return out, redone, bad
 
 
 def _walk(n0: int, signs) -> list[int] | None:
@@ -292,13 +354,19 @@ def _class_roots(kind, nu, omega, step, rtol, max_depth, zgv_kappa):
     for i in np.flatnonzero(unconverged):
         failures.append((float(omega[rf[i]]), kind, "root refinement did not converge"))
     roots = _polish(kind, roots, omega[rf], nu)
+    roots, redone, uncertain = _certify(kind, roots, omega[rf], nu)
+    for i in uncertain:
+        failures.append((float(omega[rf[i]]), kind, f"root near kappa={roots[i]:.6g} not "
+                         f"certified to {ROOT_RTOL:.0e} relative"))
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         group = np.asarray(frequency_slope(kind, roots, omega[rf], nu), dtype=float)
-    low = np.flatnonzero(omega[rf] < SLOPE_OMEGA)
+    # where the root needed mpmath the float slope loses as much: it is redone there too
+    low = np.flatnonzero((omega[rf] < SLOPE_OMEGA) | redone)
     if low.size:
         group[low] = _slope_mp(kind, roots[low], omega[rf][low], nu)
     labels = [""] * roots.size
-    cut = np.array([w for w, _ in cutoff_frequencies(kind, nu, float(omega.max()))])
+    # to just above the top frequency: a cut-off that *is* it to rounding counts (at_cutoff)
+    cut = np.array([w for w, _ in cutoff_frequencies(kind, nu, float(omega.max()) * (1 + 1e-14))])
     for i in range(omega.size):
         mine = np.flatnonzero(rf == i)
         g = group[mine]
@@ -325,7 +393,22 @@ def _class_roots(kind, nu, omega, step, rtol, max_depth, zgv_kappa):
             continue
         for r, j in zip(mine, walk):
             labels[r] = f"{kind}{j}"
-    return rf, labels, roots, group, failures
+    # a branch whose cut-off is Omega to rounding: its root next to kappa = 0 is rounding
+    # (kappa ~ sqrt(eps)), the mode is at its cut-off (not propagating): dropped, named
+    keep = np.ones(roots.size, dtype=bool)
+    at = []
+    for r, lab in enumerate(labels):
+        j = lab[1:]
+        if j.isdigit() and int(j) < cut.size and at_cutoff(float(omega[rf[r]]), cut[int(j)]) \
+                and cut[int(j)] > 0 and roots[r] < 1e-6:
+            keep[r] = False
+            at.append((int(rf[r]), lab))
+    for i in range(omega.size):   # at the cut-off with no root found next to it: named too
+        for j, w in enumerate(cut):
+            if w > 0 and at_cutoff(float(omega[i]), w) and (i, f"{kind}{j}") not in at:
+                at.append((i, f"{kind}{j}"))
+    labels = [lab for lab, k in zip(labels, keep) if k]
+    return rf[keep], labels, roots[keep], group[keep], failures, at
 
 
 def zgv_points_below(nu: float, omega_top: float, per_unit: float = 40.0):
@@ -385,17 +468,20 @@ def modes_at_frequency(nu: float, omega, *, kinds=("S", "A", "SH"), step: float 
     points = ()
     if zgv and any(k in ("S", "A") for k in kinds):
         points = tuple(zgv_points_below(nu, wmax * 1.05 + 0.5))
-    rows, failures = [], []
+    rows, failures, at_cut = [], [], []
     for kind in kinds:
         if kind == "SH":
             for i, w in enumerate(omega):
                 for lab, k, g in sh_roots(float(w)):
                     rows.append((i, lab, k, g))
+                at_cut += [(i, lab) for lab, wc in sh_cutoffs(float(w) * (1 + 1e-15))
+                           if wc > 0 and at_cutoff(float(w), wc)]
             continue
         zk = [p.kappa for p in points if p.label[0] == kind]
-        rf, labels, roots, group, fails = _class_roots(kind, nu, omega, step, rtol,
-                                                       max_depth, zk)
+        rf, labels, roots, group, fails, at = _class_roots(kind, nu, omega, step, rtol,
+                                                           max_depth, zk)
         failures += fails
+        at_cut += at
         rows += list(zip(rf.tolist(), labels, roots.tolist(), group.tolist()))
     family = {"S": 0, "A": 1, "SH": 2}
     def number(label):  # "S?" (an uncertified root) sorts after every numbered mode
@@ -417,4 +503,5 @@ def modes_at_frequency(nu: float, omega, *, kinds=("S", "A", "SH"), step: float 
         label=tuple(r[1] for r in rows),
         kappa=np.array([r[2] for r in rows], dtype=float),
         group=np.array([r[3] for r in rows], dtype=float),
-        cutoffs=cutoffs, zgv=points, failures=tuple(dict.fromkeys(failures)))
+        cutoffs=cutoffs, zgv=points, failures=tuple(dict.fromkeys(failures)),
+        at_cutoff=tuple(sorted(set(at_cut))))

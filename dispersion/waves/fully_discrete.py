@@ -51,7 +51,8 @@ import sympy
 from dispersion.errors import InputError, check_positive, check_positive_int, check_real_in_range
 from dispersion.waves.time_integration import NEWMARK_MEMBERS
 
-__all__ = ["NEWMARK_MEMBERS", "TimeScheme", "time_scheme", "time_frequency", "fully_discrete_branches",
+__all__ = ["NEWMARK_MEMBERS", "TimeScheme", "time_scheme", "time_frequency", "time_frequency_slope",
+           "fully_discrete_branches",
            "fully_discrete_error", "time_series", "fully_discrete_series"]
 
 
@@ -98,35 +99,90 @@ def time_scheme(name: str = "central", beta=None, gamma=None) -> TimeScheme:
     return TimeScheme("newmark", beta, gamma)
 
 
+def _newmark_terms(sch: TimeScheme, w, tau: float):
+    """``X``, the constants ``p``, ``q``, ``r`` and the stable-oscillation mask of the recurrence.
+
+    With :math:`p = \\tfrac12 - 2\\beta + \\gamma`, :math:`q = \\tfrac12 + \\beta - \\gamma`
+    (:math:`p + \\beta + q = 1`), the discriminant of the recurrence is, expanded by hand so
+    that nothing cancels at small X,
+
+    .. math:: b^2 - 4ac = -X\\,(4 - rX), \\qquad r = p^2 - 4\\beta q,
+
+    the roots are complex (oscillation) for :math:`rX < 4` (a double root on the limit
+    :math:`rX = 4`, counted as stable as in Hughes 2000), and :math:`|z|^2 = c/a =
+    (1 + qX)/(1 + \\beta X) \\le 1` for :math:`q \\le \\beta`, that is :math:`\\gamma \\ge 1/2`.
+    """
+    beta, gamma = float(sch.beta), float(sch.gamma)
+    w = np.abs(np.asarray(w, dtype=float))
+    X = (w * tau) ** 2
+    p, q = 0.5 - 2 * beta + gamma, 0.5 + beta - gamma
+    r = p * p - 4 * beta * q
+    with np.errstate(invalid="ignore"):
+        ok = r * X <= 4   # |z| <= 1 holds already: time_scheme keeps gamma >= 1/2
+    return w, X, beta, p, q, r, ok
+
+
 def time_frequency(omega_h, tau, scheme: TimeScheme | str = "central"):
     """Fully discrete :math:`\\tilde\\Omega` for semi-discrete ``omega_h`` and step ``tau`` (arrays).
 
-    NaN where the step is unstable (:math:`|z| > 1`) or the roots are real (no oscillation).
+    .. math::
+
+        \\tilde\\Omega\\tau = \\arg z = \\operatorname{atan2}\\bigl(\\Omega_h\\tau\\sqrt{4 - rX},
+        \\; 2 - pX\\bigr)
+
+    (:func:`_newmark_terms`): both arguments are computed without cancellation, so the
+    result keeps the relative accuracy of :math:`\\Omega_h` at every :math:`X > 0` (the
+    textbook form :math:`\\arccos(1 - X/(2(1 + \\beta X)))` loses :math:`\\epsilon / X`
+    relative and returns 0 below :math:`X \\approx 10^{-16}`); central differences:
+    :math:`2 \\arcsin(\\Omega_h\\tau / 2)`. NaN where the step is unstable or the roots
+    are real (no oscillation).
+
+    >>> float(time_frequency(np.array([1e-12]), 1.0)[0])    # no cancellation: Omega_h itself
+    1e-12
     """
     sch = time_scheme(scheme) if isinstance(scheme, str) else scheme
     tau = float(check_positive("tau", tau))
-    w = np.asarray(omega_h, dtype=float)
-    beta, gamma = float(sch.beta), float(sch.gamma)
-    X = (w * tau) ** 2
-    if gamma == 0.5:
-        c = 1 - X / (2 * (1 + beta * X))
-        with np.errstate(invalid="ignore"):
-            out = np.where(np.abs(c) <= 1, np.arccos(np.clip(c, -1, 1)) / tau, np.nan)
-        return out
-    a = 1 + beta * X
-    b = -(2 - (0.5 - 2 * beta + gamma) * X)
-    c0 = 1 + (0.5 + beta - gamma) * X
-    disc = b * b - 4 * a * c0
-    z = (-b + np.sqrt(disc.astype(complex))) / (2 * a)
-    ok = (disc < 0) & (np.abs(z) <= 1 + 1e-12)
-    return np.where(ok, np.abs(np.angle(z)) / tau, np.nan)
+    w, X, beta, p, q, r, ok = _newmark_terms(sch, omega_h, tau)
+    with np.errstate(invalid="ignore"):
+        theta = np.arctan2(w * tau * np.sqrt(4 - r * X), 2 - p * X) / tau
+    return np.where(ok, theta, np.nan)
+
+
+def time_frequency_slope(omega_h, tau, scheme: TimeScheme | str = "central"):
+    """:math:`d\\tilde\\Omega / d\\Omega_h` of :func:`time_frequency` (NaN where that is NaN).
+
+    Differentiating :math:`\\arg z` and simplifying by hand (the numerator collapses to
+    :math:`4(2 + (p - r)X)` through :math:`p + \\beta + q = 1`):
+
+    .. math::
+
+        \\frac{d\\tilde\\Omega}{d\\Omega_h} = \\frac{2 + (p - r) X}{\\sqrt{4 - rX}\\,(1 + \\beta X)
+        (1 + qX)};
+
+    central differences: :math:`1/\\cos(\\tilde\\Omega\\tau/2)`. The fully discrete group
+    velocity is this times the semi-discrete one (chain rule).
+
+    >>> float(time_frequency_slope(np.array([1.0]), 1.0)[0])   # 1 / cos(pi/6)
+    1.1547005383792517
+    """
+    sch = time_scheme(scheme) if isinstance(scheme, str) else scheme
+    tau = float(check_positive("tau", tau))
+    w, X, beta, p, q, r, ok = _newmark_terms(sch, omega_h, tau)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        slope = (2 + (p - r) * X) / (np.sqrt(4 - r * X) * (1 + beta * X) * (1 + q * X))
+    return np.where(ok, slope, np.nan)
 
 
 def fully_discrete_branches(branches, tau: float, scheme: TimeScheme | str = "central"):
     """The :class:`~.discrete_branches.DiscreteBranches` with every :math:`\\Omega_h` mapped by
-    :func:`time_frequency` (group velocities dropped: they would need the map's slope)."""
+    :func:`time_frequency`, group velocities (where computed) by the chain rule
+    (:func:`time_frequency_slope`); the failures of the semi-discrete branches are kept."""
     omega = {lab: time_frequency(w, tau, scheme) for lab, w in branches.omega.items()}
-    return replace(branches, omega=omega, group=None)
+    group = None
+    if branches.group is not None:
+        group = {lab: g * time_frequency_slope(branches.omega[lab], tau, scheme)
+                 for lab, g in branches.group.items()}
+    return replace(branches, omega=omega, group=group)
 
 
 def fully_discrete_error(patch, nu: float, kappa, courant: float,
@@ -170,11 +226,13 @@ def time_series(order: int, beta=0) -> list:
     [1, -1/6]
     """
     order = check_positive_int("order", order)
-    beta = sympy.nsimplify(beta)
+    from dispersion.symbolic.patch import rational
+
+    beta = rational("beta", beta)   # exact: floats by their shortest decimal, never surds
     y = _X / (2 * (1 + beta * _X))
     g = 2 * sum((2 * y) ** m / (m**2 * sympy.binomial(2 * m, m)) for m in range(1, order + 1))
     poly = sympy.series(g, _X, 0, order + 1).removeO()
-    return [sympy.nsimplify(poly.coeff(_X, m)) for m in range(1, order + 1)]
+    return [sympy.cancel(poly.coeff(_X, m)) for m in range(1, order + 1)]
 
 
 def fully_discrete_series(omega2: dict, order: int, beta=0) -> sympy.Expr:

@@ -198,13 +198,13 @@ def discrete_modes(patch: PlatePatch, nu: float, kappa) -> tuple[np.ndarray, np.
     Frequencies where float round-off would blur them are recomputed in extended precision
     (as in :func:`dispersion.waves.discrete_branches.discrete_branches`).
     """
-    from dispersion.waves.discrete_branches import _refine_small
+    from dispersion.waves.extended_pencil import refine_inaccurate
     from dispersion.waves.pencil_frequencies import pencil_frequencies
 
     kappa = np.atleast_1d(np.asarray(kappa, dtype=float))
     K, M = numeric_pencil(patch, nu, kappa)
-    W, X = pencil_frequencies(K, M, patch.massless, vectors=True)
-    return _refine_small(patch, float(nu), kappa, W, None), X
+    W, X, err = pencil_frequencies(K, M, patch.massless, vectors=True, bounds=True)
+    return refine_inaccurate(patch, float(nu), kappa, W, None, error=err), X
 
 
 @dataclass(frozen=True)

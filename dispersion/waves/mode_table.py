@@ -108,6 +108,11 @@ class ModeTable(Rendered):
                 float(r.omega[r.index[i]])})
         return out
 
+    def at_cutoff_khz(self) -> list[tuple[float, str]]:
+        """``(f [kHz], mode)`` of every mode whose cut-off is a requested frequency: k = 0,
+        c_p infinite there, so it is not among the propagating rows (say so when rendering)."""
+        return [(float(self._khz(self.roots.omega[i])), lab) for i, lab in self.roots.at_cutoff]
+
     def cutoffs_khz(self) -> dict[str, float]:
         """Cut-off frequency (kHz) of every mode that has one up to the highest frequency."""
         return {lab: float(self._khz(w)) for lab, w in self.roots.cutoffs.items() if w > 0}

@@ -84,6 +84,11 @@ class PencilPolynomial:
     #: roots inside the zone (:func:`certified_roots`).
     shifted: dict | None = None
     centres: int = 1
+    #: The exact tables (python-flint ``fmpq_poly`` in u): ``"P"`` the coefficients of
+    #: :math:`\\mu^j`, ``"mx"`` of :math:`m_x(u)`, for ball arithmetic
+    #: (:mod:`dispersion.waves.certified_slopes`); the aspect ratio r exactly.
+    exact: dict | None = None
+    r_exact: Fraction | None = None
 
     @property
     def degree(self) -> int:
@@ -242,9 +247,15 @@ def _build(key):
             out[j, :len(cs)] = [float(c) for c in cs]   # exact zeros stay 0.0
         return _trim_like(out)
 
+    exact = {"mx": xp["mx"]}
+
     def solve(name, table):
         C = Vu * flint.fmpq_mat(table) * Vm   # C[k, j]
         polys = [flint.fmpq_poly([C[k, j] for k in range(du + 1)]) for j in range(N + 1)]
+        if name == "P":
+            while len(polys) > 1 and polys[-1] == 0:   # as _trim_like does for the floats
+                polys.pop()
+            exact["P"] = tuple(polys)
         if shifted is not None:
             shifted[name] = floats([pj(shift) for pj in polys])
             if name == "P":
@@ -262,7 +273,7 @@ def _build(key):
     if shifted is not None:
         shifted["mx"] = floats([xp["mx"](shift)])
     return PencilPolynomial(model, None if r is None else float(r), coef, mx, par, shifted,
-                            1 if shifted is None else shifted.pop("centres"))
+                            1 if shifted is None else shifted.pop("centres"), exact, r)
 
 
 def _trim_like(c):
@@ -380,11 +391,16 @@ def mass_factor(poly: PencilPolynomial, u, v) -> np.ndarray:
     return _values(poly, "mx", u, v, bars=False)[0].T
 
 
-def slopes(poly: PencilPolynomial, u: np.ndarray, v, dudk: np.ndarray, mu: np.ndarray):
+def slopes(poly: PencilPolynomial, u: np.ndarray, v, dudk: np.ndarray, mu: np.ndarray,
+           rad: np.ndarray | None = None):
     """:math:`d\\Omega/d\\kappa` at roots ``mu`` (points, R) and a bound on its absolute error.
 
     Implicitly :math:`d\\mu/du = -P_u / P_\\mu`; with :math:`\\Omega^2 = \\mu / m_x`,
     :math:`d\\Omega/d\\kappa = (\\mu_u m_x - \\mu m_x') u_\\kappa / (2 \\Omega m_x^2)`.
+    ``rad`` (same shape as mu): the radius the roots are known to; its effect on the slope,
+    :math:`|\\partial\\mu_u/\\partial\\mu|\\, rad` with
+    :math:`\\partial\\mu_u/\\partial\\mu = -(P_{u\\mu} P_\\mu - P_u P_{\\mu\\mu})/P_\\mu^2`
+    (bars of the derivatives, first order) and through :math:`\\Omega`, is added to the bound.
     """
     du, dm = poly.coef.shape[1] - 1, poly.coef.shape[0] - 1
     mu = mu.T
@@ -392,7 +408,7 @@ def slopes(poly: PencilPolynomial, u: np.ndarray, v, dudk: np.ndarray, mu: np.nd
     c, cb = _values(poly, "P", u, v)
     with np.errstate(all="ignore"):
         pu, _ = _horner_mu(cu, mu)
-        pub, _ = _horner_mu(cub, np.abs(mu))
+        pub, pumb = _horner_mu(cub, np.abs(mu))
         _, pm = _horner_mu(c, mu)
         _, pmb = _horner_mu(cb, np.abs(mu))
         # the rounding constants of certified_roots without its safety factor 2 (each is a
@@ -400,6 +416,11 @@ def slopes(poly: PencilPolynomial, u: np.ndarray, v, dudk: np.ndarray, mu: np.nd
         g = (6 * du + 2 * dm + 4) * _EPS
         mu_u = -pu / pm
         err_mu_u = (g * pub + np.abs(mu_u) * g * pmb) / np.abs(pm)
+        if rad is not None:
+            r = np.abs(rad.T)
+            jj = np.arange(cb.shape[0])[:, None]
+            _, pmmb = _horner_mu((cb * jj)[1:] if cb.shape[0] > 1 else 0 * cb, np.abs(mu) + r)
+            err_mu_u = err_mu_u + 2 * r * (pumb + np.abs(mu_u) * pmmb) / np.abs(pm)
         mx = _values(poly, "mx", u, v, bars=False)[0]
         mxd = _values(poly, "mx", u, v, deriv=True, bars=False)[0]
         omega = np.sqrt(mu / mx)
@@ -408,6 +429,8 @@ def slopes(poly: PencilPolynomial, u: np.ndarray, v, dudk: np.ndarray, mu: np.nd
         g_err = np.abs(fac) * (err_mu_u * np.abs(mx) + 8 * _EPS * (np.abs(mu_u * mx)
                                                                    + np.abs(mu * mxd))) \
             + 8 * _EPS * np.abs(g_val)
+        if rad is not None:   # mu in the numerator and in Omega (relative r / mu, halved)
+            g_err = g_err + np.abs(fac) * np.abs(mxd) * r + np.abs(g_val) * r / (2 * mu)
     return g_val.T, g_err.T
 
 

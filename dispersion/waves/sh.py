@@ -27,10 +27,18 @@ import math
 
 from dispersion.errors import check_real_in_range
 
-__all__ = ["sh_cutoffs", "sh_roots", "sh_mode_shape"]
+__all__ = ["AT_CUTOFF_RTOL", "at_cutoff", "sh_cutoffs", "sh_roots", "sh_mode_shape"]
 
 #: Largest Omega of an SH request (the list has about 2 Omega / pi entries).
 SH_OMEGA_MAX = 1e6
+#: A requested Omega within this relative distance of a cut-off *is* at the cut-off: the
+#: mode has kappa = 0 and infinite phase velocity there, so it is not propagating and not
+#: listed (:func:`at_cutoff` names it). Rule: Omega reaches the toolkit through about four
+#: roundings of the user's frequency (2 pi f h / c_T) and a cut-off through two or three
+#: (n pi / 2, or a square root for the Lamb families), so 8 eps covers both; a request
+#: farther away gets its true, certified kappa (next to a cut-off kappa ~ sqrt of the
+#: distance, the phase velocity large but finite).
+AT_CUTOFF_RTOL = 8 * 2.0**-52
 
 
 def sh_cutoffs(omega_max: float) -> list[tuple[str, float]]:
@@ -44,19 +52,45 @@ def sh_cutoffs(omega_max: float) -> list[tuple[str, float]]:
             if n * math.pi / 2 <= omega_max]
 
 
+def at_cutoff(Omega: float, cutoff: float) -> bool:
+    """True if ``Omega`` is the cut-off ``cutoff`` to rounding (:data:`AT_CUTOFF_RTOL`).
+
+    >>> at_cutoff(11 * math.pi / 2 * (1 + 2**-52), 11 * math.pi / 2), at_cutoff(1.0 + 1e-12, 1.0)
+    (True, False)
+    """
+    return abs(Omega - cutoff) <= AT_CUTOFF_RTOL * abs(Omega)
+
+
 def sh_roots(Omega: float) -> list[tuple[str, float, float]]:
     """Propagating SH modes at :math:`\\Omega > 0`: ``(label, kappa, dOmega/dkappa)``.
 
-    :math:`\\kappa = \\sqrt{(\\Omega - n\\pi/2)(\\Omega + n\\pi/2)}` (the factored form keeps
-    the relative accuracy next to a cut-off). A mode exactly at its cut-off (kappa = 0) is
-    not propagating and is not listed.
+    :math:`\\kappa = \\sqrt{(\\Omega - n\\pi/2)(\\Omega + n\\pi/2)}`; within 1e-3 relative
+    of a cut-off the difference is taken with pi to 40 digits (mpmath), so kappa keeps its
+    relative accuracy there (with the float pi the rounding of :math:`n\\pi/2` alone moves
+    kappa by :math:`\\epsilon / 2\\delta` at a relative distance delta). A mode at its cut-off (:func:`at_cutoff`) has
+    kappa = 0 and is not propagating: it is not listed.
     """
     Omega = float(check_real_in_range("Omega", Omega, 0, SH_OMEGA_MAX, lo_open=True))
     out = []
-    for label, wc in sh_cutoffs(Omega):
-        kappa = math.sqrt((Omega - wc) * (Omega + wc))
-        if kappa > 0:
-            out.append((label, kappa, kappa / Omega))
+    for label, wc in sh_cutoffs(min(Omega * (1 + 2 * AT_CUTOFF_RTOL), SH_OMEGA_MAX)):
+        if at_cutoff(Omega, wc):
+            continue
+        n = int(label[2:])
+        if abs(Omega - wc) > 1e-3 * Omega:
+            # the float pi's rounding moves kappa by eps wc / (2 (Omega - wc)) < 1e-13
+            if Omega <= wc:
+                continue
+            kappa = math.sqrt((Omega - wc) * (Omega + wc))
+        else:   # next to the cut-off: the difference with pi to 40 digits
+            import mpmath
+
+            with mpmath.workdps(40):
+                W = mpmath.mpf(Omega)
+                d = W - n * mpmath.pi / 2
+                if d <= 0:
+                    continue
+                kappa = float(mpmath.sqrt(d * (W + n * mpmath.pi / 2)))
+        out.append((label, kappa, kappa / Omega))
     return out
 
 

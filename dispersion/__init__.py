@@ -82,6 +82,7 @@ _MODULES = {
     "rule_families": "symbolic.rule_families",
     "mass_rule_file": "symbolic.mass_rule_file", "ownership": "ownership", "budget": "budget",
     "untrusted": "untrusted",
+    "wave_simulation": "studies.wave_simulation",
 }
 _SUBMODULES = tuple(_MODULES)
 

@@ -24,6 +24,7 @@
 # second with a typo in its kappa^6 coefficient (-28 instead of -29).
 
 # %%
+import tempfile
 from pathlib import Path
 
 from IPython.display import Markdown
@@ -48,7 +49,8 @@ mass = "consistent"
 branch = "A0"
 coefficients = {4 = "2/(3*(1-nu))", 6 = "(2*nu^2 + 8*nu - TYPO)/(45*(1-nu)^2)"}
 """
-path = Path("manuscript.toml")
+scratch = tempfile.TemporaryDirectory(prefix="manuscript-")  # not the folder we run in
+path = Path(scratch.name) / "manuscript.toml"
 path.write_text(claims.replace("TYPO", "28"))
 result = verify_file(path, jobs=1)
 Markdown(format_results(result.results, "markdown"))
@@ -80,3 +82,6 @@ try:
                   name="eq 18 (typo)", model="bloch", r=2, mass="consistent")
 except AssertionError as exc:
     print(exc)
+
+# %%
+scratch.cleanup()  # the manuscript file was ours: nothing is left behind

@@ -13,6 +13,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from dispersion.report import SECTIONS
 from dispersion.report.compare import (Verdict, close, compare_envelopes, compare_results,
                                        timing, unjudged, within, _leaves)
 
@@ -90,13 +91,13 @@ def test_other_inputs_are_not_compared():
     assert v.reproduced and v.line().startswith("not compared with reports/")
 
 
-@pytest.mark.parametrize("name", ["coefficients", "branches", "ring", "series_speed", "studies"])
+@pytest.mark.parametrize("name", SECTIONS)
 def test_each_section_declares_rules_that_compile(name):
     from dispersion.report.compare import rules_of
 
     for rule in rules_of(name):
-        assert rule.kind in {"exact", "close", "within", "timing", "unjudged"}
-        assert rule.kind != "unjudged" or rule.why  # an unjudged field says why
+        assert rule.kind in {"exact", "close", "within", "timing", "unjudged", "machine"}
+        assert rule.kind not in ("unjudged", "machine") or rule.why  # a field not judged says why
         assert not (rule.kind == "close" and (math.isnan(rule.rel) or rule.rel >= 1e-3))
 
 
@@ -139,3 +140,21 @@ def test_a_rule_with_two_list_markers_matches_its_fields():
     assert not rule.matches("per_wavelength.curves[0].kappa[12]")
     assert _rule([rule], "per_wavelength.curves[3].error[1]") is rule
     assert close("a[]", rel=1).matches("a[7]") and not close("a[]", rel=1).matches("a")
+
+
+def test_machine_fields_are_never_judged_and_peers_reach_the_verdict():
+    from dispersion.report.compare import Peer, machine
+
+    ref = {"x": 1.0, "peer": {"version": "5.46", "status": "ok"}, "notes": ["a", "b"]}
+    new = {"x": 1.0, "peer": {"version": None}, "notes": ["Peer not found", "a", "b", "c"]}
+    rules = (machine("peer.*", "the peer's run"), machine("notes[]", "notes on the machine"))
+    c = compare_results("s", ref, new, rules)
+    assert c.disagree == [] and c.agree == 1 and c.unjudged == 6  # peer.version, .status, notes[0..3]
+    assert compare_results("s", ref, dict(new, x=2.0), rules).disagree[0].path == "x"
+    peer = Peer("Peer", "not installed", "race not run", "apt-get install peer")
+    v = Verdict("reports/", [c], (peer,))
+    assert v.reproduced and v.line().endswith("; peers not run here: Peer (below)")
+    assert v.lines()[1:] == ["Peer not installed: race not run; apt-get install peer"]
+    assert "- Peer not installed: race not run; apt-get install peer" in v.markdown()
+    with pytest.raises(ValueError):
+        machine("x", "")

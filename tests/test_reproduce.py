@@ -9,6 +9,7 @@ run is refused). The slow test runs the real quick subset end to end.
 from __future__ import annotations
 
 import fcntl
+import importlib
 import json
 import math
 import os
@@ -263,9 +264,10 @@ def test_quick_reproduce_end_to_end(tmp_path):
     assert links, "index.md links no files"
     for link in links:
         assert (out / link).is_file(), link
-    for name in SECTIONS:
+    for name in DEFAULT_SECTIONS:  # the main job's; the opt-in ones are measured when named
         assert (out / f"{name}.json").is_file()
         assert f"| {name} |" in index.read_text()
+    assert not any((out / f"{name}.json").exists() for name in OPT_IN_SECTIONS)
     before = index.read_text()
     assert main(["reproduce", "--render", "--out", str(out)]) == 0
     assert index.read_text() == before  # rendering is a pure function of the JSON
@@ -281,6 +283,14 @@ def _stub_tolerances(monkeypatch):
         module = sys.modules[f"dispersion.report.{name}"]
         monkeypatch.setattr(module, "TOLERANCES", (close("value", rel=1e-9),
                                                    timing("seconds")), raising=False)
+
+
+def _verdict(lines: list[str]) -> str:
+    """The one verdict line among the printed lines."""
+    found = [ln for ln in lines if ln.startswith(("reproduced: ", "NOT reproduced: ",
+                                                  "not compared with "))]
+    assert len(found) == 1, lines
+    return found[0]
 
 
 def _snapshot(folder: Path) -> dict:
@@ -300,13 +310,16 @@ def test_default_run_leaves_the_reference_alone_and_says_it_reproduced(
     assert _snapshot(tmp_path / "reports") == reference  # the committed files are untouched
     assert (tmp_path / "reproduced" / "index.md").is_file()
     assert (tmp_path / "reproduced" / "comparison.md").is_file()
-    # one verdict line, last: every value of every section agrees; timings are not judged
-    assert out[-1].startswith(f"reproduced: {4 * len(DEFAULT_SECTIONS)} figures agree with "
-                              "reports/")
+    # one verdict line: every value of every section agrees; timings are not judged
+    line = _verdict(out)
+    assert line.startswith(f"reproduced: {4 * len(DEFAULT_SECTIONS)} figures agree with reports/")
+    assert "timings differ by" in line and "not judged" in line
     # the opt-in sections are named as not measured, before the verdict
-    assert any(line.startswith("not measured (opt-in") and all(n in line for n in OPT_IN_SECTIONS)
-               for line in out[:-1])
-    assert "timings differ by" in out[-1] and "not judged" in out[-1]
+    assert any(ln.startswith("not measured (opt-in") and all(n in ln for n in OPT_IN_SECTIONS)
+               for ln in out[:out.index(line)])
+    # then the summary, last the pages (no section here has a headline)
+    assert out[-1] == ("Pages: reproduced/index.md (every section, its figures and tables); "
+                       "every field compared: reproduced/comparison.md")
 
 
 def test_a_physics_figure_that_disagrees_fails_the_run(stubs, tmp_path, capsys, monkeypatch):
@@ -317,7 +330,7 @@ def test_a_physics_figure_that_disagrees_fails_the_run(stubs, tmp_path, capsys, 
     _stub_tolerances(monkeypatch)
     capsys.readouterr()
     assert main(["reproduce", "--jobs", "1", "--sections", "ring"]) == 1
-    line = capsys.readouterr().out.strip().splitlines()[-1]
+    line = _verdict(capsys.readouterr().out.strip().splitlines())
     assert line.startswith("NOT reproduced: 1 of 4 figures disagree with reports/ (ring)")
     assert "ring value" in line
     table = (tmp_path / "reproduced" / "comparison.md").read_text()
@@ -333,7 +346,7 @@ def test_a_quick_run_is_not_compared_with_a_full_reference(stubs, tmp_path, caps
     stubs(value=99.0)
     capsys.readouterr()
     assert main(["reproduce", "--quick", "--jobs", "1", "--sections", "ring"]) == 0
-    line = capsys.readouterr().out.strip().splitlines()[-1]
+    line = _verdict(capsys.readouterr().out.strip().splitlines())
     assert line.startswith("not compared with reports/: ring: measured with inputs")
 
 
@@ -376,18 +389,209 @@ _PROGRESS_CHILD = textwrap.dedent("""
     """)
 
 
-def test_progress_bars_stay_out_of_logs(tmp_path):
-    """stderr that is not a terminal gets no tqdm control codes (nested bars included)."""
+def test_progress_bars_stay_out_of_logs(stubs, tmp_path, capsys, monkeypatch):
+    """stderr that is not a terminal gets no tqdm control codes (nested bars included); in
+    this process (a captured stderr is no terminal), as a child process in the slow run."""
+    from dispersion.sweep import parallel_map
+
+    stubs()
+    for name in SECTIONS:
+        def measure(quick=False, executor=None):
+            parallel_map(abs, [-1, -2], jobs=1, desc="inner")
+            return {"v": 1}
+        monkeypatch.setattr(sys.modules[f"dispersion.report.{name}"], "measure", measure)
+        monkeypatch.setattr(sys.modules[f"dispersion.report.{name}"], "render",
+                            lambda data, out: "## x")
+    assert main(["reproduce", "--out", str(tmp_path / "a"), "--jobs", "1"]) == 0
+    err = capsys.readouterr().err
+    assert "\r" not in err and "%|" not in err
+
+
+@pytest.mark.slow  # two child processes
+def test_progress_flag_forces_the_bar_and_a_log_gets_none(tmp_path):
     script = _PROGRESS_CHILD
     quiet = subprocess.run([sys.executable, "-c", script, str(tmp_path / "a")], cwd=tmp_path,
                            capture_output=True, text=True, check=False)
     assert quiet.returncode == 0, quiet.stderr
     assert "\r" not in quiet.stderr and "%|" not in quiet.stderr
-
-
-@pytest.mark.slow  # a second child process
-def test_progress_flag_forces_the_bar(tmp_path):
-    script = _PROGRESS_CHILD
     loud = subprocess.run([sys.executable, "-c", script, str(tmp_path / "b"), "--progress"],
                           cwd=tmp_path, capture_output=True, text=True, check=False)
     assert loud.returncode == 0 and "reproduce" in loud.stderr and "%|" in loud.stderr
+
+
+# ------------------------------------- a machine without the optional peers (issue 26, item 1)
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _committed(name: str) -> dict:
+    from dispersion import results
+
+    return results.load(ROOT / "reports" / f"{name}.json")
+
+
+def _series_speed_without_maxima(monkeypatch) -> dict:
+    """The series_speed envelope a machine without Maxima records for the committed run: the
+    study's own ``measure`` (its notes, settings and dataclasses), its race and scaling fed
+    with the committed figures of ours, the peer's fields left as ``race`` leaves them when
+    Maxima is absent."""
+    import dataclasses
+
+    from dispersion import results
+    from dispersion.studies import series_race
+
+    ref = _committed("series_speed")
+    ours = {f.name for f in dataclasses.fields(series_race.RacePoint)
+            if not f.name.startswith("maxima") and f.name != "agree"}
+
+    def race(orders, timeout, maxima, notes, *args):
+        assert series_race.shutil.which(maxima) is None
+        notes.extend(ref["result"]["notes"])
+        return tuple(series_race.RacePoint(**{k: v for k, v in p.items() if k in ours})
+                     for p in ref["result"]["race"])
+
+    def scaling(grid):
+        return (tuple(series_race.ScalingPoint(**q) for q in ref["result"]["scaling"]),
+                tuple(series_race.GrowthFit(**f) for f in ref["result"]["fits"]))
+
+    monkeypatch.setattr(series_race, "race", race)
+    monkeypatch.setattr(series_race, "scaling", scaling)
+    result = results.jsonable(series_race.measure(maxima="maxima-not-on-this-machine"))
+    assert result["maxima"] is None and result["settings"] == ref["result"]["settings"]
+    return dict(ref, result=result)
+
+
+def _peers_without_the_extra() -> dict:
+    """The peers envelope of a machine without the ``peers`` extra and another Python: each
+    peer's row as the study writes it for a tool it did not find."""
+    import copy
+
+    from dispersion.studies.peers import TOOLS
+
+    env = copy.deepcopy(_committed("peers"))
+    for task in env["result"]["tasks"].values():
+        for tool in TOOLS[1:]:
+            task["tools"][tool] = {"status": "not installed"}
+    env["result"]["python"] = "3.99.0"
+    return env
+
+
+def test_a_machine_without_the_peers_reproduces_the_reference_and_back(monkeypatch):
+    from dispersion.report.compare import compare_envelopes
+
+    bare = {"series_speed": _series_speed_without_maxima(monkeypatch),
+            "peers": _peers_without_the_extra()}
+    for name, env in bare.items():
+        for reference, new in ((_committed(name), env), (env, _committed(name))):
+            c = compare_envelopes(name, reference, new)
+            assert c.skipped is None and c.disagree == [], [d.line() for d in c.disagree]
+            assert c.agree > 0
+
+
+def test_environment_fields_of_every_section_are_not_judged():
+    """Every field of the committed results (settings apart) that names a peer program, the
+    Python, notes or a version is matched by a rule that does not judge it (machine, unjudged or timing)."""
+    from dispersion.report.compare import _generic, _leaves, _rule, rules_of
+
+    environment = re.compile(r"maxima|disba|displam|lambwaves|getfem|python|notes|version"
+                             r"|reference roots|\.missed$", re.I)
+    checked = 0
+    for name in SECTIONS:
+        rules = rules_of(name)
+        paths = {_generic(p) for p, _ in _leaves(_committed(name)["result"])}
+        for path in sorted(p for p in paths if environment.search(p)):
+            if (name == "peers" and ".tools.dispersion." in path and "missed" not in path
+                    or path.startswith("settings.")):
+                continue  # our own row, the study's settings: judged
+            assert _rule(rules, path).kind in ("machine", "unjudged", "timing"), (name, path)
+            checked += 1
+    assert checked >= 20
+
+
+#: The real sections whose rules, peer reports and headlines the run below uses (imported
+#: here, before the ``stubs`` fixture replaces the modules).
+_REAL = {name: importlib.import_module(f"dispersion.report.{name}")
+         for name in ("coefficients", "ring", "series_speed", "peers")}
+
+
+def _real_parts(name: str) -> dict:
+    return {k: getattr(_REAL[name], k) for k in ("TOLERANCES", "missing_peers", "headline")
+            if hasattr(_REAL[name], k)}
+
+
+def test_without_maxima_and_the_peers_extra_the_run_reproduces_and_says_so(
+        stubs, tmp_path, capsys, monkeypatch):
+    # the real comparison rules, peer reports and headlines of three sections; their measure
+    # gives the committed result first (the reference), then a bare machine's (the ring's
+    # headline: test_headlines_are_rendered_from_the_results)
+    bare = {"series_speed": _series_speed_without_maxima(monkeypatch)["result"],
+            "peers": _peers_without_the_extra()["result"]}
+    names = ("coefficients", "series_speed", "peers")
+    parts = {name: _real_parts(name) for name in names}
+    stubs()
+
+    def install(results):
+        for name in names:
+            module = sys.modules[f"dispersion.report.{name}"]
+            for attr, value in parts[name].items():
+                monkeypatch.setattr(module, attr, value, raising=False)
+            monkeypatch.setattr(module, "measure",
+                                lambda quick=False, executor=None, r=results[name]: r)
+            monkeypatch.setattr(module, "render", lambda data, out, n=name: f"## {n}\n")
+
+    install({name: _committed(name)["result"] for name in names})
+    assert main(["reproduce", "--update-reference", "--jobs", "1",
+                 "--sections", ",".join(names)]) == 0
+    install({name: bare.get(name, _committed(name)["result"]) for name in names})
+    capsys.readouterr()
+    assert main(["reproduce", "--jobs", "1", "--sections", ",".join(names)]) == 0
+    out = capsys.readouterr().out.strip().splitlines()
+    line = _verdict(out)
+    assert line.startswith("reproduced: ") and line.endswith(
+        "; peers not run here: Maxima, disba, displam (below)")
+    after = out[out.index(line) + 1:]
+    assert after[:2] == ["Maxima not installed: race not run; apt-get install maxima maxima-share",
+                         'disba, displam not installed: side-by-side runs not run; '
+                         'pip install -e ".[peers]"']
+    assert after[2].startswith("Errata (coefficients.md): eq 17 (kappa^6: factor")
+    assert after[3].startswith("Pages: reproduced/index.md") and len(after) == 4
+    comparison = (tmp_path / "reproduced" / "comparison.md").read_text()
+    assert "- Maxima not installed: race not run" in comparison
+
+
+def test_headlines_are_rendered_from_the_results():
+    from dispersion.report import coefficients, ring
+
+    data = _committed("coefficients")["result"]
+    line = coefficients.headline(data)
+    for claim in data["claims"]:
+        named = f"{claim['name']} (" in line or f"{claim['name']} differs" in line
+        assert named == (claim["status"] != "holds"), claim["name"]
+        if claim["status"] == "differs":
+            assert claim["difference"] in line
+    holds = sum(c["status"] == "holds" for c in data["claims"])
+    assert line.endswith(f"; {holds} of {len(data['claims'])} printed claims hold.")
+    data = _committed("ring")["result"]
+    line = ring.headline(data)
+    for mass, paper in data["paper"].items():
+        s = data["pair"][mass]["summary"]
+        assert f"{mass} {s['energy_change_percent']:+.4g} % (" in line
+        assert f"paper {paper:+g} %)" in line
+    # an edited result shows in the line: nothing of it is typed
+    data["paper"]["lumped"] = -1.25
+    assert "paper -1.25 %" in ring.headline(data)
+
+
+def test_a_failed_peer_is_named_with_its_message():
+    from dispersion.report import peers, series_speed
+
+    race = [{"order": 8, "maxima_status": "ok"},
+            {"order": 16, "maxima_status": "failed", "maxima_error": "printed an error: x"}]
+    (peer,) = series_speed.missing_peers({"maxima": "Maxima 5.46.0", "race": race})
+    assert peer.line() == ("Maxima failed at kappa^16: those runs not timed (series_speed.md); "
+                           "its message: printed an error: x")
+    assert series_speed.missing_peers({"maxima": "Maxima 5.46.0", "race": race[:1]}) == ()
+    tools = {"dispersion": {"status": "ok"}, "disba": {"status": "failed: boom"},
+             "displam": {"status": "ok"}}
+    (peer,) = peers.missing_peers({"tasks": {"t": {"tools": tools}}})
+    assert peer.line() == "disba failed: not timed (peers section); its message: boom"

@@ -11,6 +11,7 @@ import ast
 import inspect
 from fractions import Fraction
 
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -66,9 +67,19 @@ def _text(t, caret: bool) -> str:
     return f"({_text(t[1], caret)}) {kind} ({_text(t[2], caret)})"
 
 
-@settings(max_examples=300, deadline=None)
-@given(_tree(), NU, st.booleans())
-def test_value_equals_direct_fraction_evaluation(tree, nu, caret):
+def _fast_and_full(fast: int, full: int):
+    """The example count of a search: ``fast`` in the default run, ``full`` in the slow run."""
+    return pytest.mark.parametrize("examples", [
+        pytest.param(fast, id="fast"), pytest.param(full, id="full", marks=pytest.mark.slow)])
+
+
+@_fast_and_full(60, 300)
+def test_value_equals_direct_fraction_evaluation(examples):
+    settings(max_examples=examples, deadline=None)(
+        given(_tree(), NU, st.booleans())(_value_equals_direct_fraction_evaluation))()
+
+
+def _value_equals_direct_fraction_evaluation(tree, nu, caret):
     text = _text(tree, caret)
     try:
         expected = _eval(tree, nu)
@@ -83,10 +94,14 @@ def test_value_equals_direct_fraction_evaluation(tree, nu, caret):
     assert _value(text, nu) == expected
 
 
-@settings(max_examples=500, deadline=None)
-@given(st.text(alphabet=st.sampled_from(list("0123456789nu+-*/^() .eE_[]'\"abcdxyzos,;:")),
-               max_size=40), NU)
-def test_value_refuses_with_input_error_only(text, nu):
+@_fast_and_full(100, 500)
+def test_value_refuses_with_input_error_only(examples):
+    settings(max_examples=examples, deadline=None)(given(
+        st.text(alphabet=st.sampled_from(list("0123456789nu+-*/^() .eE_[]'\"abcdxyzos,;:")),
+                max_size=40), NU)(_value_refuses_with_input_error_only))()
+
+
+def _value_refuses_with_input_error_only(text, nu):
     # fuzz: any text either reads to a Fraction or is refused as InputError, nothing else
     try:
         assert isinstance(_value(text, nu), Fraction)

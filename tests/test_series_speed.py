@@ -144,6 +144,8 @@ def test_a_failing_peer_is_reported_and_not_timed(tmp_path):
     assert any("not timed" in n for n in notes)
 
 
+@pytest.mark.slow  # a whole bench --quick (four child runs); the race-level test above is
+# the default run's check that a failing peer is not timed
 def test_bench_with_a_failing_maxima_prints_no_ratio(tmp_path, monkeypatch, capsys):
     stub = _stub_maxima(tmp_path, _STRINGPROC_ERROR)
     monkeypatch.setenv("PATH", f"{stub.parent}:{__import__('os').environ['PATH']}")

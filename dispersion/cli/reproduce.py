@@ -124,7 +124,7 @@ def handler(args: argparse.Namespace) -> int:
     if skipped and not args.render:
         print(f"not measured (opt-in, tens of minutes): {', '.join(skipped)}; run "
               f"`dispersion reproduce --sections {','.join(skipped)}`")
-    print(run.verdict.line())
+    print(run.text())  # the verdict line, the peers not run, a short summary
     if args.update_reference:
         return 0  # replacing the reference is the maintainer's decision; the line informs it
     return 0 if run.verdict.reproduced else 1

@@ -16,6 +16,11 @@ with two names:
     section for ``index.md``, linking files by relative path. It computes nothing that
     takes time, so ``dispersion reproduce --render`` rebuilds every page from the JSON alone.
 
+A section may also define ``headline(data) -> str``, one line for the console summary that
+follows the verdict (rendered from the stored result like the rest), ``TOLERANCES`` (how
+its fields are compared with the reference, :mod:`dispersion.report.compare`) and
+``missing_peers(data)`` (the optional programs the result shows were not run).
+
 ``dispersion reproduce`` runs ``measure`` of each section, saves ``<name>.json``
 (:func:`dispersion.results.save`: result, inputs, versions, machine, seconds, command),
 then renders every section from the saved files and writes ``index.md``.

@@ -18,7 +18,7 @@ from dispersion.claims.errata import errata_document, format_table, paper_errata
 from dispersion.io import write_text
 from dispersion.report.compare import timing
 
-__all__ = ["measure", "render", "summary", "TOLERANCES", "CLAIMS_FILE"]
+__all__ = ["measure", "render", "summary", "headline", "TOLERANCES", "CLAIMS_FILE"]
 
 #: The paper's claims file, named relative to the installed package's parent.
 CLAIMS_FILE = "dispersion/data/paper_claims.toml"
@@ -88,3 +88,28 @@ def summary(data: dict) -> str:
         cells = [c["name"], c["model"], c["status"], c["difference"] or ""]
         lines.append("| " + " | ".join(x.replace("|", "\\|") for x in cells) + " |")
     return "\n".join(lines) + "\n"
+
+
+def headline(data: dict) -> str:
+    """One line for the console: the claims that differ from the derivation, and how.
+
+    >>> headline({"claims": [
+    ...     {"name": "eq 17", "status": "differs", "difference": "kappa^6: sign"},
+    ...     {"name": "eq 18", "status": "holds", "difference": None}]})
+    'Errata (coefficients.md): eq 17 (kappa^6: sign) differs from the derivation; 1 of 2 printed claims hold.'
+    """
+    claims = data["claims"]
+    holds = sum(c["status"] == "holds" for c in claims)
+    differ = [f"{c['name']} ({c['difference']})" if c.get("difference") else c["name"]
+              for c in claims if c["status"] == "differs"]
+    other = [f"{c['name']} {c['status']}" for c in claims
+             if c["status"] not in ("holds", "differs")]
+    found = []
+    if differ:
+        found.append(", ".join(differ) + (" differs" if len(differ) == 1 else " differ")
+                     + " from the derivation")
+    found += other
+    if not found:
+        found.append("none")
+    return (f"Errata (coefficients.md): {'; '.join(found)}; {holds} of {len(claims)} "
+            "printed claims hold.")

@@ -18,9 +18,19 @@ a section that declares nothing is held to the strictest standard. The kinds:
     a wall time or a quantity fitted to wall times: listed as the ratio new/ref, never judged.
 ``unjudged``
     recorded for the reader, not compared (the ``why`` says why).
+``machine``
+    describes the machine that ran, not the physics (a peer program present or not, its
+    version, status and messages, notes on the installation, paths): recorded, never
+    compared, counted with the values not judged. A reproduction judges physics only, so
+    a machine without an optional peer reproduces as well as one with it.
 
 Missing or extra keys, lists of other lengths and ``null`` against a number are
-disagreements unless the rule is ``timing`` or ``unjudged``.
+disagreements unless the rule is ``timing``, ``unjudged`` or ``machine``.
+
+What the machine lacked is said in the verdict instead: a section may define
+``missing_peers(result) -> tuple[Peer, ...]`` (the peers its stored result shows were not
+installed or failed), and :attr:`Verdict.peers` carries them into the verdict, one line
+each, with the command that installs the peer.
 
 >>> rules = (close("x", rel=1e-12), timing("seconds"))
 >>> c = compare_results("demo", {"x": 1.0, "n": 3, "seconds": 2.0},
@@ -32,17 +42,18 @@ disagreements unless the rule is ``timing`` or ``unjudged``.
 """
 from __future__ import annotations
 
+import fnmatch
+import functools
 import math
 import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from fnmatch import fnmatchcase
 from pathlib import Path
 
 __all__ = [
-    "Rule", "exact", "close", "within", "timing", "unjudged",
-    "Difference", "Timing", "SectionComparison", "Verdict",
-    "compare_results", "compare_envelopes", "rules_of",
+    "Rule", "exact", "close", "within", "timing", "unjudged", "machine",
+    "Difference", "Timing", "SectionComparison", "Verdict", "Peer",
+    "compare_results", "compare_envelopes", "rules_of", "missing_peers",
 ]
 
 
@@ -60,10 +71,11 @@ class Rule:
     why: str = ""
 
     def matches(self, path: str) -> bool:
-        # "[]" in a pattern is the literal list marker of _generic, not an fnmatch character
-        # set ("curves[].error[]" would read "].error[" as one); only "*" and "?" are wild
-        literal = self.pattern.replace("[", "\0").replace("]", "[]]").replace("\0", "[[]")
-        return fnmatchcase(_generic(path), literal)
+        return self.matches_generic(_generic(path))
+
+    def matches_generic(self, generic: str) -> bool:
+        """:meth:`matches` for a path whose list indices are already ``[]``."""
+        return _compiled(self.pattern).match(generic) is not None
 
     def describe(self) -> str:
         if self.kind == "close":
@@ -71,6 +83,8 @@ class Rule:
         if self.kind == "within":
             return (f"within reference [{self.lo}, {self.hi}] widened by {self.widen:g} x its "
                     f"width (at least {self.abs:g})")
+        if self.kind == "machine":
+            return "machine (not judged)"
         return self.kind
 
 
@@ -105,6 +119,34 @@ def timing(pattern: str, why: str = "") -> Rule:
 def unjudged(pattern: str, why: str) -> Rule:
     """Not compared; ``why`` says why."""
     return Rule(pattern, "unjudged", why=why)
+
+
+def machine(pattern: str, what: str) -> Rule:
+    """A field that describes the machine, not the physics (``what`` says which): not judged.
+
+    >>> machine("maxima", "version of Maxima").describe()
+    'machine (not judged)'
+    """
+    if not what:
+        raise ValueError("machine() needs a description of what the field records")
+    return Rule(pattern, "machine", why=f"describes the machine: {what}")
+
+
+@dataclass(frozen=True)
+class Peer:
+    """An optional program a section runs beside ours that this machine lacked, or that failed.
+
+    >>> Peer("Maxima", "not installed", "race not run", "apt-get install maxima maxima-share").line()
+    'Maxima not installed: race not run; apt-get install maxima maxima-share'
+    """
+
+    name: str
+    problem: str
+    consequence: str
+    remedy: str
+
+    def line(self) -> str:
+        return f"{self.name} {self.problem}: {self.consequence}; {self.remedy}"
 
 
 @dataclass(frozen=True)
@@ -156,6 +198,7 @@ class Verdict:
 
     reference: str
     sections: list[SectionComparison]
+    peers: tuple[Peer, ...] = ()
 
     @property
     def agree(self) -> int:
@@ -196,15 +239,25 @@ class Verdict:
         unjudged_count = sum(s.unjudged for s in self.sections)
         if unjudged_count:
             times += f", {unjudged_count} values not judged (comparison.md says why)"
+        if self.peers:
+            names = ", ".join(dict.fromkeys(p.name for p in self.peers))
+            tail += f"; peers not run here: {names} (below)"
         if self.reproduced:
             return f"reproduced: {self.agree} figures agree with {where}, {times}{tail}"
         d = self.disagree
         return (f"NOT reproduced: {len(d)} of {self.agree + len(d)} figures disagree with "
                 f"{where} (first: {d[0].section} {d[0].path}), {times}{tail}")
 
+    def lines(self) -> list[str]:
+        """The verdict line, then one line per peer this machine lacked (with its remedy)."""
+        return [self.line(), *(p.line() for p in self.peers)]
+
     def markdown(self) -> str:
         """Every disagreement, every timing ratio and every skipped section, as Markdown."""
         lines = ["# Comparison with the reference", "", self.line(), ""]
+        if self.peers:
+            lines += ["Peers not run on this machine (their fields describe the machine and "
+                      "are not judged):", "", *(f"- {p.line()}" for p in self.peers), ""]
         for s in self.sections:
             lines += [f"## {s.section}", ""]
             if s.skipped is not None:
@@ -246,19 +299,20 @@ def _number(x) -> bool:
     return isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x)
 
 
+_INDEX = re.compile(r"\[[^\]]*\]")
+
+
 def _generic(path: str) -> str:
     """``a[3].b`` -> ``a[].b``: rules name list items without their index."""
-    out, skip = [], False
-    for ch in path:
-        if ch == "[":
-            out.append("[")
-            skip = True
-        elif ch == "]":
-            out.append("]")
-            skip = False
-        elif not skip:
-            out.append(ch)
-    return "".join(out)
+    return _INDEX.sub("[]", path)
+
+
+@functools.lru_cache(maxsize=1024)
+def _compiled(pattern: str) -> re.Pattern:
+    # "[]" in a pattern is the literal list marker of _generic, not an fnmatch character
+    # set ("curves[].error[]" would read "].error[" as one); only "*" and "?" are wild
+    literal = pattern.replace("[", "\0").replace("]", "[]]").replace("\0", "[[]")
+    return re.compile(fnmatch.translate(literal), re.DOTALL)
 
 
 def _get(data, path: str):
@@ -279,23 +333,31 @@ def _leaves(data, prefix: str = ""):
         yield prefix, data
 
 
-def _rule(rules: Sequence[Rule], path: str) -> Rule:
-    for rule in rules:
-        if rule.matches(path):
-            return rule
-    return Rule("*", "exact")
+_EXACT = Rule("*", "exact")
+
+
+def _rule(rules: Sequence[Rule], path: str, seen: dict | None = None) -> Rule:
+    """The first rule matching ``path`` (identical values if none); ``seen`` memoizes the
+    answer per generic path (the leaves of a list share it)."""
+    generic = _generic(path)
+    if seen is not None and generic in seen:
+        return seen[generic]
+    rule = next((r for r in rules if r.matches_generic(generic)), _EXACT)
+    if seen is not None:
+        seen[generic] = rule
+    return rule
 
 
 def compare_results(section: str, reference, new, rules: Sequence[Rule] = ()) -> SectionComparison:
     """Compare two stored results (plain JSON data) leaf by leaf under ``rules``."""
     ref_leaves = dict(_leaves(reference))
     new_leaves = dict(_leaves(new))
-    agree, unjudged_count, disagree, timings = 0, 0, [], []
+    agree, unjudged_count, disagree, timings, seen = 0, 0, [], [], {}
     for path in list(ref_leaves) + [p for p in new_leaves if p not in ref_leaves]:
-        rule = _rule(rules, path)
+        rule = _rule(rules, path, seen)
         a = ref_leaves.get(path, _MISSING)
         b = new_leaves.get(path, _MISSING)
-        if rule.kind == "unjudged":
+        if rule.kind in ("unjudged", "machine"):
             unjudged_count += 1
             continue
         if rule.kind == "timing":
@@ -349,6 +411,15 @@ def rules_of(name: str) -> tuple[Rule, ...]:
     return tuple(getattr(section_module(name), "TOLERANCES", ()))
 
 
+def missing_peers(name: str, result) -> tuple[Peer, ...]:
+    """The peers the stored ``result`` of section ``name`` shows were not run (its
+    ``missing_peers``; none if the section runs no peer)."""
+    from dispersion.report import section_module
+
+    find = getattr(section_module(name), "missing_peers", None)
+    return tuple(find(result)) if callable(find) else ()
+
+
 def compare_envelopes(name: str, reference: Mapping, new: Mapping,
                       rules: Sequence[Rule] | None = None) -> SectionComparison:
     """Compare two stored envelopes of section ``name``; skipped if their inputs differ.
@@ -383,4 +454,6 @@ def compare_folders(reference: Path, new: Path, names: Sequence[str]) -> Verdict
         else:
             sections.append(compare_envelopes(name, results.load(ref_path),
                                               results.load(new_path)))
-    return Verdict(f"{reference.name}/", sections)
+    peers = tuple(p for name in names if (new / f"{name}.json").is_file()
+                  for p in missing_peers(name, results.load(new / f"{name}.json")["result"]))
+    return Verdict(f"{reference.name}/", sections, peers)

@@ -44,11 +44,13 @@ INTRO = (
 
 @dataclass(frozen=True)
 class SectionResult:
-    """One rendered report section: its name, its Markdown and the seconds its measurement took."""
+    """One rendered report section: its name, its Markdown, the seconds its measurement took,
+    and its one-line headline for the console (the section's ``headline``; empty if none)."""
 
     name: str
     markdown: str
     seconds: float
+    headline: str = ""
 
 
 def _table(header: tuple[str, ...], rows) -> list[str]:

@@ -8,24 +8,51 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from dispersion.report.compare import close, timing, unjudged
-from dispersion.studies.peers import measure
+from dispersion.report.compare import Peer, close, machine, timing
+from dispersion.studies.peers import PEERS_INSTALL, TOOLS, measure
 
-__all__ = ["measure", "render", "render_tables", "TOLERANCES"]
+__all__ = ["measure", "render", "render_tables", "missing_peers", "TOLERANCES"]
 
 #: Comparison rules (:mod:`dispersion.report.compare`), first match wins. Times are listed,
 #: never judged; the peers are an optional extra (installed or not on the machine that
-#: reproduces), so only our own row is judged: its counts exactly, its errors to 1e-12.
+#: reproduces), so only our own row is judged: the roots we find exactly, their errors to
+#: 1e-12. The reference roots are the union of every installed tool's roots, so their count
+#: (and the count of ours missed among them) depends on which peers the machine has.
 TOLERANCES = (
     timing("*.seconds", "wall time"),
     timing("*.time_over_ours", "ratio of wall times"),
     close("tasks.*.tools.dispersion.*_error", abs=1e-12,
           why="round-off of the root solver and of the mpmath reference"),
     close("curves.*", rel=1e-12, why="our branches in physical units: roots certified to 1e-12"),
-    unjudged("tasks.*.tools.disba.*", "optional peer (the peers extra): installed or not"),
-    unjudged("tasks.*.tools.displam.*", "optional peer (the peers extra): installed or not"),
-    unjudged("tasks.*.tools.lambwaves.*", "optional peer: not on the package index"),
+    machine("tasks.*.reference roots", "the union of the installed tools' roots"),
+    machine("tasks.*.tools.dispersion.missed", "counted against the installed tools' roots"),
+    machine("tasks.*.tools.disba.*", "optional peer (the peers extra): installed or not"),
+    machine("tasks.*.tools.displam.*", "optional peer (the peers extra): installed or not"),
+    machine("tasks.*.tools.lambwaves.*", "optional peer: not on the package index"),
+    machine("python", "Python version of the machine"),
 )
+
+
+def missing_peers(data: dict) -> tuple[Peer, ...]:
+    """The peers of :data:`~dispersion.studies.peers.TOOLS` the stored result shows were not
+    installed (one line for all) or failed (one line each).
+
+    >>> row = {"tools": {"dispersion": {"status": "ok"}, "disba": {"status": "not installed"},
+    ...                  "displam": {"status": "not installed"}}}
+    >>> missing_peers({"tasks": {"branches": row}})[0].line()
+    'disba, displam not installed: side-by-side runs not run; pip install -e ".[peers]"'
+    """
+    status = {}
+    for task in data.get("tasks", {}).values():
+        for tool, row in task["tools"].items():
+            if tool != TOOLS[0] and row["status"] != "ok":
+                status.setdefault(tool, row["status"])
+    absent = [t for t, s in status.items() if s == "not installed"]
+    out = [Peer(", ".join(absent), "not installed", "side-by-side runs not run",
+                PEERS_INSTALL)] if absent else []
+    out += [Peer(t, "failed", "not timed (peers section)", f"its message: {s.removeprefix('failed: ')}")
+            for t, s in status.items() if s != "not installed"]
+    return tuple(out)
 
 _HEAD = ("| task | tool | status | reference roots | found | missed | spurious | "
          "max rel. error | median rel. error | whole process [s] | time / ours |\n"

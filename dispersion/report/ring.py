@@ -13,7 +13,7 @@ from dispersion.contact.study import measure
 from dispersion.io import save_figure
 from dispersion.report.compare import close, timing, unjudged, within
 
-__all__ = ["measure", "render", "summary", "TOLERANCES"]
+__all__ = ["measure", "render", "summary", "headline", "TOLERANCES"]
 
 _CHAOTIC = ("contact histories are chaotic: a round-off perturbation changes them (the spread "
             "runs measure by how much for the default scene, and those are judged)")
@@ -371,6 +371,29 @@ def _legacy_summary(data: dict) -> str:
         f"{best['lumped']:.3f}, consistent {best['consistent']:.3f}, singular "
         f"{best['singular']:.3f}.",
     ]) + "\n"
+
+
+def headline(data: dict) -> str:
+    """One line for the console: the ring's energy change per mass against the paper's.
+
+    >>> headline({"paper": {"lumped": -9.5}, "pair": {"lumped": {"summary": {
+    ...     "converged": True, "energy_change_percent": -10.04}}},
+    ...     "spread": {"lumped": {"runs": 4, "energy_min": -10.04, "energy_max": -8.94}}})
+    'Ring (Figure 4, figure4.png), energy change: lumped -10.04 % (4 round-off runs -10.04 .. -8.94 %; paper -9.5 %).'
+    """
+    cells = []
+    for m, paper in data["paper"].items():
+        s, sp = data["pair"][m]["summary"], data.get("spread", {}).get(m)
+        if not s.get("converged"):
+            cells.append(f"{m} Newton failed (paper {paper:+g} %)")
+            continue
+        band = ""
+        if sp:
+            lo, hi = f"{sp['energy_min']:+.4g}", f"{sp['energy_max']:+.4g}"
+            band = f"{sp['runs']} round-off runs " + (f"all {lo} %; " if lo == hi
+                                                      else f"{lo} .. {hi} %; ")
+        cells.append(f"{m} {s['energy_change_percent']:+.4g} % ({band}paper {paper:+g} %)")
+    return "Ring (Figure 4, figure4.png), energy change: " + ", ".join(cells) + "."
 
 
 def summary(data: dict) -> str:

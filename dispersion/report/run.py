@@ -32,7 +32,8 @@ from dispersion import defaults, results
 from dispersion.errors import InputError, check_int_in_range
 from dispersion.io import write_text
 from dispersion.report import DEFAULT_SECTIONS, SECTIONS, section_module
-from dispersion.report.compare import SectionComparison, Verdict, compare_envelopes
+from dispersion.report.compare import (SectionComparison, Verdict, compare_envelopes,
+                                       missing_peers)
 from dispersion.report.folder import check_target, open_report
 from dispersion.report.index import SectionResult, render_index
 from dispersion.sweep import MAX_JOBS_PER_CPU, default_jobs, process_pool, progress_bars
@@ -62,6 +63,22 @@ class ReproduceRun:
     def __repr__(self) -> str:
         return (f"ReproduceRun(out={str(self.out)!r}, sections={[s.name for s in self.sections]}, "
                 f"verdict={self.verdict.line()!r})")
+
+    def summary(self) -> list[str]:
+        """What a reader wants after the verdict, from the rendered results: each section's
+        headline (errata found, the ring's energies against the paper's, ...) and where the
+        pages are."""
+        lines = [s.headline for s in self.sections if s.headline]
+        comparison = self.out / "comparison.md"
+        compared = (f"; every field compared: {comparison.as_posix()}"
+                    if comparison.is_file() else "")
+        return [*lines, f"Pages: {(self.out / 'index.md').as_posix()} (every section, its "
+                        f"figures and tables){compared}"]
+
+    def text(self) -> str:
+        """What ``dispersion reproduce`` prints last: the verdict line, a line per peer this
+        machine lacked, then :meth:`summary`."""
+        return "\n".join([*self.verdict.lines(), *self.summary()])
 
 
 def check_sections(names: Sequence[str]) -> list[str]:
@@ -117,8 +134,11 @@ def render_folder(folder: Path, shown: Path | None = None) -> list[SectionResult
         if not path.is_file():
             continue
         env = results.load(path)
-        markdown = section_module(name).render(env["result"], folder)
-        parts.append(SectionResult(name, markdown, env.get("seconds") or 0.0))
+        module = section_module(name)
+        markdown = module.render(env["result"], folder)
+        headline = getattr(module, "headline", None)
+        parts.append(SectionResult(name, markdown, env.get("seconds") or 0.0,
+                                   headline(env["result"]) if callable(headline) else ""))
         envelopes.append(env)
     if not parts:
         raise InputError(f"--out {shown or folder} holds no section results (*.json) to render")
@@ -254,14 +274,15 @@ def reproduce(
 
 def _verdict(reference: Path, ref_envs: dict, staged: Path, names: Sequence[str]) -> Verdict:
     label = f"{reference.as_posix().rstrip('/')}/"
+    news = {name: results.load(staged / f"{name}.json") for name in names}
+    peers = tuple(p for name in names for p in missing_peers(name, news[name]["result"]))
     if not ref_envs:
         why = "no reference results (*.json) there"
-        return Verdict(label, [SectionComparison(n, skipped=why) for n in names])
+        return Verdict(label, [SectionComparison(n, skipped=why) for n in names], peers)
     sections = []
     for name in names:
         if name not in ref_envs:
             sections.append(SectionComparison(name, skipped=f"no {name}.json in the reference"))
             continue
-        new = results.load(staged / f"{name}.json")
-        sections.append(compare_envelopes(name, ref_envs[name], new))
-    return Verdict(label, sections)
+        sections.append(compare_envelopes(name, ref_envs[name], news[name]))
+    return Verdict(label, sections, peers)

@@ -10,23 +10,42 @@ from __future__ import annotations
 from pathlib import Path
 
 from dispersion.io import save_figure
-from dispersion.report.compare import timing, unjudged
-from dispersion.studies.series_race import measure
+from dispersion.report.compare import Peer, machine, timing
+from dispersion.studies.series_race import MAXIMA_INSTALL, measure
 
-__all__ = ["measure", "render", "render_tables", "summary", "TOLERANCES"]
+__all__ = ["measure", "render", "render_tables", "summary", "missing_peers", "TOLERANCES"]
 
 #: Comparison rules (:mod:`dispersion.report.compare`): a speed study, so every measurement
 #: is a timing (listed as a ratio, not judged); its settings must be identical. Whether
-#: Maxima is installed is the machine's business; the series themselves are judged in the
-#: coefficients section and by the test suite.
+#: Maxima is installed, and how its runs went, is the machine's business (said in the
+#: verdict by :func:`missing_peers`); the series themselves are judged in the coefficients
+#: section and by the test suite.
 TOLERANCES = (
     timing("race[].*_s", "wall time"),
     timing("race[].*_mib", "peak memory of the process"),
     timing("scaling[].seconds", "wall time"),
     timing("fits[].*", "fitted to wall times"),
-    unjudged("race[].agree", "needs Maxima on the machine"),
-    unjudged("maxima", "version of Maxima on the machine"),
+    machine("race[].agree", "Maxima's run compared with ours: needs Maxima on the machine"),
+    machine("race[].maxima_*", "Maxima's run: present or not, its status and message"),
+    machine("maxima", "version of Maxima on the machine, or none"),
+    machine("notes[]", "notes on the machine: peers and tools found or not, the install"),
 )
+
+
+def missing_peers(data: dict) -> tuple[Peer, ...]:
+    """Maxima not installed, or its failed runs, as the stored result shows them.
+
+    >>> missing_peers({"maxima": None, "race": [{"order": 8, "maxima_status": None}]})[0].line()
+    'Maxima not installed: race not run; apt-get install maxima maxima-share'
+    """
+    if data.get("maxima") is None:
+        return (Peer("Maxima", "not installed", "race not run", MAXIMA_INSTALL),)
+    failed = [p for p in data.get("race", ()) if p.get("maxima_status") == "failed"]
+    if not failed:
+        return ()
+    orders = ", ".join(f"kappa^{p['order']}" for p in failed)
+    return (Peer("Maxima", f"failed at {orders}", "those runs not timed (series_speed.md)",
+                 f"its message: {failed[0].get('maxima_error') or 'none'}"),)
 
 
 def _fmt(x, digits: int = 3) -> str:

@@ -34,7 +34,7 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
-__all__ = ["PeerRace", "measure", "TOOLS"]
+__all__ = ["PeerRace", "measure", "TOOLS", "PEERS_INSTALL"]
 
 C_L, C_T, RHO, D_MM = 6320.0, 3130.0, 2700.0, 1.0
 CP_MAX = 30_000.0  # m/s, the window every tool is given
@@ -100,6 +100,8 @@ def _scripts() -> dict[str, str]:
 
 #: Tools in the order they run, with how to tell whether each is installed.
 TOOLS = ("dispersion", "disba", "displam")
+#: How to install the peers (the package's ``peers`` extra, from a checkout).
+PEERS_INSTALL = 'pip install -e ".[peers]"'
 
 
 def _installed(tool: str) -> bool:

@@ -44,11 +44,13 @@ from pathlib import Path
 from dispersion.errors import InputError
 
 __all__ = [
-    "TIMEOUT", "TIMEOUT_MAX", "RacePoint", "ScalingPoint", "GrowthFit", "SeriesSpeed",
+    "MAXIMA_INSTALL", "TIMEOUT", "TIMEOUT_MAX", "RacePoint", "ScalingPoint", "GrowthFit", "SeriesSpeed",
     "fit_growth", "maxima_program", "measure", "parse_maxima_output", "peer_failure", "race",
     "run_child", "scaling",
 ]
 
+#: How to install the peer (Debian; the program loads ``stringproc`` from maxima-share).
+MAXIMA_INSTALL = "apt-get install maxima maxima-share"
 #: Default and largest ceiling (seconds) for one child process of the race.
 TIMEOUT = 120.0
 TIMEOUT_MAX = 600.0
@@ -429,7 +431,7 @@ def measure(quick: bool = False, executor=None, *, timeout: float = TIMEOUT,
     exe = shutil.which(maxima) if maxima else None
     if exe is None:
         notes.append(f"Maxima not found ({maxima!r} on PATH): the race shows ours only "
-                     "(apt-get install -y maxima maxima-share)")
+                     f"({MAXIMA_INSTALL})")
     if _gnu_time() is None:
         notes.append("GNU time not found: no peak memory (apt-get install -y time)")
     if python is not None:

@@ -94,8 +94,21 @@ def _named_outputs(args: list[str]) -> list[str]:
             if a in ("--out", "--figure", "--csv", "--json", "--junit") and args[i + 1] != "-"]
 
 
+def quick_start() -> list[str]:
+    """The quick start's commands (whole lines, install included), in README order."""
+    section = README.read_text().split("## Quick start", 1)[1].split("\n## ", 1)[0]
+    return [block.strip() for block in re.findall(r"```bash\n(.*?)```", section, re.S)]
+
+
+def _main_job() -> str:
+    """The quick start's main job as :func:`readme_commands` reads it: the fresh-clone test
+    runs it as written, on a bare machine and on this one, so it is not run a third time."""
+    return quick_start()[0].split("&&")[-1].strip()
+
+
 @pytest.mark.parametrize(("command", "status", "entry"),
-                         [p for c in readme_commands() for p in _params(*c)])
+                         [p for c in readme_commands() if c[0] != _main_job()
+                          for p in _params(*c)])
 def test_readme_command_runs(command, status, entry, tmp_path, monkeypatch, capsys):
     args = shlex.split(command)[1:]
     shutil.copytree(ROOT / "examples", tmp_path / "examples")  # inputs the README names
@@ -136,12 +149,6 @@ def test_readme_python_examples_run():
     runner = doctest.DocTestRunner(optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
     runner.run(test)
     assert runner.failures == 0 and runner.tries > 0
-
-
-def quick_start() -> list[str]:
-    """The quick start's commands (whole lines, install included), in README order."""
-    section = README.read_text().split("## Quick start", 1)[1].split("\n## ", 1)[0]
-    return [block.strip() for block in re.findall(r"```bash\n(.*?)```", section, re.S)]
 
 
 def test_quick_start_is_the_main_job_then_the_tests():

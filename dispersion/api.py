@@ -83,9 +83,13 @@ def series(branch: str = "S0", order: int = 8, *, exact: bool = False, nu=None,
 
 def exact_branches(kappa, nu=defaults.NU_FLOAT, omega_max: float = 8.0, **kwargs):
     """Exact Rayleigh-Lamb branches with :math:`\\Omega \\le` ``omega_max`` on ``kappa``
-    (:func:`dispersion.waves.exact_branches.trace_branches`)."""
+    (:func:`dispersion.waves.exact_branches.trace_branches`); ``nu`` may be an isotropic
+    :class:`~dispersion.symbolic.elastic_law.ElasticLaw` (other laws have no closed form:
+    refused)."""
     from dispersion.waves.exact_branches import trace_branches
 
+    if hasattr(nu, "poisson_ratio"):  # an ElasticLaw
+        nu = nu.poisson_ratio("exact Rayleigh-Lamb branches")
     return trace_branches(nu, kappa, omega_max, **kwargs)
 
 

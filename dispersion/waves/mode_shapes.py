@@ -192,7 +192,7 @@ def mac(a, b) -> float:
     return float(np.dot(a, b) ** 2 / (np.dot(a, a) * np.dot(b, b)))
 
 
-def discrete_modes(patch: PlatePatch, nu: float, kappa) -> tuple[np.ndarray, np.ndarray]:
+def discrete_modes(patch: PlatePatch, kappa) -> tuple[np.ndarray, np.ndarray]:
     """All finite discrete modes, ascending: ``Omega (m, f)`` and control values ``(m, 2n, f)``.
 
     Frequencies where float round-off would blur them are recomputed in extended precision
@@ -202,9 +202,9 @@ def discrete_modes(patch: PlatePatch, nu: float, kappa) -> tuple[np.ndarray, np.
     from dispersion.waves.pencil_frequencies import pencil_frequencies
 
     kappa = np.atleast_1d(np.asarray(kappa, dtype=float))
-    K, M = numeric_pencil(patch, nu, kappa)
+    K, M = numeric_pencil(patch, kappa)
     W, X, err = pencil_frequencies(K, M, patch.massless, vectors=True, bounds=True)
-    return refine_inaccurate(patch, float(nu), kappa, W, None, error=err), X
+    return refine_inaccurate(patch, kappa, W, None, error=err), X
 
 
 @dataclass(frozen=True)
@@ -225,7 +225,7 @@ class PairedBranches:
         return out
 
 
-def pair_by_shape(patch: PlatePatch, nu: float, exact, y=SAMPLES,
+def pair_by_shape(patch: PlatePatch, exact, y=SAMPLES,
                   mac_min: float = MAC_MIN) -> PairedBranches:
     """Pair every exact branch with a discrete mode by mode shape (see module docstring).
 
@@ -237,7 +237,7 @@ def pair_by_shape(patch: PlatePatch, nu: float, exact, y=SAMPLES,
     from scipy.optimize import linear_sum_assignment
 
     kappa = exact.kappa
-    W, X = discrete_modes(patch, nu, kappa)
+    W, X = discrete_modes(patch, kappa)
     labels = list(exact.omega)
     omega = {lab: np.full(kappa.size, np.nan) for lab in labels}
     score = {lab: np.full(kappa.size, np.nan) for lab in labels}

@@ -80,6 +80,8 @@ _MODULES = {
     "sem_bar": "waves.sem_bar", "lumping_orders": "studies.lumping_orders",
     "orders": "claims.orders", "derivative_gram": "symbolic.derivative_gram",
     "rule_families": "symbolic.rule_families",
+    "mass_rule_file": "symbolic.mass_rule_file", "ownership": "ownership", "budget": "budget",
+    "untrusted": "untrusted",
 }
 _SUBMODULES = tuple(_MODULES)
 

@@ -1,29 +1,30 @@
-"""Safe file output: complete or absent, never a user's file lost, paths checked up front.
+"""Safe output: every writer of the toolkit, under one owner rule, complete or absent.
 
-Every file the toolkit writes goes through this module, with these guarantees:
+Every file and folder the toolkit writes goes through this module:
 
-- **Atomic files.** :func:`atomic_write` writes a hidden temporary beside the target, flushes
-  and ``fsync``\\ s it, then renames it onto the target: a reader sees the old file or the
-  new one, never a partial one. On any error the temporary is removed. The temporary lives in
-  a stage folder ``.dispersion-stage.TOKEN`` (:mod:`dispersion.staging`) that records a
-  random token; a process killed with SIGKILL leaves it, and the next writer into that
-  folder removes it, acting only on stages whose name and token verify (never on a file we
-  did not write). :func:`stale_temporaries` lists them, :func:`remove_stale_temporaries`
-  removes them.
-- **Modes follow the umask.** A new file gets ``0o666 & ~umask`` (not ``mkstemp``'s 0600);
-  a file that is replaced keeps its permission bits; new folders get ``0o777 & ~umask``.
-- **``-`` is standard output.** Devices, FIFOs and sockets (``/dev/stdout``, ``/dev/null``,
-  a named pipe) are written through, never replaced; a symbolic link is never renamed over:
-  the file it points to is replaced and the link stays.
-- **Paths are checked before the work.** :func:`check_output_file` and
-  :func:`check_output_dir` raise :class:`~dispersion.errors.InputError` naming the option
-  (an existing folder where a file is wanted, a missing or read-only parent, ``''``...).
-- **Write errors are one line.** A full disk, a read-only file system or a permission error
-  while writing raises :class:`OutputError` (a :class:`~dispersion.errors.DispersionError`)
-  or :class:`~dispersion.errors.InputError` (the path is not writable), with no partial file.
-- **Several files as one unit.** :func:`write_files` (one folder) and :func:`write_unit`
-  (any folders) stage every file first and rename them only once all are staged, under a
-  journal; see their docstrings for the exact guarantee.
+- **One owner rule, checked up front and again at the end** (:mod:`dispersion.ownership`):
+  a file is written only if it is absent or a regular file of the user; a folder only if
+  it is absent, empty, or carries the ``.dispersion-report`` marker and holds nothing but
+  regular files and folders of the user. Links are never followed, other users' files
+  never replaced. :func:`check_output_file` and :func:`check_output_dir` apply the rule
+  before any work and raise :class:`~dispersion.errors.InputError` naming the option.
+- **Atomic files.** :func:`atomic_write` (and :func:`write_text`, :func:`write_bytes`,
+  :func:`save_figure`) writes a new temporary beside the target and renames it onto the
+  target (:class:`dispersion.staging.NewFile`): a reader sees the old file or the new one.
+- **Atomic folders.** :func:`open_folder` (and :func:`write_files`) builds the new version
+  of a folder beside it, starting as a copy of what it holds, and swaps it in whole
+  (:class:`dispersion.staging.NewFolder`); the folder gets the marker.
+- **Several files** of one command (:func:`write_unit`: ``branches --csv --figure``) are all
+  written first, then renamed one after the other: each file is whole, old or new.
+- **What a kill leaves** is stated in :mod:`dispersion.staging`: never a partial file or
+  folder under the target's name, and temporaries that later runs report and never touch.
+- **Modes follow the umask.** A new file gets ``0o666 & ~umask``, a new folder
+  ``0o777 & ~umask``; a replaced file or folder keeps its permission bits.
+- **Streams.** ``-`` is standard output, ``/dev/stdout`` and ``/dev/stderr`` the streams
+  themselves; a character device or named pipe is written through (a pipe nobody opens for
+  reading within :data:`PIPE_WAIT` seconds is refused, never waited on for ever).
+- **Write errors are one line.** A full disk or an I/O error raises :class:`OutputError`; a
+  path that cannot be written :class:`~dispersion.errors.InputError`; nothing partial stays.
 
 >>> import tempfile, pathlib
 >>> folder = pathlib.Path(tempfile.mkdtemp())
@@ -38,38 +39,43 @@ from __future__ import annotations
 
 import contextlib
 import errno
+import fcntl
 import os
-import stat
+import re
 import sys
-from collections.abc import Mapping
+import time
+from collections.abc import Iterator, Mapping
 from pathlib import Path
 
+from dispersion import ownership
 from dispersion.errors import DispersionError, InputError
-from dispersion.staging import Stage, checkpoint, recover
+from dispersion.ownership import MARKER, MARKER_TEXT, STDOUT
+from dispersion.staging import NewFile, NewFolder, checkpoint, leftovers, notice_leftovers
+from dispersion.untrusted import printable
 
 __all__ = [
     "OutputError",
     "STDOUT",
+    "MARKER",
     "atomic_write",
     "write_text",
     "write_bytes",
     "save_figure",
+    "open_folder",
     "write_files",
+    "write_unit",
     "check_output_file",
     "check_output_dir",
-    "make_dir",
-    "umask",
-    "write_unit",
     "unit_target",
+    "umask",
     "stale_temporaries",
-    "remove_stale_temporaries",
 ]
 
-#: The path that means standard output.
-STDOUT = "-"
+#: Seconds a writer waits for a reader of a named pipe it is asked to write to.
+PIPE_WAIT = 10.0
 # errno values that mean "this path cannot be written by you": the user's choice, exit 2.
 _PATH_ERRORS = {errno.EACCES, errno.EPERM, errno.EROFS, errno.ENOENT, errno.ENOTDIR,
-                errno.EISDIR, errno.ENAMETOOLONG, errno.ELOOP, errno.EEXIST}
+                errno.EISDIR, errno.ENAMETOOLONG, errno.ELOOP, errno.EEXIST, errno.ENXIO}
 # errno values of a full disk or quota, wherever they surface (a write, a flush, a close)
 _FULL_ERRORS = {errno.ENOSPC, errno.EDQUOT, errno.EFBIG}
 
@@ -89,9 +95,9 @@ def umask() -> int:
     return old  # pragma: no cover
 
 
-def _error(exc: OSError, path, option: str | None) -> DispersionError:
-    """One-line toolkit error for an ``OSError`` met while writing ``path``."""
-    what = f"{option} {path}" if option else str(path)
+def _error(exc: OSError, shown: str, option: str | None) -> DispersionError:
+    """One-line toolkit error for an ``OSError`` met while writing ``shown``."""
+    what = f"{option} {shown}" if option else shown
     reason = exc.strerror or type(exc).__name__
     if exc.errno in _PATH_ERRORS:
         return InputError(f"cannot write {what}: {reason} (choose a writable path)")
@@ -99,184 +105,19 @@ def _error(exc: OSError, path, option: str | None) -> DispersionError:
 
 
 @contextlib.contextmanager
-def _named(path, option: str | None, errnos: frozenset | set | None = None):
-    """An ``OSError`` in the block becomes the one-line error about ``path`` (:func:`_error`);
-    with ``errnos``, only those (other errors are the caller's, passed on unchanged)."""
+def _named(shown: str, option: str | None, errnos=None):
+    """An ``OSError`` in the block becomes the one-line error about ``shown``; with
+    ``errnos``, only those (other errors are the caller's, passed on unchanged)."""
     try:
         yield
     except OSError as exc:
         if errnos is None or exc.errno in errnos:
-            raise _error(exc, path, option) from None
+            raise _error(exc, shown, option) from None
         raise
 
 
-def _is_stream(st: os.stat_result) -> bool:
-    return stat.S_ISCHR(st.st_mode) or stat.S_ISFIFO(st.st_mode) or stat.S_ISSOCK(st.st_mode)
-
-
-def _stat(path: Path) -> os.stat_result | None:
-    try:
-        return path.stat()
-    except (FileNotFoundError, NotADirectoryError):
-        return None
-
-
-_STREAM_PATHS = {"/dev/stdout": "stdout", "/dev/fd/1": "stdout", "/proc/self/fd/1": "stdout",
-                 "/dev/stderr": "stderr", "/dev/fd/2": "stderr", "/proc/self/fd/2": "stderr"}
-
-
-def _through_dev(path: Path) -> bool:
-    """True if ``path`` or a link on the way to its target lies in /dev or /proc.
-
-    Such paths name devices or open file descriptors (``/dev/stdout`` may resolve to the
-    file the shell redirected to): they are written through, never renamed over.
-    """
-    probe = os.path.abspath(path)
-    for _ in range(40):
-        if probe.startswith(("/dev/", "/proc/")):
-            return True
-        if not os.path.islink(probe):
-            return False
-        probe = os.path.join(os.path.dirname(probe), os.readlink(probe))
-    return False
-
-
-def make_dir(path, option: str | None = None) -> Path:
-    """Create folder ``path`` (and parents) with modes from the umask; return it.
-
-    >>> import tempfile, pathlib
-    >>> make_dir(pathlib.Path(tempfile.mkdtemp()) / "a" / "b").is_dir()
-    True
-    """
-    path = Path(path)
-    try:
-        path.mkdir(parents=True, exist_ok=True)  # mkdir applies 0o777 & ~umask
-    except FileExistsError:
-        raise InputError(f"{option or 'folder'} {path} exists and is not a folder") from None
-    except OSError as exc:
-        raise _error(exc, path, option) from None
-    return path
-
-
-@contextlib.contextmanager
-def atomic_write(path, mode: str = "w", *, option: str | None = None, **kwargs):
-    """Open a temporary file beside ``path``; rename it onto ``path`` only on success.
-
-    The temporary lives in a stage folder ``.dispersion-stage.TOKEN`` beside ``path``
-    (:class:`dispersion.staging.Stage`); an error, Ctrl-C or SIGTERM removes it, and what a
-    SIGKILL leaves is removed by the next writer into that folder.
-
-    ``path`` ``"-"`` yields standard output (text or binary by ``mode``); a device, FIFO or
-    socket is opened and written through; a symbolic link to a regular file has its target
-    replaced (the link stays). ``option`` names the CLI option in error messages.
-
-    >>> import tempfile, pathlib
-    >>> target = pathlib.Path(tempfile.mkdtemp()) / "out.txt"
-    >>> with atomic_write(target) as fh:
-    ...     _ = fh.write("done")
-    >>> target.read_text()
-    'done'
-    """
-    binary = "b" in mode
-    if not os.fspath(path).strip():
-        raise InputError(f"{option or 'output'} must be a file path or '-', got {os.fspath(path)!r}")
-    name = "stdout" if str(path) == STDOUT else _STREAM_PATHS.get(os.path.abspath(path))
-    if name is not None:
-        stream = getattr(sys, name)
-        stream = stream.buffer if binary else stream
-        yield stream
-        stream.flush()
-        return
-    path = Path(path)
-    st = _stat(path)
-    if st is None and path.is_symlink():
-        raise InputError(f"cannot write {option + ' ' if option else ''}{path}: "
-                         "it is a dangling symbolic link")
-    if st is not None and (_is_stream(st) or _through_dev(path)):
-        with _named(path, option):
-            fh = open(path, mode, **kwargs)
-        with _named(path, option), fh:
-            yield fh
-        return
-    if st is not None and stat.S_ISDIR(st.st_mode):
-        raise InputError(f"{option or 'output'} must name a file, but {path} is an existing folder")
-    target = Path(os.path.realpath(path)) if path.is_symlink() else path
-    perms = stat.S_IMODE(st.st_mode) if st is not None else 0o666 & ~umask()
-    with Stage() as unit:
-        with _named(target, option):
-            tmp = unit.file(target)
-            fh = open(tmp, mode, **kwargs)
-        # a full disk while writing is ours to name; other errors are the body's
-        with _named(target, option, _FULL_ERRORS), fh:
-            yield fh
-            fh.flush()
-            os.fsync(fh.fileno())
-        checkpoint()
-        with _named(target, option):
-            os.chmod(tmp, perms)
-            unit.commit()
-
-
-def unit_target(path) -> Path | None:
-    """Where a unit writes ``path``: the file a link points to; None for a stream (``-``,
-    a device, a FIFO, a path through ``/dev``), which is written through, not staged.
-
-    >>> unit_target("-") is None, unit_target("/dev/null") is None
-    (True, True)
-    """
-    if str(path) == STDOUT or os.path.abspath(path) in _STREAM_PATHS:
-        return None
-    path = Path(path)
-    st = _stat(path)
-    if st is not None and (_is_stream(st) or _through_dev(path)):
-        return None
-    return Path(os.path.realpath(path)) if path.is_symlink() else path
-
-
-def write_text(path, text: str, *, option: str | None = None) -> Path:
-    """Write ``text`` to ``path`` atomically and return the path (``"-"``: stdout)."""
-    with atomic_write(path, option=option) as fh:
-        fh.write(text)
-    return Path(path)
-
-
-def write_bytes(path, data: bytes, *, option: str | None = None) -> Path:
-    """Write ``data`` to ``path`` atomically and return the path (``"-"``: stdout)."""
-    with atomic_write(path, "wb", option=option) as fh:
-        fh.write(data)
-    return Path(path)
-
-
-def save_figure(fig, path, *, option: str | None = None, **kwargs) -> Path:
-    """Save a matplotlib figure atomically (format from the suffix of ``path``; PNG if none)."""
-    path = Path(path) if str(path) != STDOUT else path
-    fmt = Path(str(path)).suffix.lstrip(".") or "png"
-    with atomic_write(path, "wb", option=option) as fh:
-        fig.savefig(fh, format=fmt, **kwargs)
-    return Path(path)
-
-
-def _nearest_existing(path: Path) -> Path:
-    probe = path
-    while not probe.exists() and not probe.is_symlink():
-        if probe.parent == probe:
-            break
-        probe = probe.parent
-    return probe
-
-
-def _check_parent(path: Path, option: str, create_parents: bool) -> None:
-    parent = path.parent
-    if not parent.exists():
-        if not create_parents:
-            raise InputError(f"{option}: folder {parent} does not exist (create it first)")
-        parent = _nearest_existing(parent)
-        if not parent.is_dir():
-            raise InputError(f"{option}: {parent} is a file, so {path} cannot be created")
-    elif not parent.is_dir():
-        raise InputError(f"{option}: {parent} is not a folder")
-    if not os.access(parent, os.W_OK | os.X_OK):
-        raise InputError(f"{option}: folder {parent} is not writable")
+def _text(path) -> str:
+    return os.fspath(path) if path is not None else ""
 
 
 def check_output_file(path, option: str = "--out", *, allow_stdout: bool = True,
@@ -305,115 +146,225 @@ def check_output_file(path, option: str = "--out", *, allow_stdout: bool = True,
     Raises
     ------
     InputError
-        ``''``; an existing folder; a dangling link; a missing (unless ``create_parents``),
-        non-folder or read-only parent; a read-only existing file; a wrong suffix.
+        ``''``; an existing folder; a link; another user's file; a block device or socket;
+        a missing (unless ``create_parents``), non-folder or read-only parent; a wrong suffix.
 
     >>> check_output_file("-", option="--csv")
     '-'
     >>> check_output_file("", option="--csv")
     Traceback (most recent call last):
     ...
-    dispersion.errors.InputError: --csv must be a file path or '-' (standard output), got ''
+    dispersion.errors.InputError: --csv must be a file path, got ''
     """
-    text = os.fspath(path) if path is not None else ""
-    if text == STDOUT:
-        if allow_stdout:
-            return STDOUT
-        raise InputError(f"{option} must be a file path ('-' is not accepted here)")
-    if not text.strip():
-        alt = " or '-' (standard output)" if allow_stdout else ""
-        raise InputError(f"{option} must be a file path{alt}, got {text!r}")
-    if "\0" in text:
-        raise InputError(f"{option} must not contain a NUL character")
-    path = Path(text)
-    if text.endswith(os.sep):
-        raise InputError(f"{option} must name a file, got the folder path {text!r}")
-    if suffixes and not text.lower().endswith(tuple(s.lower() for s in suffixes)):
-        raise InputError(f"{option} must end in {', '.join(suffixes)}, got {text!r}")
-    st = _stat(path)
-    if st is None and path.is_symlink():
-        raise InputError(f"{option}: {path} is a dangling symbolic link")
-    if st is not None:
-        if stat.S_ISDIR(st.st_mode):
-            raise InputError(f"{option} must name a file, but {path} is an existing folder")
-        if not os.access(path, os.W_OK):
-            raise InputError(f"{option}: {path} is not writable")
-        if _is_stream(st):
-            return path
-    real = Path(os.path.realpath(path)) if path.is_symlink() else path
-    _check_parent(real, option, create_parents)
-    return path
+    target = ownership.check_file(path, option, allow_stdout=allow_stdout, suffixes=suffixes,
+                                  create_parents=create_parents)
+    return STDOUT if target.kind == "stdout" else Path(_text(path))
 
 
 def check_output_dir(path, option: str = "--out") -> Path:
-    """Check, before any work, that ``path`` is or can become a writable folder; return it.
-
-    A missing folder (and missing parents) is accepted: it will be created.
+    """Check, before any work, that ``path`` is or can become an output folder (new, empty,
+    or written by dispersion and wholly the user's: :mod:`dispersion.ownership`); return it.
 
     >>> check_output_dir("-", option="--out")
     Traceback (most recent call last):
     ...
     dispersion.errors.InputError: --out must be a folder path, got '-'
     """
-    text = os.fspath(path) if path is not None else ""
-    if not text.strip() or text == STDOUT or "\0" in text:
-        raise InputError(f"{option} must be a folder path, got {text!r}")
-    path = Path(text)
-    st = _stat(path)
-    if st is None and path.is_symlink():
-        raise InputError(f"{option}: {path} is a dangling symbolic link")
-    if st is not None:
-        if not stat.S_ISDIR(st.st_mode):
-            raise InputError(f"{option} must be a folder, but {path} is an existing file")
-        if not os.access(path, os.W_OK | os.X_OK):
-            raise InputError(f"{option}: folder {path} is not writable")
-        return path
-    _check_parent(path, option, create_parents=True)
-    return path
+    ownership.check_folder(path, option)
+    return Path(_text(path))
 
 
-def stale_temporaries(folder) -> list[Path]:
-    """Stages of killed writers in ``folder`` that verify as ours (see :mod:`dispersion.staging`).
+def unit_target(path) -> Path | None:
+    """Where a unit writes ``path``: the path itself; None for a stream (``-``, a standard
+    stream, a character device or named pipe), which is written through, not staged.
 
-    A stage whose writer is alive, or a look-alike that does not verify, is not listed.
+    >>> unit_target("-") is None, unit_target("/dev/null") is None
+    (True, True)
     """
-    from dispersion.staging import stale_stages
+    kind = ownership.check_file(path, "output").kind
+    return None if kind in ("stdout", "stderr", "stream") else Path(_text(path))
 
-    return stale_stages(folder)
+
+def _stream(target, way, mode: str, kwargs):
+    """The open stream of ``target`` (standard streams, devices, pipes)."""
+    binary = "b" in mode
+    if target.kind in ("stdout", "stderr"):
+        stream = getattr(sys, target.kind)
+        return stream.buffer if binary else stream, False
+    flags = os.O_WRONLY | os.O_NOFOLLOW | os.O_NONBLOCK | os.O_NOCTTY | os.O_CLOEXEC
+    deadline = time.monotonic() + PIPE_WAIT
+    while True:  # a named pipe opens for writing once a reader has it open
+        try:
+            fd = os.open(way.name, flags, dir_fd=way.fd)
+            break
+        except OSError as exc:
+            if exc.errno != errno.ENXIO:
+                raise
+            if time.monotonic() > deadline:
+                raise InputError(f"{target.option} {way.shown}: no process opened this named "
+                                 f"pipe for reading within {PIPE_WAIT:g} s") from None
+            time.sleep(0.02)
+    flags = fcntl.fcntl(fd, fcntl.F_GETFL)
+    fcntl.fcntl(fd, fcntl.F_SETFL, flags & ~os.O_NONBLOCK)
+    return open(fd, mode, **kwargs), True
 
 
-def remove_stale_temporaries(folder, *, notice=None) -> list[Path]:
-    """Finish or undo what killed writers left in ``folder`` (only what verifies as ours).
+def _write_all(fd: int, data: bytes) -> None:
+    view = memoryview(data)
+    while view:
+        view = view[os.write(fd, view):]
 
-    A unit whose journal was written is completed (all new); one without is removed (all
-    old). Returns the stage folders that went. See :func:`dispersion.staging.recover`.
+
+def _folder_text(text: str) -> str:
+    head = os.path.dirname(text.rstrip("/"))
+    return head if head else ""
+
+
+@contextlib.contextmanager
+def atomic_write(path, mode: str = "w", *, option: str | None = None, notice=None, **kwargs):
+    """Open a new temporary beside the file ``path``; rename it onto ``path`` on success.
+
+    The owner rule (:mod:`dispersion.ownership`) is applied when the writing starts and
+    again before the rename; an error, Ctrl-C or SIGTERM removes the temporary, and what a
+    SIGKILL leaves is reported (never removed) by later writers. ``path`` ``"-"`` yields
+    standard output (text or binary by ``mode``); a character device or named pipe is
+    written through. Missing folders on the way are made (and removed again on failure).
+    ``option`` names the CLI option in error messages.
+
+    >>> import tempfile, pathlib
+    >>> target = pathlib.Path(tempfile.mkdtemp()) / "out.txt"
+    >>> with atomic_write(target) as fh:
+    ...     _ = fh.write("done")
+    >>> target.read_text()
+    'done'
     """
-    return recover(folder, notice=notice)
+    opt = option or "output"
+    target = ownership.check_file(path, opt)
+    if target.kind in ("stdout", "stderr"):
+        stream, _ = _stream(target, None, mode, kwargs)
+        yield stream
+        stream.flush()
+        return
+    text = _text(path)
+    ok = False
+    with _named(printable(text), option):
+        way = ownership.open_way(text, opt, "file", create=True)
+    try:
+        state = ownership.file_state(way.fd, way.name, way.shown, opt)
+        if state.kind == "stream":
+            with _named(way.shown, option):
+                fh, _ = _stream(state, way, mode, kwargs)
+            with _named(way.shown, option), fh:
+                yield fh
+            ok = True
+            return
+        notice_leftovers(way.fd, printable(_folder_text(text)), notice)
+        perms = state.mode if state.kind == "file" else 0o666 & ~umask()
+        with _named(way.shown, option):
+            new = NewFile(way.fd, way.name, way.shown, opt)
+        try:
+            fh = open(new.fd, mode, closefd=False, **kwargs)
+            with _named(way.shown, option, _FULL_ERRORS), fh:  # other errors: the body's
+                yield fh
+                fh.flush()
+            with _named(way.shown, option):
+                new.commit(perms, state.gid)
+        except BaseException:
+            new.discard()
+            raise
+        ok = True
+    finally:
+        way.close(remove_created=not ok)
+
+
+def write_text(path, text: str, *, option: str | None = None) -> Path:
+    """Write ``text`` to ``path`` atomically and return the path (``"-"``: stdout)."""
+    with atomic_write(path, option=option) as fh:
+        fh.write(text)
+    return Path(path)
+
+
+def write_bytes(path, data: bytes, *, option: str | None = None) -> Path:
+    """Write ``data`` to ``path`` atomically and return the path (``"-"``: stdout)."""
+    with atomic_write(path, "wb", option=option) as fh:
+        fh.write(data)
+    return Path(path)
+
+
+def save_figure(fig, path, *, option: str | None = None, **kwargs) -> Path:
+    """Save a matplotlib figure atomically (format from the suffix of ``path``; PNG if none)."""
+    fmt = Path(str(path)).suffix.lstrip(".") or "png"
+    with atomic_write(path, "wb", option=option) as fh:
+        fig.savefig(fh, format=fmt, **kwargs)
+    return Path(path)
+
+
+@contextlib.contextmanager
+def open_folder(path, *, option: str = "--out", notice=None) -> Iterator[Path]:
+    """Build a new version of the output folder ``path``; swap it in whole on success.
+
+    The owner rule (:func:`dispersion.ownership.check_folder`) is applied when the writing
+    starts and the folder is refused unless new, empty or written by dispersion. Yields
+    the new folder (a temporary beside ``path``), which starts as a copy of what ``path``
+    holds: write the outputs there. On success the marker is written and the new folder
+    replaces ``path`` in one exchange; if the block raises (or the process is interrupted),
+    ``path`` stays as it was and the new folder is removed. ``notice(text)`` receives
+    one-line notices (default: stderr).
+
+    This is the function every command that writes a folder calls (``reproduce``,
+    ``ring/impact --out``, ``bench --out``, and new ones).
+
+    >>> import tempfile, pathlib
+    >>> root = pathlib.Path(tempfile.mkdtemp())
+    >>> with open_folder(root / "run") as new:
+    ...     _ = write_text(new / "a.csv", "1\\n")
+    >>> sorted(p.name for p in (root / "run").iterdir())
+    ['.dispersion-report', 'a.csv']
+    """
+    ownership.check_folder(path, option)
+    text = _text(path)
+    ok = False
+    with _named(printable(text), option):
+        way = ownership.open_way(text, option, "folder", create=True)
+    try:
+        target = ownership.folder_state(way.fd, way.name, way.shown, option)
+        notice_leftovers(way.fd, printable(_folder_text(text)), notice)
+        mode = target.mode if target.kind == "folder" else 0o777 & ~umask()
+        with _named(way.shown, option):
+            new = NewFolder(way.fd, way.name, way.shown, _folder_text(text), target,
+                            notice=notice)
+        try:
+            yield Path(new.path)
+            with _named(way.shown, option):
+                marker = NewFile(new.fd, MARKER, MARKER, option)
+                _write_all(marker.fd, MARKER_TEXT.encode())
+                marker.commit(0o666 & ~umask())
+                new.commit(mode, target.gid)
+        except BaseException:
+            new.discard()
+            raise
+        ok = True
+    finally:
+        way.close(remove_created=not ok)
+
+
+_RESERVED = re.compile(r"\.dispersion-.*|.*\.dispersion-tmp-.*", re.DOTALL)
 
 
 def _check_name(name: str) -> str:
     parts = Path(name).parts if isinstance(name, str) else ()
     if not parts or Path(name).is_absolute() or ".." in parts or "\0" in name \
-            or any(part.startswith(".dispersion-") for part in parts):
+            or any(_RESERVED.fullmatch(part) for part in parts):
         raise InputError(f"file names in write_files must be relative paths inside the folder "
-                         f"without '..', got {name!r}")
+                         f"without '..', got {printable(name)!r}")
     return name
 
 
-def write_files(folder, files: Mapping[str, str | bytes], *, option: str | None = None
-                ) -> list[Path]:
-    """Write several files into ``folder`` as one unit: all new, or all old.
-
-    Every file is staged (``fsync``\\ ed) in a hidden stage folder beside its target, under
-    a random token (:class:`dispersion.staging.Stage`). If anything fails or the process is
-    interrupted while staging, the stages are removed, every target keeps its old content and
-    a folder this call created is removed again (no empty new folder on a full disk). Once
-    all are staged, a journal is written and the files are renamed onto their targets. A kill
-    in that last short phase leaves the journal; the next writer into the folder (or
-    :func:`remove_stale_temporaries`) completes the renames, so the folder ends all new. Until
-    then a reader can see a mix: the guarantee is "all old or all new once recovered", not a
-    single atomic switch. Files not named in ``files`` are never touched. Concurrent calls on
-    one folder do not corrupt each other's files; the last rename of a name wins.
+def write_files(folder, files: Mapping[str, str | bytes], *, option: str | None = None,
+                notice=None) -> list[Path]:
+    """Write several files into the output folder ``folder`` as one unit: all new, or all
+    old, at every moment (:func:`open_folder`; the folder must be new, empty or written by
+    dispersion). Files of the folder not named in ``files`` are kept.
 
     Parameters
     ----------
@@ -429,43 +380,71 @@ def write_files(folder, files: Mapping[str, str | bytes], *, option: str | None 
         The written paths, in the order of ``files``.
 
     >>> import tempfile, pathlib
-    >>> out = pathlib.Path(tempfile.mkdtemp())
+    >>> out = pathlib.Path(tempfile.mkdtemp()) / "run"
     >>> [p.name for p in write_files(out, {"a.csv": "x\\n", "b.json": b"{}"})]
     ['a.csv', 'b.json']
     """
-    folder = check_output_dir(folder, option or "folder")
     names = [_check_name(n) for n in files]
-    return write_unit({folder / name: files[name] for name in names}, option=option)
+    with open_folder(folder, option=option or "folder", notice=notice) as new:
+        for name in names:
+            data = files[name]
+            write_bytes(new / name, data.encode() if isinstance(data, str) else bytes(data),
+                        option=option)
+    return [Path(folder) / name for name in names]
 
 
 def write_unit(files: Mapping[Path, str | bytes], *, option: str | None = None) -> list[Path]:
-    """Write files that may lie in different folders as one unit (see :func:`write_files`).
+    """Write files that may lie in different folders: all are written and synced first,
+    then renamed onto their targets one after the other, in the order given.
 
-    Each target must be a regular file or absent (a link or a device is refused: pass
-    :func:`unit_target` of a user's path, which resolves links and says which paths are
-    streams to write through instead).
+    Each file is whole, old or new, at every moment; a kill between two renames leaves the
+    earlier files new and the later ones old (see :mod:`dispersion.staging`). Each target
+    must pass the owner rule for files (streams are written by the caller: see
+    :func:`unit_target`).
 
     >>> import tempfile, pathlib
     >>> root = pathlib.Path(tempfile.mkdtemp())
     >>> [p.name for p in write_unit({root / "a" / "x.csv": "1\\n", root / "y.png": b""})]
     ['x.csv', 'y.png']
     """
-    targets = [Path(t) for t in files]
-    with Stage() as unit:
-        for target, data in zip(targets, files.values()):
-            st = _stat(target)
-            if target.is_symlink() or (st is not None and not stat.S_ISREG(st.st_mode)):
-                raise InputError(f"{option or 'output'}: {target} is not a regular file; "
-                                 "refusing to replace it")
-            perms = stat.S_IMODE(st.st_mode) if st is not None else 0o666 & ~umask()
-            with _named(target, option):
-                tmp = unit.file(target)
-                with open(tmp, "xb") as fh:
-                    fh.write(data.encode() if isinstance(data, str) else bytes(data))
-                    fh.flush()
-                    os.fsync(fh.fileno())
-                os.chmod(tmp, perms)
-            checkpoint()
-        with _named(targets[0].parent, option):
-            unit.commit()
-    return targets
+    opt = option or "output"
+    staged: list[tuple] = []
+    try:
+        for target, data in files.items():
+            text = _text(target)
+            state = ownership.check_file(target, opt)
+            if state.kind not in ("new", "file"):
+                raise InputError(f"{opt}: {state.shown} is not a regular file; write streams "
+                                 "apart from the unit")
+            with _named(printable(text), option):
+                way = ownership.open_way(text, opt, "file", create=True)
+            staged.append([way, None])
+            state = ownership.file_state(way.fd, way.name, way.shown, opt)
+            notice_leftovers(way.fd, printable(_folder_text(text)))
+            perms = state.mode if state.kind == "file" else 0o666 & ~umask()
+            with _named(way.shown, option):
+                new = NewFile(way.fd, way.name, way.shown, opt)
+                staged[-1][1] = new
+                _write_all(new.fd, data.encode() if isinstance(data, str) else bytes(data))
+                new.sync(perms, state.gid)
+        checkpoint()
+        for way, new in staged:
+            with _named(way.shown, option):
+                new.swap()
+                new.close()
+    finally:
+        for way, new in staged:
+            if new is not None:
+                new.discard()
+            way.close(remove_created=new is None or not new.done)
+    return [Path(_text(t)) for t in files]
+
+
+def stale_temporaries(folder) -> list[Path]:
+    """Temporaries of killed or concurrent writers in ``folder`` (see
+    :mod:`dispersion.staging`): listed, never changed; a live writer's are not listed."""
+    fd = os.open(folder, os.O_RDONLY | os.O_DIRECTORY | os.O_CLOEXEC)
+    try:
+        return [Path(folder) / name for name in leftovers(fd)]
+    finally:
+        os.close(fd)

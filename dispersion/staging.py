@@ -1,73 +1,96 @@
-"""The staged writer: files and folders replaced as one unit, with one recovery routine.
+"""New outputs beside their targets, swapped in whole; nothing on disk is an instruction.
 
-Every output the toolkit writes (a single file of :func:`dispersion.io.atomic_write`, the
-files of :func:`dispersion.io.write_files`, a report folder of
-:mod:`dispersion.report.folder`) goes through a :class:`Stage`:
+Every output of the toolkit is put in place by one of two moves, after the owner rule of
+:mod:`dispersion.ownership` has allowed it:
 
-1. **Stage.** A hidden folder ``.dispersion-stage.TOKEN`` is made beside each target, where
-   ``TOKEN`` is 128 random bits; its first file, ``.stage.json``, records the token, the
-   writer's pid and the primary stage of the unit. The writer holds an exclusive ``flock`` on
-   every stage folder while it lives (the kernel drops it when the process dies, even by
-   SIGKILL). The new content is written into the stage as ``0``, ``1``, ... and ``fsync``\\ ed.
-2. **Commit.** A journal ``.journal.json`` (the token and each rename) is written atomically
-   into the primary stage: that is the point of no return.
-3. **Rename.** Each staged entry is renamed onto its target (a folder is swapped with
-   ``renameat2(RENAME_EXCHANGE)`` where Linux offers it), then the stages are removed,
-   the secondary ones first, the journal last. Ctrl-C or SIGTERM (under the CLI's handler)
-   in this phase is held until the unit is complete; a kill before the journal leaves the
-   unit all old, one after it all new once recovered.
+- **A file** (:class:`NewFile`): a new temporary ``.NAME.dispersion-tmp-HEX`` is created in
+  the target's folder (``O_EXCL``, ``O_NOFOLLOW``, mode 0600, under 64 random bits this
+  process chose), written, ``fsync``\\ ed, given its final mode, then renamed onto ``NAME``
+  (``os.replace``; onto an absent name with ``renameat2(RENAME_NOREPLACE)`` where Linux
+  offers it, so a file that appeared meanwhile is never clobbered). A reader sees the old
+  file or the new one.
+- **A folder** (:class:`NewFolder`): a new folder ``.NAME.dispersion-tmp-HEX`` (mode 0700) is
+  made beside ``NAME``; what ``NAME`` holds is copied into it (regular files and folders
+  only, opened without following links), the new files are written there, the marker of
+  :mod:`dispersion.ownership` last; then the two folders are exchanged in one step
+  (``renameat2(RENAME_EXCHANGE)``, or ``RENAME_NOREPLACE`` for a new ``NAME``). The old
+  folder, now under the temporary name, is removed entry by entry, and only entries that
+  are exactly those copied (same inode, size and mtime): what a user put there during the
+  run stays, with a one-line notice. While a folder is built it holds a ``.gitignore``
+  (``*``, removed just before the exchange), so a run inside a git checkout does not show
+  in ``git status``.
 
-**Recovery** (:func:`recover`, run by every writer on the folder it writes into) acts on a
-leftover only when everything verifies: the folder's name is ``.dispersion-stage.`` plus 32
-hex digits, it is a real folder (not a link), its ``.stage.json`` holds the same token, no
-live writer holds its lock, it holds only the names a writer makes there (``.stage.json``,
-``.journal.json``, numbered entries), and every journal entry renames ``STAGE/k`` (``k`` a number) to
-a plain name in the very folder that holds that stage (no ``/``, no ``..``, no link on the
-way). A verified stage with a journal is rolled forward (the unit ends all new); one without
-is removed (the unit stays all old). Inside a stage only the names the writer makes are
-deleted. Anything else is never touched; a name that looks like ours but does not verify is
-reported in one line (once per process).
+Where ``RENAME_EXCHANGE`` is not available (not Linux, or a file system without it), a
+folder is put in place by two renames: ``NAME`` to ``.NAME.dispersion-tmp-HEX2``, then the
+new folder to ``NAME``. Between them (two system calls) ``NAME`` is absent; see below.
 
->>> import tempfile, pathlib
+**What a kill leaves** (SIGKILL, power loss; Ctrl-C and SIGTERM under the command line unwind
+and remove the temporaries, except that they are held back while a folder swap is finished):
+
+- before the rename or exchange: the target unchanged, and the unfinished temporary;
+- after it: the target complete and new, and (a folder) the remains of the old version
+  under the temporary name if the kill came while it was removed;
+- with the two-rename fallback, between the renames: ``NAME`` absent, the old version under
+  the first temporary name and the new one under the second (rename either back);
+- several files of one command (``branches --csv --figure``) are renamed one after the
+  other, in the order given, after all are written: a kill between two renames leaves the
+  first new and the second old (each file whole), and the second's temporary.
+
+**Leftovers are never touched.** A writer neither renames, moves nor deletes anything it did
+not create in this process; it reads no file to decide what to do. Temporaries of killed
+runs (``.NAME.dispersion-tmp-HEX``) and those of older versions (``.dispersion-stage.*``,
+``.dispersion-write.*``) are reported in one line per folder (:func:`notice_leftovers`) and
+left for the user to delete; a temporary whose writer is alive (it holds an ``flock`` on it)
+is not reported.
+
+**Fault injection.** Each step above passes a :func:`checkpoint`; the environment variable
+:data:`FAULT_ENV` (``"N:SIGKILL"``, ``"N:SIGTERM"`` or ``"N:raise"``) stops the process at the
+N-th one, so the tests kill every writer at every checkpoint.
+
+>>> import tempfile, pathlib, os
 >>> folder = pathlib.Path(tempfile.mkdtemp())
->>> with Stage() as stage:
-...     _ = stage.file(folder / "a.txt").write_text("new")
-...     stage.commit()
-1
->>> sorted(p.name for p in folder.iterdir())
-['a.txt']
+>>> fd = os.open(folder, os.O_RDONLY | os.O_DIRECTORY)
+>>> new = NewFile(fd, "a.txt", "a.txt")
+>>> _ = os.write(new.fd, b"new")
+>>> new.commit(0o644)
+>>> sorted(p.name for p in folder.iterdir()), (folder / "a.txt").read_text()
+(['a.txt'], 'new')
+>>> os.close(fd)
 """
 from __future__ import annotations
 
 import contextlib
 import errno
 import fcntl
-import json
 import os
 import re
+import secrets
+import shutil
 import signal
 import stat
 import sys
-from pathlib import Path
 
-__all__ = ["Stage", "recover", "stale_stages", "STAGE_PREFIX", "is_stage_name", "checkpoint",
-           "marker_text"]
+from dispersion.ownership import file_state, tree
+from dispersion.untrusted import printable
 
-#: Name prefix of every stage folder; the rest is the token (32 hex digits).
-STAGE_PREFIX = ".dispersion-stage."
-_STAGE_NAME = re.compile(r"\.dispersion-stage\.([0-9a-f]{32})")
-_MARK = ".stage.json"
-_JOURNAL = ".journal.json"
-_JOURNAL_TMP = ".journal.json.tmp"
-_ENTRY = re.compile(r"(?:old-)?[0-9]{1,6}")
-# Names that look like leftovers of a writer of this toolkit (this one, or an older one
-# that named journals ``.dispersion-write.PID.json``): reported when they do not verify.
-_LOOKALIKE = re.compile(r"\.dispersion-(?:stage|write)\b.*")
+__all__ = ["NewFile", "NewFolder", "Fault", "FAULT_ENV", "checkpoint", "temp_name",
+           "is_leftover", "leftovers", "notice_leftovers", "exchange", "rename_new"]
+
 #: Environment variable of the fault tests: ``"N:SIGNAL"`` sends SIGNAL to this process at
-#: the N-th :func:`checkpoint` (numbered from 1), so a test can kill a writer at every step.
+#: the N-th :func:`checkpoint` (numbered from 1); ``"N:raise"`` raises :class:`Fault` there.
 FAULT_ENV = "DISPERSION_FAULT_AT"
+_TAG = ".dispersion-tmp-"
+#: Names of temporaries of this and of earlier versions of the writer (reported, never touched).
+_LEFTOVER = re.compile(r"\..*\.dispersion-tmp-[0-9a-f]{16}|\.dispersion-(?:stage|write)\b.*",
+                       re.DOTALL)
 _checkpoints = [0]
-_noticed: set[str] = set()
+_noticed: set = set()
+# renameat2 flags (<linux/fs.h>)
+_NOREPLACE, _EXCHANGE = 1, 2
+
+
+class Fault(Exception):
+    """Raised at a checkpoint chosen by :data:`FAULT_ENV` (``"N:raise"``)."""
 
 
 def checkpoint() -> None:
@@ -76,461 +99,442 @@ def checkpoint() -> None:
     if not spec:
         return
     _checkpoints[0] += 1
-    at, _, sig = spec.partition(":")
+    at, _, how = spec.partition(":")
     if at.isdigit() and int(at) == _checkpoints[0]:
-        os.kill(os.getpid(), getattr(signal, sig or "SIGKILL"))
+        if how == "raise":
+            raise Fault(f"fault injected at checkpoint {at}")
+        os.kill(os.getpid(), getattr(signal, how or "SIGKILL"))
 
 
-def is_stage_name(name: str) -> bool:
-    """True if ``name`` has the form of a stage folder (``.dispersion-stage.`` + 32 hex)."""
-    return _STAGE_NAME.fullmatch(name) is not None
+def temp_name(name: str) -> str:
+    """A new temporary name beside ``name``: ``.NAME.dispersion-tmp-`` and 16 random hex
+    digits (the name is cut so that the whole stays within 255 bytes)."""
+    stem = name
+    while len(os.fsencode(stem)) > 200:
+        stem = stem[:-1]
+    return f".{stem}{_TAG}{secrets.token_hex(8)}"
 
 
-def _notice(text: str) -> None:
-    print(f"dispersion: {text}", file=sys.stderr)
+def is_leftover(name: str) -> bool:
+    """True if ``name`` has the form of a writer's temporary (this version or an older one)."""
+    return _LEFTOVER.fullmatch(name) is not None
 
 
-def _fsync_dir(path: Path) -> None:
-    with contextlib.suppress(OSError):
-        fd = os.open(path, os.O_RDONLY | os.O_DIRECTORY)
-        try:
-            os.fsync(fd)
-        finally:
-            os.close(fd)
-
-
-def _exchange(a: Path, b: Path) -> bool:
-    """Atomically swap two paths (Linux ``renameat2`` RENAME_EXCHANGE); False if unsupported."""
+def _renameat2(fd: int, old: str, new: str, flag: int) -> bool:
+    """``renameat2`` within folder ``fd``; False where unsupported (not Linux, old kernel,
+    a file system without the flag), else True or the OSError."""
     if not sys.platform.startswith("linux"):
         return False
-    import ctypes  # only here: the rest of the writer needs no ctypes (start-up time)
+    import ctypes  # here only: no start-up cost for commands that never write
 
     try:
-        renameat2 = ctypes.CDLL(None, use_errno=True).renameat2
+        func = ctypes.CDLL(None, use_errno=True).renameat2
     except (OSError, AttributeError):
         return False
-    at_fdcwd, rename_exchange = -100, 2
-    if renameat2(at_fdcwd, os.fsencode(a), at_fdcwd, os.fsencode(b), rename_exchange) == 0:
+    if func(fd, os.fsencode(old), fd, os.fsencode(new), flag) == 0:
         return True
     err = ctypes.get_errno()
     if err in (errno.EINVAL, errno.ENOSYS, errno.ENOTSUP):
         return False
-    raise OSError(err, os.strerror(err), str(a))
+    raise OSError(err, os.strerror(err), new)
 
 
-def _lock(path: Path, *, wait: bool) -> int | None:
-    """An exclusive ``flock`` on folder ``path`` (not following a link); None if held."""
-    fd = os.open(path, os.O_RDONLY | os.O_DIRECTORY | os.O_NOFOLLOW | os.O_CLOEXEC)
+def exchange(fd: int, a: str, b: str) -> bool:
+    """Swap names ``a`` and ``b`` of folder ``fd`` in one step; False if not supported."""
+    return _renameat2(fd, a, b, _EXCHANGE)
+
+
+def rename_new(fd: int, old: str, new: str) -> None:
+    """Rename ``old`` to ``new`` in folder ``fd`` only if ``new`` does not exist
+    (``FileExistsError`` otherwise). Without ``RENAME_NOREPLACE`` the absence is checked
+    just before a plain rename (a window of one system call)."""
+    if _renameat2(fd, old, new, _NOREPLACE):
+        return
     try:
-        fcntl.flock(fd, fcntl.LOCK_EX | (0 if wait else fcntl.LOCK_NB))
+        os.stat(new, dir_fd=fd, follow_symlinks=False)
+    except FileNotFoundError:
+        os.rename(old, new, src_dir_fd=fd, dst_dir_fd=fd)
+        return
+    raise FileExistsError(errno.EEXIST, os.strerror(errno.EEXIST), new)
+
+
+def _group(fd: int, gid: int | None) -> None:
+    """Give the open file ``fd`` group ``gid`` where the system allows (a member may)."""
+    if gid is not None and os.fstat(fd).st_gid != gid:
+        with contextlib.suppress(OSError):
+            os.fchown(fd, -1, gid)
+
+
+def _fsync(fd: int) -> None:
+    with contextlib.suppress(OSError):  # some file systems cannot sync a folder
+        os.fsync(fd)
+
+
+def _ident(st: os.stat_result) -> tuple[int, int]:
+    return st.st_dev, st.st_ino
+
+
+def _still(fd: int, name: str, ident) -> bool:
+    """True if ``name`` in folder ``fd`` is still the entry ``ident`` (not a link)."""
+    try:
+        return _ident(os.stat(name, dir_fd=fd, follow_symlinks=False)) == ident
+    except OSError:
+        return False
+
+
+def _live(fd: int, name: str, st: os.stat_result) -> bool:
+    """True if a live writer holds the ``flock`` of the temporary ``name``."""
+    if not (stat.S_ISREG(st.st_mode) or stat.S_ISDIR(st.st_mode)):
+        return False
+    flags = os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK | os.O_NOCTTY | os.O_CLOEXEC
+    try:
+        probe = os.open(name, flags | (os.O_DIRECTORY if stat.S_ISDIR(st.st_mode) else 0),
+                        dir_fd=fd)
+    except OSError:
+        return False
+    try:
+        fcntl.flock(probe, fcntl.LOCK_EX | fcntl.LOCK_NB)
     except BlockingIOError:
-        os.close(fd)
-        return None
-    except BaseException:
-        os.close(fd)
-        raise
-    return fd
-
-
-def _empty_dir(path: Path) -> bool:
-    try:
-        return stat.S_ISDIR(os.lstat(path).st_mode) and not os.listdir(path)
-    except OSError:
-        return False
-
-
-def _held(path: Path) -> bool:
-    """True if a live writer holds the lock of folder ``path``."""
-    try:
-        fd = _lock(path, wait=False)
-    except OSError:
-        return False
-    if fd is None:
         return True
-    os.close(fd)
+    except OSError:
+        return False
+    finally:
+        os.close(probe)
     return False
 
 
-def _marker_token(folder: Path, marker: str) -> str | None:
-    """The token recorded in ``folder/marker`` (a line ``token: HEX``), if any."""
-    path = folder / marker
+def leftovers(fd: int, own: tuple[str, ...] = ()) -> list[str]:
+    """Names in folder ``fd`` that look like temporaries of a writer no longer alive
+    (nothing is changed; ``own`` names are skipped)."""
+    out = []
+    for name in sorted(os.listdir(fd)):
+        if name in own or not is_leftover(name):
+            continue
+        try:
+            st = os.stat(name, dir_fd=fd, follow_symlinks=False)
+        except OSError:
+            continue
+        if not _live(fd, name, st):
+            out.append(name)
+    return out
+
+
+def _print_notice(text: str) -> None:
+    print(f"dispersion: {text}", file=sys.stderr)
+
+
+def notice_leftovers(fd: int, shown: str, notice=None, own: tuple[str, ...] = ()) -> list[str]:
+    """Report, in one line (once per folder and process), the :func:`leftovers` of folder
+    ``fd`` (``shown``: its path for the message); they are left as they are."""
     try:
-        if not stat.S_ISREG(os.lstat(path).st_mode):
-            return None
-        text = path.read_text(encoding="utf-8", errors="replace")[:4096]
+        st = os.fstat(fd)
+        found = leftovers(fd, own)
     except OSError:
-        return None
-    found = re.search(r"^token: ([0-9a-f]{32})$", text, re.MULTILINE)
-    return found.group(1) if found else None
+        return []
+    key = _ident(st)
+    if found and key not in _noticed:
+        _noticed.add(key)
+        first = printable(found[0], 120)
+        more = f" and {len(found) - 1} more" if len(found) > 1 else ""
+        (notice or _print_notice)(
+            f"left {first}{more} in {shown or '.'} untouched: temporaries of an interrupted "
+            "or concurrent dispersion run (or look-alikes); delete them once no run writes "
+            "there")
+    return found
 
 
-def marker_text(text: str, token: str) -> str:
-    """The content of a unit marker file: ``text`` and the line ``token: TOKEN``."""
-    return f"{text.rstrip()}\ntoken: {token}\n"
+class NewFile:
+    """A new file for ``name`` in the open folder ``fd``: write to :attr:`fd`, then
+    :meth:`commit` (or :meth:`discard`). ``option`` names the option in refusals."""
 
+    def __init__(self, fd: int, name: str, shown: str, option: str = "output"):
+        self.folder, self.name, self.shown, self.option = fd, name, shown, option
+        self.tmp = temp_name(name)
+        flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | os.O_NOFOLLOW | os.O_CLOEXEC
+        self.fd = os.open(self.tmp, flags, 0o600, dir_fd=fd)
+        self._ident = _ident(os.fstat(self.fd))
+        fcntl.flock(self.fd, fcntl.LOCK_EX)  # alive: not reported as a leftover
+        self.done = False
 
-class Stage:
-    """One unit of outputs (files or folders), staged then renamed onto their targets.
-
-    Use as a context manager: :meth:`file` and :meth:`folder` return the staged path of a
-    target (write into it), :meth:`commit` renames everything; leaving the block without a
-    commit (an error, Ctrl-C, SIGTERM) removes the stages and leaves every target as it was.
-
-    Parameters
-    ----------
-    notice : callable, optional
-        Receives one-line notices of recovery (default: print to stderr).
-    """
-
-    def __init__(self, *, notice=None):
-        self.token = os.urandom(16).hex()  # 128 bits from the OS's CSPRNG, as secrets does
-        self.notice = notice or _notice
-        self._stages: dict[Path, tuple[Path, int]] = {}  # parent -> (stage folder, lock fd)
-        self._entries: list[dict] = []
-        self._created: list[Path] = []  # folders made for targets, removed again on abort
-        self._done = False
-
-    # -- staging -------------------------------------------------------------------------
-    def __enter__(self) -> Stage:
-        return self
-
-    def __exit__(self, kind, exc, tb) -> None:
-        if not self._done:
-            self.abort()
-
-    def _stage_in(self, parent: Path) -> Path:
-        if parent in self._stages:
-            return self._stages[parent][0]
-        for folder in reversed([parent, *parent.parents]):
-            if not folder.exists() and not folder.is_symlink():
-                folder.mkdir()  # mkdir applies 0o777 & ~umask
-                self._created.append(folder)
-        recover(parent, notice=self.notice)
-        stage = parent / f"{STAGE_PREFIX}{self.token}"
-        os.mkdir(stage, 0o700)
+    def commit(self, mode: int, gid: int | None = None) -> None:
+        """``fsync``, give mode ``mode`` (and group ``gid``), rename onto the target, unless
+        the target now breaks the owner rule (then :class:`~dispersion.errors.InputError`,
+        the temporary removed)."""
         try:
-            fd = _lock(stage, wait=True)
+            self.sync(mode, gid)
+            self.swap()
         except BaseException:
-            os.rmdir(stage)
+            self.discard()
             raise
-        self._stages[parent] = (stage, fd)
-        primary = next(iter(self._stages.values()))[0]
-        mark = {"token": self.token, "pid": os.getpid(), "primary": str(primary)}
-        with open(stage / _MARK, "x", encoding="utf-8") as fh:
-            json.dump(mark, fh)
+        self.close()
+
+    def sync(self, mode: int, gid: int | None = None) -> None:
+        """``fsync`` the data, give the file mode ``mode`` and group ``gid`` (the replaced
+        file's; kept where the system allows), before :meth:`swap`."""
+        os.fsync(self.fd)
+        _group(self.fd, gid)
+        os.fchmod(self.fd, mode)
         checkpoint()
-        return stage
 
-    def _add(self, target, kind: str, marker: str | None = None) -> Path:
-        target = Path(os.path.abspath(target))
-        parent = Path(os.path.realpath(target.parent))
-        stage = self._stage_in(parent)
-        index = len(self._entries)
-        entry = {"stage": str(stage), "k": str(index), "name": target.name, "kind": kind}
-        if marker is not None:
-            entry["marker"] = marker
-        self._entries.append(entry)
-        return stage / str(index)
+    def swap(self) -> None:
+        """The rename alone (after :meth:`sync`), if the target still passes the owner
+        rule of :func:`~dispersion.ownership.file_state` (else its InputError)."""
+        now = file_state(self.folder, self.name, self.shown, self.option)
+        if now.kind == "stream":
+            from dispersion.errors import InputError
 
-    def file(self, target) -> Path:
-        """Staged path for file ``target`` (absolute or relative to the current folder)."""
-        return self._add(target, "file")
-
-    def folder(self, target, marker: str) -> Path:
-        """Staged path (a new folder) for folder ``target``; it must contain ``marker``, a
-        file whose :func:`marker_text` carries :attr:`token` (how recovery tells the new
-        folder from the old)."""
-        path = self._add(target, "dir", marker)
-        os.mkdir(path)
-        return path
-
-    # -- commit --------------------------------------------------------------------------
-    def commit(self) -> int:
-        """Rename every staged entry onto its target; return the number of entries."""
-        if not self._entries:
-            self.abort()
-            return 0
-        for entry in self._entries:
-            if entry["kind"] == "dir" and \
-                    _marker_token(Path(entry["stage"]) / entry["k"], entry["marker"]) != self.token:
-                raise RuntimeError(f"staged folder for {entry['name']} lacks its marker")
-        for stage, _ in self._stages.values():
-            _fsync_dir(stage)
+            raise InputError(f"{self.option} {self.shown} became a device or pipe while "
+                             "dispersion wrote it; nothing was written")
+        if not _still(self.folder, self.tmp, self._ident):
+            raise FileNotFoundError(errno.ENOENT, "the temporary went away", self.tmp)
+        if now.kind == "new":
+            rename_new(self.folder, self.tmp, self.name)
+        else:
+            os.replace(self.tmp, self.name, src_dir_fd=self.folder, dst_dir_fd=self.folder)
+        self.done = True
+        _fsync(self.folder)
         checkpoint()
-        primary = next(iter(self._stages.values()))[0]
-        tmp = primary / _JOURNAL_TMP
-        with open(tmp, "x", encoding="utf-8") as fh:
-            json.dump({"token": self.token, "entries": self._entries}, fh)
-            fh.flush()
-            os.fsync(fh.fileno())
-        checkpoint()
-        os.rename(tmp, primary / _JOURNAL)  # the point of no return
-        _fsync_dir(primary)
-        checkpoint()
-        self._done = True
-        interrupted = None
-        try:
-            for entry in self._entries:
-                while True:  # Ctrl-C or SIGTERM now: finish the unit first (renames are quick)
-                    try:
-                        _apply(entry, self.token)  # safe to repeat
-                        checkpoint()
-                        break
-                    except KeyboardInterrupt as exc:
-                        interrupted = exc
-        except BaseException:
-            for _, fd in self._stages.values():  # the next writer here finishes the unit
-                os.close(fd)
-            self._stages.clear()
-            raise
-        self._remove_stages()
-        if interrupted is not None:
-            raise interrupted
-        return len(self._entries)
 
-    def abort(self) -> None:
-        """Remove the stages (and folders made for the targets); every target stays old."""
-        self._done = True
-        self._remove_stages()
-        for folder in reversed(self._created):
+    def close(self) -> None:
+        if self.fd is not None:
+            os.close(self.fd)
+            self.fd = None
+
+    def discard(self) -> None:
+        """Remove the temporary (only if it is still the file this object created)."""
+        if not self.done and _still(self.folder, self.tmp, self._ident):
             with contextlib.suppress(OSError):
-                folder.rmdir()  # only if still empty
-
-    def _remove_stages(self) -> None:
-        stages = list(self._stages.values())
-        for stage, fd in stages[1:] + stages[:1]:  # the primary (with the journal) last
-            _remove_stage(stage)
-            os.close(fd)
-        self._stages.clear()
+                os.unlink(self.tmp, dir_fd=self.folder)
+        self.done = True
+        self.close()
 
 
-def _apply(entry: dict, token: str) -> None:
-    """Perform (or finish) one rename of a committed unit; safe to repeat."""
-    stage = Path(entry["stage"])
-    new, target = stage / entry["k"], stage.parent / entry["name"]
-    if entry["kind"] == "file":
-        with contextlib.suppress(FileNotFoundError):  # a concurrent recovery was first
-            os.replace(new, target)
-        return
-    if _marker_token(target, entry["marker"]) == token or not os.path.lexists(new):
-        return  # already in place
-    if os.path.lexists(target):
-        # only a folder of ours (it carries the same kind of marker) or an empty one is moved
-        if not os.path.isdir(target) or os.path.islink(target) or not (
-                os.path.isfile(target / entry["marker"]) or not os.listdir(target)):
-            raise OSError(errno.EEXIST, "not a folder written by dispersion", str(target))
-        if _exchange(new, target):
-            return
-        old = stage / f"old-{entry['k']}"
-        os.rename(target, old)
-        checkpoint()
-    os.rename(new, target)
+def _open_dir(name: str, fd: int) -> int:
+    return os.open(name, os.O_RDONLY | os.O_DIRECTORY | os.O_NOFOLLOW | os.O_CLOEXEC, dir_fd=fd)
 
 
-def _remove_stage(stage: Path) -> bool:
-    """Delete the entries a writer makes in ``stage``, then the folder; True if gone."""
+def _copy_file(src_dir: int, dst_dir: int, name: str, st: os.stat_result) -> None:
+    src = os.open(name, os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK | os.O_CLOEXEC,
+                  dir_fd=src_dir)
     try:
-        names = os.listdir(stage)
-    except FileNotFoundError:
-        return True
-    except OSError:
-        return False
-    ours = {_MARK, _JOURNAL, _JOURNAL_TMP}
-    for name in sorted(names, key=lambda n: n == _MARK):  # the marker last
-        path = stage / name
-        if name not in ours and not _ENTRY.fullmatch(name):
-            continue
+        if _ident(os.fstat(src)) != _ident(st):
+            raise FileNotFoundError(errno.ENOENT, "changed while it was copied", name)
+        dst = os.open(name, os.O_WRONLY | os.O_CREAT | os.O_EXCL | os.O_NOFOLLOW | os.O_CLOEXEC,
+                      0o600, dir_fd=dst_dir)
         try:
-            if os.path.isdir(path) and not os.path.islink(path):
-                import shutil
-
-                shutil.rmtree(path)
-            else:
-                os.unlink(path)
-        except FileNotFoundError:
-            pass
-        except OSError:
-            return False  # e.g. read-only: left for a later run
-    try:
-        os.rmdir(stage)
-    except FileNotFoundError:
-        pass
-    except OSError:
-        return False
-    return True
-
-
-def _pid_alive(pid) -> bool:
-    if not isinstance(pid, int) or isinstance(pid, bool) or pid <= 0:
-        return False
-    if pid == os.getpid():
-        return True
-    try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
-        return False
-    except (PermissionError, OverflowError):
-        return pid <= 2**22  # a process of another user, or an impossible pid
-    return True
-
-
-def _read_json(path: Path):
-    """Parsed JSON of a small regular file ``path`` (not a link), or None."""
-    try:
-        st = os.lstat(path)
-        if not stat.S_ISREG(st.st_mode) or st.st_size > 1 << 20:
-            return None
-        return json.loads(path.read_text(encoding="utf-8"))
-    except (OSError, ValueError, UnicodeDecodeError):
-        return None
-
-
-def _only_ours(stage: Path) -> bool:
-    """True if ``stage`` holds nothing but names a writer makes there."""
-    try:
-        names = os.listdir(stage)
-    except OSError:
-        return False
-    return all(n in (_MARK, _JOURNAL, _JOURNAL_TMP) or _ENTRY.fullmatch(n) for n in names)
-
-
-def _verified_stage(stage: Path, token: str | None = None) -> dict | None:
-    """The marker of ``stage`` if it is a stage folder of ours whose token verifies and
-    which holds nothing a writer does not make (a user's file in it: not ours)."""
-    found = _STAGE_NAME.fullmatch(stage.name)
-    if found is None or (token is not None and found.group(1) != token):
-        return None
-    try:
-        if not stat.S_ISDIR(os.lstat(stage).st_mode):
-            return None
-    except OSError:
-        return None
-    mark = _read_json(stage / _MARK)
-    if not isinstance(mark, dict) or mark.get("token") != found.group(1) \
-            or not _only_ours(stage):
-        return None
-    return mark
-
-
-def _verified_entries(journal: dict, token: str) -> list[dict] | None:
-    """The entries of a journal if every one stays inside the folder of a verified stage."""
-    if not isinstance(journal, dict) or journal.get("token") != token:
-        return None
-    entries = journal.get("entries")
-    if not isinstance(entries, list):
-        return None
-    for entry in entries:
-        if not isinstance(entry, dict) or not all(isinstance(entry.get(k), str)
-                                                  for k in ("stage", "k", "name", "kind")):
-            return None
-        stage = Path(entry["stage"])
-        name = entry["name"]
-        if not stage.is_absolute() or ".." in stage.parts or not entry["k"].isdigit() \
-                or not _ENTRY.fullmatch(entry["k"]) or entry["kind"] not in ("file", "dir"):
-            return None
-        if name in ("", ".", "..") or "/" in name or "\0" in name or _LOOKALIKE.match(name):
-            return None
-        if entry["kind"] == "dir" and (not isinstance(entry.get("marker"), str)
-                                       or "/" in entry["marker"]
-                                       or entry["marker"] in ("", ".", "..")):
-            return None
-        # the stage must be a real folder of ours, reached without links: its parent resolves
-        # to itself, so every rename stays in the folder that holds the stage
-        if os.path.realpath(stage.parent) != str(stage.parent) \
-                or _verified_stage(stage, token) is None:
-            return None
-        target = stage.parent / name
-        if os.path.islink(target):
-            return None
-    return entries
-
-
-def stale_stages(folder) -> list[Path]:
-    """Stages in ``folder`` that verify as ours and whose writer is gone (nothing is changed)."""
-    folder = Path(os.path.realpath(folder))
-    stale = []
-    try:
-        names = sorted(e.name for e in os.scandir(folder) if is_stage_name(e.name))
-    except OSError:
-        return stale
-    for name in names:
-        mark = _verified_stage(folder / name)
-        if mark is None or (_pid_alive(mark.get("pid")) and mark.get("pid") != os.getpid()):
-            continue
-        try:
-            fd = _lock(folder / name, wait=False)
-        except OSError:
-            continue
-        if fd is not None:
-            os.close(fd)
-            stale.append(folder / name)
-    return stale
-
-
-def recover(folder, *, notice=None) -> list[Path]:
-    """Finish or undo the units that killed writers left in ``folder``; return what went.
-
-    Only stages that verify (see the module docstring) are acted on; a look-alike name is
-    reported through ``notice`` (default: one line on stderr) and left as it is.
-    """
-    notice = notice or _notice
-    folder = Path(os.path.realpath(folder))
-    removed = []
-    try:
-        names = [e.name for e in os.scandir(folder) if e.name.startswith(".dispersion-")]
-    except OSError:
-        return removed
-    for name in sorted(names):
-        path = folder / name
-        if is_stage_name(name) and (_held(path) or _empty_dir(path)):
-            continue  # a live writer (at work, or between its mkdir and its lock)
-        mark = _verified_stage(path)
-        if mark is None:
-            if _LOOKALIKE.match(name) and str(path) not in _noticed:
-                _noticed.add(str(path))
-                notice(f"left {path} untouched: it looks like a leftover of dispersion but "
-                       "does not verify as one")
-            continue
-        try:
-            if _settle(path, mark, notice):
-                removed.append(path)
-        except OSError as exc:  # e.g. a folder now stands where a file is to go
-            notice(f"left {path} as it is: {exc.strerror or exc} ({exc.filename or path})")
-    return removed
-
-
-def _settle(stage: Path, mark: dict, notice) -> bool:
-    """Roll a verified dead stage forward (journal) or back (none); True if it is gone."""
-    token = mark["token"]
-    if _pid_alive(mark.get("pid")) and mark.get("pid") != os.getpid():
-        return False
-    try:
-        fd = _lock(stage, wait=False)
-    except OSError:
-        return False
-    if fd is None:
-        return False  # its writer is alive
-    try:
-        primary = Path(mark["primary"]) if isinstance(mark.get("primary"), str) else stage
-        journal = _read_json(primary / _JOURNAL) if primary == stage or (
-            _verified_stage(primary, token) is not None) else None
-        if journal is not None:
-            entries = _verified_entries(journal, token)
-            if entries is None:
-                if str(stage) not in _noticed:
-                    _noticed.add(str(stage))
-                    notice(f"left {stage} untouched: its journal does not verify")
-                return False
-            for entry in entries:
-                _apply(entry, token)
-            others = {Path(e["stage"]) for e in entries} - {primary}
-            for other in sorted(others):
-                _remove_stage(other)
-            gone = _remove_stage(primary) and not stage.exists()
-            notice(f"finished the output of an interrupted run ({stage.name})")
-            return gone
-        gone = _remove_stage(stage)
-        notice(f"removed the temporaries of an interrupted run ({stage.name})")
-        return gone
+            with open(src, "rb", closefd=False) as fin, open(dst, "wb", closefd=False) as fout:
+                shutil.copyfileobj(fin, fout, 1 << 20)
+            os.fsync(dst)
+            _group(dst, st.st_gid)
+            os.fchmod(dst, stat.S_IMODE(st.st_mode))
+            os.utime(dst, ns=(st.st_atime_ns, st.st_mtime_ns))
+        finally:
+            os.close(dst)
     finally:
-        os.close(fd)
+        os.close(src)
+
+
+def _remove_all(fd: int, name: str) -> None:
+    """Remove ``name`` in folder ``fd`` with everything in it (a temporary of ours)."""
+    try:
+        st = os.stat(name, dir_fd=fd, follow_symlinks=False)
+    except FileNotFoundError:
+        return
+    if not stat.S_ISDIR(st.st_mode):
+        os.unlink(name, dir_fd=fd)
+        return
+    sub = _open_dir(name, fd)
+    try:
+        for entry in os.listdir(sub):
+            _remove_all(sub, entry)
+    finally:
+        os.close(sub)
+    os.rmdir(name, dir_fd=fd)
+
+
+class NewFolder:
+    """A new version of folder ``name`` (in the open folder ``fd``), built beside it and
+    swapped in whole. ``target`` is what the owner rule found
+    (:func:`dispersion.ownership.folder_state`), ``parent_text`` the folder as the user wrote
+    it (for :attr:`path`).
+
+    :attr:`path` is the new folder (write into it); :meth:`commit` swaps it in,
+    :meth:`discard` removes it.
+    """
+
+    def __init__(self, fd: int, name: str, shown: str, parent_text: str, target, *,
+                 notice=None):
+        self.folder, self.name, self.shown, self.target = fd, name, shown, target
+        self.notice = notice or _print_notice
+        self.tmp = temp_name(name)
+        os.mkdir(self.tmp, 0o700, dir_fd=fd)
+        self.fd = _open_dir(self.tmp, fd)
+        self._ident = _ident(os.fstat(self.fd))
+        fcntl.flock(self.fd, fcntl.LOCK_EX)
+        self.path = os.path.join(parent_text, self.tmp) if parent_text else self.tmp
+        self.copied: dict[tuple[str, ...], tuple] = {}
+        self.ignore = False
+        self.done = False
+        try:
+            if target.kind == "folder":
+                self._copy_old()
+            if ".gitignore" not in os.listdir(self.fd):
+                with open(os.open(".gitignore", os.O_WRONLY | os.O_CREAT | os.O_EXCL
+                                  | os.O_NOFOLLOW | os.O_CLOEXEC, 0o600, dir_fd=self.fd),
+                          "w") as fh:
+                    fh.write("*\n")
+                self.ignore = True
+            checkpoint()
+        except BaseException:
+            self.discard()
+            raise
+
+    def _copy_old(self) -> None:
+        """Copy the old folder into the new one (the owner rule checked again on the way)."""
+        old = _open_dir(self.name, self.folder)
+        try:
+            if _ident(os.fstat(old)) != self.target.ident:
+                from dispersion.errors import InputError
+
+                raise InputError(f"{self.target.option} {self.shown} was replaced while "
+                                 "dispersion checked it; run again")
+            dirs = {(): (old, self.fd)}
+            try:
+                for rel, st in tree(old, self.shown, self.target.option):
+                    src, dst = dirs[rel[:-1]]
+                    if stat.S_ISDIR(st.st_mode):
+                        os.mkdir(rel[-1], 0o700, dir_fd=dst)
+                        dirs[rel] = (_open_dir(rel[-1], src), _open_dir(rel[-1], dst))
+                        _group(dirs[rel][1], st.st_gid)
+                        if _ident(os.fstat(dirs[rel][0])) != _ident(st):
+                            raise FileNotFoundError(errno.ENOENT, "changed while copied",
+                                                    "/".join(rel))
+                    else:
+                        _copy_file(src, dst, rel[-1], st)
+                    self.copied[rel] = (_ident(st), st.st_size, st.st_mtime_ns,
+                                        stat.S_IMODE(st.st_mode))
+                for rel in sorted((r for r in dirs if r), key=len, reverse=True):
+                    os.chmod(rel[-1], self.copied[rel][3], dir_fd=dirs[rel[:-1]][1])
+            finally:
+                for rel, (src, dst) in dirs.items():
+                    if rel:
+                        os.close(src)
+                        os.close(dst)
+        finally:
+            os.close(old)
+
+    def commit(self, mode: int, gid: int | None = None) -> None:
+        """Swap the new folder in (mode ``mode``, group ``gid``); remove what the old one
+        held that was copied. A target that changed since the check is refused (the new
+        folder removed)."""
+        try:
+            if self.ignore:
+                os.unlink(".gitignore", dir_fd=self.fd)
+            _fsync(self.fd)
+            _group(self.fd, gid)
+            os.fchmod(self.fd, mode)
+            checkpoint()
+            self._swap()
+        except BaseException:
+            if not self.done:
+                self.discard()
+                raise
+            self._finish()  # interrupted just after the swap: the old version still goes
+            raise
+        self._finish()
+
+    def _finish(self) -> None:
+        if self.fd is not None:
+            os.close(self.fd)
+            self.fd = None
+        if self.target.kind == "folder":
+            self._remove_old()
+
+    def _swap(self) -> None:
+        # Ctrl-C and SIGTERM wait until the folder is in place (a few system calls)
+        blocked = {signal.SIGINT, signal.SIGTERM}
+        previous = signal.pthread_sigmask(signal.SIG_BLOCK, blocked)
+        try:
+            self._swap_now()
+        finally:
+            signal.pthread_sigmask(signal.SIG_SETMASK, previous)
+
+    def _swap_now(self) -> None:
+        from dispersion.errors import InputError
+
+        changed = InputError(f"{self.target.option} {self.shown} changed while dispersion "
+                             "wrote it; it was left as it was (run again)")
+        if self.target.kind == "new":
+            try:
+                rename_new(self.folder, self.tmp, self.name)
+            except FileExistsError:
+                raise changed from None
+        elif exchange(self.folder, self.tmp, self.name):
+            if not _still(self.folder, self.tmp, self.target.ident):  # not what we checked
+                exchange(self.folder, self.tmp, self.name)  # swap back
+                raise changed
+        else:  # two renames: NAME is absent between them
+            old = temp_name(self.name)
+            if not _still(self.folder, self.name, self.target.ident):
+                raise changed
+            os.rename(self.name, old, src_dir_fd=self.folder, dst_dir_fd=self.folder)
+            try:
+                checkpoint()
+                os.rename(self.tmp, self.name, src_dir_fd=self.folder, dst_dir_fd=self.folder)
+            except BaseException:  # unwound in this process: the old folder goes back
+                os.rename(old, self.name, src_dir_fd=self.folder, dst_dir_fd=self.folder)
+                raise
+            self.tmp = old
+        self.done = True
+        _fsync(self.folder)
+        checkpoint()
+
+    def _remove_old(self) -> None:
+        """Remove, from the old version (now under :attr:`tmp`), the entries that are
+        exactly those copied; keep the rest and say so. Ctrl-C and SIGTERM wait."""
+        blocked = {signal.SIGINT, signal.SIGTERM}
+        previous = signal.pthread_sigmask(signal.SIG_BLOCK, blocked)
+        kept: list[str] = []
+        try:
+            self._prune(self.folder, self.tmp, (), kept)
+        except OSError as exc:
+            kept.append(f"({exc.strerror or exc})")
+        finally:
+            signal.pthread_sigmask(signal.SIG_SETMASK, previous)
+        if kept:
+            self.notice(f"kept {self.shown} as it was before this run under "
+                        f"{printable(self.tmp)}: {printable(kept[0], 80)}"
+                        f"{f' and {len(kept) - 1} more' if len(kept) > 1 else ''} changed "
+                        "while the run wrote, so they are not in the new version")
+        checkpoint()
+
+    def _prune(self, fd: int, name: str, rel: tuple[str, ...], kept: list[str]) -> None:
+        sub = _open_dir(name, fd)
+        try:
+            if rel and _ident(os.fstat(sub)) != self.copied.get(rel, (None,))[0]:
+                kept.append("/".join(rel))
+                return
+            for entry in sorted(os.listdir(sub)):
+                path = (*rel, entry)
+                st = os.stat(entry, dir_fd=sub, follow_symlinks=False)
+                if stat.S_ISDIR(st.st_mode) and path in self.copied:
+                    self._prune(sub, entry, path, kept)
+                elif path in self.copied and self.copied[path][:3] == (
+                        _ident(st), st.st_size, st.st_mtime_ns) and stat.S_ISREG(st.st_mode):
+                    os.unlink(entry, dir_fd=sub)
+                else:
+                    kept.append("/".join(path))
+        finally:
+            os.close(sub)
+        with contextlib.suppress(OSError):  # not empty: something was kept
+            os.rmdir(name, dir_fd=fd)
+
+    def discard(self) -> None:
+        """Remove the new folder (only while it is still the one this object made)."""
+        if not self.done and _still(self.folder, self.tmp, self._ident):
+            with contextlib.suppress(OSError):
+                _remove_all(self.folder, self.tmp)
+        self.done = True
+        if self.fd is not None:
+            os.close(self.fd)
+            self.fd = None

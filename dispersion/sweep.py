@@ -30,7 +30,7 @@ from collections.abc import Callable, Iterable
 from typing import Any, TypeVar
 
 from dispersion import defaults
-from dispersion.errors import check_positive_int
+from dispersion.budget import check_jobs
 
 __all__ = ["parallel_map", "default_jobs", "process_pool", "die_with_parent",
            "MAX_JOBS_PER_CPU"]
@@ -138,8 +138,7 @@ def process_pool(max_workers: int | None = None, mp_context=None) -> cf.ProcessP
     ...     pool.submit(abs, -2).result()
     2
     """
-    workers = default_jobs() if max_workers is None else check_positive_int(
-        "max_workers", max_workers, maximum=MAX_JOBS_PER_CPU * default_jobs())
+    workers = default_jobs() if max_workers is None else check_jobs(max_workers, "max_workers")
     return _Pool(workers, mp_context)
 
 
@@ -193,11 +192,12 @@ def parallel_map(
         :class:`~concurrent.futures.ProcessPoolExecutor` with ``jobs`` workers, created
         and shut down here.
     jobs : int, optional
-        Largest worker count of the default pool (default: the usable CPU count). The pool
-        has at most as many workers as usable CPUs (``os.sched_getaffinity``) and as items,
-        whatever ``jobs`` says: its calls are CPU-bound, so more would only queue for the
-        cores (``jobs=10**6`` starts two workers on two CPUs). ``jobs=1`` without an
-        executor runs the calls in this process, one after the other.
+        Largest worker count of the default pool (default: the usable CPU count), in
+        [1, ``MAX_JOBS_PER_CPU`` x usable CPUs] (:func:`dispersion.budget.check_jobs`; a
+        larger request is refused before any work). The pool has at most as many workers
+        as usable CPUs (``os.sched_getaffinity``) and as items: its calls are CPU-bound, so
+        more would only queue for the cores. ``jobs=1`` without an executor runs the calls
+        in this process, one after the other.
     progress : bool, optional
         Show a tqdm progress bar on stderr as calls complete; default (``None``): only when
         stderr is a terminal.
@@ -212,7 +212,7 @@ def parallel_map(
     Raises
     ------
     InputError
-        ``jobs`` is not an integer >= 1.
+        ``jobs`` is not an integer in [1, ``MAX_JOBS_PER_CPU`` x usable CPUs].
     Exception
         The first exception raised by a call (in completion order) is re-raised here
         unchanged; calls not yet started are cancelled.
@@ -225,7 +225,7 @@ def parallel_map(
     ['S0', 'A0']
     """
     if jobs is not None:  # checked before the items are drawn or a worker starts
-        jobs = check_positive_int("jobs", jobs)
+        jobs = check_jobs(jobs)  # at most MAX_JOBS_PER_CPU per usable CPU (dispersion.budget)
     items = list(items)
     bar = _progress(len(items), progress, desc)
     try:

@@ -10,20 +10,28 @@ from pathlib import Path
 
 
 def snapshot(root: Path) -> dict:
-    """Every path under ``root`` with its kind and content: a link its target, a folder its
-    mode, a file the SHA-256 of its bytes and its mode (so a changed permission counts)."""
+    """Every path under ``root`` with its kind, content, mode and owner: a link its target, a
+    folder its mode, a file the SHA-256 of its bytes and its mode (so a changed permission
+    counts), a pipe or device its kind; each with its owner (uid, gid). Links are not
+    followed and pipes never opened."""
+    import stat
+
     out = {}
     for dirpath, dirnames, filenames in os.walk(root, followlinks=False):
         for name in dirnames + filenames:
             path = Path(dirpath) / name
             rel = str(path.relative_to(root))
-            if path.is_symlink():
-                out[rel] = ("link", os.readlink(path))
-            elif path.is_dir():
-                out[rel] = ("dir", oct(path.stat().st_mode & 0o777))
-            else:
+            st = os.lstat(path)
+            owner = (st.st_uid, st.st_gid)
+            if stat.S_ISLNK(st.st_mode):
+                out[rel] = ("link", os.readlink(path), owner)
+            elif stat.S_ISDIR(st.st_mode):
+                out[rel] = ("dir", oct(st.st_mode & 0o7777), owner)
+            elif stat.S_ISREG(st.st_mode):
                 out[rel] = ("file", hashlib.sha256(path.read_bytes()).hexdigest(),
-                            oct(path.stat().st_mode & 0o777))
+                            oct(st.st_mode & 0o7777), owner)
+            else:
+                out[rel] = ("special", oct(st.st_mode), owner)
     return out
 
 

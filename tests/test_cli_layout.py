@@ -41,7 +41,8 @@ ALLOWED = {
     "dispersion.claims.reader": "read_number (the one number grammar)",
     "dispersion.claims.limits": "MAX_JOBS", "dispersion.waves.unit_mixups": "hints",
     # registries that name what an option may be, and the input values
-    "dispersion.symbolic.mass_rule": "RULE_NAMES, get_rule, rule_from_toml",
+    "dispersion.symbolic.mass_rule": "RULE_NAMES, get_rule",
+    "dispersion.symbolic.mass_rule_file": "read_rule_file (an untrusted --mass-rule file)",
     "dispersion.waves.time_integration": "NEWMARK_MEMBERS, CRITICAL_STEP_MODELS",
     "dispersion.contact.newmark_scheme": "CONTACT_SCHEMES",
     "dispersion.waves.materials": "MATERIALS, material, user_material",

@@ -34,7 +34,7 @@ def test_json_is_strict_when_the_run_ends_in_contact(capsys):
 def test_out_dir_files_and_csv_rows(tmp_path, capsys):
     out = tmp_path / "ring"
     assert main(["ring", "--t-end", "0.3", "--dt", "0.1", "--out", str(out)]) == 0
-    assert {p.name for p in out.iterdir()} == {"summary.json", "result.json", "history.csv",
+    assert {p.name for p in out.iterdir()} == {".dispersion-report", "summary.json", "result.json", "history.csv",
                                                "figure.png"}
     lines = (out / "history.csv").read_text().splitlines()
     assert lines[0] == "# ring on a rigid plane: singular mass, Kane's contact-modified Newmark"

@@ -13,6 +13,7 @@ import pytest
 
 from dispersion import io, staging
 from dispersion.errors import DispersionError, InputError
+from helpers import snapshot
 
 
 @pytest.fixture
@@ -88,31 +89,40 @@ def test_device_is_written_through_not_replaced():
     assert stat.S_ISCHR(after.st_mode) and after.st_ino == before.st_ino
 
 
-def test_symlink_to_device_stays(tmp_path):
+@pytest.mark.parametrize("points_to", ["/dev/null", "real.txt", "folder", "nowhere"])
+def test_a_link_is_refused_never_followed(tmp_path, points_to):
+    # issue 27 item 5: links are never followed when writing, whatever they point to
+    (tmp_path / "real.txt").write_text("old")
+    (tmp_path / "folder").mkdir()
     link = tmp_path / "out.csv"
-    link.symlink_to("/dev/null")
-    io.write_text(link, "data")
-    assert link.is_symlink() and os.readlink(link) == "/dev/null"
-
-
-def test_symlink_to_file_keeps_link_and_replaces_target(tmp_path):
-    target = tmp_path / "real.txt"
-    target.write_text("old")
-    link = tmp_path / "link.txt"
-    link.symlink_to(target)
-    io.write_text(link, "new")
-    assert link.is_symlink() and target.read_text() == "new"
+    link.symlink_to(points_to if points_to.startswith("/") else tmp_path / points_to)
+    before = snapshot(tmp_path)
+    with pytest.raises(InputError, match="symbolic link") as info:
+        io.write_text(link, "new", option="--csv")
+    assert "\n" not in str(info.value) and str(info.value).startswith("--csv")
+    with pytest.raises(InputError, match="symbolic link"):
+        io.check_output_file(link, option="--csv")
+    assert snapshot(tmp_path) == before
 
 
 def test_fifo_is_written_through(tmp_path):
     fifo = tmp_path / "pipe"
     os.mkfifo(fifo)
     got = []
-    reader = threading.Thread(target=lambda: got.append(fifo.read_text()))
+    reader = threading.Thread(target=lambda: got.append(fifo.read_text()), daemon=True)
     reader.start()
     io.write_text(fifo, "through the pipe")
     reader.join(5)
     assert got == ["through the pipe"] and stat.S_ISFIFO(os.stat(fifo).st_mode)
+
+
+def test_a_pipe_nobody_reads_is_refused_not_waited_on(tmp_path, monkeypatch):
+    fifo = tmp_path / "pipe"
+    os.mkfifo(fifo)
+    monkeypatch.setattr(io, "PIPE_WAIT", 0.1)
+    with pytest.raises(InputError, match="no process opened this named pipe"):
+        io.write_text(fifo, "x", option="--csv")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["pipe"]
 
 
 def test_full_device_is_one_line_error():
@@ -142,7 +152,7 @@ def test_parent_is_a_file_is_input_error(tmp_path):
 
 
 def test_empty_path_is_refused_not_taken_as_the_current_folder():
-    with pytest.raises(InputError, match="--json must be a file path or '-', got ''"):
+    with pytest.raises(InputError, match="--json must be a file path, got ''"):
         io.write_text("", "x", option="--json")
 
 
@@ -166,7 +176,7 @@ def test_error_inside_body_leaves_nothing(tmp_path):
     (None, "missing/x.csv", "does not exist"),
     ("file", "f/x.csv", "not a folder"),
     (None, "x/", "folder path"),
-    ("dangling", "link.csv", "dangling"),
+    ("dangling", "link.csv", "symbolic link"),
 ])
 def test_check_output_file_refuses(tmp_path, make, path, match):
     if make == "dir":
@@ -222,9 +232,9 @@ def test_check_output_dir_accepts_new_and_existing(tmp_path):
 
 
 def test_write_files_all_or_old_on_failure(tmp_path, monkeypatch):
-    (tmp_path / "a.csv").write_text("old a")
-    (tmp_path / "b.png").write_text("old b")
-    (tmp_path / "user.tex").write_text("mine")
+    out = tmp_path / "run"
+    io.write_files(out, {"a.csv": "old a", "b.png": b"old b"})
+    (out / "user.tex").write_text("mine")  # a user's file in a folder dispersion wrote
     calls = []
     real = os.fsync
 
@@ -234,63 +244,58 @@ def test_write_files_all_or_old_on_failure(tmp_path, monkeypatch):
             raise OSError(errno.ENOSPC, "No space left on device")
         real(fd)
 
-    monkeypatch.setattr(io.os, "fsync", fail_second)
+    monkeypatch.setattr(staging.os, "fsync", fail_second)
+    before = snapshot(tmp_path)
     with pytest.raises(DispersionError):
-        io.write_files(tmp_path, {"a.csv": "new a", "b.png": b"new b"})
+        io.write_files(out, {"a.csv": "new a", "b.png": b"new b"})
     monkeypatch.undo()
-    assert (tmp_path / "a.csv").read_text() == "old a"
-    assert (tmp_path / "b.png").read_text() == "old b"
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.csv", "b.png", "user.tex"]
-    io.write_files(tmp_path, {"a.csv": "new a", "b.png": b"new b"})
-    assert (tmp_path / "a.csv").read_text() == "new a"
-    assert (tmp_path / "user.tex").read_text() == "mine"
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.csv", "b.png", "user.tex"]
+    assert snapshot(tmp_path) == before
+    io.write_files(out, {"a.csv": "new a", "b.png": b"new b"})
+    assert (out / "a.csv").read_text() == "new a"
+    assert (out / "user.tex").read_text() == "mine"
+    assert sorted(p.name for p in out.iterdir()) == [io.MARKER, "a.csv", "b.png", "user.tex"]
 
 
-def test_write_files_finishes_a_journal_left_by_a_kill(tmp_path):
-    # a writer killed after its journal (the commit point): the next writer finishes the unit
-    (tmp_path / "a.csv").write_text("old a")
-    (tmp_path / "b.csv").write_text("old b")
-    code = (f"import os, signal; os.environ['{staging.FAULT_ENV}'] = '6:SIGKILL'\n"
+def test_write_files_refuses_a_folder_it_did_not_write(tmp_path):
+    # issue 27 item 6: ring/impact --out wrote into any existing folder
+    (tmp_path / "summary.json").write_text("mine")
+    before = snapshot(tmp_path)
+    with pytest.raises(InputError, match="did not write"):
+        io.write_files(tmp_path, {"summary.json": "new"}, option="--out")
+    with pytest.raises(InputError, match="did not write"):
+        io.check_output_dir(tmp_path, option="--out")
+    assert snapshot(tmp_path) == before
+
+
+def test_a_kill_leaves_the_folder_whole_and_its_temporary_reported_not_removed(tmp_path):
+    out = tmp_path / "run"
+    io.write_files(out, {"a.csv": "old a", "b.csv": "old b"})
+    code = (f"import os; os.environ['{staging.FAULT_ENV}'] = '1:SIGKILL'\n"
             "import dispersion.io as io\n"
-            f"io.write_files({str(tmp_path)!r}, {{'a.csv': 'new a', 'b.csv': 'new b'}})\n")
-    # checkpoints: stage made, a staged, b staged, before journal, journal written,
-    # journal renamed (6: the kill), first rename
+            f"io.write_files({str(out)!r}, {{'a.csv': 'new a', 'b.csv': 'new b'}})\n")
     proc = subprocess.Popen([sys.executable, "-c", code])
     assert proc.wait(60) == -9
-    assert (tmp_path / "a.csv").read_text() == "old a"
-    assert len(io.stale_temporaries(tmp_path)) == 1
-    io.write_files(tmp_path, {"c.csv": "c"})
-    assert (tmp_path / "a.csv").read_text() == "new a"
-    assert (tmp_path / "b.csv").read_text() == "new b"
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.csv", "b.csv", "c.csv"]
-
-
-def test_write_files_kill_during_staging_keeps_old(tmp_path):
-    # a child stages two big files and is SIGKILLed: the targets keep their old content
-    (tmp_path / "a.bin").write_text("old")
-    code = ("import os, signal, dispersion.io as io\n"
-            "real = os.fsync\n"
-            "def kill(fd):\n"
-            "    real(fd); os.kill(os.getpid(), signal.SIGKILL)\n"
-            "io.os.fsync = kill\n"
-            f"io.write_files({str(tmp_path)!r}, {{'a.bin': b'new', 'b.bin': b'new'}})\n")
-    proc = subprocess.Popen([sys.executable, "-c", code])
-    assert proc.wait(60) == -9
-    assert (tmp_path / "a.bin").read_text() == "old" and not (tmp_path / "b.bin").exists()
+    assert (out / "a.csv").read_text() == "old a" and (out / "b.csv").read_text() == "old b"
     stale = io.stale_temporaries(tmp_path)
-    assert len(stale) == 1 and staging.is_stage_name(stale[0].name)
-    assert io.remove_stale_temporaries(tmp_path) == stale
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.bin"]
+    assert len(stale) == 1 and staging.is_leftover(stale[0].name)
+    before = snapshot(tmp_path)
+    notices = []
+    io.write_files(out, {"c.csv": "c"}, notice=notices.append)
+    after = snapshot(tmp_path)
+    assert stale[0].exists() and len(notices) == 1 and "untouched" in notices[0]
+    assert {k: v for k, v in after.items() if k in before and not k.startswith("run")} == \
+        {k: v for k, v in before.items() if not k.startswith("run")}
 
 
-def test_stage_of_a_live_writer_is_left_alone(tmp_path):
-    with staging.Stage() as unit:
-        unit.file(tmp_path / "a.csv").write_text("x")
-        io.write_files(tmp_path, {"b.csv": "y"})  # recovers the folder: must skip the live one
+def test_a_live_writers_temporary_is_not_reported(tmp_path):
+    fd = os.open(tmp_path, os.O_RDONLY | os.O_DIRECTORY)
+    try:
+        new = staging.NewFile(fd, "a.csv", "a.csv")
         assert io.stale_temporaries(tmp_path) == []
-        assert (tmp_path / f"{staging.STAGE_PREFIX}{unit.token}").is_dir()
-        unit.commit()
+        io.write_text(tmp_path / "b.csv", "y")
+        new.commit(0o644)
+    finally:
+        os.close(fd)
     assert sorted(p.name for p in tmp_path.iterdir()) == ["a.csv", "b.csv"]
 
 
@@ -301,20 +306,35 @@ def test_write_files_refuses_names_outside(tmp_path, name):
         io.write_files(tmp_path, {name: "x"})
 
 
-def test_write_files_refuses_to_replace_a_link(tmp_path):
-    (tmp_path / "l.csv").symlink_to("/dev/null")
-    with pytest.raises(InputError, match="not a regular file"):
-        io.write_files(tmp_path, {"l.csv": "x"})
+@pytest.mark.parametrize("planted", ["link", "fifo", "foreign"])
+def test_write_files_refuses_a_folder_holding_a_link_a_pipe_or_a_strangers_file(tmp_path,
+                                                                                planted):
+    out = tmp_path / "run"
+    io.write_files(out, {"a.csv": "x"})
+    (tmp_path / "outside.txt").write_text("outside")
+    if planted == "link":
+        (out / "l.csv").symlink_to(tmp_path / "outside.txt")
+    elif planted == "fifo":
+        os.mkfifo(out / "l.csv")
+    else:
+        (out / "l.csv").write_text("theirs")
+        os.chown(out / "l.csv", 65534, 65534)
+    before = snapshot(tmp_path)
+    with pytest.raises(InputError, match="l.csv") as info:
+        io.write_files(out, {"l.csv": "x"}, option="--out")
+    assert "\n" not in str(info.value)
+    assert snapshot(tmp_path) == before
 
 
 def test_old_style_temporaries_are_not_ours_to_remove(tmp_path):
-    # names of older writers carry no token: nothing proves they are ours, so they stay
+    # names of older writers carry no proof of anything: they stay, reported
     dead = _dead_pid()
-    names = [f".a.csv.{dead}.tmp", f".a.csv.{dead}.w.tmp", ".hidden.tmp"]
+    names = [f".a.csv.{dead}.tmp", f".a.csv.{dead}.w.tmp", ".hidden.tmp",
+             ".dispersion-stage." + "0" * 32, f".dispersion-write.{dead}.json"]
     for name in names:
         (tmp_path / name).write_text("")
-    assert io.stale_temporaries(tmp_path) == []
-    io.write_files(tmp_path, {"b.csv": "y"})
+    assert [p.name for p in io.stale_temporaries(tmp_path)] == sorted(names[3:])
+    io.write_text(tmp_path / "b.csv", "y")
     assert sorted(p.name for p in tmp_path.iterdir()) == sorted(names + ["b.csv"])
 
 

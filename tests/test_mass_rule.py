@@ -19,10 +19,10 @@ from dispersion.symbolic.mass_rule import (
     TranslationalMassWarning,
     gram_space,
     mass_matrix,
-    rule_from_toml,
     user_rule,
     x_mass_coefficients,
 )
+from dispersion.symbolic.mass_rule_file import rule_from_toml
 from dispersion.symbolic.plate import bloch_coefficients, plate_patch
 from dispersion.symbolic.spline_mass import lobatto_rule
 

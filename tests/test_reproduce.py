@@ -183,7 +183,8 @@ _KILLED_RUN = textwrap.dedent("""
 """)
 
 
-def test_killed_run_keeps_old_report_and_next_run_cleans_up(stubs, tmp_path, capsys):
+def test_killed_run_keeps_old_report_and_next_run_reports_its_leftover(stubs, tmp_path, capsys):
+    # issue 27: the leftover is reported in one line and left alone (never acted on)
     out = tmp_path / "rep"
     stubs()
     assert main(["reproduce", "--out", str(out), "--jobs", "1"]) == 0
@@ -198,12 +199,12 @@ def test_killed_run_keeps_old_report_and_next_run_cleans_up(stubs, tmp_path, cap
         proc.kill()
     assert {p.name: p.read_bytes() for p in out.iterdir()} == before
     stale = _leftovers(tmp_path)
-    assert len(stale) == 1 and stale[0].startswith(".dispersion-stage.")
+    assert len(stale) == 1 and stale[0].startswith(".rep.dispersion-tmp-")
     capsys.readouterr()
     assert main(["reproduce", "--out", str(out), "--jobs", "1", "--sections", "ring"]) == 0
     err = capsys.readouterr().err
-    assert "removed the temporaries of an interrupted run" in err and stale[0] in err
-    assert _leftovers(tmp_path) == []
+    assert "untouched" in err and stale[0] in err
+    assert _leftovers(tmp_path) == stale
 
 
 def test_outputs_follow_the_umask(stubs, tmp_path):

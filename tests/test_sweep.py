@@ -165,8 +165,8 @@ def test_process_pool_rejects_bad_worker_count():
 
 
 def test_parallel_map_starts_at_most_one_worker_per_usable_cpu(monkeypatch):
-    # the bound is read from os.sched_getaffinity: with one usable CPU, jobs=10**6 runs the
-    # calls through a pool of one worker (recorded here), never 10**6 processes
+    # the bound is read from os.sched_getaffinity: with one usable CPU, jobs=4 runs the
+    # calls through a pool of one worker (recorded here)
     from dispersion import sweep
 
     sizes = []
@@ -174,8 +174,23 @@ def test_parallel_map_starts_at_most_one_worker_per_usable_cpu(monkeypatch):
     monkeypatch.setattr(sweep, "default_jobs", lambda: 1)
     monkeypatch.setattr(sweep, "process_pool",
                         lambda n, *a: sizes.append(n) or real(1, *a))
-    assert parallel_map(_square, [1, 2, 3], jobs=10**6, progress=False) == [1, 4, 9]
+    assert parallel_map(_square, [1, 2, 3], jobs=4, progress=False) == [1, 4, 9]
     assert sizes == [1]
+
+
+def test_parallel_map_refuses_more_workers_than_its_bound_before_any_work(monkeypatch):
+    # issue 27 item 8: jobs=10**6 was accepted; the bound (dispersion.budget, rule 5) is
+    # MAX_JOBS_PER_CPU per usable CPU, checked before an item is drawn or a worker starts
+    from dispersion import budget, sweep
+
+    def never(*args, **kwargs):
+        raise AssertionError("the work started")
+
+    monkeypatch.setattr(sweep, "process_pool", never)
+    bound = rf"jobs must be an integer in \[1, {budget.max_jobs()}\]"
+    for jobs in (10**6, budget.max_jobs() + 1, 0, True, 2.0):
+        with pytest.raises(InputError, match=bound):
+            parallel_map(never, iter(never, None), jobs=jobs, progress=False)
 
 
 # --- dask.distributed --------------------------------------------------------------------

@@ -18,6 +18,7 @@ import re
 
 import sympy
 
+from dispersion.budget import check_claim
 from dispersion.claims import explicit, orders, reader
 from dispersion.claims.claim import Claim
 from dispersion.claims.claim_model import PATCH_KEYS, check_patch, claim_model
@@ -140,6 +141,10 @@ def _claim(entry: dict, own: dict, i: int, lines: Lines) -> Claim:
                   expect=expect)
     claim = KIND_PARSERS[kind](entry, common, fail)
     check_patch(model, entry, fail)
+    try:  # the work a claim asks for is bounded before any derivation (dispersion.budget)
+        check_claim(claim)
+    except InputError as exc:
+        fail("p", f"the derivation would be too large: {exc}")
     return claim
 
 

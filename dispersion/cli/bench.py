@@ -73,12 +73,14 @@ def handler(args: argparse.Namespace) -> int:
         sys.stdout.write(dumps(envelope("series_speed", result, **provenance))
                          if args.format == "json" else render_tables(jsonable(result)))
         return 0
-    from dispersion.io import write_text
+    from dispersion.io import open_folder, write_text
     from dispersion.report.series_speed import render
     from dispersion.results import load, save
 
-    path = save(out / "series_speed.json", "series_speed", result, **provenance)
-    md = render(load(path)["result"], out)
-    write_text(out / "series_speed.md", md)
-    sys.stdout.write(path.read_text() if args.format == "json" else md)
+    with open_folder(out, option="--out") as new:  # one unit: all new or all old
+        path = save(new / "series_speed.json", "series_speed", result, **provenance)
+        md = render(load(path)["result"], new)
+        write_text(new / "series_speed.md", md)
+        text = path.read_text()
+    sys.stdout.write(text if args.format == "json" else md)
     return 0

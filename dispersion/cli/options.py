@@ -242,9 +242,9 @@ def masses_from_args(args: argparse.Namespace) -> list | None:
     in that order; None when neither is given (the command's default rules)."""
     rules = list(getattr(args, "mass", None) or ())
     if getattr(args, "mass_rule", None):
-        from dispersion.symbolic.mass_rule import rule_from_toml
+        from dispersion.symbolic.mass_rule_file import read_rule_file
 
-        rules += [rule_from_toml(path) for path in args.mass_rule]
+        rules += [read_rule_file(path) for path in args.mass_rule]
     return rules or None
 
 

@@ -1,27 +1,20 @@
-"""The report folder: written as one unit, never deleting what the toolkit did not write.
+"""The report folder of ``dispersion reproduce``: written as one unit by the toolkit's one
+folder writer, never replacing what the toolkit did not write.
 
-A folder that ``dispersion reproduce`` writes carries a marker file, :data:`MARKER`, which
-records the random token of the run that wrote it. The rules:
+The rules are those of every output folder (:mod:`dispersion.ownership`,
+:func:`dispersion.io.open_folder`):
 
-- ``--out`` must be a new folder, an empty one, or one that holds the marker. Anything else
-  (a user's folder, a regular file, ``''``) is refused with
-  :class:`~dispersion.errors.InputError` before any work starts, so nothing of the user's is
-  moved or deleted.
-- A run stages its files with the toolkit's one staged writer
-  (:class:`dispersion.staging.Stage`): a stage folder ``.dispersion-stage.TOKEN`` beside the
-  target, starting as a copy of what the target already holds, so a run of some sections
-  keeps every other file (other sections' results, anything a user put there). The staged
-  folder then replaces the target in one atomic exchange (Linux
-  ``renameat2(RENAME_EXCHANGE)``): under every interruption the target holds either the
-  complete old or the complete new result. Where the exchange is not available, two renames
-  are used under a journal (a kill between them leaves the target absent), and the next run
-  finishes them.
+- ``--out`` must be a new folder, an empty one, or one that holds the marker :data:`MARKER`
+  and nothing but regular files and folders of the user; anything else (a user's folder, a
+  link, a regular file, ``''``) is refused with :class:`~dispersion.errors.InputError`
+  before any work starts.
+- A run builds the new version beside the target, starting as a copy of what the target
+  holds (a run of some sections keeps every other file), and swaps it in with one atomic
+  exchange: under every interruption the target holds either the complete old or the
+  complete new report (:mod:`dispersion.staging` states what a kill leaves).
 - One run at a time per parent folder: a second concurrent run is refused in one line.
-- What a killed run left is settled by the next run, by :func:`dispersion.staging.recover`:
-  only stage folders whose name and recorded token verify; it names them in a one-line
-  notice. No other folder beside the target is ever deleted, renamed or adopted, whatever its
-  name (``.reports.old-2``, ``.reports.tmp-x``...).
-- Files and folders follow the umask.
+- Nothing beside the target is ever deleted, renamed or adopted, whatever its name;
+  temporaries of killed runs are reported in one line and left to the user.
 
 >>> import tempfile, pathlib
 >>> root = pathlib.Path(tempfile.mkdtemp())
@@ -35,19 +28,14 @@ from __future__ import annotations
 import contextlib
 import fcntl
 import os
-import shutil
-import sys
 from collections.abc import Iterator
 from pathlib import Path
 
 from dispersion.errors import InputError
-from dispersion.staging import Stage, marker_text, recover, stale_stages
+from dispersion.io import open_folder, stale_temporaries as _stale
+from dispersion.ownership import MARKER, check_folder
 
 __all__ = ["MARKER", "check_target", "open_report", "stale_temporaries"]
-
-#: Name of the file that marks a folder as written by ``dispersion reproduce``.
-MARKER = ".dispersion-report"
-_MARKER_TEXT = "This folder is written by `dispersion reproduce`; it may replace files here.\n"
 
 
 def check_target(out, option: str = "--out") -> Path:
@@ -56,45 +44,30 @@ def check_target(out, option: str = "--out") -> Path:
     Raises
     ------
     InputError
-        ``out`` is empty or ``-``, a file, or an existing non-empty folder without
-        :data:`MARKER`, or its parent is not a writable folder.
+        ``out`` is empty or ``-``, a file or a link, or an existing non-empty folder without
+        :data:`MARKER` (or with anything but regular files and folders of the user).
 
     >>> check_target("")
     Traceback (most recent call last):
     ...
-    dispersion.errors.InputError: --out must name a folder (new, empty or a report folder), got ''
+    dispersion.errors.InputError: --out must be a folder path, got ''
     """
-    text = os.fspath(out) if out is not None else ""
-    if not text.strip() or text == "-" or "\0" in text:
-        raise InputError(f"{option} must name a folder (new, empty or a report folder), "
-                         f"got {text!r}")
-    out = Path(os.path.abspath(text))
-    if out == out.parent:
-        raise InputError(f"{option} must not be the root folder")
-    if out.exists() or out.is_symlink():
-        if out.is_symlink() or not out.is_dir():
-            raise InputError(f"{option} {out} exists and is not a folder; name a new or a report folder")
-        if any(out.iterdir()) and not (out / MARKER).is_file():
-            raise InputError(
-                f"{option} {out} holds files that dispersion did not write (no {MARKER} marker); "
-                "name a new or empty folder")
-    parent = out.parent
-    if not parent.is_dir():
-        raise InputError(f"{option} {out}: the parent folder {parent} does not exist")
-    if not os.access(parent, os.W_OK | os.X_OK):
-        raise InputError(f"{option} {out}: the parent folder {parent} is not writable")
+    check_folder(out, option)
+    out = Path(os.path.abspath(os.fspath(out)))
+    if not out.parent.is_dir():
+        raise InputError(f"{option} {out}: the parent folder {out.parent} does not exist")
     return out
 
 
 def stale_temporaries(out) -> list[Path]:
-    """Stages of killed runs beside ``out`` that verify as ours (see :mod:`dispersion.staging`)."""
-    return stale_stages(Path(os.path.abspath(out)).parent)
+    """Temporaries of killed runs beside ``out`` (listed, never changed)."""
+    return _stale(Path(os.path.abspath(out)).parent)
 
 
 @contextlib.contextmanager
 def _lock(out: Path) -> Iterator[None]:
     # The lock is on the parent folder itself (flock on a directory descriptor): it leaves no
-    # lock file behind, and it covers the stages, which live in the parent too.
+    # lock file behind, and it covers the new version, which is built in the parent too.
     fd = os.open(out.parent, os.O_RDONLY)
     try:
         try:
@@ -115,14 +88,6 @@ def open_report(out, *, notice=None) -> Iterator[Path]:
     (or the process is interrupted), ``out`` is left exactly as it was and the staged folder is
     removed. ``notice(text)`` receives one-line notices (default: print to stderr).
     """
-    notice = notice or (lambda text: print(f"dispersion: {text}", file=sys.stderr))
     out = check_target(out)
-    with _lock(out):
-        recover(out.parent, notice=notice)
-        with Stage(notice=notice) as unit:
-            staged = unit.folder(out, MARKER)
-            if out.is_dir():
-                shutil.copytree(out, staged, dirs_exist_ok=True, symlinks=True)
-            (staged / MARKER).write_text(marker_text(_MARKER_TEXT, unit.token), encoding="utf-8")
-            yield staged
-            unit.commit()
+    with _lock(out), open_folder(out, option="--out", notice=notice) as staged:
+        yield staged

@@ -19,7 +19,8 @@ into the mass matrix an analysis uses:
 =====================  =================================================================
 
 and user rules: :func:`user_rule` (a Python callable of the :class:`MassSpace`) or
-:func:`rule_from_toml` (a table of redistribution weights). Each rule *states* its properties
+:func:`dispersion.symbolic.mass_rule_file.rule_from_toml` (a table of redistribution weights,
+read as untrusted data). Each rule *states* its properties
 (:class:`MassProperties`); :func:`mass_matrix` builds the matrix and checks them on the space
 (:func:`check_mass`): a rule whose matrix contradicts what it states, is not symmetric, or has
 massless directions that are not zero rows (the explicit scheme condenses zero rows only) is
@@ -48,16 +49,15 @@ CMAME 195 (2006) 5257-5296 (lumped IGA masses). M. Abramowitz, I. Stegun, 25.4.3
 """
 from __future__ import annotations
 
-import math
 import warnings
-from collections.abc import Callable, Mapping
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from fractions import Fraction
 from functools import lru_cache
 from typing import TYPE_CHECKING
 
 from dispersion.errors import IndefiniteMassWarning, InputError, check_positive_int
-from dispersion.symbolic.mass import redistributed_mass, redistribution_matrix, row_sum_lump
+from dispersion.symbolic.mass import redistributed_mass, row_sum_lump
 from dispersion.symbolic.explicit_cost import ExplicitCost
 from dispersion.symbolic.mass_check import MassProperties, check_mass
 from dispersion.symbolic.matrix_kind import is_exact, is_sparse, total
@@ -80,7 +80,6 @@ __all__ = [
     "gram_space",
     "mass_matrix",
     "user_rule",
-    "rule_from_toml",
     "x_mass_coefficients",
     "x_stiffness_factor",
     "mass_variant",
@@ -372,94 +371,6 @@ def user_rule(name: str, build: Callable, *, states: MassProperties | None = Non
     if name in RULES:
         raise InputError(f"user rule name {name!r} is taken by a registered rule")
     return MassRule(name, build, states or MassProperties(), x_rule, False, description)
-
-
-def _resolve(index: int, n: int) -> int:
-    return index + n if index < 0 else index
-
-
-def rule_from_toml(source) -> MassRule:
-    """A redistribution rule from a TOML table (text or path), read as plain data.
-
-    ::
-
-        name = "far-half"
-        lumped = false            # row-sum lump R^T M R (eq 1 right) if true
-        [weights]                 # contact index -> {target index: weight}; negative
-        "-1" = { "-2" = 0.5, "-3" = 0.5 }   # indices count from the far end (any n)
-
-    The weights go through :func:`dispersion.symbolic.mass.redistribution_matrix` (sum one,
-    in [0, 1]) on every space the rule is applied to.
-
-    >>> rule = rule_from_toml('name = "far-half"\\n[weights]\\n"-1" = {"-2" = 0.5, "-3" = 0.5}')
-    >>> from dispersion.symbolic.bspline import open_knot_vector
-    >>> mass_matrix(rule, gram_space(open_knot_vector(1, 2))).tolist()  # M00 + M02 + M22/4 = 5/24
-    [[5/24, 1/6, 0], [1/6, 11/24, 0], [0, 0, 0]]
-    """
-    import os
-
-    try:  # Python >= 3.11
-        import tomllib
-    except ModuleNotFoundError:  # pragma: no cover - Python 3.10
-        import tomli as tomllib
-
-
-    text = source
-    if isinstance(source, os.PathLike) or (isinstance(source, str) and "\n" not in source
-                                           and source.endswith(".toml")):
-        try:
-            with open(source, "rb") as fh:
-                text = fh.read().decode("utf-8")
-        except OSError as exc:
-            raise InputError(f"mass rule file {source}: {exc.strerror}") from None
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise InputError(f"mass rule TOML: {exc}") from None
-    unknown = set(data) - {"name", "lumped", "weights", "description"}
-    if unknown:
-        raise InputError(f"mass rule TOML: unknown keys {sorted(unknown)} (allowed: name, lumped, "
-                         "weights, description)")
-    name = data.get("name")
-    if not isinstance(name, str) or not name or name in RULES:
-        raise InputError(f"mass rule TOML: name must be a new non-empty string, got {name!r}")
-    lumped = data.get("lumped", False)
-    if not isinstance(lumped, bool):
-        raise InputError(f"mass rule TOML: lumped must be true or false, got {lumped!r}")
-    raw = data.get("weights")
-    if not isinstance(raw, Mapping) or not raw:
-        raise InputError("mass rule TOML: [weights] must be a non-empty table")
-    table = {}
-    for c, ws in raw.items():
-        if not isinstance(ws, Mapping):
-            raise InputError(f"mass rule TOML: weights of {c!r} must be a table {{index = weight}}")
-        try:
-            table[int(c)] = {int(j): w for j, w in ws.items()}
-        except ValueError:
-            raise InputError(f"mass rule TOML: weight indices must be integers, got {c!r}: "
-                             f"{dict(ws)!r}") from None
-        for j, w in ws.items():
-            if isinstance(w, bool) or not isinstance(w, (int, float)) or not math.isfinite(w):
-                raise InputError(f"mass rule TOML: weight [{c}][{j}] must be a finite number, "
-                                 f"got {w!r}")
-
-    def build(space: MassSpace):
-        import numpy as np
-        n = space.n
-        weights = {}
-        for c, ws in table.items():
-            cr = _resolve(c, n)
-            if cr in weights:
-                raise InputError(f"mass rule {name!r}: contact index {c} repeats another on n = {n}")
-            weights[cr] = {_resolve(j, n): w for j, w in ws.items()}
-        R = redistribution_matrix(n, weights)
-        if not space.exact:
-            R = np.array(R.tolist(), dtype=float)
-        return _build_singular(MassSpace(space.M, space.kv, space.elements, R), lump=lumped)
-
-    return MassRule(name, build, MassProperties(diagonal=lumped, zero_rows=True),
-                    "lumped" if lumped else "consistent", False,
-                    str(data.get("description", "redistribution weights from TOML")))
 
 
 def _bloch_mesh(p: int) -> int:

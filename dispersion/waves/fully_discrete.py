@@ -48,6 +48,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 import sympy
 
+from dispersion.budget import check_series_work, check_time_terms
 from dispersion.errors import InputError, check_positive, check_positive_int, check_real_in_range
 from dispersion.waves.time_integration import NEWMARK_MEMBERS
 
@@ -227,7 +228,7 @@ def time_series(order: int, beta=0) -> list:
     >>> time_series(2, sympy.Rational(1, 4))    # trapezoidal rule: 1, -1/6 (leads)
     [1, -1/6]
     """
-    order = check_positive_int("order", order)
+    order = check_time_terms(check_positive_int("order", order))  # dispersion.budget
     from dispersion.symbolic.patch import rational
 
     beta = rational("beta", beta)   # exact: floats by their shortest decimal, never surds
@@ -253,7 +254,9 @@ def fully_discrete_series(omega2: dict, order: int, beta=0) -> sympy.Expr:
     lowest = min((k for k, v in omega2.items() if v != 0), default=None)
     if lowest is None or lowest < 1:
         raise InputError("omega2 must be a series with a first nonzero term at kappa^k, k >= 1")
-    terms = order // lowest
+    terms = check_time_terms(order // lowest, "order // lowest power")  # dispersion.budget
+    kept = [sympy.sympify(v) for k, v in omega2.items() if k <= order and v != 0]
+    check_series_work(len(kept), terms, any(v.free_symbols for v in kept))
     g = time_series(max(terms, 1), beta)
     S = sum(sympy.sympify(v) * kappa**k for k, v in omega2.items() if k <= order)
     out = sympy.Integer(0)

@@ -47,6 +47,7 @@ from dataclasses import dataclass
 import numpy as np
 import sympy
 
+from dispersion.budget import check_bar_degree, check_phases
 from dispersion.errors import InputError, check_positive, check_positive_int
 from dispersion.rendering import Rendered
 from dispersion.symbolic.mass_rule import get_rule, x_mass_coefficients
@@ -76,7 +77,7 @@ def bar_omega_squared(mass, p: int) -> sympy.Expr:
     -6*(z - 1)/(z + 2)
     """
     rule = bar_rule(mass)
-    p = check_positive_int("degree p", p)
+    p = check_bar_degree(check_positive_int("degree p", p))  # cost bound: dispersion.budget
     if rule.basis == "lagrange":
         raise InputError(f"mass {rule.name!r}: the C0 Lagrange bar has p branches, no single "
                          "rational omega^2(cos theta) (its acoustic series: "
@@ -273,7 +274,7 @@ def patch_omega_max(patch, n_theta: int = 65, exact: bool = True
     """
     from dispersion.waves.pencil_frequencies import pencil_frequencies
 
-    n_theta = check_positive_int("n_theta", n_theta, minimum=3)
+    n_theta = check_phases(check_positive_int("n_theta", n_theta, minimum=3), 2 * patch.n)
     if patch.model != "bloch" or isinstance(patch.r, sympy.Symbol):
         raise InputError("the critical step needs a Bloch patch with a numeric aspect ratio r")
     r = float(patch.r)

@@ -82,6 +82,8 @@ _MODULES = {
     "rule_families": "symbolic.rule_families",
     "mass_rule_file": "symbolic.mass_rule_file", "ownership": "ownership", "budget": "budget",
     "untrusted": "untrusted",
+    # the plate's material (issue 28 item 6)
+    "elastic_law": "symbolic.elastic_law",
 }
 _SUBMODULES = tuple(_MODULES)
 

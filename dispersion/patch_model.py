@@ -68,18 +68,10 @@ class PatchModel:
         ...
         dispersion.errors.InputError: kappa must be a finite real number or a sympy symbol, got nan
         """
-        from dataclasses import replace
-
         from dispersion.symbolic.plate import dynamic_stiffness
 
-        plate = self.plate
-        if nu is not None:  # the number as given (a float stays a float)
-            from dispersion.symbolic.elastic_law import Isotropic
-
-            self._check_isotropic("nu")
-            plate = replace(plate, law=Isotropic(_matrix_value("nu", nu)))
-        return dynamic_stiffness(plate, _matrix_value("kappa", kappa),
-                                 _matrix_value("Omega", Omega))
+        return dynamic_stiffness(self.plate, _matrix_value("kappa", kappa),
+                                 _matrix_value("Omega", Omega), _matrix_value("nu", nu))
 
     def _check_isotropic(self, name: str) -> None:
         if not self.spec.isotropic:
@@ -129,7 +121,8 @@ class PatchModel:
         """All discrete branches on the grid ``kappa``
         (:func:`dispersion.waves.discrete_branches.discrete_branches`) of the patch and its
         law (``nu`` replaces an isotropic plate's Poisson's ratio; a symbolic one takes the
-        default :data:`dispersion.defaults.NU`); ``group=True`` adds the
+        default :data:`dispersion.defaults.NU`; other laws are taken as they are);
+        ``group=True`` adds the
         group velocities (``DiscreteBranches.group``). The request is bounded as ``dispersion
         branches`` bounds it (:data:`dispersion.waves.branch_table.MAX_COUNT`,
         :func:`~dispersion.waves.branch_table.check_discrete_work`), before any work.
@@ -151,11 +144,9 @@ class PatchModel:
         if size > MAX_COUNT:
             raise InputError(f"kappa must have at most {MAX_COUNT} points, got {size}")
         check_discrete_work(size, 1, self.spec.n)
-        from dispersion.symbolic.plate import plate_patch
-
-        spec = self._with_nu(nu).numeric()
-        plate = self.plate if spec == self.spec else plate_patch(spec)
-        return discrete_branches(plate, kappa, group=group)
+        if nu is not None or self.spec.isotropic:  # Poisson's ratio, as a float route takes it
+            nu = float(self.spec.nu_value if nu is None else nu)
+        return discrete_branches(self.plate, nu, kappa, group=group)
 
 
 def _matrix_value(name: str, value):

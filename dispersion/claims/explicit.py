@@ -150,9 +150,8 @@ def run(t: tuple):
             return (cs.omega_max_exact, ratio)
         from dispersion.symbolic.plate import plate_patch
 
-        plate = model.replace(nu=t[2])  # the claim's nu: the plate's law
-        w, exact, _, _ = timestep.patch_omega_max(plate_patch(plate))
-        ref = timestep.patch_omega_max(plate_patch(plate.replace(mass=other)))[0]
+        w, exact, _, _ = timestep.patch_omega_max(plate_patch(model), t[2])
+        ref = timestep.patch_omega_max(plate_patch(model.replace(mass=other)), t[2])[0]
         return (exact if exact is not None else w, ref / w)
     from dispersion.waves.fully_discrete import fully_discrete_series, time_scheme
 

@@ -140,12 +140,11 @@ def _series(model: ClaimModel, branch: str, order: int) -> dict[int, sympy.Expr]
         return exact_series(branch, order)
     from dispersion.symbolic.power_balance import discrete_series
 
-    return discrete_series(branch, order, model)
+    return discrete_series(branch, order, model, nu=model.nu)
 
 
 def _omega(model: ClaimModel, branch: str, kappa: float, nu: float, guess: float) -> float:
-    """Omega of ``branch`` at one kappa (NaN if it does not exist below 2 guess + 1); the
-    claim's ``nu`` is the plate's Poisson's ratio (the patch's law)."""
+    """Omega of ``branch`` at one kappa (NaN if it does not exist below 2 guess + 1)."""
     if isinstance(model, ExactModel):
         from dispersion.waves.exact_branches import trace_branches
 
@@ -154,7 +153,7 @@ def _omega(model: ClaimModel, branch: str, kappa: float, nu: float, guess: float
         from dispersion.symbolic.plate import plate_patch
         from dispersion.waves.discrete_branches import discrete_branches
 
-        br = discrete_branches(plate_patch(model.replace(nu=nu)), [kappa])
+        br = discrete_branches(plate_patch(model), nu, [kappa])
     return float(br.omega[branch][0]) if branch in br.omega else float("nan")
 
 

@@ -55,13 +55,6 @@ _R_FIG2 = float(defaults.FIGURE2_R)
 _R_SQUARE = float(defaults.R)
 
 
-def _at(patch, nu: float):
-    """The plate patch of ``patch`` (a Patch or PlatePatch) at the study's Poisson's ratio
-    ``nu``. The study's records keep the patch as given (its nu stated once, at the top)."""
-    spec = getattr(patch, "spec", patch)
-    return plate_patch(spec.replace(nu=nu))
-
-
 @dataclass(frozen=True)
 class BranchesStudy:
     """Everything the branches section shows, as plain arrays and rows (see module docstring)."""
@@ -109,11 +102,11 @@ def _orders(nu: float, patches=FIT_PATCHES) -> list[dict]:
     rows = []
     for spec in patches:
         fields = spec.as_dict()
-        patch = _at(spec, nu)
+        patch = plate_patch(spec)
 
         def measure(kappa, patch=patch):
             exact = trace_branches(nu, kappa, 4.0)
-            return pair_by_shape(patch, exact).relative_error(exact)
+            return pair_by_shape(patch, nu, exact).relative_error(exact)
 
         cache = {}
         for branch in ("S0", "A0"):
@@ -140,7 +133,7 @@ def _per_wavelength(nu: float, quick: bool) -> dict:
     for p, n in ((2, 3), (3, 4)):
         for mass in ("consistent", "lumped", "singular", "dual-lumped"):
             patch = plate_patch(p=p, n=n, model="bloch", r=_R_SQUARE, mass=mass)
-            disc = fundamental_branches(_at(patch, nu), kappa)
+            disc = fundamental_branches(patch, nu, kappa)
             for b in ("S0", "A0"):
                 curves.append({"p": p, "n": n, "mass": mass, "branch": b,
                                "patch": patch.spec.as_dict(),
@@ -152,7 +145,7 @@ def _shapes(nu: float, kappa: float = 1.0) -> dict:
     y = np.linspace(-1, 1, 41)
     exact = trace_branches(nu, [kappa], 4.0)
     patch = plate_patch(model="bloch", r=_R_FIG2, mass="consistent")
-    W, X = discrete_modes(_at(patch, nu), [kappa])
+    W, X = discrete_modes(patch, nu, [kappa])
     out = {"kappa": kappa, "patch": patch.spec.as_dict(), "y": _arr(y), "modes": []}
     for label in ("S0", "A0", "A1", "S1"):
         w = float(exact.omega[label][0])
@@ -174,13 +167,13 @@ def discrete_speed(nu: float, kappa, configs, repeat: int = 3) -> list[dict]:
     exact = {b: exact_fundamental(b[0], small, nu) for b in ("S0", "A0")}
     rows = []
     for p, n, mass in configs:
-        patch = plate_patch(p=p, n=n, mass=mass, nu=nu)
+        patch = plate_patch(p=p, n=n, mass=mass)
         best = np.inf
         for _ in range(repeat):
             t0 = time.perf_counter()
-            discrete_branches(patch, kappa)
+            discrete_branches(patch, nu, kappa)
             best = min(best, time.perf_counter() - t0)
-        disc = fundamental_branches(patch, small)
+        disc = fundamental_branches(patch, nu, small)
         err = max(float(np.max(np.abs(disc[b] / exact[b] - 1))) for b in ("S0", "A0"))
         rows.append({"p": p, "n": n, "mass": mass, "time_s": best,
                      "points_per_s": np.size(kappa) / best, "error": err})
@@ -189,9 +182,8 @@ def discrete_speed(nu: float, kappa, configs, repeat: int = 3) -> list[dict]:
 
 def figure2_data(nu: float, kappa, omega_max: float, patches: dict, *, exact=None,
                  velocities=None, discrete: dict | None = None):
-    """Exact branches with velocities and, per named patch (at Poisson's ratio ``nu``), its
-    branches, group velocities and signed errors of each exact branch against its shape
-    partner; plain data for
+    """Exact branches with velocities and, per named patch, its branches, group velocities and
+    signed errors of each exact branch against its shape partner; plain data for
     :func:`dispersion.plotting.branches.figure2`. Returns ``(data, ExactBranches)``.
 
     Branches computed already are passed in and not computed again: ``exact`` (an
@@ -207,14 +199,13 @@ def figure2_data(nu: float, kappa, omega_max: float, patches: dict, *, exact=Non
     discrete_data = {}
     for name, patch in patches.items():
         d = (discrete or {}).get(name)
-        plate = _at(patch, nu)
         if d is None or d.group is None:
-            d = discrete_branches(plate, kappa, group=True)
+            d = discrete_branches(patch, nu, kappa, group=True)
         # exact partners of a Bloch branch exist in the first zone only
         inside = kappa <= (d.zone_edge if d.zone_edge is not None else np.inf)
         sub = ExactBranches(kappa[inside], {lab: w[inside] for lab, w in exact.omega.items()},
                             exact.nu, exact.omega_max)
-        pb = pair_by_shape(plate, sub)
+        pb = pair_by_shape(patch, nu, sub)
         pad = int(np.count_nonzero(~inside))
         discrete_data[name] = {
             "patch": patch.spec.as_dict() if getattr(patch, "spec", None) else None,

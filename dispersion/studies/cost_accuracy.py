@@ -126,10 +126,10 @@ def cost_accuracy(degrees=(1, 2, 3, 4), rules=None, *, nu: float = 0.3,
         kappa = 2 * math.pi / (N * float(r))
         exact = trace_branches(nu, np.array([kappa]), 3.0).omega
         for mass in rules:
-            patch = plate_patch(p, n, "bloch", r, mass, contact, gamma_s, nu=nu)
-            w_max = patch_omega_max(patch, n_theta, exact=False)[0]
+            patch = plate_patch(p, n, "bloch", r, mass, contact, gamma_s)
+            w_max = patch_omega_max(patch, nu, n_theta, exact=False)[0]
             tau = 2 / w_max
-            semi = fundamental_branches(patch, [kappa])
+            semi = fundamental_branches(patch, nu, [kappa])
             errs = {}
             for label in ("S0", "A0"):
                 ref = float(exact[label][0])

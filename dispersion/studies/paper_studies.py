@@ -145,7 +145,7 @@ def _gamma_case(gamma, order: int, kappas: tuple[float, ...]) -> dict:
     out = {"gamma_s": float(g), "patch": patch.spec.as_dict()}
     for branch in ("S0", "A0"):
         out[branch] = {str(j): float(v) for j, v in _discrete(branch, order, NU, **kw).items()}
-    num = fundamental_branches(plate_patch(**kw, nu=NU), kappas)
+    num = fundamental_branches(patch, float(NU), kappas)
     for branch in ("S0", "A0"):
         ref = exact_fundamental(branch[0], kappas, float(NU))
         out[f"{branch}_error"] = [float(e) for e in (num[branch] - ref) / ref]
@@ -169,8 +169,7 @@ def _dt_case(case: tuple[int, int, str], n_theta: int) -> dict:
     p, n, mass = case
     patch = plate_patch(p, n, "bloch", R_ASPECT, mass=mass, contact="top")
     return {"p": p, "n": n, "mass": mass, "patch": patch.spec.as_dict(),
-            "dt_crit": critical_time_step(plate_patch(patch.spec.replace(nu=NU)),
-                                          n_theta=n_theta)}
+            "dt_crit": critical_time_step(patch, float(NU), n_theta=n_theta)}
 
 
 def _radius_case(case: tuple[str, str, int], kappa: np.ndarray, tol: float) -> dict:
@@ -183,7 +182,7 @@ def _radius_case(case: tuple[str, str, int], kappa: np.ndarray, tol: float) -> d
     else:
         spec = as_patch(mass=mass, contact="top", **_MODEL)
         coeffs = _discrete(branch, order, NU, patch=spec)
-        ref = fundamental_branches(plate_patch(spec.replace(nu=NU)), kappa)[branch]
+        ref = fundamental_branches(plate_patch(spec), float(NU), kappa)[branch]
     approx = series_frequency(coeffs, kappa)
     return {
         "mass": mass, "branch": branch, "order": order,

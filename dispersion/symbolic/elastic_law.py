@@ -132,9 +132,11 @@ class ElasticLaw:
         symbols of :attr:`series_parameters` (unchanged where the law keeps them)."""
         return series
 
-    def substitute_raw(self, raw: list[tuple]) -> list[tuple]:
-        """:meth:`substitute` on the flint form ``[(power, num, den)]``."""
-        return raw
+    def substitutions(self) -> dict:
+        """``{name: number}`` for the symbols of :attr:`series_parameters` this law gives
+        numbers for (what :meth:`substitute` puts in; the flint form takes them by
+        :func:`dispersion.symbolic.power_balance.substitute_raw`)."""
+        return {}
 
     def poisson_ratio(self, route: str) -> float:
         """Poisson's ratio of an isotropic plate with a numeric nu, for ``route`` (a closed
@@ -192,7 +194,7 @@ class ElasticLaw:
 
 
 def _exact(name: str, value):
-    from dispersion.symbolic.patch import rational
+    from dispersion.errors import rational
 
     return rational(name, value)
 
@@ -261,12 +263,8 @@ class Isotropic(ElasticLaw):
         symbol = sympy.Symbol("nu")
         return {k: sympy.factor(v.subs(symbol, nu)) for k, v in series.items()}
 
-    def substitute_raw(self, raw: list[tuple]) -> list[tuple]:
-        if self.nu is None:
-            return raw
-        from dispersion.symbolic.power_balance import substitute_raw
-
-        return substitute_raw(raw, "nu", self.nu)
+    def substitutions(self) -> dict:
+        return {} if self.nu is None else {"nu": self.nu}
 
     def poisson_ratio(self, route: str) -> float:
         self.check_numeric(route)

@@ -25,12 +25,11 @@ functions that take it (:func:`dispersion.symbolic.plate.plate_patch`,
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field, fields, replace
 from typing import TYPE_CHECKING, Any
 
 from dispersion import defaults
-from dispersion.errors import InputError, check_positive_int
+from dispersion.errors import InputError, check_positive_int, rational
 
 if TYPE_CHECKING:  # pragma: no cover
     import sympy
@@ -56,24 +55,6 @@ def check_size(p, n) -> tuple[int, int]:
     if n < p + 1:
         raise InputError(f"control points n must be >= p + 1 = {p + 1}, got {n}")
     return p, n
-
-
-def rational(name: str, value) -> sympy.Rational:
-    """``value`` as an exact sympy Rational (floats by their shortest decimal); finite only."""
-    import sympy
-
-    try:
-        if isinstance(value, float):
-            if not math.isfinite(value):
-                raise ValueError
-            out = sympy.Rational(repr(value))
-        else:
-            out = sympy.sympify(value)
-        if not out.is_Rational:
-            raise ValueError
-    except (TypeError, ValueError, sympy.SympifyError):
-        raise InputError(f"{name} must be a finite rational number, got {value!r}") from None
-    return out
 
 
 def aspect_ratio(r) -> sympy.Rational:
@@ -239,13 +220,6 @@ class Patch:
             raise InputError(f"nu applies to an isotropic plate; this one is "
                              f"{self.law.describe()}")
         return defaults.NU if self.nu is None else self.nu
-
-    def numeric(self) -> Patch:
-        """This patch with numbers for its material: a symbolic nu takes the default
-        :data:`dispersion.defaults.NU` (as the numeric front doors do)."""
-        if self.law.numeric:
-            return self
-        return self.replace(nu=self.nu_value)
 
     @property
     def weights_dict(self) -> dict | None:

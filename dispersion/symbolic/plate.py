@@ -47,7 +47,7 @@ T. J. R. Hughes, "Isogeometric analysis of structural vibrations", CMAME 195 (20
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import lru_cache
 
 import numpy as np
@@ -72,6 +72,7 @@ __all__ = [
     "x_functions",
     "x_coefficients",
     "lame",
+    "with_nu",
     "stiffness_terms",
     "dynamic_stiffness",
     "numeric_pencil",
@@ -362,14 +363,36 @@ def mass_block(patch: PlatePatch) -> sympy.Matrix:
     return sympy.diag(patch.My, patch.My)
 
 
-def dynamic_stiffness(patch: PlatePatch, kappa=None, Omega=None) -> sympy.Matrix:
+def with_nu(patch: PlatePatch, nu=None) -> PlatePatch:
+    """``patch`` with Poisson's ratio ``nu`` (an isotropic plate), or as it is (its own law)
+    if ``nu`` is None: the ``nu`` argument every numeric function keeps resolves here, once.
+
+    >>> with_nu(plate_patch(), 0.3).law
+    Isotropic(nu=0.3)
+    >>> from dispersion.symbolic.elastic_law import Orthotropic
+    >>> with_nu(plate_patch(law=Orthotropic(3, 2, 1, 1)), 0.3)
+    Traceback (most recent call last):
+    ...
+    dispersion.errors.InputError: nu applies to an isotropic plate; this one is orthotropic (C11 = 3, C22 = 2, C12 = 1, C66 = 1) (give nu=None: the patch's law)
+    """
+    if nu is None:
+        return patch
+    if not isinstance(patch.law, Isotropic):
+        raise InputError(f"nu applies to an isotropic plate; this one is "
+                         f"{patch.law.describe()} (give nu=None: the patch's law)")
+    return replace(patch, law=Isotropic(nu))
+
+
+def dynamic_stiffness(patch: PlatePatch, kappa=None, Omega=None, nu=None) -> sympy.Matrix:
     """Exact :math:`K_{dyn}(\\kappa, \\Omega) = K - \\Omega^2 M` (sympy; symbols by default,
-    the moduli of the patch's law: nu stays a symbol where the law keeps it).
+    the moduli of the patch's law: nu stays a symbol where the law keeps it; ``nu`` replaces
+    an isotropic plate's Poisson's ratio, :func:`with_nu`).
 
     >>> Kd = dynamic_stiffness(plate_patch())
     >>> Kd.is_symmetric()
     True
     """
+    patch = with_nu(patch, nu)
     kappa = sympy.Symbol("kappa") if kappa is None else kappa
     Omega = sympy.Symbol("Omega") if Omega is None else Omega
     kappa = sympy.sympify(kappa)
@@ -378,15 +401,19 @@ def dynamic_stiffness(patch: PlatePatch, kappa=None, Omega=None) -> sympy.Matrix
     return K - Omega**2 * xf["mx"] * mass_block(patch)
 
 
-def numeric_pencil(patch: PlatePatch, kappa) -> tuple[np.ndarray, np.ndarray]:
+def numeric_pencil(patch: PlatePatch, nu, kappa) -> tuple[np.ndarray, np.ndarray]:
     """Float stacks ``K, M`` of shape ``(len(kappa), 2n, 2n)``, built from :func:`stiffness_terms`
-    with the float moduli of the patch's law.
+    with the float moduli of the patch's law (``nu``: Poisson's ratio of an isotropic plate,
+    None: the patch's own law, :func:`with_nu`).
 
-    >>> K, M = numeric_pencil(plate_patch(nu=0.3), [0.0, 0.5])
+    >>> K, M = numeric_pencil(plate_patch(), 0.3, [0.0, 0.5])
     >>> K.shape, bool(np.allclose(K, K.transpose(0, 2, 1)))
     ((2, 6, 6), True)
+    >>> K2, _ = numeric_pencil(plate_patch(nu=0.3), None, [0.0, 0.5])
+    >>> bool((K2 == K).all())
+    True
     """
-    mat = patch.law.float_moduli()
+    mat = with_nu(patch, nu).law.float_moduli()
     kappa = np.atleast_1d(np.asarray(kappa, dtype=float))
     if not np.all(np.isfinite(kappa)):
         raise InputError("kappa must be finite")

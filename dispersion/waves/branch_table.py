@@ -32,6 +32,7 @@ import math
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
+from dispersion import defaults
 from dispersion.errors import InputError
 from dispersion.rendering import Rendered
 
@@ -279,29 +280,15 @@ def _mass_words(patch) -> str:
     return text
 
 
-def _resolve_patch(patch, nu, material):
-    """The discrete patch with its material: the law of ``material``, else of ``nu``, else
-    the patch's own (a symbolic nu takes the default :data:`dispersion.defaults.NU`)."""
-    from dispersion.symbolic.patch import Patch
+def _resolve_nu(nu, material):
+    from dispersion.errors import check_nu
 
-    base = Patch() if patch is None else patch
-    if not isinstance(base, Patch):
-        raise InputError(f"patch must be a Patch (dispersion.symbolic.patch), got "
-                         f"{type(base).__name__}")
     if material is not None:
         if nu is not None and float(nu) != material.nu:
             raise InputError(f"nu must not be given with a material (nu = {material.nu:.6g} "
                              f"follows from its c_L and c_T), got {nu}")
-        nu = material.nu
-    if nu is None:
-        return base.numeric()
-    from dispersion.errors import check_nu
-
-    nu = float(check_nu(nu))
-    if base.law.numeric and base.replace(nu=nu).law != base.law:
-        raise InputError(f"nu = {nu:g} given for a patch of another material "
-                         f"({base.law.describe()}): give one")
-    return base.replace(nu=nu)
+        return material.nu
+    return float(check_nu(defaults.NU_FLOAT if nu is None else nu))
 
 
 def _check_scheme(scheme, courant, masses, patch):
@@ -340,11 +327,10 @@ def branch_table(*, masses=None, exact_only: bool = False, patch=None, nu=None,
     exact_only : bool
         The exact Rayleigh-Lamb branches alone.
     patch : Patch, optional
-        The discrete patch (p, n, model, r, contact, gamma_s and its material); its mass is
-        replaced by each of ``masses``. Default: the toolkit's (:mod:`dispersion.defaults`).
+        The discrete patch (p, n, model, r, contact, gamma_s); its mass is replaced by each of
+        ``masses``. Default: the toolkit's (:mod:`dispersion.defaults`).
     nu : float, optional
-        Poisson's ratio (default: the patch's, else 0.3); a material fixes it instead. The
-        exact branches need an isotropic plate.
+        Poisson's ratio (default 0.3); a material fixes it instead.
     material : Material or str, optional
         With ``thickness_mm`` (d = 2h in mm): rows in physical units and the ZGV points.
     kappa_min, kappa_max, count : float, float, int
@@ -361,6 +347,7 @@ def branch_table(*, masses=None, exact_only: bool = False, patch=None, nu=None,
     progress : callable, optional
         Called with the number of kappa points done (a progress bar's ``update``).
     """
+    from dispersion.symbolic.patch import Patch
     from dispersion.waves.exact_branches import check_samples, trace_branches
     from dispersion.waves.velocities import exact_velocities
 
@@ -374,8 +361,7 @@ def branch_table(*, masses=None, exact_only: bool = False, patch=None, nu=None,
         from dispersion.errors import check_positive
 
         thickness_mm = float(check_positive("thickness_mm", thickness_mm))
-    base = _resolve_patch(patch, nu, material)
-    nu = base.law.poisson_ratio("exact Rayleigh-Lamb branches")
+    nu = _resolve_nu(nu, material)
     kappa = kappa_grid(kappa_min, kappa_max, count)
     if isinstance(omega_max, bool) or not (isinstance(omega_max, (int, float))
                                            and 0 < omega_max <= MAX_OMEGA):
@@ -387,6 +373,10 @@ def branch_table(*, masses=None, exact_only: bool = False, patch=None, nu=None,
         masses = ()
     else:
         masses = tuple(DEFAULT_MASSES if masses is None else masses)
+    base = Patch() if patch is None else patch
+    if not isinstance(base, Patch):
+        raise InputError(f"patch must be a Patch (dispersion.symbolic.patch), got "
+                         f"{type(base).__name__}")
     if masses:
         if base.symbolic_r:
             raise InputError("r must be a number > 0 for numeric branches, got the symbol r")
@@ -394,7 +384,7 @@ def branch_table(*, masses=None, exact_only: bool = False, patch=None, nu=None,
     _check_scheme(scheme, courant, masses, base)
     exact = trace_branches(nu, kappa, omega_max, progress=progress)
     velocities = exact_velocities(exact)
-    sets = [_discrete(base.replace(mass=m), kappa, exact, scheme, courant, paired, progress)
+    sets = [_discrete(base.replace(mass=m), nu, kappa, exact, scheme, courant, paired, progress)
             for m in masses]
     zgv = ()
     if material is not None:
@@ -412,25 +402,25 @@ def branch_table(*, masses=None, exact_only: bool = False, patch=None, nu=None,
                        None if scheme is None else float(courant), zgv, tuple(failures))
 
 
-def _discrete(patch, kappa, exact, scheme, courant, paired, progress) -> DiscreteSet:
+def _discrete(patch, nu, kappa, exact, scheme, courant, paired, progress) -> DiscreteSet:
     from dispersion.symbolic.plate import plate_patch
     from dispersion.waves.discrete_branches import discrete_branches
 
     plate = plate_patch(patch)
-    d = discrete_branches(plate, kappa, progress=progress, group=True)  # fully discrete: by the chain rule
+    d = discrete_branches(plate, nu, kappa, progress=progress, group=True)  # fully discrete: by the chain rule
     name = _name(patch.mass)
     if scheme is not None:
         from dispersion.waves.fully_discrete import fully_discrete_branches
         from dispersion.waves.timestep import patch_omega_max
 
-        tau = courant * 2 / patch_omega_max(plate)[0]
+        tau = courant * 2 / patch_omega_max(plate, nu)[0]
         return DiscreteSet(f"{name} {scheme} C={courant:g}", patch,
                            fully_discrete_branches(d, tau, scheme), tau)
-    errors = _paired_errors(plate, kappa, exact, d) if paired else None
+    errors = _paired_errors(plate, nu, kappa, exact, d) if paired else None
     return DiscreteSet(name, patch, d, None, errors)
 
 
-def _paired_errors(plate, kappa, exact, d) -> dict:
+def _paired_errors(plate, nu, kappa, exact, d) -> dict:
     """Signed error of each exact branch against the discrete mode of the same shape, on the
     whole grid (NaN beyond the first Brillouin zone, where no exact partner exists)."""
     import numpy as np
@@ -443,4 +433,4 @@ def _paired_errors(plate, kappa, exact, d) -> dict:
                         exact.nu, exact.omega_max)
     pad = int(np.count_nonzero(~inside))
     return {lab: np.concatenate([e, np.full(pad, np.nan)])
-            for lab, e in pair_by_shape(plate, sub).relative_error(sub).items()}
+            for lab, e in pair_by_shape(plate, nu, sub).relative_error(sub).items()}

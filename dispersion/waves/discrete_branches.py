@@ -37,7 +37,7 @@ parity of its mode shape, and the label says so. The Bloch model is periodic in
 the folded ones.
 
 >>> from dispersion.symbolic.plate import plate_patch
->>> br = discrete_branches(plate_patch(nu=0.3), [0.5, 1.0])
+>>> br = discrete_branches(plate_patch(), 0.3, [0.5, 1.0])
 >>> sorted(br.omega), br.symmetry["S0"]
 (['A0', 'A1', 'A2', 'S0', 'S1', 'S2'], 'S')
 
@@ -62,6 +62,7 @@ from dispersion.symbolic.plate import (
     mirror_bases,
     numeric_pencil,
     numeric_terms,
+    with_nu,
     x_functions,
 )
 from dispersion.waves.extended_pencil import refine_inaccurate
@@ -116,7 +117,7 @@ ROUTES = ("polynomial", "float eigen-solver", "extended precision", "power law")
 RTOL = 1e-11
 
 
-def pencil_derivative(patch: PlatePatch, kappa) -> tuple[np.ndarray, np.ndarray]:
+def pencil_derivative(patch: PlatePatch, nu, kappa) -> tuple[np.ndarray, np.ndarray]:
     """:math:`dK/d\\kappa` and :math:`dM/d\\kappa` as float stacks, by the complex step.
 
     The x-functions of :func:`dispersion.symbolic.plate.x_functions` (polynomials or trigonometric sums
@@ -124,10 +125,11 @@ def pencil_derivative(patch: PlatePatch, kappa) -> tuple[np.ndarray, np.ndarray]
     step is the derivative to rounding, with no cancellation (Squire and Trapp 1998).
 
     >>> from dispersion.symbolic.plate import plate_patch
-    >>> dK, dM = pencil_derivative(plate_patch(model="x-exact", nu=0.3), [0.5])
+    >>> dK, dM = pencil_derivative(plate_patch(model="x-exact"), 0.3, [0.5])
     >>> bool(np.allclose(dK, dK.transpose(0, 2, 1))), float(np.abs(dM).max())  # x-exact: M const
     (True, 0.0)
     """
+    patch = with_nu(patch, nu)
     h = 1e-30
     kappa = np.atleast_1d(np.asarray(kappa, dtype=float)) + 1j * h
     mat, xf = patch.law.float_moduli(), x_functions(patch, kappa)
@@ -149,7 +151,7 @@ def _slopes(W, X, dK, dM, M):
         return np.where(W > 0, num / den, np.nan)
 
 
-def discrete_branches(patch: PlatePatch, kappa, chunk: int = 20000,
+def discrete_branches(patch: PlatePatch, nu, kappa, chunk: int = 20000,
                       progress=None, group: bool = False) -> DiscreteBranches:
     """All finite discrete branches of ``patch`` on the grid ``kappa`` (see module docstring).
 
@@ -172,6 +174,7 @@ def discrete_branches(patch: PlatePatch, kappa, chunk: int = 20000,
     Never raises from an eigen-solver: what cannot be certified is listed in
     ``DiscreteBranches.failures``.
     """
+    patch = with_nu(patch, nu)
     if patch.model == "bloch" and isinstance(patch.r, sympy.Symbol):
         raise InputError("aspect ratio r must be a number for discrete branches, got the symbol r")
     patch.law.check_numeric("discrete branches")
@@ -184,7 +187,7 @@ def discrete_branches(patch: PlatePatch, kappa, chunk: int = 20000,
         count = -(-count // workers) * workers
         chunk = -(-kappa.size // count)
     zone = math.pi / float(patch.r) if patch.model == "bloch" else None
-    plan = _plan(patch)
+    plan = _plan(patch, None)
     failures = []
     starts = range(0, kappa.size, chunk)
 
@@ -254,8 +257,9 @@ class _Block:
     poly: object                # PencilPolynomial or None (eigen-solver path)
 
 
-def _plan(patch: PlatePatch) -> list[_Block]:
+def _plan(patch: PlatePatch, nu) -> list[_Block]:
     """The blocks of the pencil and, where small enough, their exact characteristic polynomial."""
+    patch = with_nu(patch, nu)
     from dispersion.waves import pencil_polynomial as pp
 
     massless = set(patch.massless)
@@ -276,7 +280,7 @@ def _plan(patch: PlatePatch) -> list[_Block]:
     for kind, E, ml, Eq in groups:
         poly = None
         try:
-            poly = pp.pencil_polynomial(patch, Eq, parity=kind is None)
+            poly = pp.pencil_polynomial(patch, None, Eq, parity=kind is None)
             if poly.degree != (2 * patch.n if E is None else E.shape[1]) - len(ml):
                 poly = None
         except InputError:
@@ -288,7 +292,7 @@ def _plan(patch: PlatePatch) -> list[_Block]:
 def _eigen_block(patch, kappa, block: _Block, vectors: bool):
     """Float eigen-solve of one block at ``kappa``: (W, X or None, dK/dM-ready pencil, the
     relative error bound of each W^2)."""
-    K, M = numeric_pencil(patch, kappa)
+    K, M = numeric_pencil(patch, None, kappa)
     if block.E is not None:
         K, M = congruence(block.E.T, K), congruence(block.E.T, M)
     if vectors:
@@ -419,14 +423,14 @@ def _eigen_fallback(patch, kappa, block, group, idx, W, G, share, failures, rout
         return W, G, share
     Gf = None
     if group:
-        dK, dM = pencil_derivative(patch, k)
+        dK, dM = pencil_derivative(patch, None, k)
         if block.E is not None:
             dK, dM = congruence(block.E.T, dK), congruence(block.E.T, dM)
         Gf = _slopes(Wf, X, dK, dM, M)
     basis = block.E
     refine = np.any(err > RTOL, axis=1) & (k > 0)  # as refine_inaccurate
     route[idx[refine]] = 2
-    Wf = refine_inaccurate(patch, k, Wf, basis, Gf, failures, err, RTOL)
+    Wf = refine_inaccurate(patch, None, k, Wf, basis, Gf, failures, err, RTOL)
     if W is None:
         W = np.empty((kappa.size, Wf.shape[1]))
         G = np.empty_like(W) if group else None
@@ -464,7 +468,7 @@ def _tiny(kappa, W0, W1, G0, G1, failures):
 
 def _branches_block(patch: PlatePatch, kappa: np.ndarray, group: bool = False,
                     plan=None, failures=None):
-    plan = _plan(patch) if plan is None else plan
+    plan = _plan(patch, None) if plan is None else plan
     failures = [] if failures is None else failures
     tiny = kappa < KAPPA_TINY
     main = np.flatnonzero(~tiny)
@@ -540,12 +544,13 @@ def _branches_block(patch: PlatePatch, kappa: np.ndarray, group: bool = False,
     return omega, symmetry, slopes, route
 
 
-def fundamental_branches(patch: PlatePatch, kappa) -> dict[str, np.ndarray]:
+def fundamental_branches(patch: PlatePatch, nu, kappa) -> dict[str, np.ndarray]:
     """Discrete S0 and A0 at ``kappa``: the labels of :func:`discrete_branches` (one rule).
 
     >>> from dispersion.symbolic.plate import plate_patch
-    >>> sorted(fundamental_branches(plate_patch(mass="singular", nu=0.3), [0.1]))
+    >>> sorted(fundamental_branches(plate_patch(mass="singular"), 0.3, [0.1]))
     ['A0', 'S0']
     """
-    br = discrete_branches(patch, kappa)
+    patch = with_nu(patch, nu)
+    br = discrete_branches(patch, None, kappa)
     return {label: br.omega[label] for label in ("S0", "A0")}

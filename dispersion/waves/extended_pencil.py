@@ -27,6 +27,7 @@ from dispersion.symbolic.plate import (
     PlatePatch,
     mass_block,
     stiffness_terms,
+    with_nu,
     x_functions,
 )
 
@@ -129,7 +130,7 @@ def _arb_matrix(key, which, basis, k):
     return out
 
 
-def extended_frequencies(patch: PlatePatch, kappa, basis=None,
+def extended_frequencies(patch: PlatePatch, nu, kappa, basis=None,
                          dps: int = 40, slopes: bool = False):
     """Finite :math:`\\Omega` of the pencil at one ``kappa`` in ``dps``-digit ball arithmetic.
 
@@ -143,10 +144,11 @@ def extended_frequencies(patch: PlatePatch, kappa, basis=None,
     mode by the eigenvector formula in the same precision (returns ``(Omega, slopes)``).
 
     >>> from dispersion.symbolic.plate import plate_patch
-    >>> w = extended_frequencies(plate_patch(model="x-exact", nu=0.3), 1e-6)
+    >>> w = extended_frequencies(plate_patch(model="x-exact"), 0.3, 1e-6)
     >>> float(w[0] / 1e-12)  # A0: Omega ~ sqrt(2 / (3 (1 - nu))) kappa^2 (eq 16)
     0.9759000729...
     """
+    patch = with_nu(patch, nu)
     with _FLINT_LOCK:  # flint's working precision is process-global
         return _extended(patch, kappa, basis, dps, slopes)
 
@@ -220,13 +222,13 @@ def _extended_safe(patch, k, basis, dps, slopes):
     why = ""
     for digits in (dps, 2 * dps):
         try:
-            return extended_frequencies(patch, k, basis, dps=digits, slopes=slopes), ""
+            return extended_frequencies(patch, None, k, basis, dps=digits, slopes=slopes), ""
         except (ValueError, ZeroDivisionError, ArithmeticError) as exc:  # flint: eig failed
             why = f"extended-precision eigen-solver failed at {digits} digits ({exc})"
     return None, why
 
 
-def refine_inaccurate(patch, kappa, W, basis, G=None, failures=None, error=None,
+def refine_inaccurate(patch, nu, kappa, W, basis, G=None, failures=None, error=None,
                       rtol: float = 1e-11):
     """Recompute in extended precision the kappas where some float eigenvalue of W is inaccurate.
 
@@ -239,6 +241,7 @@ def refine_inaccurate(patch, kappa, W, basis, G=None, failures=None, error=None,
     with ``bounds=True``); ``rtol`` the accuracy asked of it. Work beyond
     :data:`MAX_EXTENDED_SECONDS` (estimated on the first kappa) is refused.
     """
+    patch = with_nu(patch, nu)
     import time
 
     lam = W**2

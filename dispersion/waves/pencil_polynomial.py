@@ -30,7 +30,7 @@ of this module: P in u about u = 0, in :math:`v = 2 - u` about the zone edge, an
 Taylor tables between (:func:`taylor_centres`), so that every evaluation is well conditioned.
 
 >>> from dispersion.symbolic.plate import plate_patch, mirror_bases
->>> poly = pencil_polynomial(plate_patch(model="x-exact", nu=0.3), mirror_bases(3, exact=True)["A"])
+>>> poly = pencil_polynomial(plate_patch(model="x-exact"), 0.3, mirror_bases(3, exact=True)["A"])
 >>> poly.coef.shape   # degree 3 in mu, 3 in u = kappa^2
 (4, 4)
 
@@ -285,13 +285,16 @@ def _trim_like(c):
     return c
 
 
-def pencil_polynomial(patch, basis=None, parity: bool = False) -> PencilPolynomial:
+def pencil_polynomial(patch, nu, basis=None, parity: bool = False) -> PencilPolynomial:
     """The exact characteristic polynomial of ``patch`` projected on ``basis`` (module docstring).
 
     ``basis`` is an integer mirror basis (``mirror_bases(n, exact=True)[kind]``) or None
     (the whole pencil). Cached per patch data, law and basis; raises :class:`InputError`
     for blocks larger than :data:`MAX_BLOCK`.
     """
+    from dispersion.symbolic.plate import with_nu
+
+    patch = with_nu(patch, nu)
     nb = 2 * patch.n if basis is None else basis.shape[1]
     if nb > MAX_BLOCK:
         raise InputError(f"pencil block of {nb} rows is larger than MAX_BLOCK = {MAX_BLOCK}")

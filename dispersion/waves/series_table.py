@@ -180,9 +180,10 @@ def series_table(branches=("S0", "A0"), order: int = ORDER, *, patch=None,
 
 
 def _record(branch: str, raw, patch, law) -> dict:
-    from dispersion.symbolic.power_balance import format_coefficient
+    from dispersion.symbolic.power_balance import format_coefficient, substitute_raw
 
-    raw = law.substitute_raw(raw)
+    for name, value in law.substitutions().items():
+        raw = substitute_raw(raw, name, value)
     if patch is None:
         mass, model = "exact", "rayleigh-lamb"
     else:

@@ -238,9 +238,12 @@ def _edge_omega_max(patch, theta) -> tuple[sympy.Expr, float] | None:
     return sympy.sqrt(top), float(sympy.N(sympy.sqrt(top), 20))
 
 
-def float_pencil(patch):
+def float_pencil(patch, nu):
     """``kappa -> (K, M)`` float stacks of :func:`dispersion.symbolic.plate.numeric_pencil`,
     its constant matrices converted once (the pencil is evaluated many times here)."""
+    from dispersion.symbolic.plate import with_nu
+
+    patch = with_nu(patch, nu)
     from dispersion.symbolic.plate import mass_block, stiffness_terms, x_functions
 
     mat = patch.law.float_moduli()
@@ -265,20 +268,23 @@ EXACT_MAX_DOFS = 12
 MAX_N = 24
 
 
-def patch_omega_max(patch, n_theta: int = 65, exact: bool = True
+def patch_omega_max(patch, nu, n_theta: int = 65, exact: bool = True
                     ) -> tuple[float, object, float, str]:
     """Largest :math:`\\Omega` of a numeric Bloch patch over the zone: ``(value, exact, theta, method)``.
 
     ``exact`` (returned) is a sympy number where the maximum sits at a zone end (else None);
     ``exact=False`` skips that symbolic check and reports the float maximum of the grid.
     """
+    from dispersion.symbolic.plate import with_nu
+
+    patch = with_nu(patch, nu)
     from dispersion.waves.pencil_frequencies import pencil_frequencies
 
     n_theta = check_phases(check_positive_int("n_theta", n_theta, minimum=3), 2 * patch.n)
     if patch.model != "bloch" or isinstance(patch.r, sympy.Symbol):
         raise InputError("the critical step needs a Bloch patch with a numeric aspect ratio r")
     r = float(patch.r)
-    pencil = float_pencil(patch)
+    pencil = float_pencil(patch, None)
 
     def top(theta):
         K, M = pencil(np.atleast_1d(theta) / r)
@@ -319,7 +325,7 @@ def _interior_maximum(patch, pencil, lo: float, hi: float, top) -> float:
     def slope(theta):
         K, M = pencil(np.atleast_1d(theta) / r)
         W, X = pencil_frequencies(K, M, patch.massless, vectors=True)
-        dK, dM = pencil_derivative(patch, np.atleast_1d(theta) / r)
+        dK, dM = pencil_derivative(patch, None, np.atleast_1d(theta) / r)
         x, w = X[0, :, -1], W[0, -1]
         return float((x @ dK[0] @ x - w * w * (x @ dM[0] @ x)) / (2 * w * (x @ M[0] @ x)))
 
@@ -331,7 +337,7 @@ def _interior_maximum(patch, pencil, lo: float, hi: float, top) -> float:
     return float(res.x)
 
 
-def critical_time_step(patch, n_theta: int = 65, certify: bool = False) -> float:
+def critical_time_step(patch, nu, n_theta: int = 65, certify: bool = False) -> float:
     """Largest stable step of explicit central differences for a Bloch patch, in :math:`H/c_T`.
 
     .. math:: \\Delta t_{crit} = 2 / \\max_{\\theta \\in [0, \\pi]} \\Omega(\\theta / r)
@@ -341,11 +347,14 @@ def critical_time_step(patch, n_theta: int = 65, certify: bool = False) -> float
     bound of :func:`certified_omega_max` instead, a proven stable step.
 
     >>> from dispersion.symbolic.plate import plate_patch
-    >>> 0 < critical_time_step(plate_patch(model="bloch", r=2, nu=0.3), n_theta=9) < 1
+    >>> 0 < critical_time_step(plate_patch(model="bloch", r=2), 0.3, n_theta=9) < 1
     True
     """
-    omega = patch_omega_max(patch, n_theta)[0]
-    return 2.0 / (certified_omega_max(patch, omega) if certify else omega)
+    from dispersion.symbolic.plate import with_nu
+
+    patch = with_nu(patch, nu)
+    omega = patch_omega_max(patch, None, n_theta)[0]
+    return 2.0 / (certified_omega_max(patch, None, omega) if certify else omega)
 
 
 def critical_step(mass, p: int = 2, *, model: str = "plate", material: Material | str = "steel",
@@ -411,8 +420,8 @@ def critical_step(mass, p: int = 2, *, model: str = "plate", material: Material 
     r = sympy.Rational(2, n - p)
     nu = material.nu
     patch = plate_patch(p, n, "bloch", r, rule, contact, gamma_s, nu=nu)
-    w, exact, theta, method = patch_omega_max(patch, n_theta)
-    w_ref = patch_omega_max(plate_patch(p, n, "bloch", r, "consistent", nu=nu), n_theta)[0]
+    w, exact, theta, method = patch_omega_max(patch, None, n_theta)
+    w_ref = patch_omega_max(plate_patch(p, n, "bloch", r, "consistent", nu=nu), None, n_theta)[0]
     H = (n - p) * h / 2
     c = material.c_T
     proven, failures = None, ()
@@ -420,7 +429,7 @@ def critical_step(mass, p: int = 2, *, model: str = "plate", material: Material 
         from dispersion.errors import ConvergenceError
 
         try:
-            proven = certified_omega_max(patch, w)
+            proven = certified_omega_max(patch, None, w)
         except ConvergenceError as exc:
             failures = (f"no proven stable step: {exc}",)
     return CriticalStep(rule.name, p, "plate", h, c, w, exact, theta, method, 2 * H / (c * w),

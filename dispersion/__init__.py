@@ -82,6 +82,7 @@ _MODULES = {
     "rule_families": "symbolic.rule_families",
     "mass_rule_file": "symbolic.mass_rule_file", "ownership": "ownership", "budget": "budget",
     "untrusted": "untrusted",
+    "wave_simulation": "studies.wave_simulation",
     # the plate's material (issue 28 item 6)
     "elastic_law": "symbolic.elastic_law",
 }

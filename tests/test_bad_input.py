@@ -368,7 +368,31 @@ TIMESTEP = [
     Cli("timestep", "--format xml", r"format"),
 ]
 
-CLI_CASES = SERIES + BRANCHES + RING + REPRODUCE + BENCH + VERIFY + IMPACT + TIMESTEP
+# ---------------------------------------------------------------------------- simulate
+SIMULATE = [
+    Cli("simulate", "--p 0", r"\bp\b"),
+    Cli("simulate", "--p 5", r"\bp\b"),
+    Cli("simulate", "--elements-per-wavelength 1", r"elements-per-wavelength"),
+    Cli("simulate", "--elements-per-wavelength nan", r"elements-per-wavelength"),
+    Cli("simulate", "--courant 0", r"courant"),
+    Cli("simulate", "--courant 1", r"courant"),
+    Cli("simulate", "--kappa 3", r"kappa"),
+    Cli("simulate", "--cycles 0", r"cycles"),
+    Cli("simulate", "--travel 0.5", r"travel"),
+    Cli("simulate", "--stations 1", r"stations"),
+    Cli("simulate", "--thickness 0", r"thickness"),
+    Cli("simulate", "--gamma-s 2", r"gamma-s"),
+    Cli("simulate", "--mass heavy", r"mass"),
+    Cli("simulate", "--mode S1", r"mode"),
+    Cli("simulate", "--material unobtainium", r"material"),
+    Cli("simulate", "--csv {dir}", r"--csv"),
+    Cli("simulate", "--figure out.txt", r"--figure"),
+    Cli("simulate", "--p 4 --mass consistent --elements-per-wavelength 64 --travel 200",
+        r"DOF"),
+]
+
+CLI_CASES = (SERIES + BRANCHES + RING + REPRODUCE + BENCH + VERIFY + IMPACT + TIMESTEP
+             + SIMULATE)
 
 
 # ----------------------------------------------------------------------------- the API

@@ -29,10 +29,12 @@ ALLOWED = {
     "dispersion.claims": "verify_claims, load_claims, junit_xml",
     "dispersion.report.run": "reproduce",
     "dispersion.studies.series_race": "bench (measure, TIMEOUT_MAX)",
+    "dispersion.simulation.wave_run": "simulate (a burst along a strip), Strip",
     # rendering: of results, of figures, of reports already measured
     "dispersion.rendering": "every format of a result",
     "dispersion.plotting": "require_matplotlib", "dispersion.plotting.branches": "figures",
     "dispersion.plotting.lamb": "figures", "dispersion.plotting.ring": "figures",
+    "dispersion.plotting.wave_simulation": "figures",
     "dispersion.report": "SECTIONS", "dispersion.report.series_speed": "bench tables",
     "dispersion.claims.report": "plain: text of strangers made inert",
     "dispersion.results": "dumps, envelope", "dispersion.io": "the writers",

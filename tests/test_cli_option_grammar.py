@@ -52,6 +52,9 @@ PATHS = {
     "verify": {"file": ["verify", "{claims}"]},
     "reproduce": {"default": ["reproduce"]},
     "bench": {"default": ["bench"]},
+    "simulate": {"run": ["simulate", "--p", "1", "--elements-per-wavelength", "3",
+                         "--travel", "1", "--stations", "2", "--kappa", "1",
+                         "--format", "csv"]},
 }
 
 #: A value different from the default, per option (``{rule}``, ``{claims}``: files made here).
@@ -98,6 +101,14 @@ VALUES = {
                   "--sections": ["coefficients"], "--progress": []},
     "bench": {"--quick": [], "--budget": ["60"], "--maxima": ["maxima2"], "--repeats": ["2"],
               "--format": ["json"], "--out": ["outdir"]},
+    "simulate": {
+        "--mode": ["A0"], "--mass": ["consistent"], "--p": ["2"],
+        "--elements-per-wavelength": ["4"], "--kappa": ["0.8"], "--cycles": ["3"],
+        "--courant": ["0.5"], "--travel": ["2"], "--reference-station": ["3"],
+        "--stations": ["3"], "--material": ["aluminium"], "--thickness": ["2"],
+        "--contact": ["bottom"], "--gamma-s": ["0"], "--format": ["json"],
+        "--csv": ["out.csv"], "--json": ["out.json"], "--figure": ["out.png"],
+    },
 }
 
 #: Options that restate a default (they can change nothing, by design), per command.

@@ -36,3 +36,17 @@ def test_study_points_and_render(tmp_path):
     md = render(data, tmp_path)
     assert (tmp_path / "cost_accuracy.png").stat().st_size > 0
     assert "p = 2 lumped" in md and "| 2 | consistent |" in md
+
+
+
+def test_a_mass_that_needs_a_solve_is_not_counted_as_cheap_as_a_division():
+    """The modelled cost counts the solve of a non-diagonal mass (it was free before issue 30):
+    at every p the step of a rule that states a solve costs more work per DOF than a diagonal
+    one's, and more than the same stiffness product alone."""
+    from dispersion.symbolic.mass_rule import get_rule
+
+    res = cost_accuracy((1, 2, 3, 4), ("consistent", "lumped"))
+    by = {(pt.p, pt.mass): pt for pt in res.points}
+    for p in (1, 2, 3, 4):
+        assert get_rule("consistent").explicit_cost.mass == "solve"
+        assert by[(p, "consistent")].work > by[(p, "lumped")].work

@@ -82,3 +82,31 @@ def test_no_module_imports_one_that_imports_it_back():
     # above its modules, and modules import each other, never their face
     cycles = _cycles(graph)
     assert not cycles, "import circles: " + "; ".join(" -> ".join(c) for c in cycles)
+
+
+#: The wings in layers, lowest first (STYLE.md): a module may import its own wing, the wings
+#: of lower layers and the package's shared base modules, nothing above.
+LAYERS = (("symbolic",), ("waves",), ("contact", "claims", "simulation"),
+          ("studies", "plotting"), ("report",), ("cli",))
+BASE = ("dispersion.errors", "dispersion.defaults", "dispersion.results", "dispersion.io",
+        "dispersion.staging", "dispersion.sweep", "dispersion.testing", "dispersion.rendering")
+
+
+def test_the_simulation_wing_imports_only_the_layers_below():
+    """dispersion.simulation sits on the floor of contact: symbolic and waves below it (and
+    the base modules), never a wing beside or above it; no lower wing imports it."""
+    graph = _graph()
+    floor = {w: i for i, wings in enumerate(LAYERS) for w in wings}
+    wing = "simulation"
+    for name, targets in graph.items():
+        parts = name.split(".")
+        if len(parts) < 2 or parts[1] not in floor:
+            continue
+        for target in targets:
+            tparts = target.split(".")
+            if len(tparts) < 2 or tparts[1] not in floor:
+                continue
+            if parts[1] == wing and tparts[1] != wing:
+                assert floor[tparts[1]] < floor[wing] or target in BASE, (name, target)
+            if tparts[1] == wing and parts[1] != wing:
+                assert floor[parts[1]] > floor[wing], (name, target)

@@ -124,13 +124,19 @@ def _verification():
                                       '*kappa^6"\n'))
 
 
+def _wave_run():
+    from dispersion.simulation.wave_run import Strip, simulate
+
+    return simulate(Strip(p=1, travel=1, stations=2, elements_per_wavelength=3, kappa_c=1.0))
+
+
 #: One small instance of every result type (its name -> a function building it).
 INSTANCES = {"BranchTable": _branch_table, "ModeTable": _mode_table,
              "ModeShapeTable": _mode_shapes, "ExactBranches": _exact,
              "Velocities": _velocities, "DiscreteBranches": _discrete, "SeriesTable": _series,
              "ErrataSheet": _errata, "CriticalSteps": _steps, "CriticalStep": _step,
              "RingResult": _ring, "SignoriniResult": _signorini, "BarResult": _bar,
-             "Verification": _verification}
+             "Verification": _verification, "WaveRun": _wave_run}
 
 
 def test_every_result_type_has_an_instance_here():

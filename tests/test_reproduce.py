@@ -25,7 +25,7 @@ import pytest
 
 from dispersion.cli import main
 from dispersion.io import write_text
-from dispersion.report import SECTIONS
+from dispersion.report import DEFAULT_SECTIONS, OPT_IN_SECTIONS, SECTIONS
 from dispersion.report.folder import MARKER
 from dispersion.results import PACKAGES
 
@@ -83,16 +83,17 @@ def test_measure_then_render_writes_envelopes_and_index(stubs, tmp_path, capsys)
     calls = stubs()
     out = tmp_path / "rep"
     assert main(["reproduce", "--quick", "--out", str(out), "--jobs", "1"]) == 0
-    assert [c[:2] for c in calls] == ([("measure", n) for n in SECTIONS]
-                                      + [("render", n) for n in SECTIONS])
+    # the opt-in sections (tens of minutes) are measured only when named
+    assert [c[:2] for c in calls] == ([("measure", n) for n in DEFAULT_SECTIONS]
+                                      + [("render", n) for n in DEFAULT_SECTIONS])
     env = json.loads((out / "ring.json").read_text())
     # strict JSON: the NaN the stub measured is stored as null
     assert env["result"] == {"name": "ring", "value": 1.5, "quick": True, "missing": None}
     assert env["inputs"] == {"quick": True} and env["section"] == "ring"
     assert env["command"].startswith("dispersion reproduce") and "--quick" in env["command"]
     assert set(env["versions"]) == set(PACKAGES) and env["machine"]
-    assert sorted(_linked_files(out / "index.md")) == sorted(f"{n}.csv" for n in SECTIONS)
-    for name in SECTIONS:
+    assert sorted(_linked_files(out / "index.md")) == sorted(f"{n}.csv" for n in DEFAULT_SECTIONS)
+    for name in DEFAULT_SECTIONS:
         assert (out / f"{name}.csv").read_text() == "value,1.5\n"
     assert (out / MARKER).is_file()
     assert _leftovers(tmp_path) == []
@@ -109,8 +110,22 @@ def test_render_rebuilds_pages_from_json_without_measuring(stubs, tmp_path):
     (out / "ring.json").write_text(json.dumps(env))
     calls.clear()
     assert main(["reproduce", "--render", "--out", str(out)]) == 0
-    assert all(c[0] == "render" for c in calls) and len(calls) == len(SECTIONS)
+    assert all(c[0] == "render" for c in calls) and len(calls) == len(DEFAULT_SECTIONS)
     assert (out / "ring.csv").read_text() == "value,7.25\n"
+
+
+def test_opt_in_sections_are_measured_only_when_named(stubs, tmp_path):
+    calls = stubs()
+    out = tmp_path / "rep"
+    assert OPT_IN_SECTIONS and set(OPT_IN_SECTIONS) <= set(SECTIONS)
+    assert main(["reproduce", "--out", str(out), "--jobs", "1"]) == 0
+    assert not any(c[1] in OPT_IN_SECTIONS for c in calls)
+    calls.clear()
+    named = ",".join(OPT_IN_SECTIONS)
+    assert main(["reproduce", "--out", str(out), "--jobs", "1", "--sections", named]) == 0
+    assert [c[:2] for c in calls if c[0] == "measure"] == [("measure", n) for n in OPT_IN_SECTIONS]
+    # the sections measured before are kept and rendered with the new one
+    assert {c[1] for c in calls if c[0] == "render"} == set(SECTIONS)
 
 
 def test_section_run_keeps_other_sections_and_user_files(stubs, tmp_path):
@@ -123,7 +138,7 @@ def test_section_run_keeps_other_sections_and_user_files(stubs, tmp_path):
     assert (out / "ring.csv").read_text() == "value,2.5\n"
     assert (out / "branches.csv").read_text() == "value,1.5\n"  # not re-run, kept
     assert (out / "notes.txt").read_text() == "mine"
-    assert sorted(_linked_files(out / "index.md")) == sorted(f"{n}.csv" for n in SECTIONS)
+    assert sorted(_linked_files(out / "index.md")) == sorted(f"{n}.csv" for n in DEFAULT_SECTIONS)
 
 
 def test_failed_section_leaves_previous_output_untouched(stubs, tmp_path, capsys):
@@ -170,7 +185,7 @@ def test_concurrent_run_is_refused_in_one_line(stubs, tmp_path, capsys):
 
 _KILLED_RUN = textwrap.dedent("""
     import sys, time, types
-    from dispersion.report import SECTIONS
+    from dispersion.report import DEFAULT_SECTIONS, OPT_IN_SECTIONS, SECTIONS
     for name in SECTIONS:
         m = types.ModuleType("dispersion.report." + name)
         def measure(quick=False, executor=None):
@@ -286,7 +301,11 @@ def test_default_run_leaves_the_reference_alone_and_says_it_reproduced(
     assert (tmp_path / "reproduced" / "index.md").is_file()
     assert (tmp_path / "reproduced" / "comparison.md").is_file()
     # one verdict line, last: every value of every section agrees; timings are not judged
-    assert out[-1].startswith(f"reproduced: {4 * len(SECTIONS)} figures agree with reports/")
+    assert out[-1].startswith(f"reproduced: {4 * len(DEFAULT_SECTIONS)} figures agree with "
+                              "reports/")
+    # the opt-in sections are named as not measured, before the verdict
+    assert any(line.startswith("not measured (opt-in") and all(n in line for n in OPT_IN_SECTIONS)
+               for line in out[:-1])
     assert "timings differ by" in out[-1] and "not judged" in out[-1]
 
 
@@ -343,7 +362,7 @@ def test_the_orchestration_is_callable_without_the_cli(stubs, tmp_path):
 
 _PROGRESS_CHILD = textwrap.dedent("""
         import sys, types
-        from dispersion.report import SECTIONS
+        from dispersion.report import DEFAULT_SECTIONS, OPT_IN_SECTIONS, SECTIONS
         from dispersion.sweep import parallel_map
         for name in SECTIONS:
             m = types.ModuleType("dispersion.report." + name)

@@ -24,7 +24,7 @@ import threading
 from dispersion.errors import DispersionError, InputError
 
 _SUBCOMMANDS = ("series", "branches", "ring", "impact", "verify", "reproduce", "bench",
-               "timestep")
+               "timestep", "simulate")
 
 
 class Terminated(KeyboardInterrupt):

@@ -26,7 +26,7 @@ from dispersion.cli.options import integer
 from dispersion.defaults import MAX_JOBS_PER_CPU
 from dispersion.defaults import REPORT_OUT as DEFAULT_OUT
 from dispersion.defaults import REPORT_REFERENCE as DEFAULT_REFERENCE
-from dispersion.report import SECTIONS
+from dispersion.report import DEFAULT_SECTIONS, OPT_IN_SECTIONS, SECTIONS
 
 __all__ = ["register", "handler", "measure_sections", "render_folder",  # noqa: F822
            "MAX_JOBS_PER_CPU"]  # measure_sections, render_folder: module __getattr__
@@ -79,9 +79,10 @@ def register(subparsers) -> None:
     parser.add_argument("--jobs", type=integer("--jobs", 1), default=None,
                         help=f"worker processes for sweeps, 1 to {MAX_JOBS_PER_CPU} x the usable "
                              "CPUs (default: the usable CPU count)")
-    parser.add_argument("--sections", default=",".join(SECTIONS),
-                        help="comma-separated subset of the sections, run in this order "
-                             f"(default: {','.join(SECTIONS)})")
+    parser.add_argument("--sections", default=",".join(DEFAULT_SECTIONS),
+                        help="comma-separated sections, run in this order, among "
+                             f"{','.join(SECTIONS)} (default: all but "
+                             f"{','.join(OPT_IN_SECTIONS)}, whose sweep takes tens of minutes)")
     parser.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
                         help="progress bars on stderr (default: only when stderr is a terminal)")
     parser.set_defaults(func=handler)
@@ -98,7 +99,7 @@ def _command(args: argparse.Namespace) -> str:
         words.append("--quick")
     if args.jobs is not None:
         words += ["--jobs", str(args.jobs)]
-    if args.sections != ",".join(SECTIONS):
+    if args.sections != ",".join(DEFAULT_SECTIONS):
         words += ["--sections", args.sections]
     return shlex.join(words)
 
@@ -119,6 +120,10 @@ def handler(args: argparse.Namespace) -> int:
     extra = "" if args.update_reference else ", comparison.md"
     print(f"{verb} {run.out / 'index.md'}{extra} ({len(run.sections)} sections, "
           f"{run.seconds:.1f} s)")
+    skipped = [n for n in OPT_IN_SECTIONS if n not in args.sections.split(",")]
+    if skipped and not args.render:
+        print(f"not measured (opt-in, tens of minutes): {', '.join(skipped)}; run "
+              f"`dispersion reproduce --sections {','.join(skipped)}`")
     print(run.verdict.line())
     if args.update_reference:
         return 0  # replacing the reference is the maintainer's decision; the line informs it

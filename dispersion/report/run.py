@@ -31,7 +31,7 @@ from pathlib import Path
 from dispersion import defaults, results
 from dispersion.errors import InputError, check_int_in_range
 from dispersion.io import write_text
-from dispersion.report import SECTIONS, section_module
+from dispersion.report import DEFAULT_SECTIONS, SECTIONS, section_module
 from dispersion.report.compare import SectionComparison, Verdict, compare_envelopes
 from dispersion.report.folder import check_target, open_report
 from dispersion.report.index import SectionResult, render_index
@@ -148,7 +148,7 @@ def _same(a: Path, b: Path) -> bool:
 def reproduce(
     out: str | os.PathLike | None = None,
     *,
-    sections: Sequence[str] = SECTIONS,
+    sections: Sequence[str] = DEFAULT_SECTIONS,
     quick: bool = False,
     jobs: int | None = None,
     render: bool = False,
@@ -168,8 +168,9 @@ def reproduce(
         Folder of this run (new, empty, or written by dispersion before); default
         :data:`DEFAULT_OUT`, or ``reference`` with ``update_reference``.
     sections : sequence of str
-        Sections to measure, among :data:`dispersion.report.SECTIONS`; the others already in
-        ``out`` are kept. With ``render`` every section present is rendered.
+        Sections to measure, among :data:`dispersion.report.SECTIONS` (default
+        :data:`~dispersion.report.DEFAULT_SECTIONS`: every section but the opt-in ones, whose
+        sweeps take tens of minutes); the others already in ``out`` are kept. With ``render`` every section present is rendered.
     quick : bool
         The quick subset (coarser grids, lower orders); not comparable with a full reference.
     jobs : int, optional
@@ -212,7 +213,7 @@ def reproduce(
     names = check_sections(sections)
     if render and (quick or jobs is not None):
         raise InputError("--render measures nothing: --quick and --jobs do not apply")
-    if render and list(names) != list(SECTIONS):
+    if render and list(names) != list(DEFAULT_SECTIONS):
         raise InputError("--render renders every section present: --sections does not apply")
     jobs = (check_int_in_range("--jobs", jobs, 1, MAX_JOBS_PER_CPU * default_jobs())
             if jobs is not None else default_jobs())

@@ -18,7 +18,9 @@ points through the thickness, :math:`r = b/H = 2/(n - p)`, plane strain, Poisson
   :math:`w` is the rule's :class:`~dispersion.symbolic.explicit_cost.ExplicitCost` in two
   dimensions: stiffness row plus inverse mass (a diagonal, the banded approximate dual, or a
   solve with a non-diagonal mass); a dense stiffness costs every DOF of a model problem of
-  :data:`MODEL_ELEMENTS` x :data:`MODEL_ELEMENTS` elements. It is a model, not a measurement.
+  :data:`MODEL_ELEMENTS` x :data:`MODEL_ELEMENTS` elements. It is a model, not a measurement:
+  the measured price of each explicit step (the SuperLU solve of a non-diagonal mass against
+  a division) is in :mod:`dispersion.studies.wave_simulation`.
 
 A point is on the Pareto front if no other point is both cheaper and more accurate (worse of
 S0/A0). The result carries its inputs; the report renders from it alone.

@@ -105,7 +105,7 @@ def _series_inverse(A: sympy.Matrix, B: sympy.Matrix, K: int) -> list[sympy.Matr
 def condensed_cos_series(mass: str, p: int, K: int) -> tuple[Fraction, ...]:
     """Coefficients :math:`f_k` of :math:`\\cos\\theta = -a(\\lambda)/b(\\lambda) = \\sum f_k \\lambda^k`."""
     Ke, Me = (sympy.Matrix(m) for m in element_matrices(mass, p))
-    ends, inner = [0, p], list(range(1, p))
+    inner = list(range(1, p))
     a = [Ke[0, 0] if k == 0 else (-Me[0, 0] if k == 1 else sympy.Integer(0))
          for k in range(K + 1)]
     b = [Ke[0, p] if k == 0 else (-Me[0, p] if k == 1 else sympy.Integer(0))

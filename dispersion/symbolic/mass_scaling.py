@@ -39,8 +39,12 @@ algebraic SMS of Olovsson et al.).
 from __future__ import annotations
 
 from fractions import Fraction
+from typing import TYPE_CHECKING
 
 from dispersion.errors import InputError
+
+if TYPE_CHECKING:  # sympy is imported where the matrix is built
+    import sympy
 
 __all__ = ["SMS_BETA", "check_beta", "scaled_mass", "scaled_row"]
 

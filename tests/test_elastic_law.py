@@ -26,6 +26,7 @@ from dispersion.patch_model import PatchModel
 from dispersion.symbolic.elastic_law import ElasticLaw, Isotropic, Orthotropic
 from dispersion.symbolic.patch import Patch
 from dispersion.symbolic.plate import plate_patch
+from dispersion.symbolic.power_balance import discrete_series
 from dispersion.waves.discrete_branches import RTOL, discrete_branches
 
 #: Poisson's ratio over its whole open range (-1, 1/2), as three-digit decimals: what a float
@@ -158,3 +159,22 @@ def test_bad_laws_are_refused_in_words(call, words):
     with pytest.raises(InputError, match=None) as info:
         call()
     assert words in str(info.value)
+
+
+@settings(max_examples=6, deadline=None)
+@given(c11=st.fractions(Fraction(1, 100), 100, max_denominator=100),
+       c22=st.fractions(Fraction(1, 100), 100, max_denominator=100),
+       share=st.fractions(Fraction(-99, 100), Fraction(99, 100), max_denominator=100),
+       model=st.sampled_from(["x-exact", "bloch"]),
+       mass=st.sampled_from(["consistent", "lumped", "singular"]))
+@example(c11=Fraction(100), c22=Fraction(1, 100), share=Fraction(-99, 100), model="bloch",
+         mass="singular")
+@example(c11=Fraction(1, 100), c22=Fraction(100), share=Fraction(99, 100), model="x-exact",
+         mass="lumped")
+def test_orthotropic_s0_starts_at_the_extensional_speed(c11, c22, share, model, mass):
+    # long waves stretch the plate with sigma_yy = 0: Omega^2 = (C11 - C12^2 / C22) / C66
+    # kappa^2 + O(kappa^4) (a closed form written here; C66 = 1 in these units)
+    c12 = share * min(c11, c22)   # |C12| < sqrt(C11 C22): positive definite
+    law = Orthotropic(c11, c22, c12, 1)
+    series = discrete_series("S0", 2, Patch(model=model, mass=mass, law=law))
+    assert series[2] == sympy.Rational(c11 - c12**2 / c22)

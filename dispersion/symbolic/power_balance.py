@@ -333,10 +333,7 @@ def discrete_series_raw(branches=("S0",), order: int = 8, patch=None, *,
     both branches: A0 (:math:`\\Omega^2 = t^2 w`) reads :math:`F_1(t, t w)`, i.e. the term
     :math:`t^k w^e` moves to :math:`t^{k+e}`, which truncation at :math:`t^D` keeps exact.
     """
-    import sympy
-
     from dispersion.symbolic import plate as _plate
-
     from dispersion.symbolic.patch import as_patch
 
     if isinstance(branches, str):

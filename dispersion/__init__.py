@@ -83,6 +83,8 @@ _MODULES = {
     "mass_rule_file": "symbolic.mass_rule_file", "ownership": "ownership", "budget": "budget",
     "untrusted": "untrusted",
     "wave_simulation": "studies.wave_simulation",
+    # the plate's material (issue 28 item 6)
+    "elastic_law": "symbolic.elastic_law",
 }
 _SUBMODULES = tuple(_MODULES)
 

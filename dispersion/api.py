@@ -44,14 +44,18 @@ __all__ = ["Patch", "PatchModel", "patch", "series", "exact_branches", "lamb_mod
 def patch(*args, **fields) -> PatchModel:
     """The patch to compute with (:class:`~dispersion.patch_model.PatchModel`): its
     :class:`~dispersion.symbolic.patch.Patch` value ``.spec`` of ``fields`` (p, n, model, r,
-    mass, contact, gamma_s, weights, nu: documented there, with their defaults and limits),
+    mass, contact, gamma_s, weights, nu, law: documented there, with their defaults and limits),
     checked at once (bad parameters raise :class:`InputError` here), with its matrices, series
-    and branches. ``r="r"`` keeps the aspect ratio symbolic.
+    and branches. ``r="r"`` keeps the aspect ratio symbolic; ``law`` gives the plate another
+    material (:mod:`dispersion.symbolic.elastic_law`).
 
     >>> from dispersion.symbolic.patch import Patch
     >>> pt = patch(mass="singular", gamma_s=0)
     >>> pt.plate.massless, pt.spec == Patch(mass="singular", gamma_s=0)
     ((2, 5), True)
+    >>> from dispersion.symbolic.elastic_law import Orthotropic
+    >>> patch(law=Orthotropic(3, 2, 1, 1)).series("S0", 2)     # (C11 - C12^2/C22)/C66
+    {2: 5/2}
     """
     from dispersion.patch_model import PatchModel
     from dispersion.symbolic.patch import Patch
@@ -83,9 +87,13 @@ def series(branch: str = "S0", order: int = 8, *, exact: bool = False, nu=None,
 
 def exact_branches(kappa, nu=defaults.NU_FLOAT, omega_max: float = 8.0, **kwargs):
     """Exact Rayleigh-Lamb branches with :math:`\\Omega \\le` ``omega_max`` on ``kappa``
-    (:func:`dispersion.waves.exact_branches.trace_branches`)."""
+    (:func:`dispersion.waves.exact_branches.trace_branches`); ``nu`` may be an isotropic
+    :class:`~dispersion.symbolic.elastic_law.ElasticLaw` (other laws have no closed form:
+    refused)."""
     from dispersion.waves.exact_branches import trace_branches
 
+    if hasattr(nu, "poisson_ratio"):  # an ElasticLaw
+        nu = nu.poisson_ratio("exact Rayleigh-Lamb branches")
     return trace_branches(nu, kappa, omega_max, **kwargs)
 
 

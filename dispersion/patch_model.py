@@ -58,8 +58,10 @@ class PatchModel:
     def K_dyn(self, kappa=None, Omega=None, nu=None) -> sympy.Matrix:
         """:math:`K - \\Omega^2 M` (sympy); symbols ``kappa``, ``Omega``, ``nu`` by default.
 
-        Each value is a finite real number or a sympy expression with symbols; anything else
-        (NaN, infinity, a string, a complex number) is an :class:`~dispersion.errors.InputError`.
+        The moduli are those of the patch's elastic law; ``nu`` (an isotropic plate) replaces
+        its Poisson's ratio here. Each value is a finite real number or a sympy expression with
+        symbols; anything else (NaN, infinity, a string, a complex number) is an
+        :class:`~dispersion.errors.InputError`.
 
         >>> PatchModel(Patch()).K_dyn(kappa=float("nan"))
         Traceback (most recent call last):
@@ -69,8 +71,12 @@ class PatchModel:
         from dispersion.symbolic.plate import dynamic_stiffness
 
         return dynamic_stiffness(self.plate, _matrix_value("kappa", kappa),
-                                 _matrix_value("Omega", Omega),
-                                 _matrix_value("nu", self.spec.nu if nu is None else nu))
+                                 _matrix_value("Omega", Omega), _matrix_value("nu", nu))
+
+    def _check_isotropic(self, name: str) -> None:
+        if not self.spec.isotropic:
+            raise InputError(f"{name} applies to an isotropic plate; this one is "
+                             f"{self.spec.law.describe()}")
 
     def K(self, kappa=None, nu=None) -> sympy.Matrix:
         """Stiffness :math:`K(\\kappa)` over the shear modulus (sympy)."""
@@ -98,14 +104,25 @@ class PatchModel:
         return x_functions(self.plate, kappa)["mx"] * mass_block(self.plate)
 
     def series(self, branch: str = "S0", order: int = 8, nu=None) -> dict[int, sympy.Expr]:
-        """Taylor coefficients of :math:`\\Omega^2` in :math:`\\kappa` (eqs 17-20)."""
+        """Taylor coefficients of :math:`\\Omega^2` in :math:`\\kappa` (eqs 17-20), in the
+        symbols of the patch's law (nu symbolic unless the patch or ``nu`` gives a number)."""
         from dispersion.symbolic.power_balance import discrete_series
 
-        return discrete_series(branch, order, self.spec, nu=self.spec.nu if nu is None else nu)
+        return discrete_series(branch, order, self._with_nu(nu))
+
+    def _with_nu(self, nu) -> Patch:
+        """The spec, its Poisson's ratio replaced by ``nu`` if given (isotropic plates)."""
+        if nu is None:
+            return self.spec
+        self._check_isotropic("nu")
+        return self.spec.replace(nu=nu)
 
     def branches(self, kappa, nu=None, group: bool = False):
         """All discrete branches on the grid ``kappa``
-        (:func:`dispersion.waves.discrete_branches.discrete_branches`); ``group=True`` adds the
+        (:func:`dispersion.waves.discrete_branches.discrete_branches`) of the patch and its
+        law (``nu`` replaces an isotropic plate's Poisson's ratio; a symbolic one takes the
+        default :data:`dispersion.defaults.NU`; other laws are taken as they are);
+        ``group=True`` adds the
         group velocities (``DiscreteBranches.group``). The request is bounded as ``dispersion
         branches`` bounds it (:data:`dispersion.waves.branch_table.MAX_COUNT`,
         :func:`~dispersion.waves.branch_table.check_discrete_work`), before any work.
@@ -127,7 +144,8 @@ class PatchModel:
         if size > MAX_COUNT:
             raise InputError(f"kappa must have at most {MAX_COUNT} points, got {size}")
         check_discrete_work(size, 1, self.spec.n)
-        nu = float(self.spec.nu_value if nu is None else nu)
+        if nu is not None or self.spec.isotropic:  # Poisson's ratio, as a float route takes it
+            nu = float(self.spec.nu_value if nu is None else nu)
         return discrete_branches(self.plate, nu, kappa, group=group)
 
 

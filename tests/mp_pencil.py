@@ -19,11 +19,23 @@ def _mpf(v) -> mpmath.mpf:
     return mpmath.mpf(int(v.p)) / int(v.q)
 
 
-def mp_pencil(patch, nu, kappa):
-    """K, M (mpmath matrices, current precision) at ``kappa``; nu taken by its decimal."""
+def _moduli(nu) -> dict:
+    """The plane-strain D over the shear modulus, in mpmath, from the constants themselves:
+    Poisson's ratio ``nu`` (taken by its decimal; Lame constants), or the stiffnesses
+    ``c11, c22, c12, c66`` of an orthotropic law."""
+    if hasattr(nu, "c66"):
+        c66 = _mpf(nu.c66)
+        return {"D11": _mpf(nu.c11) / c66, "D22": _mpf(nu.c22) / c66,
+                "D12": _mpf(nu.c12) / c66, "D66": mpmath.mpf(1)}
     nu = _mpf(sympy.Rational(str(nu)))
     lam = 2 * nu / (1 - 2 * nu)
-    mat = {"L": lam, "M": mpmath.mpf(1), "L2M": lam + 2}
+    return {"D11": lam + 2, "D22": lam + 2, "D12": lam, "D66": mpmath.mpf(1)}
+
+
+def mp_pencil(patch, nu, kappa):
+    """K, M (mpmath matrices, current precision) at ``kappa``; nu taken by its decimal, or
+    an orthotropic law (:func:`_moduli`)."""
+    mat = _moduli(nu)
     k = mpmath.mpf(kappa)
     if patch.model == "x-exact":
         xf = {"m": mpmath.mpf(1), "s": k, "d": k**2}

@@ -34,9 +34,10 @@ from dispersion.symbolic.patch import Patch
 __all__ = ["PATCH_KEYS", "ClaimModel", "claim_model", "check_patch"]
 
 #: The keys of a claims entry that set the patch: the fields of :class:`Patch` but ``model``
-#: (the entry's ``model`` key names the patch model or another model) and ``nu`` (a claim's
-#: ``nu`` is the number it substitutes into the series, not a setting of the patch).
-PATCH_KEYS = tuple(f.name for f in fields(Patch) if f.name not in ("model", "nu"))
+#: (the entry's ``model`` key names the patch model or another model), ``nu`` (a claim's
+#: ``nu`` is the number it substitutes into the series, not a setting of the patch) and
+#: ``law`` (a claim is about an isotropic plate: its ``nu`` makes the patch's law).
+PATCH_KEYS = tuple(f.name for f in fields(Patch) if f.name not in ("model", "nu", "law"))
 #: What a claim is about.
 ClaimModel = Union[Patch, BarModel, ExactModel]
 

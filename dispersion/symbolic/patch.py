@@ -1,4 +1,5 @@
-"""The plate patch as one value: model, r, p, n, nu, mass, contact, gamma_s, weights.
+"""The plate patch as one value: model, r, p, n, mass, contact, gamma_s, weights and its
+material (the elastic law, :mod:`dispersion.symbolic.elastic_law`; ``nu`` names the isotropic one).
 
 Every entry point (the API, the command line, a claims file, a report section) builds one
 :class:`Patch` at its boundary and passes it down whole; the defaults are those of
@@ -13,6 +14,8 @@ Patch(p=2, n=3, model='bloch', r=2, mass='consistent', contact='top', gamma_s=1/
 'bloch p=2 n=3 r=2, singular mass (top, gamma_s=0)'
 >>> Patch(model="x-exact").r is None
 True
+>>> Patch(nu=0.3).law
+Isotropic(nu=3/10)
 
 A ``Patch`` is a value: it computes nothing. Its matrices, series and branches come from the
 functions that take it (:func:`dispersion.symbolic.plate.plate_patch`,
@@ -22,12 +25,11 @@ functions that take it (:func:`dispersion.symbolic.plate.plate_patch`,
 """
 from __future__ import annotations
 
-import math
-from dataclasses import asdict, dataclass, field, fields, replace
+from dataclasses import dataclass, field, fields, replace
 from typing import TYPE_CHECKING, Any
 
 from dispersion import defaults
-from dispersion.errors import InputError, check_positive_int
+from dispersion.errors import InputError, check_positive_int, rational
 
 if TYPE_CHECKING:  # pragma: no cover
     import sympy
@@ -53,24 +55,6 @@ def check_size(p, n) -> tuple[int, int]:
     if n < p + 1:
         raise InputError(f"control points n must be >= p + 1 = {p + 1}, got {n}")
     return p, n
-
-
-def rational(name: str, value) -> sympy.Rational:
-    """``value`` as an exact sympy Rational (floats by their shortest decimal); finite only."""
-    import sympy
-
-    try:
-        if isinstance(value, float):
-            if not math.isfinite(value):
-                raise ValueError
-            out = sympy.Rational(repr(value))
-        else:
-            out = sympy.sympify(value)
-        if not out.is_Rational:
-            raise ValueError
-    except (TypeError, ValueError, sympy.SympifyError):
-        raise InputError(f"{name} must be a finite rational number, got {value!r}") from None
-    return out
 
 
 def aspect_ratio(r) -> sympy.Rational:
@@ -120,8 +104,13 @@ class Patch:
     weights : mapping, optional
         General redistribution weights ``{c: {j: w}}``; override ``contact``/``gamma_s``.
     nu : number or None
-        Poisson's ratio: None keeps it symbolic in the series, and numbers use
-        :data:`dispersion.defaults.NU` (see :attr:`nu_value`).
+        Poisson's ratio of an isotropic plate (exact; floats by their shortest decimal): None
+        keeps it symbolic in the series, and numbers use :data:`dispersion.defaults.NU` (see
+        :attr:`nu_value`). Shorthand for ``law=Isotropic(nu)``; None for other laws.
+    law : ElasticLaw, optional
+        The plate's material (:mod:`dispersion.symbolic.elastic_law`), carried to every
+        computation on the patch. Default: :class:`~dispersion.symbolic.elastic_law.Isotropic`
+        of ``nu``. Give ``nu`` or ``law``, not both.
     """
 
     p: int = defaults.P
@@ -133,6 +122,7 @@ class Patch:
     gamma_s: Any = defaults.GAMMA_S
     weights: Any = field(default=None, hash=False)
     nu: Any = None
+    law: Any = field(default=None, repr=False)
 
     def __post_init__(self):
         import sympy
@@ -177,14 +167,16 @@ class Patch:
             raise InputError(f"contact 'both' needs n >= 4 control points or gamma_s = 0 (with "
                              f"n = {n} each surface's second neighbour is the other surface); "
                              f"got n = {n}, gamma_s = {gamma_s}")
-        nu = self.nu
-        if nu is not None:
-            from dispersion.errors import check_nu
-
-            nu = check_nu(rational("nu", nu))
+        nu, law = _material(self.nu, self.law)
         for name, value in (("p", p), ("n", n), ("r", r), ("gamma_s", gamma_s), ("nu", nu),
-                            ("weights", weights)):
+                            ("weights", weights), ("law", law)):
             object.__setattr__(self, name, value)
+
+    def __repr__(self) -> str:
+        shown = [f"{f.name}={getattr(self, f.name)!r}" for f in fields(self) if f.repr]
+        if not self.isotropic:  # nu says all of an isotropic law
+            shown.append(f"law={self.law!r}")
+        return f"Patch({', '.join(shown)})"
 
     # ------------------------------------------------------------------ derived values
 
@@ -214,8 +206,19 @@ class Patch:
         return self.r is not None and not getattr(self.r, "is_number", True)
 
     @property
+    def isotropic(self) -> bool:
+        """True if the plate is isotropic (its law is Poisson's ratio ``nu`` alone)."""
+        from dispersion.symbolic.elastic_law import Isotropic
+
+        return isinstance(self.law, Isotropic)
+
+    @property
     def nu_value(self):
-        """Poisson's ratio for numbers: ``nu``, or the default :data:`dispersion.defaults.NU`."""
+        """Poisson's ratio for numbers: ``nu``, or the default :data:`dispersion.defaults.NU`
+        (isotropic plates; :class:`InputError` for other laws)."""
+        if not self.isotropic:
+            raise InputError(f"nu applies to an isotropic plate; this one is "
+                             f"{self.law.describe()}")
         return defaults.NU if self.nu is None else self.nu
 
     @property
@@ -224,17 +227,32 @@ class Patch:
         return None if self.weights is None else {c: dict(ws) for c, ws in self.weights}
 
     def replace(self, **changes) -> Patch:
-        """A copy with ``changes`` (checked like a new patch)."""
+        """A copy with ``changes`` (checked like a new patch); a new ``nu`` or ``law``
+        replaces the material (the two name one law).
+
+        >>> Patch(nu=0.3).replace(nu=None).law
+        Isotropic(nu=None)
+        """
+        if "nu" in changes and "law" not in changes:
+            if not self.isotropic:
+                raise InputError(f"nu applies to an isotropic plate; this one is "
+                                 f"{self.law.describe()} (give law= to change the material)")
+            changes["law"] = None
+        elif "law" in changes and "nu" not in changes:
+            changes["nu"] = None
         return replace(self, **changes)
 
     def as_dict(self) -> dict:
-        """JSON-ready fields (numbers as strings where exact)."""
-        out = asdict(self)
+        """JSON-ready fields (numbers as strings where exact); ``law`` only where the plate
+        is not isotropic (``nu`` says all of an isotropic law)."""
+        out = {f.name: getattr(self, f.name) for f in fields(self) if f.name != "law"}
         out["mass"] = self.mass_name
         for key in ("r", "gamma_s", "nu"):
             out[key] = None if out[key] is None else str(out[key])
         out["weights"] = self.weights_dict and {str(c): {str(j): str(w) for j, w in ws.items()}
                                                 for c, ws in self.weights_dict.items()}
+        if not self.isotropic:
+            out["law"] = self.law.as_dict()
         return out
 
     @classmethod
@@ -245,6 +263,10 @@ class Patch:
         True
         """
         data = dict(data)
+        if isinstance(data.get("law"), dict):
+            from dispersion.symbolic.elastic_law import ElasticLaw
+
+            data["law"] = ElasticLaw.from_dict(data["law"])
         if data.get("weights"):
             data["weights"] = {int(c): {int(j): w for j, w in ws.items()}
                                for c, ws in data["weights"].items()}
@@ -260,8 +282,8 @@ class Patch:
         if self.singular:
             mass += (f" (weights {self.weights_dict})" if self.weights is not None
                      else f" ({self.contact}, gamma_s={self.gamma_s})")
-        if self.nu is not None:
-            mass += f", nu={self.nu}"
+        if self.law.label() is not None:
+            mass += f", {self.law.label()}"
         return f"{geom}, {mass}"
 
     def title(self) -> str:
@@ -271,8 +293,8 @@ class Patch:
         'Bloch r = b/h = 1/2, p = 2, n = 3, singular mass (contact top, gamma_s = 1/2)'
         """
         text = f"{self.geometry_title()}, {self.mass_title()}"
-        if self.nu is not None:
-            text += f", nu = {self.nu}"
+        if self.law.title() is not None:
+            text += f", {self.law.title()}"
         return text
 
     def geometry_title(self) -> str:
@@ -295,9 +317,28 @@ class Patch:
         if self.singular:
             out += ([f"weights = {self.weights_dict}"] if self.weights is not None
                     else [f"contact = {self.contact}", f"gamma_s = {self.gamma_s}"])
-        if self.nu is not None:
-            out.append(f"nu = {self.nu}")
-        return out
+        return out + self.law.header_lines()
+
+
+def _material(nu, law):
+    """``(nu, law)`` of a patch: one law, and nu its Poisson's ratio where it is isotropic."""
+    from dispersion.symbolic.elastic_law import ElasticLaw, Isotropic
+
+    if law is not None and not isinstance(law, ElasticLaw):
+        raise InputError(f"law must be an ElasticLaw (dispersion.symbolic.elastic_law), got "
+                         f"{type(law).__name__}")
+    if nu is not None:
+        from dispersion.errors import check_nu
+
+        nu = check_nu(rational("nu", nu))
+        if law is not None and law != Isotropic(nu):
+            raise InputError(f"give nu or law, not both (nu = {nu}, law {law.describe()})")
+        return nu, Isotropic(nu)
+    if law is None:
+        return None, Isotropic()
+    if isinstance(law, Isotropic):  # exact, as nu given alone (a symbol: None, the patch's)
+        return _material(law.nu, None)
+    return None, law
 
 
 def as_patch(patch: Patch | None = None, **fields) -> Patch:

@@ -1,8 +1,11 @@
 """Plane-strain plate patch of B-splines: stiffness, mass and dynamic stiffness K - Omega^2 M.
 
 The plate occupies :math:`-h \\le y \\le h`; units are dimensionless with :math:`h = 1`,
-:math:`\\mu = 1`, :math:`\\rho = 1` (so :math:`c_T = 1`, :math:`\\Omega = \\omega h / c_T`,
-:math:`\\kappa = k h`). Through the thickness, ``n`` open B-splines of degree ``p`` carry the
+shear modulus :math:`D_{66} = \\mu = 1`, :math:`\\rho = 1` (so :math:`c_T = 1`,
+:math:`\\Omega = \\omega h / c_T`, :math:`\\kappa = k h`). The material is the patch's
+elastic law (:mod:`dispersion.symbolic.elastic_law`: the plane-strain D over the shear
+modulus; isotropic, :math:`D_{11} = D_{22} = \\lambda + 2\\mu`, :math:`D_{12} = \\lambda`,
+or orthotropic). Through the thickness, ``n`` open B-splines of degree ``p`` carry the
 displacement; along x either
 
 * ``model="x-exact"``: :math:`u = U(y) e^{i k x}` (semi-discrete in the thickness only), or
@@ -24,8 +27,8 @@ pencil is real symmetric,
 
 .. math::
 
-    K = \\begin{bmatrix} (\\lambda + 2\\mu) d Y_{00} + \\mu m Y_{11} & s(\\lambda Y_{01} - \\mu Y_{10}) \\\\
-        \\cdot & (\\lambda + 2\\mu) m Y_{11} + \\mu d Y_{00} \\end{bmatrix}, \\qquad
+    K = \\begin{bmatrix} D_{11} d Y_{00} + D_{66} m Y_{11} & s(D_{12} Y_{01} - D_{66} Y_{10}) \\\\
+        \\cdot & D_{22} m Y_{11} + D_{66} d Y_{00} \\end{bmatrix}, \\qquad
     M = m_x \\begin{bmatrix} M_y & 0 \\\\ 0 & M_y \\end{bmatrix},
 
 with :math:`M_y` the thickness mass of the chosen rule (:mod:`dispersion.symbolic.mass_rule`) and
@@ -44,14 +47,15 @@ T. J. R. Hughes, "Isogeometric analysis of structural vibrations", CMAME 195 (20
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import lru_cache
 
 import numpy as np
 import sympy
 
 from dispersion.symbolic import bspline
-from dispersion.errors import InputError, check_nu, check_positive_int
+from dispersion.errors import InputError, check_positive_int
+from dispersion.symbolic.elastic_law import ElasticLaw, Isotropic, lame
 from dispersion.symbolic.mass import contact_weights, redistribution_matrix
 from dispersion.symbolic.mass_rule import (get_rule, mass_variant, x_mass_coefficients,
                                            x_stiffness_factor)
@@ -68,6 +72,7 @@ __all__ = [
     "x_functions",
     "x_coefficients",
     "lame",
+    "with_nu",
     "stiffness_terms",
     "dynamic_stiffness",
     "numeric_pencil",
@@ -156,31 +161,14 @@ def _bloch_coefficients(p: int) -> tuple:
     return tuple(out)
 
 
-def lame(nu, scaled: bool = False) -> dict[str, object]:
-    """Lame constants over :math:`\\mu` in plane strain: ``{"L": lambda, "M": mu, "L2M": lambda + 2 mu}``.
-
-    ``scaled=True`` gives them times :math:`1 - 2\\nu` (polynomials in nu: ``2 nu``,
-    ``1 - 2 nu``, ``2 (1 - nu)``), for exact polynomial arithmetic in any ring holding nu.
-
-    >>> lame(sympy.Rational(1, 4))
-    {'L': 1, 'M': 1, 'L2M': 3}
-    >>> lame(sympy.Symbol("nu"), scaled=True)["L2M"]
-    2 - 2*nu
-    """
-    poly = {"L": 2 * nu, "M": 1 - 2 * nu, "L2M": 2 - 2 * nu}
-    if scaled:
-        return poly
-    lam = 2 * nu / (1 - 2 * nu)
-    return {"L": lam, "M": sympy.Integer(1) if isinstance(nu, sympy.Basic) else 1.0,
-            "L2M": lam + 2}
-
-
 @dataclass(frozen=True)
 class PlatePatch:
-    """The representative patch: basis data, mass rule and derived matrices (exact).
+    """The representative patch of the plate: basis data, mass rule, derived matrices (exact)
+    and the material they are computed with.
 
     ``mass`` is the rule's name, ``rule`` the :class:`~dispersion.symbolic.mass_rule.MassRule`
-    itself, ``x_mass`` the Bloch coefficients ``((L, a_L), ...)`` of its mass along x.
+    itself, ``x_mass`` the Bloch coefficients ``((L, a_L), ...)`` of its mass along x,
+    ``law`` the :class:`~dispersion.symbolic.elastic_law.ElasticLaw` of its stiffness.
     """
 
     p: int
@@ -199,6 +187,9 @@ class PlatePatch:
     #: Bloch factor ``((L, s_L), ...)`` of the x-stiffness (1 but for Petrov-Galerkin rules,
     #: :func:`dispersion.symbolic.mass_rule.x_stiffness_factor`).
     x_stiffness: tuple = ((0, 1),)
+    #: The plate's material (:mod:`dispersion.symbolic.elastic_law`): the spec's law. Every
+    #: function that computes on the patch reads its moduli here.
+    law: ElasticLaw = field(default_factory=Isotropic)
 
     @property
     def massless(self) -> tuple[int, ...]:
@@ -250,7 +241,8 @@ def _build(spec, allow_negative: bool) -> PlatePatch:
     return PlatePatch(spec.p, spec.n, spec.model, spec.r, rule.name, R, Y, My,
                       x_lumped=x_mass == ((0, sympy.Integer(1)),), spec=spec, x_mass=x_mass,
                       rule=rule, x_stiffness=x_stiffness_factor(
-                          rule if rule.x_stiffness is not None else rule.x_rule, spec.p))
+                          rule if rule.x_stiffness is not None else rule.x_rule, spec.p),
+                      law=spec.law)
 
 
 def x_coefficients(patch) -> dict[str, dict[int, sympy.Rational]]:
@@ -338,10 +330,17 @@ def x_taylor(patch: PlatePatch, D: int) -> dict[str, list[tuple[sympy.Rational, 
 
 
 def stiffness_terms(patch: PlatePatch) -> list[tuple[str, str, sympy.Matrix]]:
-    """K as ``[(material, xfunc, B)]``: :math:`K = \\sum` material(nu) * xfunc(kappa) * B.
+    """K as ``[(modulus, xfunc, B)]``: :math:`K = \\sum` modulus * xfunc(kappa) * B.
 
-    ``material`` in {"L2M", "M", "L"} (see :func:`lame`), ``xfunc`` in {"m", "s", "d"}.
-    This single list defines K for the symbolic, series and numeric code paths.
+    ``modulus`` in {"D11", "D22", "D12", "D66"}, the entries of the plane-strain D over the
+    shear modulus (:data:`dispersion.symbolic.elastic_law.MODULI`, given by the patch's law),
+    ``xfunc`` in {"m", "s", "d"}. This single list defines K for the symbolic, series and
+    numeric code paths.
+
+    .. math::
+
+        K = \\begin{bmatrix} D_{11} d Y_{00} + D_{66} m Y_{11} & s(D_{12} Y_{01} - D_{66} Y_{10}) \\\\
+            \\cdot & D_{22} m Y_{11} + D_{66} d Y_{00} \\end{bmatrix}
     """
     Y, n = patch.Y, patch.n
     Z = sympy.zeros(n, n)
@@ -350,12 +349,12 @@ def stiffness_terms(patch: PlatePatch) -> list[tuple[str, str, sympy.Matrix]]:
         return sympy.Matrix(sympy.BlockMatrix([[a, b], [c, d]]))
 
     return [
-        ("L2M", "d", blocks(Y["00"], Z, Z, Z)),
-        ("M", "m", blocks(Y["11"], Z, Z, Z)),
-        ("L2M", "m", blocks(Z, Z, Z, Y["11"])),
-        ("M", "d", blocks(Z, Z, Z, Y["00"])),
-        ("L", "s", blocks(Z, Y["01"], Y["01"].T, Z)),
-        ("M", "s", -blocks(Z, Y["10"], Y["10"].T, Z)),
+        ("D11", "d", blocks(Y["00"], Z, Z, Z)),
+        ("D66", "m", blocks(Y["11"], Z, Z, Z)),
+        ("D22", "m", blocks(Z, Z, Z, Y["11"])),
+        ("D66", "d", blocks(Z, Z, Z, Y["00"])),
+        ("D12", "s", blocks(Z, Y["01"], Y["01"].T, Z)),
+        ("D66", "s", -blocks(Z, Y["10"], Y["10"].T, Z)),
     ]
 
 
@@ -364,36 +363,63 @@ def mass_block(patch: PlatePatch) -> sympy.Matrix:
     return sympy.diag(patch.My, patch.My)
 
 
+def with_nu(patch: PlatePatch, nu=None) -> PlatePatch:
+    """``patch`` with Poisson's ratio ``nu`` (an isotropic plate), or as it is (its own law)
+    if ``nu`` is None: the ``nu`` argument every numeric function keeps resolves here, once.
+
+    >>> with_nu(plate_patch(), 0.3).law
+    Isotropic(nu=0.3)
+    >>> from dispersion.symbolic.elastic_law import Orthotropic
+    >>> with_nu(plate_patch(law=Orthotropic(3, 2, 1, 1)), 0.3)
+    Traceback (most recent call last):
+    ...
+    dispersion.errors.InputError: nu applies to an isotropic plate; this one is orthotropic (C11 = 3, C22 = 2, C12 = 1, C66 = 1) (give nu=None: the patch's law)
+    """
+    if nu is None:
+        return patch
+    if not isinstance(patch.law, Isotropic):
+        raise InputError(f"nu applies to an isotropic plate; this one is "
+                         f"{patch.law.describe()} (give nu=None: the patch's law)")
+    return replace(patch, law=Isotropic(nu))
+
+
 def dynamic_stiffness(patch: PlatePatch, kappa=None, Omega=None, nu=None) -> sympy.Matrix:
-    """Exact :math:`K_{dyn}(\\kappa, \\Omega) = K - \\Omega^2 M` (sympy; symbols by default).
+    """Exact :math:`K_{dyn}(\\kappa, \\Omega) = K - \\Omega^2 M` (sympy; symbols by default,
+    the moduli of the patch's law: nu stays a symbol where the law keeps it; ``nu`` replaces
+    an isotropic plate's Poisson's ratio, :func:`with_nu`).
 
     >>> Kd = dynamic_stiffness(plate_patch())
     >>> Kd.is_symmetric()
     True
     """
+    patch = with_nu(patch, nu)
     kappa = sympy.Symbol("kappa") if kappa is None else kappa
     Omega = sympy.Symbol("Omega") if Omega is None else Omega
-    nu = sympy.Symbol("nu") if nu is None else check_nu(nu)
     kappa = sympy.sympify(kappa)
-    mat, xf = lame(nu), x_functions(patch, kappa)
+    mat, xf = patch.law.moduli(), x_functions(patch, kappa)
     K = sum((mat[m] * xf[f] * B for m, f, B in stiffness_terms(patch)), sympy.zeros(2 * patch.n))
     return K - Omega**2 * xf["mx"] * mass_block(patch)
 
 
-def numeric_pencil(patch: PlatePatch, nu: float, kappa) -> tuple[np.ndarray, np.ndarray]:
-    """Float stacks ``K, M`` of shape ``(len(kappa), 2n, 2n)``, built from :func:`stiffness_terms`.
+def numeric_pencil(patch: PlatePatch, nu, kappa) -> tuple[np.ndarray, np.ndarray]:
+    """Float stacks ``K, M`` of shape ``(len(kappa), 2n, 2n)``, built from :func:`stiffness_terms`
+    with the float moduli of the patch's law (``nu``: Poisson's ratio of an isotropic plate,
+    None: the patch's own law, :func:`with_nu`).
 
     >>> K, M = numeric_pencil(plate_patch(), 0.3, [0.0, 0.5])
     >>> K.shape, bool(np.allclose(K, K.transpose(0, 2, 1)))
     ((2, 6, 6), True)
+    >>> K2, _ = numeric_pencil(plate_patch(nu=0.3), None, [0.0, 0.5])
+    >>> bool((K2 == K).all())
+    True
     """
-    nu = float(check_nu(nu))
+    mat = with_nu(patch, nu).law.float_moduli()
     kappa = np.atleast_1d(np.asarray(kappa, dtype=float))
     if not np.all(np.isfinite(kappa)):
         raise InputError("kappa must be finite")
     if patch.model == "bloch" and isinstance(patch.r, sympy.Symbol):
         raise InputError("aspect ratio r must be a number for numeric evaluation")
-    mat, xf = lame(nu), x_functions(patch, kappa)
+    xf = x_functions(patch, kappa)
     terms, M0 = numeric_terms(patch)
     n2 = 2 * patch.n
     # one matrix product: coefficients (points x terms) times the flattened term matrices

@@ -40,7 +40,7 @@ from fractions import Fraction
 import flint
 
 from dispersion.symbolic import series_kernel as _k
-from dispersion.errors import DispersionError, InputError, check_nu, check_positive_int
+from dispersion.errors import DispersionError, InputError, check_positive_int
 
 __all__ = [
     "BRANCHES", "MAX_ORDER", "MAX_WORK", "check_request", "discrete_series",
@@ -208,16 +208,6 @@ def substitute_raw(raw: list[tuple], name: str, value) -> list[tuple]:
     return out
 
 
-def _substitute_nu(series: dict, nu) -> dict:
-    import sympy
-
-    if nu is None:
-        return series
-    nu = check_nu(sympy.Rational(repr(nu)) if isinstance(nu, float) else nu)  # shortest decimal
-    symbol = sympy.Symbol("nu")
-    return {k: sympy.factor(v.subs(symbol, nu)) for k, v in series.items()}
-
-
 def solve_branch(build, sigma: int, order: int, D0: int):
     """Coefficients (num, den) of the branch from ``build(D)`` = F mod t^(D+1).
 
@@ -244,17 +234,19 @@ def solve_branch(build, sigma: int, order: int, D0: int):
 
 
 def _discrete_build(patch, block: str | None, sigma: int, ctx):
-    """Return build(D) -> det((1 - 2 nu)(K - t^sigma w M)) over the chosen mirror block.
+    """Return build(D) -> det(c (K - t^sigma w M)) over the chosen mirror block, c the scale
+    that makes the law's moduli polynomials (:meth:`ElasticLaw.series_moduli`: 1 - 2 nu for
+    the isotropic plate).
 
     The pencil is made even in kappa by the similarity diag(I, s I), which moves
     :math:`s^2 = t (s/\\kappa)^2` onto one off-diagonal block.
     """
     from dispersion.symbolic import plate as _plate
 
-    gens = ctx.gens()
-    w, nu = gens[0], gens[1]
-    r_gen = gens[2] if len(gens) > 2 else None
-    mats = _plate.lame(nu, scaled=True)
+    gens = dict(zip(("w",) + _params(patch), ctx.gens()))
+    w, r_gen = gens["w"], gens.get("r")
+    one = ctx.from_dict({}) + 1
+    mats, scale = patch.law.series_moduli(gens, one)
     if block is None:
         def project(B):
             return B
@@ -298,7 +290,7 @@ def _discrete_build(patch, block: str | None, sigma: int, ctx):
             xf[name] = _k.Series(ctx, coeffs, D)
         t = _k.Series.gen_t(ctx, D)
         xf["s2"] = t * xf["s"] * xf["s"]
-        mass = (1 - 2 * nu) * (_k.Series(ctx, [0] * sigma + [w], D) * xf["mx"])
+        mass = scale * (_k.Series(ctx, [0] * sigma + [w], D) * xf["mx"])
         rows = []
         for i in range(size):
             row = []
@@ -321,6 +313,13 @@ def _discrete_build(patch, block: str | None, sigma: int, ctx):
     return build
 
 
+def _params(patch) -> tuple[str, ...]:
+    """The symbols of the series ring after ``w``: the law's (nu), then r where symbolic."""
+    import sympy
+
+    return patch.law.series_parameters + (("r",) if isinstance(patch.r, sympy.Symbol) else ())
+
+
 def _rational_rows(M) -> list[list]:
     return [[flint.fmpq(int(v.p), int(v.q)) if v else 0 for v in row] for row in M.tolist()]
 
@@ -334,10 +333,7 @@ def discrete_series_raw(branches=("S0",), order: int = 8, patch=None, *,
     both branches: A0 (:math:`\\Omega^2 = t^2 w`) reads :math:`F_1(t, t w)`, i.e. the term
     :math:`t^k w^e` moves to :math:`t^{k+e}`, which truncation at :math:`t^D` keeps exact.
     """
-    import sympy
-
     from dispersion.symbolic import plate as _plate
-
     from dispersion.symbolic.patch import as_patch
 
     if isinstance(branches, str):
@@ -349,7 +345,7 @@ def discrete_series_raw(branches=("S0",), order: int = 8, patch=None, *,
         split = patch.symmetric
     elif split and not patch.symmetric:
         raise InputError("split=True needs a mass that keeps the mirror symmetry")
-    params = ("nu", "r") if isinstance(patch.r, sympy.Symbol) else ("nu",)
+    params = _params(patch)
     ctx = _k.context(params)
     shared = None if split else _Shared(_discrete_build(patch, None, 1, ctx),
                                         order // 2 + 4)
@@ -392,7 +388,6 @@ def discrete_series(
     order: int = 8,
     patch=None,
     *,
-    nu=None,
     split: bool | None = None,
     factor: bool = True,
     **fields,
@@ -401,7 +396,9 @@ def discrete_series(
 
     ``patch`` is a :class:`dispersion.symbolic.patch.Patch` (default: the toolkit's default patch), its
     fields may be given or replaced as keywords; ``order`` is the highest
-    power of kappa; ``nu`` substitutes a number for the symbol nu at the end; ``split``
+    power of kappa. The patch's law decides the symbols: an isotropic plate's series is
+    derived in nu and a numeric nu (the patch's, or ``nu=`` here: a field of the patch)
+    substituted at the end; ``split``
     (default: whenever the mass keeps the mirror symmetry) works on the symmetric (S0) or
     antisymmetric (A0) block instead of the full determinant (a speed-up only: both give
     the same series); ``factor`` factors the output (flint, cheap).
@@ -411,12 +408,14 @@ def discrete_series(
     """
     import sympy
 
-    if nu is not None:
-        check_nu(nu)
-    raws, params = discrete_series_raw((branch,), order, patch, split=split, **fields)
+    from dispersion.symbolic.patch import as_patch
+
+    spec = as_patch(patch, **fields)
+    raws, params = discrete_series_raw((branch,), order, spec, split=split)
     raw = raws[branch]
-    symbols = (sympy.Symbol("nu"), sympy.Symbol("r", positive=True))[: len(params)]
-    return _substitute_nu({k: _to_expr(a, b, symbols, factor) for k, a, b in raw}, nu)
+    symbols = tuple(sympy.Symbol(name, positive=True) if name == "r" else sympy.Symbol(name)
+                    for name in params)
+    return spec.law.substitute({k: _to_expr(a, b, symbols, factor) for k, a, b in raw})
 
 
 def first_difference(a: dict, b: dict, upto: int | None = None) -> int | None:

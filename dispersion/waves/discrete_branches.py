@@ -56,13 +56,13 @@ import numpy as np
 import sympy
 
 from dispersion.waves.branch_views import BranchViews
-from dispersion.errors import InputError, check_nu, check_positive_int, check_wavenumbers
+from dispersion.errors import InputError, check_positive_int, check_wavenumbers
 from dispersion.symbolic.plate import (
     PlatePatch,
-    lame,
     mirror_bases,
     numeric_pencil,
     numeric_terms,
+    with_nu,
     x_functions,
 )
 from dispersion.waves.extended_pencil import refine_inaccurate
@@ -117,7 +117,7 @@ ROUTES = ("polynomial", "float eigen-solver", "extended precision", "power law")
 RTOL = 1e-11
 
 
-def pencil_derivative(patch: PlatePatch, nu: float, kappa) -> tuple[np.ndarray, np.ndarray]:
+def pencil_derivative(patch: PlatePatch, nu, kappa) -> tuple[np.ndarray, np.ndarray]:
     """:math:`dK/d\\kappa` and :math:`dM/d\\kappa` as float stacks, by the complex step.
 
     The x-functions of :func:`dispersion.symbolic.plate.x_functions` (polynomials or trigonometric sums
@@ -129,10 +129,10 @@ def pencil_derivative(patch: PlatePatch, nu: float, kappa) -> tuple[np.ndarray, 
     >>> bool(np.allclose(dK, dK.transpose(0, 2, 1))), float(np.abs(dM).max())  # x-exact: M const
     (True, 0.0)
     """
-    nu = float(check_nu(nu))
+    patch = with_nu(patch, nu)
     h = 1e-30
     kappa = np.atleast_1d(np.asarray(kappa, dtype=float)) + 1j * h
-    mat, xf = lame(nu), x_functions(patch, kappa)
+    mat, xf = patch.law.float_moduli(), x_functions(patch, kappa)
     n2 = 2 * patch.n
     terms, M0 = numeric_terms(patch)
     dK = np.zeros((kappa.size, n2, n2))
@@ -151,16 +151,16 @@ def _slopes(W, X, dK, dM, M):
         return np.where(W > 0, num / den, np.nan)
 
 
-def discrete_branches(patch: PlatePatch, nu: float, kappa, chunk: int = 20000,
+def discrete_branches(patch: PlatePatch, nu, kappa, chunk: int = 20000,
                       progress=None, group: bool = False) -> DiscreteBranches:
     """All finite discrete branches of ``patch`` on the grid ``kappa`` (see module docstring).
 
     Parameters
     ----------
     patch : PlatePatch
-        From :func:`dispersion.symbolic.plate.plate_patch` (numeric aspect ratio for the Bloch model).
-    nu : float
-        Poisson's ratio in (-1, 0.5).
+        From :func:`dispersion.symbolic.plate.plate_patch` (numeric aspect ratio for the Bloch
+        model), with its material: a numeric :attr:`~PlatePatch.law` (e.g.
+        ``plate_patch(nu=0.3)``).
     kappa : array_like
         :math:`\\kappa = kh \\ge 0`.
     chunk : int
@@ -174,9 +174,10 @@ def discrete_branches(patch: PlatePatch, nu: float, kappa, chunk: int = 20000,
     Never raises from an eigen-solver: what cannot be certified is listed in
     ``DiscreteBranches.failures``.
     """
+    patch = with_nu(patch, nu)
     if patch.model == "bloch" and isinstance(patch.r, sympy.Symbol):
         raise InputError("aspect ratio r must be a number for discrete branches, got the symbol r")
-    nu = float(check_nu(nu))
+    patch.law.check_numeric("discrete branches")
     kappa = check_wavenumbers(kappa)
     chunk = check_positive_int("chunk", chunk)
     workers = min(THREADS, os.cpu_count() or 1)
@@ -186,12 +187,12 @@ def discrete_branches(patch: PlatePatch, nu: float, kappa, chunk: int = 20000,
         count = -(-count // workers) * workers
         chunk = -(-kappa.size // count)
     zone = math.pi / float(patch.r) if patch.model == "bloch" else None
-    plan = _plan(patch, nu)
+    plan = _plan(patch, None)
     failures = []
     starts = range(0, kappa.size, chunk)
 
     def work(lo):
-        return _branches_block(patch, nu, kappa[lo:lo + chunk], group, plan, failures)
+        return _branches_block(patch, kappa[lo:lo + chunk], group, plan, failures)
 
     workers = min(workers, len(starts))
     if workers > 1:  # numpy releases the GIL in its loops: chunks run on both cores
@@ -256,8 +257,9 @@ class _Block:
     poly: object                # PencilPolynomial or None (eigen-solver path)
 
 
-def _plan(patch: PlatePatch, nu: float) -> list[_Block]:
+def _plan(patch: PlatePatch, nu) -> list[_Block]:
     """The blocks of the pencil and, where small enough, their exact characteristic polynomial."""
+    patch = with_nu(patch, nu)
     from dispersion.waves import pencil_polynomial as pp
 
     massless = set(patch.massless)
@@ -278,7 +280,7 @@ def _plan(patch: PlatePatch, nu: float) -> list[_Block]:
     for kind, E, ml, Eq in groups:
         poly = None
         try:
-            poly = pp.pencil_polynomial(patch, nu, Eq, parity=kind is None)
+            poly = pp.pencil_polynomial(patch, None, Eq, parity=kind is None)
             if poly.degree != (2 * patch.n if E is None else E.shape[1]) - len(ml):
                 poly = None
         except InputError:
@@ -287,10 +289,10 @@ def _plan(patch: PlatePatch, nu: float) -> list[_Block]:
     return blocks
 
 
-def _eigen_block(patch, nu, kappa, block: _Block, vectors: bool):
+def _eigen_block(patch, kappa, block: _Block, vectors: bool):
     """Float eigen-solve of one block at ``kappa``: (W, X or None, dK/dM-ready pencil, the
     relative error bound of each W^2)."""
-    K, M = numeric_pencil(patch, nu, kappa)
+    K, M = numeric_pencil(patch, None, kappa)
     if block.E is not None:
         K, M = congruence(block.E.T, K), congruence(block.E.T, M)
     if vectors:
@@ -305,7 +307,7 @@ def _parity_from_vectors(patch, X):
     return np.sum((S.T @ X) ** 2, axis=1) / np.sum(X**2, axis=1)
 
 
-def _solve_block(patch, nu, kappa, block: _Block, group: bool, failures: list):
+def _solve_block(patch, kappa, block: _Block, group: bool, failures: list):
     """``(W, G, share, route)`` of one block at kappa (no tiny kappa here): W ascending per
     row, route the index in :data:`ROUTES` of each kappa."""
     from dispersion.waves import pencil_polynomial as pp
@@ -326,7 +328,7 @@ def _solve_block(patch, nu, kappa, block: _Block, group: bool, failures: list):
         order = np.argsort(u, kind="stable")
         anchors = order if n <= 4 * ANCHOR_STRIDE else \
             np.concatenate([order[::ANCHOR_STRIDE], order[-1:]])
-        Wa, _, _, Ea = _eigen_block(patch, nu, kappa[anchors], block, False)
+        Wa, _, _, Ea = _eigen_block(patch, kappa[anchors], block, False)
         mx = pp.mass_factor(poly, u, v)
         mua = Wa**2 * mx[anchors]
         ua = u[anchors]
@@ -345,7 +347,7 @@ def _solve_block(patch, nu, kappa, block: _Block, group: bool, failures: list):
                 Wr[anchors], Er[anchors] = Wa, Ea
                 Wr, Er = Wr[redo], Er[redo]
             else:
-                Wr, _, _, Er = _eigen_block(patch, nu, kappa[redo], block, False)
+                Wr, _, _, Er = _eigen_block(patch, kappa[redo], block, False)
             # where every disc is finite (hence disjoint: one root each, all roots found) the
             # roots are the right ones, only some too loosely enclosed: no second polish
             m2, r2 = mu[redo], rad[redo]
@@ -378,7 +380,7 @@ def _solve_block(patch, nu, kappa, block: _Block, group: bool, failures: list):
             share = pp.parity_share(poly, u, v, mu)
         todo = np.flatnonzero(~ok)
     if todo.size:
-        W, G, share = _eigen_fallback(patch, nu, kappa, block, group, todo, W, G, share,
+        W, G, share = _eigen_fallback(patch, kappa, block, group, todo, W, G, share,
                                       failures, route)
         if group and poly is not None:   # the slopes of those roots, certified in balls
             mx_t = pp.mass_factor(poly, *pp.u_of_kappa(patch.model, r, kappa[todo])[:2])
@@ -404,13 +406,13 @@ def _group_failures(failures, kappa, rel, G, kind):
                          f"c_g/c_T = {G[i, j]:.3e})"))
 
 
-def _eigen_fallback(patch, nu, kappa, block, group, idx, W, G, share, failures, route):
+def _eigen_fallback(patch, kappa, block, group, idx, W, G, share, failures, route):
     """The float eigen-solver (and extended precision where it is not accurate) at ``idx``."""
     mixed = block.kind is None
     k = kappa[idx]
     route[idx] = 1
     try:
-        Wf, X, M, err = _eigen_block(patch, nu, k, block, group or mixed)
+        Wf, X, M, err = _eigen_block(patch, k, block, group or mixed)
     except (np.linalg.LinAlgError, InputError) as exc:
         for kk in k:
             failures.append(("omega", float(kk), f"float eigen-solver failed ({exc})"))
@@ -421,14 +423,14 @@ def _eigen_fallback(patch, nu, kappa, block, group, idx, W, G, share, failures, 
         return W, G, share
     Gf = None
     if group:
-        dK, dM = pencil_derivative(patch, nu, k)
+        dK, dM = pencil_derivative(patch, None, k)
         if block.E is not None:
             dK, dM = congruence(block.E.T, dK), congruence(block.E.T, dM)
         Gf = _slopes(Wf, X, dK, dM, M)
     basis = block.E
     refine = np.any(err > RTOL, axis=1) & (k > 0)  # as refine_inaccurate
     route[idx[refine]] = 2
-    Wf = refine_inaccurate(patch, nu, k, Wf, basis, Gf, failures, err, RTOL)
+    Wf = refine_inaccurate(patch, None, k, Wf, basis, Gf, failures, err, RTOL)
     if W is None:
         W = np.empty((kappa.size, Wf.shape[1]))
         G = np.empty_like(W) if group else None
@@ -464,9 +466,9 @@ def _tiny(kappa, W0, W1, G0, G1, failures):
     return W, G
 
 
-def _branches_block(patch: PlatePatch, nu: float, kappa: np.ndarray, group: bool = False,
+def _branches_block(patch: PlatePatch, kappa: np.ndarray, group: bool = False,
                     plan=None, failures=None):
-    plan = _plan(patch, nu) if plan is None else plan
+    plan = _plan(patch, None) if plan is None else plan
     failures = [] if failures is None else failures
     tiny = kappa < KAPPA_TINY
     main = np.flatnonzero(~tiny)
@@ -477,12 +479,12 @@ def _branches_block(patch: PlatePatch, nu: float, kappa: np.ndarray, group: bool
     for block in plan:
         parts = {}
         if main.size:
-            parts["main"] = _solve_block(patch, nu, kappa[main], block, group, failures)
+            parts["main"] = _solve_block(patch, kappa[main], block, group, failures)
         if np.any(tiny):
             # the power laws below KAPPA_TINY are read at two reference kappa; what cannot be
             # certified there is reported at the kappa asked for
             ref_fail = []
-            parts["ref"] = _solve_block(patch, nu, ref, block, group, ref_fail)
+            parts["ref"] = _solve_block(patch, ref, block, group, ref_fail)
             seen = set()
             for what, k_ref, why in ref_fail:
                 if what not in seen:  # one entry per quantity and kappa
@@ -542,12 +544,13 @@ def _branches_block(patch: PlatePatch, nu: float, kappa: np.ndarray, group: bool
     return omega, symmetry, slopes, route
 
 
-def fundamental_branches(patch: PlatePatch, nu: float, kappa) -> dict[str, np.ndarray]:
+def fundamental_branches(patch: PlatePatch, nu, kappa) -> dict[str, np.ndarray]:
     """Discrete S0 and A0 at ``kappa``: the labels of :func:`discrete_branches` (one rule).
 
     >>> from dispersion.symbolic.plate import plate_patch
     >>> sorted(fundamental_branches(plate_patch(mass="singular"), 0.3, [0.1]))
     ['A0', 'S0']
     """
-    br = discrete_branches(patch, nu, kappa)
+    patch = with_nu(patch, nu)
+    br = discrete_branches(patch, None, kappa)
     return {label: br.omega[label] for label in ("S0", "A0")}

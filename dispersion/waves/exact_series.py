@@ -11,11 +11,10 @@ from __future__ import annotations
 
 import flint
 
-from dispersion.errors import check_nu
 from dispersion.symbolic import series_kernel as _k
 from dispersion.symbolic.series_kernel import _from_uni
-from dispersion.symbolic.power_balance import (BRANCHES, _substitute_nu, _to_expr,
-                                               check_request, solve_branch)
+from dispersion.symbolic.power_balance import (BRANCHES, _to_expr, check_request,
+                                               solve_branch)
 from dispersion.waves.rayleigh_lamb import frequency_function
 
 __all__ = ["exact_leading_balance", "exact_series", "exact_series_raw"]
@@ -78,18 +77,23 @@ def exact_series(branch: str, order: int, nu=None, form: str = "standard",
 
     The characteristic function is :func:`dispersion.waves.rayleigh_lamb.frequency_function` itself,
     evaluated on truncated power series over QQ[g]. ``form="printed"`` uses eq (13) as
-    printed; it has no such branch and raises :class:`DispersionError`.
+    printed; it has no such branch and raises :class:`DispersionError`. ``nu``: a number
+    substituted at the end (None: symbolic), or an isotropic
+    :class:`~dispersion.symbolic.elastic_law.ElasticLaw` (other laws have no closed form).
 
     >>> exact_series("A0", 6, nu=0)
     {4: 2/3, 6: -34/45}
     """
     import sympy
 
-    if nu is not None:
-        check_nu(nu)
+    from dispersion.symbolic.elastic_law import as_law
+
+    law = as_law(nu)
+    if law.kind != "isotropic":
+        law.poisson_ratio("exact Rayleigh-Lamb series")  # refused, in words
     series = {k: _to_expr(a, b, (sympy.Symbol("nu"),), factor)
               for k, a, b in exact_series_raw(branch, order, form)}
-    return _substitute_nu(series, nu)
+    return law.substitute(series)
 
 
 def exact_leading_balance(branch: str, form: str = "standard"):

@@ -1,7 +1,8 @@
 """The plate pencil in ball arithmetic: the reference and last resort of the discrete branches.
 
 K and M are formed from the exact matrices of :func:`dispersion.symbolic.plate.stiffness_terms`
-and the exact x-functions (nu rationalised) in arb ball arithmetic (python-flint), projected
+and the exact x-functions (the law's moduli as exact rationals,
+:meth:`~dispersion.symbolic.elastic_law.ElasticLaw.rational_moduli`) in arb ball arithmetic (python-flint), projected
 on a basis, massless DOFs condensed, and the eigenvalues of :math:`M^{-1}K` enclosed by
 :meth:`flint.acb_mat.eig`. :mod:`dispersion.waves.discrete_branches` calls it only where
 neither the exact characteristic polynomial nor the float eigen-solver certifies a root.
@@ -24,9 +25,9 @@ from dispersion.errors import InputError
 from dispersion.waves.pencil_frequencies import eigenvalue_error
 from dispersion.symbolic.plate import (
     PlatePatch,
-    lame,
     mass_block,
     stiffness_terms,
+    with_nu,
     x_functions,
 )
 
@@ -39,12 +40,13 @@ MAX_EXTENDED_SECONDS = 120.0
 
 
 class _Key:
-    """A patch as a cache key (its sympy matrices are not hashable)."""
+    """A patch with its law as a cache key (its sympy matrices are not hashable)."""
 
     def __init__(self, patch: PlatePatch):
         self.patch = patch
         # the entries themselves (hashable sympy numbers): never the printed matrix
-        self.key = (patch.p, patch.n, patch.model, patch.r, tuple(patch.My), patch.x_mass)
+        self.key = (patch.p, patch.n, patch.model, patch.r, tuple(patch.My), patch.x_mass,
+                    patch.law)
 
     def __hash__(self):
         return hash(self.key)
@@ -85,12 +87,11 @@ def _arb_compile(expr):
 
 
 @functools.lru_cache(maxsize=16)
-def _exact_terms(key: _Key, nu: float):
+def _exact_terms(key: _Key):
     """``[(coefficient expr, B)]`` for K, dK/dkappa, M, dM/dkappa (exact sympy data)."""
     patch = key.patch
     k = sympy.Symbol("kappa")
-    nu_q = sympy.nsimplify(nu, rational=True)
-    mat, xf = lame(nu_q), x_functions(patch, k)
+    mat, xf = patch.law.rational_moduli(), x_functions(patch, k)
     K = [(sympy.sympify(mat[m] * xf[f]), B) for m, f, B in stiffness_terms(patch)]
     M = [(sympy.sympify(xf["mx"]), mass_block(patch))]
     return {"K": K, "dK": [(c.diff(k), B) for c, B in K], "M": M,
@@ -104,7 +105,7 @@ def _arb_rational_matrix(B):
 
 
 @functools.lru_cache(maxsize=64)
-def _projected_terms(key: _Key, nu: float, which: str, basis: bytes | None, shape, prec: int):
+def _projected_terms(key: _Key, which: str, basis: bytes | None, shape, prec: int):
     """``[(coefficient expr, E^T B E as arb_mat)]`` at working precision ``prec`` (cached)."""
     import flint
 
@@ -113,14 +114,14 @@ def _projected_terms(key: _Key, nu: float, which: str, basis: bytes | None, shap
     E = flint.arb_mat(Ef.tolist())
     Et = E.transpose()
     return [(_arb_compile(c), Et * _arb_rational_matrix(B) * E)
-            for c, B in _exact_terms(key, nu)[which] if c != 0]
+            for c, B in _exact_terms(key)[which] if c != 0]
 
 
-def _arb_matrix(key, nu, which, basis, k):
+def _arb_matrix(key, which, basis, k):
     import flint
 
     raw = None if basis is None else np.ascontiguousarray(basis, dtype=float)
-    terms = _projected_terms(key, nu, which, None if raw is None else raw.tobytes(),
+    terms = _projected_terms(key, which, None if raw is None else raw.tobytes(),
                              None if raw is None else raw.shape, flint.ctx.prec)
     n = (2 * key.patch.n) if basis is None else np.shape(basis)[1]
     out = flint.arb_mat(n, n)
@@ -129,14 +130,14 @@ def _arb_matrix(key, nu, which, basis, k):
     return out
 
 
-def extended_frequencies(patch: PlatePatch, nu: float, kappa, basis=None,
+def extended_frequencies(patch: PlatePatch, nu, kappa, basis=None,
                          dps: int = 40, slopes: bool = False):
     """Finite :math:`\\Omega` of the pencil at one ``kappa`` in ``dps``-digit ball arithmetic.
 
     The reference (and the fallback) where float eigenvalues lose their relative accuracy:
     :math:`\\Omega^2` of A0 is about :math:`\\kappa^4`, so at :math:`\\kappa = 10^{-6}` it is
     1e-24 beside eigenvalues of order one. K and M are formed from the exact matrices of
-    :func:`dispersion.symbolic.plate.stiffness_terms` and the exact x-functions (nu rationalised) in
+    :func:`dispersion.symbolic.plate.stiffness_terms` and the exact x-functions (the law's moduli as exact rationals) in
     arb ball arithmetic (python-flint), projected on ``basis`` (columns spanning a mirror
     block, or None), massless DOFs condensed, and the eigenvalues of :math:`M^{-1}K` enclosed
     by :meth:`flint.acb_mat.eig`. With ``slopes=True`` also :math:`d\\Omega/d\\kappa` of every
@@ -147,22 +148,24 @@ def extended_frequencies(patch: PlatePatch, nu: float, kappa, basis=None,
     >>> float(w[0] / 1e-12)  # A0: Omega ~ sqrt(2 / (3 (1 - nu))) kappa^2 (eq 16)
     0.9759000729...
     """
+    patch = with_nu(patch, nu)
     with _FLINT_LOCK:  # flint's working precision is process-global
-        return _extended(patch, nu, kappa, basis, dps, slopes)
+        return _extended(patch, kappa, basis, dps, slopes)
 
 
 _FLINT_LOCK = threading.Lock()
 
 
-def _extended(patch, nu, kappa, basis, dps, slopes):
+def _extended(patch, kappa, basis, dps, slopes):
     import flint
 
-    key, nu = _Key(patch), float(nu)
+    patch.law.check_numeric("extended-precision frequencies")
+    key = _Key(patch)
     old = flint.ctx.prec
     flint.ctx.prec = 64 * math.ceil((dps * 3.33 + 20) / 64)  # few precisions: cached terms
     try:
         k = flint.arb(float(kappa)) if not isinstance(kappa, flint.arb) else kappa
-        K, M = _arb_matrix(key, nu, "K", basis, k), _arb_matrix(key, nu, "M", basis, k)
+        K, M = _arb_matrix(key, "K", basis, k), _arb_matrix(key, "M", basis, k)
         n = K.nrows()
         zero = [i for i in range(n) if all(M[i, j] == 0 for j in range(n))]
         keep = [i for i in range(n) if i not in zero]
@@ -188,7 +191,7 @@ def _extended(patch, nu, kappa, basis, dps, slopes):
         W = np.array([float(v) for v in roots])
         if not slopes:
             return W
-        dK, dM = _arb_matrix(key, nu, "dK", basis, k), _arb_matrix(key, nu, "dM", basis, k)
+        dK, dM = _arb_matrix(key, "dK", basis, k), _arb_matrix(key, "dM", basis, k)
         G = []
         for j, w in zip(order, roots):
             x = flint.acb_mat(n, 1)
@@ -214,12 +217,12 @@ def _arb_sub(A, rows, cols):
     return flint.arb_mat([[A[i, j] for j in cols] for i in rows])
 
 
-def _extended_safe(patch, nu, k, basis, dps, slopes):
+def _extended_safe(patch, k, basis, dps, slopes):
     """:func:`extended_frequencies`, retried at twice the digits; ``(None, reason)`` if both fail."""
     why = ""
     for digits in (dps, 2 * dps):
         try:
-            return extended_frequencies(patch, nu, k, basis, dps=digits, slopes=slopes), ""
+            return extended_frequencies(patch, None, k, basis, dps=digits, slopes=slopes), ""
         except (ValueError, ZeroDivisionError, ArithmeticError) as exc:  # flint: eig failed
             why = f"extended-precision eigen-solver failed at {digits} digits ({exc})"
     return None, why
@@ -238,6 +241,7 @@ def refine_inaccurate(patch, nu, kappa, W, basis, G=None, failures=None, error=N
     with ``bounds=True``); ``rtol`` the accuracy asked of it. Work beyond
     :data:`MAX_EXTENDED_SECONDS` (estimated on the first kappa) is refused.
     """
+    patch = with_nu(patch, nu)
     import time
 
     lam = W**2
@@ -260,7 +264,7 @@ def refine_inaccurate(patch, nu, kappa, W, basis, G=None, failures=None, error=N
         if not 1.0 <= ratio < 1e300:   # float eigenvalues lost (inf, NaN): the widest guess
             ratio = 1e300 if not ratio < 1.0 else 1.0
         dps = 30 + int(math.ceil(math.log10(ratio)))
-        out, why = _extended_safe(patch, nu, float(kappa[i]), basis, dps, G is not None)
+        out, why = _extended_safe(patch, float(kappa[i]), basis, dps, G is not None)
         if out is None:
             W[i] = np.nan
             if failures is not None:

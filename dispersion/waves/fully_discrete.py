@@ -186,30 +186,35 @@ def fully_discrete_branches(branches, tau: float, scheme: TimeScheme | str = "ce
     return replace(branches, omega=omega, group=group)
 
 
-def fully_discrete_error(patch, nu: float, kappa, courant: float,
+def fully_discrete_error(patch, nu, kappa, courant: float,
                          scheme: TimeScheme | str = "central") -> dict[str, np.ndarray]:
     """Signed phase-velocity error :math:`\\tilde\\Omega / \\Omega - 1` of S0 and A0 at ``kappa``.
 
     The step is ``courant`` times the patch's central-difference critical step
     (:func:`dispersion.waves.timestep.patch_omega_max`); :math:`\\Omega` is the exact
     Rayleigh-Lamb root at the same kappa (so the ratio of frequencies is the ratio of phase
-    velocities). NaN where the step is unstable for that mode.
+    velocities; an isotropic plate: :meth:`~dispersion.symbolic.elastic_law.ElasticLaw.poisson_ratio`).
+    NaN where the step is unstable for that mode.
 
     >>> from dispersion.symbolic.plate import plate_patch
     >>> err = fully_discrete_error(plate_patch(mass="lumped"), 0.3, [0.2], 0.5)
     >>> sorted(err), bool(abs(err["S0"][0]) < 0.05)
     (['A0', 'S0'], True)
     """
+    from dispersion.symbolic.plate import with_nu
+
+    patch = with_nu(patch, nu)
     from dispersion.waves.discrete_branches import fundamental_branches
     from dispersion.waves.exact_branches import trace_branches
     from dispersion.waves.timestep import patch_omega_max
 
+    nu = patch.law.poisson_ratio("exact Rayleigh-Lamb branches")
     courant = float(check_positive("courant", courant))
     kappa = np.atleast_1d(np.asarray(kappa, dtype=float))
     if np.any(kappa <= 0) or not np.all(np.isfinite(kappa)):
         raise InputError("kappa must be finite and > 0 (the phase velocity needs kappa > 0)")
-    tau = courant * 2 / patch_omega_max(patch, nu, exact=False)[0]
-    semi = fundamental_branches(patch, nu, kappa)
+    tau = courant * 2 / patch_omega_max(patch, None, exact=False)[0]
+    semi = fundamental_branches(patch, None, kappa)
     top = max(float(np.nanmax(w)) for w in semi.values())
     exact = trace_branches(nu, kappa, 2 * top + 1).omega
     return {lab: time_frequency(semi[lab], tau, scheme) / exact[lab] - 1 for lab in ("S0", "A0")}

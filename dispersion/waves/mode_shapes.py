@@ -44,7 +44,7 @@ import numpy as np
 
 from dispersion.symbolic.bspline import SplineBasis1D, open_knot_vector
 from dispersion.errors import InputError, check_nu
-from dispersion.symbolic.plate import PlatePatch, numeric_pencil
+from dispersion.symbolic.plate import PlatePatch, numeric_pencil, with_nu
 from dispersion.waves.numeric_frequency import cos_sqrt, sinc_sqrt
 from dispersion.waves.rayleigh_lamb import speed_ratio_squared
 
@@ -192,19 +192,20 @@ def mac(a, b) -> float:
     return float(np.dot(a, b) ** 2 / (np.dot(a, a) * np.dot(b, b)))
 
 
-def discrete_modes(patch: PlatePatch, nu: float, kappa) -> tuple[np.ndarray, np.ndarray]:
+def discrete_modes(patch: PlatePatch, nu, kappa) -> tuple[np.ndarray, np.ndarray]:
     """All finite discrete modes, ascending: ``Omega (m, f)`` and control values ``(m, 2n, f)``.
 
     Frequencies where float round-off would blur them are recomputed in extended precision
     (as in :func:`dispersion.waves.discrete_branches.discrete_branches`).
     """
+    patch = with_nu(patch, nu)
     from dispersion.waves.extended_pencil import refine_inaccurate
     from dispersion.waves.pencil_frequencies import pencil_frequencies
 
     kappa = np.atleast_1d(np.asarray(kappa, dtype=float))
-    K, M = numeric_pencil(patch, nu, kappa)
+    K, M = numeric_pencil(patch, None, kappa)
     W, X, err = pencil_frequencies(K, M, patch.massless, vectors=True, bounds=True)
-    return refine_inaccurate(patch, float(nu), kappa, W, None, error=err), X
+    return refine_inaccurate(patch, None, kappa, W, None, error=err), X
 
 
 @dataclass(frozen=True)
@@ -225,7 +226,7 @@ class PairedBranches:
         return out
 
 
-def pair_by_shape(patch: PlatePatch, nu: float, exact, y=SAMPLES,
+def pair_by_shape(patch: PlatePatch, nu, exact, y=SAMPLES,
                   mac_min: float = MAC_MIN) -> PairedBranches:
     """Pair every exact branch with a discrete mode by mode shape (see module docstring).
 
@@ -234,10 +235,11 @@ def pair_by_shape(patch: PlatePatch, nu: float, exact, y=SAMPLES,
     (:func:`scipy.optimize.linear_sum_assignment`); a pair with MAC below ``mac_min`` is
     dropped (NaN). ``exact`` is a :class:`dispersion.waves.exact_branches.ExactBranches`.
     """
+    patch = with_nu(patch, nu)
     from scipy.optimize import linear_sum_assignment
 
     kappa = exact.kappa
-    W, X = discrete_modes(patch, nu, kappa)
+    W, X = discrete_modes(patch, None, kappa)
     labels = list(exact.omega)
     omega = {lab: np.full(kappa.size, np.nan) for lab in labels}
     score = {lab: np.full(kappa.size, np.nan) for lab in labels}

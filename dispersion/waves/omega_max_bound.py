@@ -33,7 +33,7 @@ bisected.
 
 >>> from dispersion.symbolic.plate import plate_patch
 >>> from dispersion.waves.timestep import patch_omega_max
->>> patch = plate_patch(mass="lumped")
+>>> patch = plate_patch(mass="lumped", nu=0.3)
 >>> w = patch_omega_max(patch, 0.3)[0]
 >>> w <= certified_omega_max(patch, 0.3, w) <= 1.001 * w
 True
@@ -68,13 +68,18 @@ def certified_omega_max(patch, nu, omega: float, rtol: float = 1e-3, max_cells: 
                         ) -> float:
     """A proven upper bound :math:`\\bar\\Omega = (1 + rtol)\\,\\Omega` on the largest frequency.
 
-    Nu is taken exactly by its shortest decimal (:func:`dispersion.symbolic.patch.rational`).
+    The moduli of the patch's law are taken exactly
+    (:meth:`~dispersion.symbolic.elastic_law.ElasticLaw.rational_moduli`: nu by its shortest
+    decimal).
     Raises :class:`~dispersion.errors.ConvergenceError` when the proof does not close within
     ``max_cells`` cells or on a cell narrower than 1e-12: the message says that the proof did
     not close and that the bound is *not known to be false*; only where a vector
     :math:`x` with :math:`x^T \\hat D x < 0` is proven at a phase (a frequency above the bound
     there, Rayleigh quotient) does it say that the bound is false.
     """
+    from dispersion.symbolic.plate import with_nu
+
+    patch = with_nu(patch, nu)
     import flint
 
     if patch.model != "bloch" or isinstance(patch.r, sympy.Symbol):
@@ -84,7 +89,7 @@ def certified_omega_max(patch, nu, omega: float, rtol: float = 1e-3, max_cells: 
     old = flint.ctx.prec
     flint.ctx.prec = PRECISION
     try:
-        pencil = _BallPencil(patch, nu, (float(omega) * (1 + float(rtol))))
+        pencil = _BallPencil(patch, (float(omega) * (1 + float(rtol))))
         top = float(omega) * (1 + float(rtol))
         cells, count = [(0.0, math.pi + 1e-12)], 0
         while cells:
@@ -115,11 +120,10 @@ def certified_omega_max(patch, nu, omega: float, rtol: float = 1e-3, max_cells: 
 class _BallPencil:
     """:math:`D^{(k)}(\\theta)` of one patch and bound as flint.arb_mat, massless DOFs first."""
 
-    def __init__(self, patch, nu, bound: float):
+    def __init__(self, patch, bound: float):
         import flint
 
-        from dispersion.symbolic.patch import rational
-        from dispersion.symbolic.plate import lame, mass_block, stiffness_terms, x_coefficients
+        from dispersion.symbolic.plate import mass_block, stiffness_terms, x_coefficients
 
         def q(v):
             v = sympy.Rational(v)
@@ -132,7 +136,7 @@ class _BallPencil:
         def arb_mat(B):
             return flint.arb_mat([[q(B[i, j]) for j in order] for i in order])
 
-        lam = {k: q(v) for k, v in lame(rational("nu", nu), scaled=False).items()}
+        lam = {k: q(v) for k, v in patch.law.rational_moduli().items()}
         self.terms = [(lam[m], f, arb_mat(B)) for m, f, B in stiffness_terms(patch)]
         self.M0 = arb_mat(mass_block(patch))
         self.upper = flint.arb(bound) ** 2

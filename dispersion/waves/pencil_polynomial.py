@@ -16,7 +16,9 @@ off-diagonal blocks only), and with the mass factor moved into the eigenvalue,
 
     P(u, \\mu) = \\det\\bigl(K(u) - \\mu M_0\\bigr) = \\sum_{j,k} a_{jk}\\, u^k \\mu^j
 
-has exact rational coefficients :math:`a_{jk}` (nu rationalised by its shortest decimal).
+has exact rational coefficients :math:`a_{jk}` (the moduli of the patch's law, exact
+rationals of its float data: :meth:`~dispersion.symbolic.elastic_law.ElasticLaw.rational_moduli`,
+nu by its shortest decimal).
 They are found by exact interpolation on a grid of rational nodes (python-flint
 ``fmpq_mat.det``), with a degree bound from the rows of the matrix, so the rigid-body
 cancellation at small kappa is done in exact arithmetic, once per patch: evaluated in
@@ -165,18 +167,17 @@ def _fmpq_mat(rows):
 
 @functools.lru_cache(maxsize=64)
 def _build(key):
-    (p, n, model, r, my, x_mass, nu, basis, parity, x_factor, space) = key
+    (p, n, model, r, my, x_mass, law, basis, parity, x_factor, space) = key
     import flint
     import sympy
 
-    from dispersion.symbolic.plate import lame, stiffness_terms, thickness_matrices
+    from dispersion.symbolic.plate import stiffness_terms, thickness_matrices
 
     Y = thickness_matrices(p, n, space)
     n2 = 2 * n
     My = sympy.Matrix(n, n, list(my))
     M0 = sympy.diag(My, My)
-    nuq = sympy.Rational(nu.numerator, nu.denominator)
-    mat = lame(nuq)
+    mat = law.rational_moduli()
     xp = _x_polys(model, p, r, x_mass, x_factor)
     E = sympy.eye(n2) if basis is None else sympy.Matrix(len(basis), len(basis[0]),
                                                          [v for row in basis for v in row])
@@ -284,20 +285,23 @@ def _trim_like(c):
     return c
 
 
-def pencil_polynomial(patch, nu: float, basis=None, parity: bool = False) -> PencilPolynomial:
+def pencil_polynomial(patch, nu, basis=None, parity: bool = False) -> PencilPolynomial:
     """The exact characteristic polynomial of ``patch`` projected on ``basis`` (module docstring).
 
     ``basis`` is an integer mirror basis (``mirror_bases(n, exact=True)[kind]``) or None
-    (the whole pencil). Cached per patch data, nu and basis; raises :class:`InputError`
+    (the whole pencil). Cached per patch data, law and basis; raises :class:`InputError`
     for blocks larger than :data:`MAX_BLOCK`.
     """
+    from dispersion.symbolic.plate import with_nu
+
+    patch = with_nu(patch, nu)
     nb = 2 * patch.n if basis is None else basis.shape[1]
     if nb > MAX_BLOCK:
         raise InputError(f"pencil block of {nb} rows is larger than MAX_BLOCK = {MAX_BLOCK}")
     r = None if patch.model != "bloch" else Fraction(str(patch.r))
     x_mass = ((0, 1),) if patch.model != "bloch" or patch.x_lumped else tuple(patch.x_mass)
     key = (patch.p, patch.n, patch.model, r, tuple(patch.My), x_mass,
-           Fraction(repr(float(nu))),
+           patch.law.check_numeric("characteristic polynomial"),
            None if basis is None else tuple(tuple(int(v) for v in basis.row(i))
                                             for i in range(basis.shape[0])), bool(parity),
            tuple(patch.x_stiffness) if patch.model == "bloch" else ((0, 1),),

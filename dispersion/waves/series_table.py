@@ -52,27 +52,42 @@ def order_range() -> str:
 class SeriesTable(Rendered):
     """Series of ``branches`` to ``kappa^order``: ``records`` (the JSON interface, one per
     branch: ``branch, mass, model, coefficients`` and the patch fields that apply), computed
-    from ``patch`` (None: the exact equation) at ``nu`` (None: symbolic)."""
+    from ``patch`` (None: the exact equation) with the elastic ``law`` whose numbers are
+    substituted (an isotropic law with nu None: symbolic)."""
 
     branches: tuple[str, ...]
     order: int
     patch: Any
-    nu: Any
+    law: Any
     records: tuple[dict, ...]
 
+    @property
+    def nu(self):
+        """Poisson's ratio substituted (None: symbolic, or a law without one)."""
+        return getattr(self.law, "nu", None)
+
     def _model(self) -> str:
-        return "exact Rayleigh-Lamb" if self.patch is None else self.patch.title()
+        if self.patch is None:
+            return "exact Rayleigh-Lamb"
+        return f"{self.patch.geometry_title()}, {self.patch.mass_title()}"
+
+    def _material(self) -> str:
+        if self.law.kind != "isotropic":
+            return self.law.describe()
+        return "nu symbolic" if self.nu is None else f"nu = {self.nu}"
 
     def title(self) -> str:
-        nu = "nu symbolic" if self.nu is None else f"nu = {self.nu}"
-        return (f"Omega^2 series of {' and '.join(self.branches)}, {self._model()}, {nu}, "
-                f"to kappa^{self.order}")
+        return (f"Omega^2 series of {' and '.join(self.branches)}, {self._model()}, "
+                f"{self._material()}, to kappa^{self.order}")
 
     def header_lines(self) -> list[str]:
         lines = ["Omega = omega h / c_T, kappa = k h (h: half the thickness); Omega^2 as a "
                  "power series in kappa", f"model: {self._model()}"]
-        lines.append("nu: symbolic (coefficients are rational functions of nu)"
-                     if self.nu is None else f"nu: {self.nu}")
+        if self.law.kind != "isotropic":
+            lines.append(f"material: {self.law.describe()}")
+        else:
+            lines.append("nu: symbolic (coefficients are rational functions of nu)"
+                         if self.nu is None else f"nu: {self.nu}")
         if self.patch is not None and self.patch.symbolic_r:
             lines.append("r: symbolic (the aspect ratio b/h of the Bloch model)")
         return lines
@@ -125,10 +140,12 @@ def series_table(branches=("S0", "A0"), order: int = ORDER, *, patch=None,
     """Series of ``branches`` to ``kappa^order`` (see the module docstring).
 
     ``patch``: the discrete :class:`~dispersion.symbolic.patch.Patch` (default: the toolkit's;
-    with ``exact=True`` none may be given); ``nu``: a rational value substituted for
-    Poisson's ratio (None: symbolic). Bounds: :func:`dispersion.symbolic.power_balance.check_request`.
+    with ``exact=True`` none may be given), derived with its elastic law; ``nu``: a rational
+    value substituted for Poisson's ratio (None: the patch's, else symbolic). Bounds:
+    :func:`dispersion.symbolic.power_balance.check_request`.
     """
     from dispersion.errors import InputError
+    from dispersion.symbolic.elastic_law import as_law
 
     branches = (branches,) if isinstance(branches, str) else tuple(branches)
     if isinstance(nu, str):  # "3/10" as the command line reads it
@@ -145,24 +162,28 @@ def series_table(branches=("S0", "A0"), order: int = ORDER, *, patch=None,
         from dispersion.waves.exact_series import exact_series_raw
 
         raws = {b: exact_series_raw(b, order) for b in branches}
+        law = as_law(nu)
     else:
         from dispersion.symbolic.patch import Patch
         from dispersion.symbolic.power_balance import discrete_series_raw
 
         patch = Patch() if patch is None else patch
+        law = patch.law
+        if nu is not None:  # the number as given (a float: its binary value, exact)
+            if not patch.isotropic or patch.nu not in (None, patch.replace(nu=nu).nu):
+                raise InputError(f"nu = {nu} given for a patch of another material "
+                                 f"({patch.law.describe()}): give one")
+            law = as_law(nu)
         raws = discrete_series_raw(branches, order, patch)[0]
-    records = tuple(_record(b, raws[b], patch, nu) for b in branches)
-    return SeriesTable(branches, int(order), patch, nu, records)
+    records = tuple(_record(b, raws[b], patch, law) for b in branches)
+    return SeriesTable(branches, int(order), patch, law, records)
 
 
-def _record(branch: str, raw, patch, nu) -> dict:
+def _record(branch: str, raw, patch, law) -> dict:
     from dispersion.symbolic.power_balance import format_coefficient, substitute_raw
 
-    if nu is not None:
-        from dispersion.errors import check_nu
-
-        check_nu(nu)
-        raw = substitute_raw(raw, "nu", nu)
+    for name, value in law.substitutions().items():
+        raw = substitute_raw(raw, name, value)
     if patch is None:
         mass, model = "exact", "rayleigh-lamb"
     else:
@@ -174,6 +195,8 @@ def _record(branch: str, raw, patch, nu) -> dict:
         record.update(p=patch.p, n=patch.n)
         if patch.singular:
             record.update(contact=patch.contact, gamma_s=str(patch.gamma_s))
-    if nu is not None:
-        record["nu"] = str(nu)
+    if law.kind != "isotropic":
+        record["law"] = law.as_dict()
+    elif law.nu is not None:
+        record["nu"] = str(law.nu)
     return record

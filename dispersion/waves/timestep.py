@@ -203,22 +203,24 @@ class CriticalStep(Rendered):
         return "\n".join(lines)
 
 
-def _edge_omega_max(patch, nu, theta) -> tuple[sympy.Expr, float] | None:
+def _edge_omega_max(patch, theta) -> tuple[sympy.Expr, float] | None:
     """Exact largest Omega of the condensed pencil at theta = 0 or pi (rational there).
 
-    Every entry is rational (nu by its shortest decimal, :func:`dispersion.symbolic.patch.rational`;
+    Every entry is rational (the law's moduli, :meth:`~dispersion.symbolic.elastic_law.ElasticLaw.exact`:
+    nu by its shortest decimal;
     the x-functions at theta = 0 or pi are integers), and the arithmetic stays in QQ: no
     float, no surd (sympy's root isolation needs a polynomial over QQ).
     """
     from sympy.polys.matrices import DomainMatrix
 
-    from dispersion.symbolic.patch import rational
+    from dataclasses import replace
+
     from dispersion.symbolic.plate import dynamic_stiffness
 
     kappa = sympy.Integer(0) if theta == 0 else sympy.pi / patch.r
-    nu_q = rational("nu", nu)
-    Kd = sympy.Matrix(dynamic_stiffness(patch, kappa, sympy.Integer(0), nu_q))
-    M = -(sympy.Matrix(dynamic_stiffness(patch, kappa, sympy.Integer(1), nu_q)) - Kd)
+    exact = replace(patch, law=patch.law.exact())
+    Kd = sympy.Matrix(dynamic_stiffness(exact, kappa, sympy.Integer(0)))
+    M = -(sympy.Matrix(dynamic_stiffness(exact, kappa, sympy.Integer(1))) - Kd)
     K, M = (DomainMatrix.from_Matrix(A).convert_to(sympy.QQ) for A in (Kd, M))
     ml = list(patch.massless)
     keep = [i for i in range(K.shape[0]) if i not in ml]
@@ -236,14 +238,15 @@ def _edge_omega_max(patch, nu, theta) -> tuple[sympy.Expr, float] | None:
     return sympy.sqrt(top), float(sympy.N(sympy.sqrt(top), 20))
 
 
-def float_pencil(patch, nu: float):
+def float_pencil(patch, nu):
     """``kappa -> (K, M)`` float stacks of :func:`dispersion.symbolic.plate.numeric_pencil`,
     its constant matrices converted once (the pencil is evaluated many times here)."""
-    from dispersion.errors import check_nu
-    from dispersion.symbolic.plate import lame, mass_block, stiffness_terms, x_functions
+    from dispersion.symbolic.plate import with_nu
 
-    nu = float(check_nu(nu))
-    mat = lame(nu)
+    patch = with_nu(patch, nu)
+    from dispersion.symbolic.plate import mass_block, stiffness_terms, x_functions
+
+    mat = patch.law.float_moduli()
     terms = [(mat[m], f, np.array(B, dtype=float)) for m, f, B in stiffness_terms(patch)]
     M0 = np.array(mass_block(patch), dtype=float)
 
@@ -265,20 +268,23 @@ EXACT_MAX_DOFS = 12
 MAX_N = 24
 
 
-def patch_omega_max(patch, nu: float, n_theta: int = 65, exact: bool = True
+def patch_omega_max(patch, nu, n_theta: int = 65, exact: bool = True
                     ) -> tuple[float, object, float, str]:
     """Largest :math:`\\Omega` of a numeric Bloch patch over the zone: ``(value, exact, theta, method)``.
 
     ``exact`` (returned) is a sympy number where the maximum sits at a zone end (else None);
     ``exact=False`` skips that symbolic check and reports the float maximum of the grid.
     """
+    from dispersion.symbolic.plate import with_nu
+
+    patch = with_nu(patch, nu)
     from dispersion.waves.pencil_frequencies import pencil_frequencies
 
     n_theta = check_phases(check_positive_int("n_theta", n_theta, minimum=3), 2 * patch.n)
     if patch.model != "bloch" or isinstance(patch.r, sympy.Symbol):
         raise InputError("the critical step needs a Bloch patch with a numeric aspect ratio r")
     r = float(patch.r)
-    pencil = float_pencil(patch, nu)
+    pencil = float_pencil(patch, None)
 
     def top(theta):
         K, M = pencil(np.atleast_1d(theta) / r)
@@ -289,20 +295,20 @@ def patch_omega_max(patch, nu: float, n_theta: int = 65, exact: bool = True
     i = int(np.argmax(values))
     best, where = float(values[i]), float(theta[i])
     if 0 < i < n_theta - 1:  # interior maximum: the root of its slope between the neighbours
-        where = _interior_maximum(patch, nu, pencil, theta[i - 1], theta[i + 1], top)
+        where = _interior_maximum(patch, pencil, theta[i - 1], theta[i + 1], top)
         best = max(best, float(top(where)[0]))
         return best, None, where, (f"numeric: grid of {n_theta} phases, the root of the "
                                    "slope between its neighbours")
     if not exact or 2 * patch.n > EXACT_MAX_DOFS:
         return best, None, where, f"numeric: grid of {n_theta} phases, maximum at a zone end"
-    edge = _edge_omega_max(patch, nu, 0 if i == 0 else 1)
+    edge = _edge_omega_max(patch, 0 if i == 0 else 1)
     if edge is None or abs(edge[1] - best) > 1e-9 * best:
         raise InputError("exact and float largest frequency disagree at the zone end; "
                          "the pencil is ill-conditioned")
     return edge[1], edge[0], where, f"exact at the zone end (grid of {n_theta} phases found no larger)"
 
 
-def _interior_maximum(patch, nu, pencil, lo: float, hi: float, top) -> float:
+def _interior_maximum(patch, pencil, lo: float, hi: float, top) -> float:
     """Phase of the largest frequency in (lo, hi): the root of its slope (Hellmann-Feynman,
     :math:`d\\Omega/d\\theta = x^T (K' - \\Omega^2 M') x / (2 \\Omega\\, x^T M x)`, the
     derivatives by the complex step), so located to rounding (a search on the values
@@ -319,7 +325,7 @@ def _interior_maximum(patch, nu, pencil, lo: float, hi: float, top) -> float:
     def slope(theta):
         K, M = pencil(np.atleast_1d(theta) / r)
         W, X = pencil_frequencies(K, M, patch.massless, vectors=True)
-        dK, dM = pencil_derivative(patch, nu, np.atleast_1d(theta) / r)
+        dK, dM = pencil_derivative(patch, None, np.atleast_1d(theta) / r)
         x, w = X[0, :, -1], W[0, -1]
         return float((x @ dK[0] @ x - w * w * (x @ dM[0] @ x)) / (2 * w * (x @ M[0] @ x)))
 
@@ -331,7 +337,7 @@ def _interior_maximum(patch, nu, pencil, lo: float, hi: float, top) -> float:
     return float(res.x)
 
 
-def critical_time_step(patch, nu: float, n_theta: int = 65, certify: bool = False) -> float:
+def critical_time_step(patch, nu, n_theta: int = 65, certify: bool = False) -> float:
     """Largest stable step of explicit central differences for a Bloch patch, in :math:`H/c_T`.
 
     .. math:: \\Delta t_{crit} = 2 / \\max_{\\theta \\in [0, \\pi]} \\Omega(\\theta / r)
@@ -344,8 +350,11 @@ def critical_time_step(patch, nu: float, n_theta: int = 65, certify: bool = Fals
     >>> 0 < critical_time_step(plate_patch(model="bloch", r=2), 0.3, n_theta=9) < 1
     True
     """
-    omega = patch_omega_max(patch, nu, n_theta)[0]
-    return 2.0 / (certified_omega_max(patch, nu, omega) if certify else omega)
+    from dispersion.symbolic.plate import with_nu
+
+    patch = with_nu(patch, nu)
+    omega = patch_omega_max(patch, None, n_theta)[0]
+    return 2.0 / (certified_omega_max(patch, None, omega) if certify else omega)
 
 
 def critical_step(mass, p: int = 2, *, model: str = "plate", material: Material | str = "steel",
@@ -410,9 +419,9 @@ def critical_step(mass, p: int = 2, *, model: str = "plate", material: Material 
     p, n = check_size(p, n)
     r = sympy.Rational(2, n - p)
     nu = material.nu
-    patch = plate_patch(p, n, "bloch", r, rule, contact, gamma_s)
-    w, exact, theta, method = patch_omega_max(patch, nu, n_theta)
-    w_ref = patch_omega_max(plate_patch(p, n, "bloch", r, "consistent"), nu, n_theta)[0]
+    patch = plate_patch(p, n, "bloch", r, rule, contact, gamma_s, nu=nu)
+    w, exact, theta, method = patch_omega_max(patch, None, n_theta)
+    w_ref = patch_omega_max(plate_patch(p, n, "bloch", r, "consistent", nu=nu), None, n_theta)[0]
     H = (n - p) * h / 2
     c = material.c_T
     proven, failures = None, ()
@@ -420,7 +429,7 @@ def critical_step(mass, p: int = 2, *, model: str = "plate", material: Material 
         from dispersion.errors import ConvergenceError
 
         try:
-            proven = certified_omega_max(patch, nu, w)
+            proven = certified_omega_max(patch, None, w)
         except ConvergenceError as exc:
             failures = (f"no proven stable step: {exc}",)
     return CriticalStep(rule.name, p, "plate", h, c, w, exact, theta, method, 2 * H / (c * w),

@@ -296,9 +296,11 @@ class NewFile:
         checkpoint()
 
     def close(self) -> None:
-        if self.fd is not None:
-            os.close(self.fd)
-            self.fd = None
+        # the descriptor is forgotten before it is closed: a signal handler that raises
+        # between the two (SIGTERM under the CLI) must not leave it to be closed twice
+        fd, self.fd = self.fd, None
+        if fd is not None:
+            os.close(fd)
 
     def discard(self) -> None:
         """Remove the temporary (only if it is still the file this object created)."""
@@ -444,9 +446,9 @@ class NewFolder:
         self._finish()
 
     def _finish(self) -> None:
-        if self.fd is not None:
-            os.close(self.fd)
-            self.fd = None
+        fd, self.fd = self.fd, None  # forgotten before closed (see NewFile.close)
+        if fd is not None:
+            os.close(fd)
         if self.target.kind == "folder":
             self._remove_old()
 
@@ -535,6 +537,6 @@ class NewFolder:
             with contextlib.suppress(OSError):
                 _remove_all(self.folder, self.tmp)
         self.done = True
-        if self.fd is not None:
-            os.close(self.fd)
-            self.fd = None
+        fd, self.fd = self.fd, None  # forgotten before closed (see NewFile.close)
+        if fd is not None:
+            os.close(fd)

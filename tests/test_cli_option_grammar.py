@@ -121,7 +121,7 @@ def _fake_run(args, kwargs):
     verdict = SimpleNamespace(line=lambda: "reproduced: (recorded call)", reproduced=True)
     return SimpleNamespace(readme=kwargs.get("readme"), readme_changed=False,
                            out=Path(args[0] or "reproduced"), sections=kwargs["sections"],
-                           seconds=1.0, verdict=verdict)
+                           seconds=1.0, verdict=verdict, text=verdict.line)
 
 
 def _stored_race(args, kwargs):

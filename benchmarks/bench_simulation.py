@@ -177,8 +177,8 @@ def markdown(result: dict) -> str:
     return ("# The explicit loop of the guided-wave simulation against the bare sparse loop\n\n"
             f"Machine: {result['machine']}. Best of {result['repeat']} runs each. The bare "
             "loop is `y = K @ u` with the same CSR matrix and the same steps; the target for "
-            "diagonal masses is ours / bare within 2. Measured on a loaded machine the ratios "
-            "are indicative only.\n\n" + "\n".join(lines) + "\n" + note)
+            "diagonal masses is ours / bare within 2 (both timed in the same run, so a load "
+            "on the machine slows both).\n\n" + "\n".join(lines) + "\n" + note)
 
 
 def main(argv=None) -> int:

@@ -84,7 +84,7 @@ def test_measure_then_render_writes_envelopes_and_index(stubs, tmp_path, capsys)
     calls = stubs()
     out = tmp_path / "rep"
     assert main(["reproduce", "--quick", "--out", str(out), "--jobs", "1"]) == 0
-    # the opt-in sections (tens of minutes) are measured only when named
+    # the opt-in sections (minutes each) are measured only when named
     assert [c[:2] for c in calls] == ([("measure", n) for n in DEFAULT_SECTIONS]
                                       + [("render", n) for n in DEFAULT_SECTIONS])
     env = json.loads((out / "ring.json").read_text())

@@ -82,7 +82,7 @@ def register(subparsers) -> None:
     parser.add_argument("--sections", default=",".join(DEFAULT_SECTIONS),
                         help="comma-separated sections, run in this order, among "
                              f"{','.join(SECTIONS)} (default: all but "
-                             f"{','.join(OPT_IN_SECTIONS)}, whose sweep takes tens of minutes)")
+                             f"{','.join(OPT_IN_SECTIONS)}, whose sweep takes minutes)")
     parser.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
                         help="progress bars on stderr (default: only when stderr is a terminal)")
     parser.set_defaults(func=handler)
@@ -122,7 +122,7 @@ def handler(args: argparse.Namespace) -> int:
           f"{run.seconds:.1f} s)")
     skipped = [n for n in OPT_IN_SECTIONS if n not in args.sections.split(",")]
     if skipped and not args.render:
-        print(f"not measured (opt-in, tens of minutes): {', '.join(skipped)}; run "
+        print(f"not measured (opt-in, minutes): {', '.join(skipped)}; run "
               f"`dispersion reproduce --sections {','.join(skipped)}`")
     print(run.text())  # the verdict line, the peers not run, a short summary
     if args.update_reference:

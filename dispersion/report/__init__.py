@@ -37,9 +37,10 @@ __all__ = ["SECTIONS", "DEFAULT_SECTIONS", "OPT_IN_SECTIONS", "section_module"]
 #: Report sections in the order they run (module names in :mod:`dispersion.report`).
 SECTIONS = ("coefficients", "branches", "ring", "series_speed", "studies", "peers",
             "cost_accuracy", "lumping", "wave_simulation")
-#: Sections measured only when named (``--sections``): their sweep takes tens of minutes on two
-#: cores (wave_simulation: 189 simulations, about 19 minutes), which the main job does not ask
-#: of every user. Their committed results stay in the reference and are rendered with it.
+#: Sections measured only when named (``--sections``): a sweep beyond the paper that takes
+#: minutes (wave_simulation: 189 simulations, 4 minutes on a quiet 2-core machine, 19 on a
+#: loaded one), which the main job does not ask of every user. Their committed results stay in
+#: the reference and are rendered with it.
 OPT_IN_SECTIONS = ("wave_simulation",)
 #: What ``dispersion reproduce`` measures by default.
 DEFAULT_SECTIONS = tuple(s for s in SECTIONS if s not in OPT_IN_SECTIONS)

@@ -190,7 +190,7 @@ def reproduce(
     sections : sequence of str
         Sections to measure, among :data:`dispersion.report.SECTIONS` (default
         :data:`~dispersion.report.DEFAULT_SECTIONS`: every section but the opt-in ones, whose
-        sweeps take tens of minutes); the others already in ``out`` are kept. With ``render`` every section present is rendered.
+        sweeps take minutes); the others already in ``out`` are kept. With ``render`` every section present is rendered.
     quick : bool
         The quick subset (coarser grids, lower orders); not comparable with a full reference.
     jobs : int, optional

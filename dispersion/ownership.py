@@ -108,15 +108,19 @@ class Way:
     def close(self, *, remove_created: bool = False) -> None:
         """Close the descriptors; with ``remove_created``, remove the folders made on the
         way (each only if still empty)."""
-        for fd, name in reversed(self.created):
+        # each descriptor is forgotten before it is closed: an interrupt raised between the
+        # two (a signal handler) must not leave it to be closed twice
+        while self.created:
+            fd, name = self.created.pop()
             if remove_created:
                 try:
                     os.rmdir(name, dir_fd=fd)
                 except OSError:
                     remove_created = False  # not empty: keep it and those above it
             os.close(fd)
-        self.created = []
-        os.close(self.fd)
+        fd, self.fd = self.fd, None
+        if fd is not None:
+            os.close(fd)
 
 
 def _text(path, option: str, what: str) -> str:
@@ -183,13 +187,14 @@ def open_way(path, option: str, what: str, *, create: bool) -> Way | list[str]:
                 _fail(f"{option} {shown}: {here} is a file, not a folder")
             except PermissionError:
                 _fail(f"{option} {shown}: folder {here} cannot be opened (permission denied)")
-            os.close(fd)
-            fd = new
+            old, fd = fd, new  # forgotten before closed (see Way.close)
+            os.close(old)
         if missing:
             if not os.access(".", os.W_OK | os.X_OK, dir_fd=fd, effective_ids=True):
                 _fail(f"{option} {shown}: the folder that would hold "
                       f"{printable(missing[0])} is not writable")
-            os.close(fd)
+            old, fd = fd, None  # forgotten before closed (see Way.close)
+            os.close(old)
             return missing
         if not os.access(".", os.W_OK | os.X_OK, dir_fd=fd, effective_ids=True):
             _fail(f"{option} {shown}: its folder is not writable")

@@ -389,3 +389,35 @@ def test_branches_csv_and_figure_are_written_before_either_is_renamed(tmp_path, 
     assert main(args) == 0
     assert csv.read_text().startswith("#") and fig.read_bytes()[:4] == b"\x89PNG"
     assert sorted(p.name for p in tmp_path.rglob("*")) == ["a", "b", "fig.png", "rows.csv"]
+
+
+def test_an_interrupt_right_after_any_close_unwinds_without_closing_twice(tmp_path, monkeypatch):
+    # a signal handler (Ctrl-C, SIGTERM under the CLI) may raise right after a descriptor is
+    # closed and before the writer forgets it; then the unwinding must not close it again
+    # (EBADF replaced the interrupt: 'error: Bad file descriptor', exit 1). Every close of a
+    # folder write in turn, the old folder kept or the new one whole.
+    real = os.close
+    for k in range(200):
+        out = tmp_path / f"k{k}" / "res"  # a parent each: leftovers of one do not count in the next
+        io.write_files(out, {"a.csv": "OLD", "b.csv": "OLD"})
+        seen = []
+
+        def close_then_interrupt(fd, k=k, seen=seen):
+            real(fd)
+            seen.append(fd)
+            if len(seen) == k + 1:
+                raise KeyboardInterrupt
+
+        monkeypatch.setattr(os, "close", close_then_interrupt)
+        try:
+            io.write_files(out, {"a.csv": "NEW", "b.csv": "NEW"})
+        except KeyboardInterrupt:
+            pass
+        finally:
+            monkeypatch.setattr(os, "close", real)
+        got = {(out / name).read_text() for name in ("a.csv", "b.csv")}
+        assert got in ({"OLD"}, {"NEW"}), (k, got)
+        if len(seen) <= k:  # the write closed fewer descriptors: every one was tried
+            break
+    else:
+        raise AssertionError("more than 200 closes in one folder write")

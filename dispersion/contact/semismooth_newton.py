@@ -109,8 +109,13 @@ def newton(prob, nm, split, state, ut, c1, rows, fixed=None, tangent=None, guess
         d0 = tangent.solve(-(r + GT @ mu))
         mu_new = np.zeros_like(mu)
         if act.any():
-            mu_new[act] = np.linalg.solve(tangent.S[np.ix_(act, act)],
-                                          -g[act] - G[act] @ d0)
+            try:
+                mu_new[act] = np.linalg.solve(tangent.S[np.ix_(act, act)],
+                                              -g[act] - G[act] @ d0)
+            except np.linalg.LinAlgError:
+                # numpy >= 2.4 raises where older ones returned non-finite values
+                raise ConvergenceError(
+                    f"singular Newton matrix at t = {state.t:.6g}") from None
         dU = d0 + tangent.W[:, act] @ mu_new[act]
         if not (np.all(np.isfinite(dU)) and np.all(np.isfinite(mu_new))):
             raise ConvergenceError(f"singular Newton matrix at t = {state.t:.6g}")

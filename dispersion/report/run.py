@@ -199,7 +199,11 @@ def _load_reference(reference: Path) -> dict[str, dict]:
 
 
 def _same(a: Path, b: Path) -> bool:
-    return Path(a).absolute().resolve() == Path(b).absolute().resolve()
+    """The same folder: by (st_dev, st_ino) where it exists, through ./, .., a link or a bind
+    mount (:func:`dispersion.ownership.same_file`)."""
+    from dispersion.ownership import same_file
+
+    return same_file(a, b)
 
 
 def reproduce(

@@ -52,10 +52,11 @@ def modules(package: Path) -> dict[str, Path]:
     return out
 
 
-def imports(name: str, path: Path, known: dict[str, Path]) -> list[tuple[str, int]]:
-    """Modules of the package that ``name`` imports (with line numbers), at any depth."""
+def imports(name: str, path: Path, known) -> list[tuple[str, int]]:
+    """Modules of the package that ``name`` imports (with line numbers), at any depth;
+    ``known``: the dotted names that are modules (``from pkg import mod`` imports ``pkg.mod``)."""
     package = name if path.name == "__init__.py" else name.rpartition(".")[0]
-    top = name.split(".")[0]
+    top = "dispersion"
     out = []
     for node in ast.walk(ast.parse(path.read_text(), str(path))):
         if isinstance(node, ast.Import):
@@ -82,17 +83,26 @@ def wing(name: str) -> str:
     return parts[0]
 
 
-def violations(package: Path, layers=LAYERS, max_modules: int = MAX_MODULES) -> list[str]:
-    """Everything that breaks the map, one line each (empty when the package keeps it)."""
+def violations(package: Path, layers=LAYERS, max_modules: int = MAX_MODULES,
+               moved=None) -> list[str]:
+    """Everything that breaks the map, one line each (empty when the package keeps it).
+
+    ``moved``: old path -> new paths (the shim's table); a module of the package that imports
+    an old path is reported (the shim is for the package's users)."""
     level = {w: i for i, ws in enumerate(layers) for w in ws}
     known = modules(package)
+    moved = {} if moved is None else moved
     out = []
     for name, path in known.items():
         own = wing(name)
         if own not in level:
             out.append(f"{name}: outside the declared wings ({own!r})")
             continue
-        for target, line in imports(name, path, known):
+        for target, line in imports(name, path, set(known) | set(moved)):
+            if target in moved:
+                out.append(f"{name}:{line} imports the old path {target}: import "
+                           f"{' or '.join(moved[target])}")
+                continue
             other = wing(target)
             if other == own or other not in level:
                 continue  # a target outside the wings is reported as a module above
@@ -115,7 +125,8 @@ def test_the_package_keeps_its_map():
     package = ROOT / "dispersion"
     known = modules(package)
     assert len(known) > 150 and {wing(n) for n in known} >= {w for ws in LAYERS for w in ws}
-    assert not violations(package), "\n".join(violations(package))
+    found = violations(package, moved=_moved())
+    assert not found, "\n".join(found)
     # the old waves/ is only the face of its shim: a new module belongs to a wing
     assert sorted(p.name for p in (package / "waves").glob("*.py")) == ["__init__.py"]
 
@@ -158,6 +169,26 @@ def test_a_planted_climb_is_caught(tmp_path):
     found = violations(bad)
     assert len(found) == 2 and "continuum.sh:3 imports dispersion.answers.branch_table" in found[0]
     assert "wing 'materials' is beside 'splines'" in found[1]
+
+
+def test_an_import_of_an_old_path_is_caught(tmp_path):
+    files = {**CLEAN, "answers/units.py": "def f():\n    from dispersion.waves import sh\n"}
+    moved = {"dispersion.waves.sh": ("dispersion.continuum.sh",)}
+    assert violations(_tree(tmp_path, files), moved=moved) == [
+        "dispersion.answers.units:2 imports the old path dispersion.waves.sh: import "
+        "dispersion.continuum.sh"]
+
+
+def test_no_test_benchmark_or_notebook_imports_an_old_path():
+    moved = _moved()
+    found = []
+    for place in ("tests", "benchmarks", "notebooks", "examples"):
+        for path in sorted((ROOT / place).rglob("*.py")):
+            if path.name == Path(__file__).name:
+                continue  # this file imports old paths on purpose
+            found += [f"{path.relative_to(ROOT)}:{line} imports {target}"
+                      for target, line in imports("tests.x", path, set(moved)) if target in moved]
+    assert not found, "\n".join(found)
 
 
 def test_an_unknown_wing_and_a_crowded_folder_are_caught(tmp_path):

@@ -61,6 +61,12 @@ REVIEWED = {
         "name runs over the constant tuple _SUBCOMMANDS",
     ("report/__init__.py", "importlib.import_module(module_name)"):
         "the section name is checked against the constant tuple SECTIONS first",
+    ("_moved.py", "importlib.import_module(f'{package}.{name}')"):
+        "package_getattr: the name is checked against MOVED, the constant table of old paths",
+    ("_moved.py", "importlib.import_module(name)"):
+        "the new paths of an old one, read from the constant table MOVED by the finder",
+    ("materials/__init__.py", "importlib.import_module(f'{__name__}.materials')"):
+        "a constant module name (the material table of the wing)",
     ("paper_studies.py", "sympy.nsimplify(gamma)"):
         "gamma runs over the study's own grid of sympy Rationals",
     ("interpolatory_spline.py", "sympy.nsimplify(v)"):
@@ -356,13 +362,13 @@ def test_every_case_through_reproduce_render_slow(sandbox, capsys, section):
 def _api_doors():
     """(name, call taking one value) for every door of the API that takes an exact number."""
     import dispersion
-    from dispersion.symbolic import bspline
-    from dispersion.symbolic.elastic_law import Isotropic, Orthotropic
-    from dispersion.symbolic.mass_scaling import check_beta
+    from dispersion.splines import bspline
+    from dispersion.materials.elastic_law import Isotropic, Orthotropic
+    from dispersion.mass_rules.mass_scaling import check_beta
     from dispersion.symbolic.patch import Patch
     from dispersion.symbolic.plate import dynamic_stiffness, plate_patch
-    from dispersion.waves.fully_discrete import fully_discrete_series, time_series
-    from dispersion.waves.series_table import series_table
+    from dispersion.time_stepping.fully_discrete import fully_discrete_series, time_series
+    from dispersion.answers.series_table import series_table
 
     return [
         ("patch(r=)", lambda v: dispersion.patch(r=v)),

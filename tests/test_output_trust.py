@@ -47,8 +47,8 @@ def _refused(argv, capsys, *words) -> str:
 @pytest.fixture
 def no_work(monkeypatch):
     """The refusals come before any computation."""
-    import dispersion.waves.branch_table as branch_table
-    import dispersion.waves.critical_steps as critical_steps
+    import dispersion.answers.branch_table as branch_table
+    import dispersion.answers.critical_steps as critical_steps
 
     def must_not_run(*args, **kwargs):
         raise AssertionError("the computation started")

@@ -32,9 +32,9 @@ from dispersion.claims.claims_file import MAX_FILE_BYTES as CLAIMS_BYTES
 from dispersion.claims.claims_file import MAX_NESTING as CLAIMS_DEPTH
 from dispersion.cli import main
 from dispersion.errors import InputError
-from dispersion.symbolic.mass_rule_file import MAX_FILE_BYTES as RULE_BYTES
-from dispersion.symbolic.mass_rule_file import MAX_KEYS as RULE_KEYS
-from dispersion.symbolic.mass_rule_file import rule_from_toml
+from dispersion.mass_rules.mass_rule_file import MAX_FILE_BYTES as RULE_BYTES
+from dispersion.mass_rules.mass_rule_file import MAX_KEYS as RULE_KEYS
+from dispersion.mass_rules.mass_rule_file import rule_from_toml
 from dispersion.untrusted import MAX_KEY_CHARS, MAX_KEYS, check_toml, nesting_depth
 
 #: What each refusal must name: the limit it met.

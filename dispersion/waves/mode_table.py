@@ -205,5 +205,5 @@ def lamb_modes(material: Material, thickness_mm: float, *, frequency_khz=None,
         raise InputError(f"{name} must lie in [{lo * scale:.4g}, {hi * scale:.4g}] {unit} for "
                          f"this plate ({material.name}, d = {thickness_mm:g} mm), got "
                          f"{float(values[bad][0]):.6g} {unit}" + "".join(f"; {h}" for h in hints))
-    roots = modes_at_frequency(material.nu, omega, kinds=tuple(kinds), zgv=zgv)
+    roots = modes_at_frequency(material.nu_exact, omega, kinds=tuple(kinds), zgv=zgv)
     return ModeTable(material, thickness_mm, f_khz, roots)

@@ -88,9 +88,10 @@ FREQUENCY_OMEGA_MAX = 30.0
 #: (about a minute of work at ~3 us per sample).
 MAX_SCAN_SAMPLES = 20_000_000
 _KAPPA_LIMIT = 300.0
-#: Most scan samples of one class decided in ball arithmetic per call. Rule: the scans of the
-#: promise search left at most 3 samples within the float bound per class; twenty times that.
-MAX_ARB_SAMPLES = 64
+#: Most scan samples of one class decided in ball arithmetic, per requested frequency. Rule:
+#: 122 scans (random nu and Omega, next to cut-offs, a 100-frequency sweep) left at most 2
+#: samples within the float bound per class; eight times that.
+MAX_ARB_SAMPLES = 16
 
 
 @dataclass(frozen=True)
@@ -197,12 +198,12 @@ class _Scan:
     def certain(self):
         return np.flatnonzero(np.abs(self.g) > self.e)
 
-    def decide_in_arb(self, ratio: Fraction, cap: int = MAX_ARB_SAMPLES):
+    def decide_in_arb(self, ratio: Fraction):
         """Samples whose float sign is within the rounding bound decided in ball arithmetic
         at the exact ``ratio`` (:func:`~dispersion.waves.root_certificate.arb_sign`): next to
         a cut-off at kappa = 0, next to a ZGV point at its kappa. A decided sample keeps its
         sign with a magnitude just above its bound, so it counts as certain."""
-        for i in np.flatnonzero(~(np.abs(self.g) > self.e))[:cap]:
+        for i in np.flatnonzero(~(np.abs(self.g) > self.e))[:MAX_ARB_SAMPLES * self.omega.size]:
             k = float(self.k[i])
             sign = arb_sign(_arb_function(self.kind, float(self.omega[self.fi[i]]), ratio),
                             exact_square(k), _arb_prec(k))

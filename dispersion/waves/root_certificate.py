@@ -49,13 +49,14 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["MAX_PREC", "arb_certified", "arb_sign", "bracket_points", "exact_square",
+__all__ = ["MAX_DOUBLINGS", "arb_certified", "arb_sign", "bracket_points", "exact_square",
            "float_certified", "refine_in_squares"]
 
-#: Ceiling of the working precision in bits (the precision doubles from the caller's start
-#: until a ball excludes 0). Rule: the deepest case the promise search met needs about 400
-#: bits (a root 1e-17 relative from a cut-off at kappa near 300); eight times that.
-MAX_PREC = 4096
+#: Doublings of the working precision over the caller's start before a sign is given up
+#: (0: undecided). Rule: in the promise searches every sign was decided at its start (315
+#: signs, starts of 96 to 192 bits; the start grows with kappa and next to cut-offs); four
+#: doublings, 16 times the start, leave room for what they did not meet.
+MAX_DOUBLINGS = 4
 
 
 def bracket_points(kappa, delta: float):
@@ -97,15 +98,17 @@ def exact_square(kappa: float, prec: int = 128):
         return k * k
 
 
-def arb_sign(arb_value, x, prec: int, max_prec: int = MAX_PREC) -> int:
+def arb_sign(arb_value, x, prec: int, max_prec: int | None = None) -> int:
     """Sign of the exact F at :math:`x = \\kappa^2` (an ``arb``): +1 or -1 once the ball
     ``arb_value(x, prec)`` excludes 0, the precision doubling from ``prec`` up to
-    ``max_prec``; 0 if it never does (F is 0 there, or too close to it for ``max_prec``).
+    ``max_prec`` (default :data:`MAX_DOUBLINGS` doublings); 0 if it never does (F is 0
+    there, or too close to it).
 
     >>> import flint
     >>> arb_sign(lambda x, prec: x - flint.arb(1) / 3, flint.arb(0.25), 64)
     -1
     """
+    max_prec = prec << MAX_DOUBLINGS if max_prec is None else max_prec
     while prec <= max_prec:
         v = arb_value(x, prec)
         if v > 0:
@@ -117,7 +120,7 @@ def arb_sign(arb_value, x, prec: int, max_prec: int = MAX_PREC) -> int:
 
 
 def arb_certified(arb_value, kappa: float, delta: float, prec: int,
-                  max_prec: int = MAX_PREC) -> bool:
+                  max_prec: int | None = None) -> bool:
     """True where ball arithmetic proves a sign change of the exact F at
     :func:`bracket_points` of ``kappa`` (a float); ``arb_value(x, prec)`` encloses F at
     :math:`x = \\kappa^2`."""
@@ -129,8 +132,9 @@ def arb_certified(arb_value, kappa: float, delta: float, prec: int,
     return s_lo * s_hi < 0
 
 
-def refine_in_squares(arb_value, a: float, b: float, prec: int, *, max_prec: int = MAX_PREC,
-                      rtol: float = 1e-17, max_iter: int = 400) -> float | None:
+def refine_in_squares(arb_value, a: float, b: float, prec: int, *,
+                      max_prec: int | None = None, rtol: float = 1e-17,
+                      max_iter: int = 400) -> float | None:
     """A root of the exact F in :math:`(a, b)`, :math:`0 \\le a < b` floats, as the float
     nearest to it; None if the ends' signs (decided in ball arithmetic) are not opposite or
     the iteration does not close.
@@ -142,6 +146,7 @@ def refine_in_squares(arb_value, a: float, b: float, prec: int, *, max_prec: int
     """
     import flint
 
+    max_prec = prec << MAX_DOUBLINGS if max_prec is None else max_prec
     xa, xb = exact_square(a, prec), exact_square(b, prec)
     sa = arb_sign(arb_value, xa, prec, max_prec)
     sb = arb_sign(arb_value, xb, prec, max_prec)

@@ -69,7 +69,8 @@ _MODULES = {
     "rendering": "rendering", "critical_steps": "waves.critical_steps",
     "series_table": "waves.series_table", "errata_sheet": "claims.errata_sheet",
     "discrete_error": "waves.discrete_error", "pencil_frequencies": "waves.pencil_frequencies",
-    "illinois": "waves.illinois", "mass_check": "symbolic.mass_check",
+    "illinois": "waves.illinois", "root_certificate": "waves.root_certificate",
+    "mass_check": "symbolic.mass_check",
     "matrix_kind": "symbolic.matrix_kind", "certified_roots": "waves.certified_roots",
     "certified_slopes": "waves.certified_slopes", "omega_max_bound": "waves.omega_max_bound",
     # the mass rules of the lumping literature (issue 29)

@@ -19,10 +19,10 @@ import pytest
 from hypothesis import example, given
 from hypothesis import strategies as st
 
-from dispersion.waves.frequency import (FREQUENCY_OMEGA_MAX, FREQUENCY_OMEGA_MIN,
+from dispersion.continuum.frequency import (FREQUENCY_OMEGA_MAX, FREQUENCY_OMEGA_MIN,
                                         modes_at_frequency, zgv_points_below)
-from dispersion.waves.materials import Material, material
-from dispersion.waves.mode_table import lamb_modes
+from dispersion.materials.materials import Material, material
+from dispersion.answers.mode_table import lamb_modes
 from mp_lamb import cutoffs_mp, mp_exact, roots_in_window, roots_near_zero, zgv_mp
 from promise_search import FAST_FEW, SLOW, record
 
@@ -157,7 +157,7 @@ def test_the_nearest_float_to_nu_moves_a_root_next_to_a_cut_off():
 # --- the search ------------------------------------------------------------------------------
 
 def _ratios():
-    from dispersion.waves.materials import MATERIALS
+    from dispersion.materials.materials import MATERIALS
 
     table = sorted(m.c_L / m.c_T for m in MATERIALS.values())
     return st.one_of(st.sampled_from(table), st.floats(RATIO_MIN, RATIO_MAX))

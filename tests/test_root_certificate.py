@@ -1,4 +1,4 @@
-"""The certificate of a root (``dispersion.waves.root_certificate``) and its two halves: the float
+"""The certificate of a root (``dispersion.continuum.root_certificate``) and its two halves: the float
 Rayleigh-Lamb function with a proven rounding bound and the function in ball arithmetic.
 
 References: the textbook equation in p and q at 60 digits (plus the cosh-sized cancellation),
@@ -14,9 +14,9 @@ import numpy as np
 from hypothesis import example, given
 from hypothesis import strategies as st
 
-from dispersion.waves.numeric_frequency import frequency_function_bound
-from dispersion.waves.rayleigh_lamb import arb_frequency_function, speed_ratio_squared
-from dispersion.waves.root_certificate import (arb_certified, bracket_points, exact_square,
+from dispersion.continuum.numeric_frequency import frequency_function_bound
+from dispersion.continuum.rayleigh_lamb import arb_frequency_function, speed_ratio_squared
+from dispersion.continuum.root_certificate import (arb_certified, bracket_points, exact_square,
                                                float_certified, refine_in_squares)
 from mp_lamb import mp_exact, textbook_F
 from promise_search import FAST, SLOW, record

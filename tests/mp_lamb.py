@@ -123,3 +123,9 @@ def zgv_mp(kind, kappa, W, nu):
     k, w = mpmath.findroot(system, (mpmath.mpf(kappa), mpmath.mpf(W)))
     assert abs(system(k, w)[0]) < mpmath.mpf(10) ** (-mpmath.mp.dps + 15)
     return k, w
+
+
+def group_velocity_mp(kind, kappa, W, nu):
+    """c_g / c_T = dOmega/dkappa = -F_kappa / F_Omega of the textbook equation at a root."""
+    F = lambda k, w: textbook_F(kind, k * k, w, nu)   # noqa: E731
+    return -mpmath.diff(lambda k: F(k, W), kappa) / mpmath.diff(lambda w: F(kappa, w), W)

@@ -23,7 +23,8 @@ from dispersion.continuum.frequency import (FREQUENCY_OMEGA_MAX, FREQUENCY_OMEGA
                                         modes_at_frequency, zgv_points_below)
 from dispersion.materials.materials import Material, material
 from dispersion.answers.mode_table import lamb_modes
-from mp_lamb import cutoffs_mp, mp_exact, roots_in_window, roots_near_zero, zgv_mp
+from mp_lamb import (cutoffs_mp, group_velocity_mp, mp_exact, roots_in_window,
+                     roots_near_zero, zgv_mp)
 from promise_search import FAST_FEW, SLOW, record
 
 RTOL = 1e-12
@@ -39,22 +40,26 @@ def _plate(ratio: float) -> Material:
     return Material(ratio * 1000.0, 1000.0)
 
 
-def _compare(res, omega, kind, refs, inside, case, promise):
+def _compare(res, omega, kind, refs, inside, case, promise, nu):
     """Every returned root of ``kind`` with ``inside(kappa)`` against the references (each
-    within RTOL of one), and every reference root returned: or a failure of that class at that
+    within RTOL of one, its group velocity within 1e-10 relative, or absolute in units of c_T
+    below c_T), and every reference root returned: or a failure of that class at that
     frequency is listed."""
     listed = any(w == omega and k == kind for w, k, _ in res.failures)
-    mine = [(lab, float(k)) for lab, k in zip(res.label, res.kappa)
+    mine = [(lab, float(k), float(g)) for lab, k, g in zip(res.label, res.kappa, res.group)
             if lab[0] == kind and not lab.startswith("SH") and inside(float(k))]
-    for lab, k in mine:
+    for lab, k, g in mine:
         assert lab[1:].isdigit() or listed, (lab, k, case)
         if listed:
             continue
         assert refs, f"{lab} kappa={k!r} has no reference root near it at {case}"
         ref = min(refs, key=lambda r: abs(r - k))
         record(promise, float(abs(k / ref - 1)), RTOL, mode=lab, kappa=k, **case)
+        ref_g = group_velocity_mp(kind, ref, mpmath.mpf(omega), nu)
+        record(promise + " (c_g)", float(abs(g - ref_g) / max(abs(ref_g), 1)), 1e-10,
+               mode=lab, kappa=k, **case)
     for ref in refs:
-        assert listed or any(abs(k / ref - 1) <= RTOL for _, k in mine), \
+        assert listed or any(abs(k / ref - 1) <= RTOL for _, k, _ in mine), \
             f"reference root {mpmath.nstr(ref, 17)} ({kind}) not returned at {case}"
 
 
@@ -75,7 +80,7 @@ def _check_cutoff(ratio, kind, n, d):
             refs = [r for r in roots_near_zero(fam, W, nu, KAPPA_NEAR)
                     if not (fam in at and r < 1e-6)]   # a mode at its cut-off (8 eps): named
             _compare(res, omega, fam, refs, lambda k: k < KAPPA_NEAR, case,
-                     "frequency roots next to a cut-off")
+                     "frequency roots next to a cut-off", nu)
         for lab, k in zip(res.label, res.kappa):   # SH next to its cut-off: closed form
             if lab.startswith("SH") and k < KAPPA_NEAR:
                 m = int(lab[2:])
@@ -102,7 +107,7 @@ def _check_zgv(ratio, which, d):
         lo, hi = float(kz * (1 - width)), float(kz * (1 + width))
         case = {"ratio": ratio, "target": f"ZGV {p.label}", "d": d, "omega": omega}
         _compare(res, omega, kind, refs, lambda k: lo < k < hi, case,
-                 "frequency roots next to a ZGV point")
+                 "frequency roots next to a ZGV point", nu)
 
 
 # --- the cases of issue 34, through the calculator's material route ------------------------

@@ -214,3 +214,30 @@ def test_roots_next_to_every_zgv_point(ratio, which, d):
 @lambda fn: _zgv_domain(fn, full=True)
 def test_roots_next_to_every_zgv_point_slow(ratio, which, d):
     _check_zgv(ratio, which, d)
+
+
+def test_a_pair_the_zgv_kappa_does_not_split_is_found_at_the_extremum(monkeypatch):
+    # 1e-14 above the S1 ZGV frequency of nu = 0.3 the pair is about 2e-7 wide (relative);
+    # with the ZGV point's kappa moved 1e-5 off (so that it lies outside the pair), the pair is
+    # still found, at the extremum of F located in ball arithmetic, and certified
+    import dataclasses
+
+    import dispersion.continuum.frequency as frequency
+
+    nu_q = material("aluminium").nu_exact
+    p = next(p for p in zgv_points_below(float(nu_q), 3.0) if p.label == "S1")
+    moved = [dataclasses.replace(p, kappa=p.kappa * (1 + 1e-5))]
+    monkeypatch.setattr(frequency, "zgv_points_below", lambda nu, top: moved)
+    with mpmath.workdps(60):
+        nu = mp_exact(nu_q)
+        kz, wz = zgv_mp("S", p.kappa, p.omega, nu)
+        omega = float(wz * (1 + mpmath.mpf("1e-14")))
+        refs = roots_in_window("S", mpmath.mpf(omega), nu, kz, 1e-4)
+        assert len(refs) == 2 and all(abs(r / kz - 1) < 1e-6 for r in refs)
+        res = frequency.modes_at_frequency(nu_q, [omega], kinds=("S",))
+        assert not res.failures
+        s1 = sorted(k for lab, k in zip(res.label, res.kappa) if lab == "S1"
+                    and abs(k / float(kz) - 1) < 1e-4)
+        assert len(s1) == 2
+        for k, ref in zip(s1, sorted(refs)):
+            assert abs(k / ref - 1) <= RTOL

@@ -68,7 +68,8 @@ from dispersion.continuum.numeric_frequency import frequency_function_bound, fre
 from dispersion.continuum.rayleigh_lamb import (arb_frequency_function, cutoff_frequencies,
                                                 mpmath_frequency_function, speed_ratio_squared)
 from dispersion.continuum.root_certificate import (arb_certified, arb_sign, exact_square,
-                                                   float_certified, refine_in_squares)
+                                                   extremum_in_squares, float_certified,
+                                                   refine_in_squares)
 from dispersion.continuum.sh import at_cutoff
 
 __all__ = ["FREQUENCY_OMEGA_MAX", "FREQUENCY_OMEGA_MIN", "MAX_SCAN_SAMPLES", "SLOPE_OMEGA",
@@ -88,10 +89,18 @@ FREQUENCY_OMEGA_MAX = 30.0
 #: (about a minute of work at ~3 us per sample).
 MAX_SCAN_SAMPLES = 20_000_000
 _KAPPA_LIMIT = 300.0
+#: A frequency within this relative distance of a ZGV point's (as the float ZGV tracer found
+#: it) has the pair of roots next to it split at the extremum of F located in ball
+#: arithmetic (:func:`_split_zgv_pairs`), not only at the ZGV point's kappa. Rule: the float
+#: ZGV kappa was within 2e-14 relative of the 50-digit one at 20 points of random plates, and
+#: the pair's half-width is about sqrt(d) relative (d: the distance): 1e-12 keeps the pair
+#: found with a ZGV kappa a million times worse.
+ZGV_SPLIT = 1e-12
 #: Most scan samples of one class decided in ball arithmetic, per requested frequency. Rule:
 #: 122 scans (random nu and Omega, next to cut-offs, a 100-frequency sweep) left at most 2
-#: samples within the float bound per class; eight times that.
-MAX_ARB_SAMPLES = 16
+#: samples within the float bound per class, but 1e-16 from a ZGV frequency the dip
+#: refinement leaves up to 20 (three ZGV points, 1e-16 to 1e-14 from them); three times that.
+MAX_ARB_SAMPLES = 64
 
 
 @dataclass(frozen=True)
@@ -377,7 +386,33 @@ def _walk(n0: int, signs) -> list[int] | None:
     return out if n == 0 else None
 
 
-def _class_roots(kind, nu, omega, step, rtol, max_depth, zgv_kappa, nu_q: Fraction):
+def _split_zgv_pairs(scan: _Scan, ratio: Fraction, points) -> None:
+    """Next to a ZGV point (frequency within :data:`ZGV_SPLIT`), a ZGV sample whose sign is
+    that of both neighbours may still hide a pair of roots if the ZGV kappa lies outside it:
+    the extremum of F between them is located in ball arithmetic
+    (:func:`~dispersion.continuum.root_certificate.extremum_in_squares`) and, where its sign
+    is the other one, its kappa joins the samples (decided in ball arithmetic)."""
+    new_f, new_k = [], []
+    for kz, wz in points:
+        for i in np.flatnonzero(np.abs(scan.omega / wz - 1) <= ZGV_SPLIT):
+            j = np.flatnonzero((scan.fi == i) & (scan.k == kz))
+            if j.size == 0 or j[0] == 0 or j[0] + 1 >= scan.k.size:
+                continue
+            j = int(j[0])
+            if not (np.sign(scan.g[j - 1]) == np.sign(scan.g[j]) == np.sign(scan.g[j + 1])):
+                continue
+            F = _arb_function(scan.kind, float(scan.omega[i]), ratio)
+            prec = _arb_prec(kz) + 64
+            x = extremum_in_squares(F, kz, prec)
+            if arb_sign(F, x, prec) == -np.sign(scan.g[j]):
+                new_f.append(i)
+                new_k.append(float(x.sqrt().mid()) if x > 0 else kz)
+    if new_f:
+        scan.add(np.array(new_f), np.array(new_k))
+        scan.decide_in_arb(ratio)
+
+
+def _class_roots(kind, nu, omega, step, rtol, max_depth, zgv_points, nu_q: Fraction):
     """Roots of one class (``"S"`` or ``"A"``) at every Omega, labelled by the count; ``nu``
     is the float nearest to the exact ``nu_q`` the roots are certified at."""
     ratio = speed_ratio_squared(nu_q)
@@ -391,7 +426,7 @@ def _class_roots(kind, nu, omega, step, rtol, max_depth, zgv_kappa, nu_q: Fracti
     k = (np.arange(fi.size) - start[fi]) * step
     k = np.minimum(k, k_hi[fi])
     extra_f, extra_k = [], []
-    for kz in zgv_kappa:
+    for kz, _ in zgv_points:
         sel = np.flatnonzero(kz < k_hi)
         extra_f.append(sel)
         extra_k.append(np.full(sel.size, kz))
@@ -400,6 +435,7 @@ def _class_roots(kind, nu, omega, step, rtol, max_depth, zgv_kappa, nu_q: Fracti
     scan.add(fi, k)
     _refine_dips(scan, max_depth)
     scan.decide_in_arb(ratio)
+    _split_zgv_pairs(scan, ratio, zgv_points)
     c = scan.certain()
     sfi, sk, sg = scan.fi[c], scan.k[c], scan.g[c]
     same = sfi[1:] == sfi[:-1]
@@ -545,7 +581,7 @@ def modes_at_frequency(nu: float, omega, *, kinds=("S", "A", "SH"), step: float 
                 at_cut += [(i, lab) for lab, wc in sh_cutoffs(float(w) * (1 + 1e-15))
                            if wc > 0 and at_cutoff(float(w), wc)]
             continue
-        zk = [p.kappa for p in points if p.label[0] == kind]
+        zk = [(p.kappa, p.omega) for p in points if p.label[0] == kind]
         rf, labels, roots, group, fails, at = _class_roots(kind, nu, omega, step, rtol,
                                                            max_depth, zk, nu_q)
         failures += fails

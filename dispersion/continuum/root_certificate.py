@@ -8,7 +8,9 @@ then a root lies in :math:`(\\kappa_-, \\kappa_+)`, within :math:`\\delta (1 + 2
 
 - in floats, where :math:`|F| > B` for a *proven* bound B on the float evaluation's error
   (:func:`float_certified`; for the Rayleigh-Lamb function a running error analysis,
-  :func:`dispersion.continuum.numeric_frequency.frequency_function_bound`), or
+  :func:`dispersion.continuum.numeric_frequency.frequency_function_bound`, which takes
+  numpy's cos, sin, cosh and sinh to be within
+  :data:`~dispersion.continuum.numeric_frequency.LIBM_ULPS` ulps), or
 - in ball arithmetic (python-flint ``arb``), where the ball of F excludes 0
   (:func:`arb_sign`, at a precision raised until it does or a ceiling is reached;
   :func:`dispersion.continuum.rayleigh_lamb.arb_frequency_function`).
@@ -19,9 +21,10 @@ roots merge) is closed again in ball arithmetic from a bracket whose end signs a
 there (:func:`refine_in_squares`): by the Illinois method in :math:`x = \\kappa^2`, in which a
 frequency function even in kappa is analytic and a root next to a cut-off simple. Two roots of
 a ZGV pair are certified each by its own sign change once the pair's bracket is split at a
-point of the opposite sign (the ZGV point's kappa); a float frequency is never a ZGV
-frequency to 1e-26 relative, so the pair is never closer than the bracket. What neither
-certifies is the caller's to list as a failure.
+point of the opposite sign: the ZGV point's kappa or the extremum of F between the roots
+(:func:`extremum_in_squares`). A pair closer than the bracket (a frequency within about
+1e-26 relative of a ZGV frequency) has no sign change per root and is not certified. What
+neither certifies is the caller's to list as a failure.
 
 The functions take the frequency function as arguments (a float form with its bound, a ball
 form of :math:`x = \\kappa^2`), so every plate model with real roots in kappa and an even

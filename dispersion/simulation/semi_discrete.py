@@ -29,7 +29,7 @@ related by the map of central differences, so frequency by frequency
     \\tau\\, \\tilde{\\mathbf U}(\\tilde\\omega) = \\mathbf H(\\omega)\\, \\tau F_d(\\tilde\\omega),
     \\qquad \\tilde\\omega = \\frac{2}{\\tau} \\arcsin \\frac{\\omega\\tau}{2}
 
-(:func:`dispersion.waves.fully_discrete.time_frequency`). The run's velocity records
+(:func:`dispersion.time_stepping.fully_discrete.time_frequency`). The run's velocity records
 :math:`\\mathbf w_{k+1/2} = (\\mathbf u_{k+1} - \\mathbf u_k)/\\tau` on the half steps have the
 transform :math:`\\tilde{\\mathbf W}(\\tilde\\omega) = \\sum_k \\mathbf w_{k+1/2}
 e^{-i\\tilde\\omega (k + 1/2)\\tau} = i\\hat\\Omega\\, \\tilde{\\mathbf U}(\\tilde\\omega)`, and
@@ -125,7 +125,7 @@ def semi_discrete_records(velocities, dt: float, band) -> np.ndarray:
     array, shape (n_steps, stations)
         The semi-discrete velocity on the same half steps, band-limited (module docstring).
     """
-    from dispersion.waves.fully_discrete import time_frequency
+    from dispersion.time_stepping.fully_discrete import time_frequency
 
     dt = float(check_positive("dt", dt))
     v = np.asarray(velocities, dtype=float)

@@ -1,7 +1,7 @@
 """Measured cost against measured accuracy: a guided-wave burst simulated with every mass rule.
 
 For each mode of the size (:data:`SIZES`), each degree p and each rule of the registry
-(:data:`dispersion.symbolic.mass_rule.RULES`, iterated, never listed here), the burst of
+(:data:`dispersion.mass_rules.mass_rule.RULES`, iterated, never listed here), the burst of
 :class:`dispersion.simulation.strip.Strip` is simulated over 40 wavelengths
 (:func:`dispersion.simulation.wave_run.simulate`) at increasing elements per wavelength N.
 What a user pays is the wall time of the run: the assembly, the mass's factorization, the

@@ -1,6 +1,7 @@
-"""Time and memory to refuse every untrusted TOML file of the corpora (issue 27: each in under
-2 s, one line naming the file; issue 34 finding 2: the hostile shapes in under a second, at
-bounded memory, and never by the parser).
+"""Time and memory to refuse every untrusted TOML file of the corpora.
+
+The promises timed (issues 27 and 34, finding 2): each refusal in under 2 s in one line naming
+the file; the hostile shapes in under a second, at bounded memory, and never by the parser.
 
 Run:  python benchmarks/bench_untrusted_files.py [--previous REF] [--timeout S]
 
@@ -206,7 +207,7 @@ def hostile(previous: str | None, timeout: float) -> None:
 def run() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--previous", nargs="?", const="", default=None,
-                    help="also race the issue's cases on this git ref (default when given "
+                    help="also race the hostile cases on this git ref (default when given "
                          "without a value: the merge base with main)")
     ap.add_argument("--timeout", type=float, default=60.0,
                     help="seconds a previous run may take before it is killed (default 60)")

@@ -233,7 +233,8 @@ def _build(key):
                 if det == 0:
                     raise InputError("singular interpolation node")  # caller falls back
                 Ai = A.inv()
-                tq[a][b] = det * sum((Ai * Q)[i, i] for i in range(nb))
+                AiQ = Ai * Q   # once: the sum below multiplied it again for every i
+                tq[a][b] = det * sum(AiQ[i, i] for i in range(nb))
                 ti[a][b] = det * sum(Ai[i, i] for i in range(nb))
     Vu = flint.fmpq_mat([[uu**k for k in range(du + 1)] for uu in unodes]).inv()
     Vm = flint.fmpq_mat([[mu**j for j in range(N + 1)] for mu in mnodes]).inv().transpose()

@@ -346,7 +346,11 @@ def stiffness_terms(patch: PlatePatch) -> list[tuple[str, str, sympy.Matrix]]:
     Z = sympy.zeros(n, n)
 
     def blocks(a, b, c, d):
-        return sympy.Matrix(sympy.BlockMatrix([[a, b], [c, d]]))
+        # by slices: sympy.Matrix(BlockMatrix(...)) looked each entry up symbolically (5 to 50
+        # times slower; every uncached caller pays it, the tests' mpmath reference per kappa)
+        out = sympy.zeros(2 * n, 2 * n)
+        out[:n, :n], out[:n, n:], out[n:, :n], out[n:, n:] = a, b, c, d
+        return out
 
     return [
         ("D11", "d", blocks(Y["00"], Z, Z, Z)),

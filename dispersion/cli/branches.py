@@ -9,7 +9,7 @@ import argparse
 from dispersion import defaults
 from dispersion.cli import frequency
 from dispersion.cli.options import (check_applies, choice, given, integer, lazy_help, rational,
-                                    real)
+                                    real, thickness_hints)
 from dispersion.cli.outputs import (add_outputs, check_outputs, progress_bar, warn_failures,
                                     write_outputs)
 from dispersion.defaults import CONTACT_SETS, N_MAX, P_MAX, PATCH_MODELS, R_RANGE
@@ -114,6 +114,7 @@ RULES = [
 
 def run(args) -> int:
     check_applies(args, RULES)
+    thickness_hints(args)
     if frequency.requested(args):
         return frequency.run(args)
     from dispersion.cli.options import material_from_args, masses_from_args
@@ -132,8 +133,8 @@ def run(args) -> int:
                                                        "gamma_s") if given(args, k)})
     bar = progress_bar(args.progress, "branches", "kappa")
     try:
-        table = branch_table(masses=masses_from_args(args), exact_only=args.exact, patch=patch, nu=args.nu,
-                             material=material, thickness_mm=args.thickness,
+        table = branch_table(mass=masses_from_args(args), exact=args.exact, patch=patch,
+                             nu=args.nu, material=material, thickness_mm=args.thickness,
                              scheme=args.scheme, courant=args.courant,
                              paired=bool(args.figure) and material is None,
                              progress=None if bar is None else bar.update, **grid)
@@ -143,5 +144,3 @@ def run(args) -> int:
     warn_failures(table, args)
     write_outputs(args, table, figure_branch_table)
     return 0
-
-

@@ -208,6 +208,9 @@ class WaveRun(Rendered):
         lines = []
         for x, e in zip(self.plan.stations[1:], self.errors):
             lam = (x - self.plan.stations[0]) / self.plan.wavelength
+            if e.failure:  # no numbers for a station whose error could not be measured
+                lines.append(f"after {lam:.4g} wavelengths: FAILED, not measured: {e.failure}")
+                continue
             phase = (f"phase {e.phase_error:+.4g} rad (phase velocity "
                      f"{100 * e.phase_velocity_error:+.4g} %)" if self.phase_certain
                      else "phase not followed")

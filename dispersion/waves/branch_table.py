@@ -121,6 +121,8 @@ class DiscreteSet:
     branches: Any
     tau: float | None = None
     paired_error: dict | None = None
+    #: Per exact label, the discrete partner of each kappa (-1: none; see paired_error).
+    paired_partner: dict | None = None
 
     def words(self) -> str:
         """The set in words: its mass rule with what applies to it, and its time scheme."""
@@ -311,7 +313,8 @@ def _check_scheme(scheme, courant, masses, patch):
                          f"{limit:g}] for scheme {scheme}, got {courant}")
 
 
-def branch_table(*, masses=None, exact_only: bool = False, patch=None, nu=None,
+def branch_table(*, mass=None, exact: bool | None = None, masses=None,
+                 exact_only: bool | None = None, patch=None, nu=None,
                  material=None, thickness_mm: float | None = None,
                  kappa_min: float = KAPPA_MIN, kappa_max: float = KAPPA_MAX,
                  count: int = COUNT, omega_max: float = OMEGA_MAX, scheme: str | None = None,
@@ -319,24 +322,40 @@ def branch_table(*, masses=None, exact_only: bool = False, patch=None, nu=None,
                  progress=None) -> BranchTable:
     """Exact and discrete branches on a kappa grid (see the module docstring).
 
+    The keywords are the options of ``dispersion branches`` (``--mass`` is ``mass``,
+    ``--exact`` is ``exact``, ``--kappa-max`` is ``kappa_max``, ...); ``masses`` and
+    ``exact_only`` are the older names of ``mass`` and ``exact`` and keep working.
+
     Parameters
     ----------
-    masses : sequence of str or MassRule, optional
-        Mass rules of the discrete patch (default :data:`DEFAULT_MASSES`; none with
-        ``exact_only``).
-    exact_only : bool
-        The exact Rayleigh-Lamb branches alone.
+    mass : str, MassRule or a sequence of them, optional
+        Mass rule(s) of the discrete patch, names of
+        :data:`~dispersion.symbolic.mass_rule.RULE_NAMES` or rules (default
+        :data:`DEFAULT_MASSES`; none with ``exact``). One name is one rule; an empty
+        sequence is refused (``exact=True`` asks for the exact branches alone).
+    exact : bool
+        The exact Rayleigh-Lamb branches alone (default False).
+    masses, exact_only :
+        The same as ``mass`` and ``exact`` (give one name of each pair, not both).
     patch : Patch, optional
         The discrete patch (p, n, model, r, contact, gamma_s); its mass is replaced by each of
         ``masses``. Default: the toolkit's (:mod:`dispersion.defaults`).
     nu : float, optional
         Poisson's ratio (default 0.3); a material fixes it instead.
-    material : Material or str, optional
-        With ``thickness_mm`` (d = 2h in mm): rows in physical units and the ZGV points.
-    kappa_min, kappa_max, count : float, float, int
-        The uniform kappa grid (``count`` in [2, :data:`MAX_COUNT`]).
+    material, thickness_mm : Material or str, float, optional
+        A material (or its name in :data:`~dispersion.waves.materials.MATERIALS`) and the
+        plate thickness d = 2h in mm, given together: rows in physical units and the ZGV
+        points.
+    kappa_min, kappa_max : float
+        The kappa grid :math:`\\kappa = k h` (h half the thickness, dimensionless) from
+        ``kappa_min`` >= 0 to ``kappa_max`` > ``kappa_min`` (default 0 to :data:`KAPPA_MAX`).
+    count : int
+        Points of the uniform kappa grid, in [2, :data:`MAX_COUNT`] (default :data:`COUNT`);
+        discrete branches also within the work bound of
+        :func:`dispersion.budget.check_discrete_branches`.
     omega_max : float
-        Largest Omega drawn, in (0, :data:`MAX_OMEGA`].
+        Largest :math:`\\Omega = \\omega h / c_T` drawn, in (0, :data:`MAX_OMEGA`]
+        (default :data:`OMEGA_MAX`).
     scheme, courant : str, float, optional
         Fully discrete branches: a Newmark member
         (:data:`~dispersion.waves.time_integration.NEWMARK_MEMBERS`) at ``courant`` times each
@@ -346,7 +365,25 @@ def branch_table(*, masses=None, exact_only: bool = False, patch=None, nu=None,
         signed errors (the figure's error panel).
     progress : callable, optional
         Called with the number of kappa points done (a progress bar's ``update``).
+
+    Returns
+    -------
+    BranchTable
+        Rows, every format (``to_text``, ``to_csv``, ``to_json``, ``to_dict``) and
+        ``failures``; :func:`dispersion.figure` draws it.
+
+    Raises
+    ------
+    InputError
+        A value outside its range, or a request over the work bounds (before any work).
+
+    >>> branch_table(mass="lumped", count=3, kappa_max=1.0, omega_max=1.0).title()
+    'Rayleigh-Lamb and discrete branches of the Bloch r = b/h = 2, p = 2, n = 3 patch, nu = 0.3, 3 kappa in [0, 1], Omega <= 1'
     """
+    masses = _one_of("mass", mass, "masses", masses)
+    exact_only = bool(_one_of("exact", exact, "exact_only", exact_only))
+    if isinstance(masses, str) or hasattr(masses, "build"):  # one rule, not its letters
+        masses = (masses,)
     from dispersion.symbolic.patch import Patch
     from dispersion.waves.exact_branches import check_samples, trace_branches
     from dispersion.waves.velocities import exact_velocities
@@ -369,10 +406,13 @@ def branch_table(*, masses=None, exact_only: bool = False, patch=None, nu=None,
     check_samples(count, omega_max, what="count * (omega_max / 0.05 + 1)")
     if exact_only:
         if masses:
-            raise InputError("masses do not apply to the exact branches alone")
+            raise InputError("mass does not apply to the exact branches alone (exact=True)")
         masses = ()
     else:
         masses = tuple(DEFAULT_MASSES if masses is None else masses)
+        if not masses:
+            raise InputError("mass must name at least one mass rule (exact=True asks for the "
+                             "exact branches alone), got an empty sequence")
     base = Patch() if patch is None else patch
     if not isinstance(base, Patch):
         raise InputError(f"patch must be a Patch (dispersion.symbolic.patch), got "
@@ -402,6 +442,13 @@ def branch_table(*, masses=None, exact_only: bool = False, patch=None, nu=None,
                        None if scheme is None else float(courant), zgv, tuple(failures))
 
 
+def _one_of(name: str, value, old: str, old_value):
+    """The value of a keyword given under its name or its older name (not both)."""
+    if value is not None and old_value is not None:
+        raise InputError(f"give {name} or its older name {old}, not both")
+    return value if value is not None else old_value
+
+
 def _discrete(patch, nu, kappa, exact, scheme, courant, paired, progress) -> DiscreteSet:
     from dispersion.symbolic.plate import plate_patch
     from dispersion.waves.discrete_branches import discrete_branches
@@ -416,13 +463,14 @@ def _discrete(patch, nu, kappa, exact, scheme, courant, paired, progress) -> Dis
         tau = courant * 2 / patch_omega_max(plate, nu)[0]
         return DiscreteSet(f"{name} {scheme} C={courant:g}", patch,
                            fully_discrete_branches(d, tau, scheme), tau)
-    errors = _paired_errors(plate, nu, kappa, exact, d) if paired else None
-    return DiscreteSet(name, patch, d, None, errors)
+    errors, partners = _paired_errors(plate, nu, kappa, exact, d) if paired else (None, None)
+    return DiscreteSet(name, patch, d, None, errors, partners)
 
 
-def _paired_errors(plate, nu, kappa, exact, d) -> dict:
+def _paired_errors(plate, nu, kappa, exact, d) -> tuple[dict, dict]:
     """Signed error of each exact branch against the discrete mode of the same shape, on the
-    whole grid (NaN beyond the first Brillouin zone, where no exact partner exists)."""
+    whole grid (NaN beyond the first Brillouin zone, where no exact partner exists), and that
+    partner's place at each kappa (-1: none)."""
     import numpy as np
 
     from dispersion.waves.exact_branches import ExactBranches
@@ -432,5 +480,7 @@ def _paired_errors(plate, nu, kappa, exact, d) -> dict:
     sub = ExactBranches(kappa[inside], {lab: w[inside] for lab, w in exact.omega.items()},
                         exact.nu, exact.omega_max)
     pad = int(np.count_nonzero(~inside))
-    return {lab: np.concatenate([e, np.full(pad, np.nan)])
-            for lab, e in pair_by_shape(plate, nu, sub).relative_error(sub).items()}
+    pb = pair_by_shape(plate, nu, sub)
+    return ({lab: np.concatenate([e, np.full(pad, np.nan)])
+             for lab, e in pb.relative_error(sub).items()},
+            {lab: np.concatenate([c, np.full(pad, -1)]) for lab, c in pb.partner.items()})

@@ -44,7 +44,7 @@ def test_an_element_size_beyond_the_floats_is_refused_not_a_traceback(capsys):
     err = _refused(["timestep", "--h", "1e-320"], capsys)
     assert "--h must lie in [1e-12, 1e+12] m" in err
     from dispersion.errors import InputError
-    from dispersion.waves.critical_steps import critical_steps
+    from dispersion.answers.critical_steps import critical_steps
 
     with pytest.raises(InputError, match=r"h must lie in \[1e-12, 1e\+12\]"):
         critical_steps(["lumped"], 1, model="bar", wave_speed=1.0, h=1e-320)
@@ -73,8 +73,8 @@ def test_a_value_just_outside_a_range_is_not_shown_as_its_end():
 def test_an_indefinite_default_rule_is_skipped_with_a_line(monkeypatch, capsys):
     # was: `timestep --p 8` exit 2 with a raw IndefiniteMassWarning and an error about --mass,
     # which was not given (interpolatory-nodal is indefinite at p = 8; the slow test below)
-    import dispersion.waves.critical_steps as cs
-    from dispersion.symbolic.mass_rule import user_rule
+    import dispersion.answers.critical_steps as cs
+    from dispersion.mass_rules.mass_rule import user_rule
 
     negative = user_rule("negative-half", lambda s: -s.M / 2)   # states psd, is not
     monkeypatch.setattr(cs, "default_rules", lambda model: ("lumped", negative))
@@ -89,9 +89,9 @@ def test_an_indefinite_default_rule_is_skipped_with_a_line(monkeypatch, capsys):
 
 
 def test_an_indefinite_rule_the_user_names_is_refused_in_words():
-    import dispersion.waves.critical_steps as cs
+    import dispersion.answers.critical_steps as cs
     from dispersion.errors import InputError
-    from dispersion.symbolic.mass_rule import user_rule
+    from dispersion.mass_rules.mass_rule import user_rule
 
     negative = user_rule("negative-half", lambda s: -s.M / 2)
     with pytest.raises(InputError, match="the mass rule 'negative-half' has no critical step"):
@@ -105,7 +105,7 @@ def test_timestep_at_p_8_keeps_every_rule_but_the_indefinite_one(capsys):
     assert err == ("skipped: mass interpolatory-nodal: no critical step at p = 8: it is "
                    "indefinite (smallest eigenvalue -0.00133) although it states psd")
     masses = [ln.split(",")[0] for ln in out.splitlines() if not ln.startswith("#")][1:]
-    from dispersion.symbolic.mass_rule import BLOCH_RULE_NAMES
+    from dispersion.mass_rules.mass_rule import BLOCH_RULE_NAMES
 
     assert masses == [r for r in BLOCH_RULE_NAMES if r != "interpolatory-nodal"]
 
@@ -198,7 +198,7 @@ def test_every_registered_rule_is_told_apart_in_one_figure():
     from matplotlib.colors import to_rgb
 
     from dispersion.plotting.styles import mass_style
-    from dispersion.symbolic.mass_rule import RULE_NAMES
+    from dispersion.mass_rules.mass_rule import RULE_NAMES
 
     styles = {r: mass_style(r) for r in RULE_NAMES}
     for a, b in itertools.combinations(RULE_NAMES, 2):
@@ -344,7 +344,7 @@ def test_lengths_and_frequencies_share_one_unit_parser():
 def test_branch_table_documents_every_parameter_and_takes_the_cli_names():
     import inspect
 
-    from dispersion.waves.branch_table import branch_table
+    from dispersion.answers.branch_table import branch_table
 
     doc = inspect.getdoc(branch_table)
     documented = set()

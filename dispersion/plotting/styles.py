@@ -11,7 +11,7 @@ lumped and sms, no longer share a colour in one figure.
 
 >>> mass_style("consistent")
 MassStyle(colour='C0', marker='o', linestyle='-')
->>> from dispersion.symbolic.mass_rule import RULE_NAMES
+>>> from dispersion.mass_rules.mass_rule import RULE_NAMES
 >>> len({mass_style(r).colour for r in RULE_NAMES}) == len(RULE_NAMES)   # every rule its own
 True
 """
@@ -43,7 +43,7 @@ class MassStyle(NamedTuple):
 
 def mass_style(mass) -> MassStyle:
     """The style of ``mass`` (a rule name or a :class:`~dispersion.symbolic.mass_rule.MassRule`)."""
-    from dispersion.symbolic.mass_rule import RULE_NAMES
+    from dispersion.mass_rules.mass_rule import RULE_NAMES
 
     name = getattr(mass, "name", mass)
     if name in RULE_NAMES:

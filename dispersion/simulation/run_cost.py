@@ -119,7 +119,7 @@ def estimate_cost(plan) -> RunCost:
     run of ``plan``."""
     s = plan.strip
     dofs = 2 * plan.n_x * plan.n
-    from dispersion.symbolic.mass_rule import get_rule
+    from dispersion.mass_rules.mass_rule import get_rule
 
     omega = short_strip_omega(plan)
     steps = math.ceil(plan.t_end * omega / (2 * s.courant))
@@ -131,7 +131,7 @@ def short_strip_omega(plan) -> float:
     element size, :data:`SHORT_ELEMENTS` (p + 1) elements long (no longer than the plan's)."""
     from dataclasses import replace
 
-    from dispersion.symbolic.mass_rule import get_rule
+    from dispersion.mass_rules.mass_rule import get_rule
 
     s = plan.strip
     m = min(plan.n_elements_x, SHORT_ELEMENTS * (s.p + 1))

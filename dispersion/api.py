@@ -169,7 +169,7 @@ def branch_table(**request):
     (:func:`dispersion.waves.branch_table.branch_table`; a
     :class:`~dispersion.waves.branch_table.BranchTable` that renders itself).
 
-    >>> t = branch_table(exact_only=True, count=3, kappa_max=1.0, omega_max=2.0)
+    >>> t = branch_table(exact=True, count=3, kappa_max=1.0, omega_max=2.0)
     >>> t.title()
     'Rayleigh-Lamb branches, nu = 0.3, 3 kappa in [0, 1], Omega <= 2'
     """

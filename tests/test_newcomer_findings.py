@@ -437,3 +437,39 @@ def test_mode_labels_do_not_overprint():
     for ax in fig.axes:
         boxes = [t.get_window_extent() for t in ax.texts if t.get_text()[:1] in "SA"]
         assert not any(a.overlaps(b) for i, a in enumerate(boxes) for b in boxes[i + 1:])
+
+
+def test_an_oversized_simulation_is_refused_before_the_strip_is_assembled(monkeypatch):
+    # was: refused after 20 s (the 1D bar's estimate fell short of the plate's step by up to
+    # 17 times, so the true count was known only after the assembly and the Lanczos step)
+    import math
+
+    import scipy.sparse as sp
+
+    import dispersion.simulation.strip_mesh as strip_mesh
+    from dispersion.simulation.mass_operator import mass_operator
+    from dispersion.simulation.mesh_critical_step import mesh_critical_step
+    from dispersion.simulation.run_cost import RequestTooLarge
+    from dispersion.simulation.strip import Strip, plan_strip
+    from dispersion.simulation.wave_run import simulate
+    from dispersion.time_stepping.timestep import matrix_critical_step
+
+    strip = Strip(p=2, travel=1, stations=2, elements_per_wavelength=3)
+    plan = plan_strip(strip)
+    real = strip_mesh.strip_mesh
+    mesh = real(plan)
+    # the run's true cost: its own mesh's critical step, as simulate measures it
+    steps = math.ceil(plan.t_end / (strip.courant
+                                    * mesh_critical_step(mesh, mass_operator(mesh)).dt_crit))
+    built = []
+    monkeypatch.setattr(strip_mesh, "strip_mesh",
+                        lambda plan: built.append(plan.n_elements_x) or real(plan))
+    with pytest.raises(RequestTooLarge, match="about"):
+        simulate(strip, cost_limit=mesh.n_dofs * steps - 1)   # just over the limit
+    assert plan.n_elements_x not in built          # refused before the assembly
+    # the short strip's largest frequency is the long one's (independent computation: the
+    # dense generalized eigenproblem of the assembled strip, massless points condensed)
+    from dispersion.simulation.run_cost import short_strip_omega
+
+    dense = 2.0 / matrix_critical_step(mesh.K, sp.kron(mesh.mass, sp.identity(2)))
+    assert short_strip_omega(plan) == pytest.approx(dense, rel=2e-3)

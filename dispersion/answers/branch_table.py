@@ -15,7 +15,7 @@ Rows: ``kappa, Omega, branch, symmetry, source, c_p/c_T, c_g/c_T`` (kappa = kh,
 Omega = omega h / c_T, h the half-thickness) and, with a material, ``f [kHz], fd [MHz mm],
 c_p [m/s], c_g [m/s], wavelength [mm]``.
 
->>> t = branch_table(exact_only=True, kappa_max=2.0, count=3, omega_max=3.0)
+>>> t = branch_table(exact=True, kappa_max=2.0, count=3, omega_max=3.0)
 >>> t
 <BranchTable: Rayleigh-Lamb branches, nu = 0.3, 3 kappa in [0, 2], Omega <= 3 (10 rows)>
 >>> [(r["branch"], round(r["Omega"], 6)) for r in t.rows() if r["kappa"] == 1.0]

@@ -473,3 +473,69 @@ def test_an_oversized_simulation_is_refused_before_the_strip_is_assembled(monkey
 
     dense = 2.0 / matrix_critical_step(mesh.K, sp.kron(mesh.mass, sp.identity(2)))
     assert short_strip_omega(plan) == pytest.approx(dense, rel=2e-3)
+
+
+# ---------------------------------------------------------------- finding 7: count, n, bound
+
+def test_a_costly_rule_at_a_high_degree_is_refused_before_work(monkeypatch, capsys):
+    # was: `branches --mass dual-lumped --p 24 --n 25` ran for more than 15 minutes
+    import dispersion.symbolic.plate as plate
+
+    def no_work(*args, **kwargs):
+        raise AssertionError("the patch was built before the bound was checked")
+
+    monkeypatch.setattr(plate, "plate_patch", no_work)
+    err = _refused(["branches", "--mass", "dual-lumped", "--p", "24", "--n", "25"], capsys)
+    assert "mass rule 'dual-lumped' at p = 24" in err and "at most p = 16" in err
+    err = _refused(["branches", "--mass", "dual-lumped", "--p", "10", "--n", "11"], capsys)
+    assert "at most p = 8" in err and "n >= 13" in err
+
+
+def test_every_n_the_command_accepts_runs_at_its_smallest_grid():
+    # was: `branches --p 2 --n 200` could not run at all (--count 2 over the work bound,
+    # --count 1 below the range); the range of --n is now the bound's
+    from dispersion.answers.branch_table import DEFAULT_MASSES
+    from dispersion.budget import (DISCRETE_N_MAX, DISCRETE_P_MAX, check_discrete_branches,
+                                   discrete_n_max)
+    from dispersion.cli import build_parser
+    from dispersion.defaults import P_MAX
+    from dispersion.errors import InputError
+    from dispersion.mass_rules.mass_rule import BLOCH_RULE_NAMES
+
+    n_action = next(a for a in build_parser("branches")._subparsers._group_actions[0]
+                    .choices["branches"]._actions if "--n" in a.option_strings)
+    assert n_action.type(str(DISCRETE_N_MAX)) == DISCRETE_N_MAX
+    assert DISCRETE_N_MAX == max(discrete_n_max(p) for p in range(1, P_MAX + 1))
+    for p in range(1, P_MAX + 1):
+        assert discrete_n_max(p) >= max(p + 1, 3)      # every degree has an n that runs
+        with pytest.raises(InputError, match=f"at most n = {discrete_n_max(p)} at this p"):
+            check_discrete_branches(2, DEFAULT_MASSES, p, discrete_n_max(p) + 1)
+        for n in range(max(p + 1, 3), discrete_n_max(p) + 1):
+            check_discrete_branches(2, DEFAULT_MASSES, p, n)
+            for rule in BLOCH_RULE_NAMES:
+                bounds = DISCRETE_P_MAX.get(rule, {})
+                if p <= bounds.get("patch", P_MAX) and (
+                        n > 12 or p <= bounds.get("polynomial", P_MAX)):
+                    check_discrete_branches(2, [rule], p, n)
+
+
+@pytest.mark.parametrize("count, rules, p, n", [
+    (400, 2, 2, 30), (2, 3, 2, 140), (200000, 1, 2, 10), (2, 12, 2, 100), (5, 1, 2, 140),
+])
+def test_every_refusal_of_the_bound_advises_values_the_command_accepts(count, rules, p, n):
+    # was: `--n 100 --count 2` refused with "count <= 1", which the command rejects
+    from dispersion.budget import check_discrete_branches, discrete_n_max
+    from dispersion.errors import InputError
+
+    with pytest.raises(InputError) as info:
+        check_discrete_branches(count, ["consistent"] * rules, p, n)
+    text = str(info.value)
+    most_count = re.search(r"at most count = (\d+)", text)
+    most_n = re.search(r"at most n = (\d+)", text)
+    assert most_count or most_n, text
+    if most_count:
+        assert int(most_count.group(1)) >= 2
+        check_discrete_branches(int(most_count.group(1)), ["consistent"] * rules, p, n)
+    if most_n:
+        assert p + 1 <= int(most_n.group(1)) <= discrete_n_max(p)
+        check_discrete_branches(2, ["consistent"] * rules, p, int(most_n.group(1)))

@@ -33,6 +33,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 from dispersion import defaults
+from dispersion.budget import DISCRETE_WORK_MAX, check_discrete_branches
 from dispersion.errors import InputError
 from dispersion.rendering import Rendered
 
@@ -53,10 +54,9 @@ __all__ = ["MAX_COUNT", "MAX_OMEGA", "MAX_DISCRETE_WORK", "KAPPA_MIN", "KAPPA_MA
 MAX_COUNT = 200_000
 #: Largest Omega = omega h / c_T of a request.
 MAX_OMEGA = 200.0
-#: Discrete branches: count * (mass rules) * n^3 <= MAX_DISCRETE_WORK. Rule: the default run
-#: (two masses, 400 kappa) at n = 24 in about a minute. Measured on the 2-core machine, 400
-#: kappa, consistent + singular: n = 10 in 3.4 s, n = 20 in 48 s, n = 30 in 180 s (like n^3).
-MAX_DISCRETE_WORK = 2 * 400 * 24**3
+#: Discrete branches: count * (mass rules) * n^3 <= MAX_DISCRETE_WORK (the rule and its
+#: measurements: :data:`dispersion.budget.DISCRETE_WORK_MAX`, rule 6 of :mod:`dispersion.budget`).
+MAX_DISCRETE_WORK = DISCRETE_WORK_MAX
 #: The default grid and ceiling: Figure 2's axes.
 KAPPA_MIN, KAPPA_MAX, COUNT, OMEGA_MAX = 0.0, 8.0, 400, 8.0
 #: The mass rules compared when none is named (Figure 2).
@@ -92,18 +92,16 @@ def kappa_grid(kappa_min: float = KAPPA_MIN, kappa_max: float = KAPPA_MAX,
 
 def check_discrete_work(count: int, masses: int, n: int) -> int:
     """Refuse, before any work, discrete branches costing more than
-    :data:`MAX_DISCRETE_WORK` (``count * masses * n^3``); returns the work.
+    :data:`MAX_DISCRETE_WORK` (``count * masses * n^3``, rule 6a of :mod:`dispersion.budget`;
+    the whole rule, with the setup of each mass rule: :func:`~dispersion.budget.check_discrete_branches`);
+    returns the work.
 
     >>> check_discrete_work(400, 2, 30)
     Traceback (most recent call last):
     ...
-    dispersion.errors.InputError: count * (mass rules) * n^3 must be <= 11059200 (about a minute), got 21600000
+    dispersion.errors.InputError: count * (mass rules) * n^3 must be <= 11059200 (about a minute), got 21600000: at most count = 204 at n = 30 with 2 mass rule(s)
     """
-    work = int(count) * int(masses) * int(n) ** 3
-    if work > MAX_DISCRETE_WORK:
-        raise InputError(f"count * (mass rules) * n^3 must be <= {MAX_DISCRETE_WORK} (about a "
-                         f"minute), got {work}")
-    return work
+    return check_discrete_branches(count, ["consistent"] * int(masses), 1, max(int(n), 2))
 
 
 def _name(mass) -> str:
@@ -420,7 +418,7 @@ def branch_table(*, mass=None, exact: bool | None = None, masses=None,
     if masses:
         if base.symbolic_r:
             raise InputError("r must be a number > 0 for numeric branches, got the symbol r")
-        check_discrete_work(count, len(masses), base.n)
+        check_discrete_branches(count, masses, base.p, base.n)
     _check_scheme(scheme, courant, masses, base)
     exact = trace_branches(nu, kappa, omega_max, progress=progress)
     velocities = exact_velocities(exact)

@@ -12,7 +12,8 @@ from dispersion.cli.options import (check_applies, choice, given, integer, lazy_
                                     real, thickness_hints)
 from dispersion.cli.outputs import (add_outputs, check_outputs, progress_bar, warn_failures,
                                     write_outputs)
-from dispersion.defaults import CONTACT_SETS, N_MAX, P_MAX, PATCH_MODELS, R_RANGE
+from dispersion.budget import DISCRETE_N_MAX
+from dispersion.defaults import CONTACT_SETS, P_MAX, PATCH_MODELS, R_RANGE
 
 
 def _rules():
@@ -58,9 +59,10 @@ def register(sub) -> None:
                         f"{defaults.R}; the paper's Figure 2 is 1/2)")
     p.add_argument("--p", type=integer("--p", 1, P_MAX),
                    help=f"degree through the thickness, in [1, {P_MAX}] (default: {defaults.P})")
-    p.add_argument("--n", type=integer("--n", 2, N_MAX),
-                   help=f"control points through the thickness, in [p + 1, {N_MAX}] "
-                        f"(default: {defaults.N})")
+    p.add_argument("--n", type=integer("--n", 2, DISCRETE_N_MAX),
+                   help="control points through the thickness, in [p + 1, max(p + 1, 40 - "
+                        "1.7 (p - 2))]: the work bound of discrete branches, 40 at p = 2, 23 at "
+                        f"p = 12, p + 1 from p = 16 (default: {defaults.N})")
     p.add_argument("--nu", type=real("--nu", -1, 0.5, lo_open=True, hi_open=True),
                    help=f"Poisson's ratio, in (-1, 0.5) (default: {defaults.NU_FLOAT}; a "
                         "material fixes it)")

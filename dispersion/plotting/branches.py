@@ -391,15 +391,6 @@ def _plot_signed_log(ax, x, e, color, marker, label, offset=0, zorder=2):
             markevery=every, mfc="none", lw=1.2, zorder=zorder)
 
 
-def _sign_legend(ax):
-    from matplotlib.lines import Line2D
-
-    handles, labels = ax.get_legend_handles_labels()
-    handles += [Line2D([], [], color="0.3", ls="-"), Line2D([], [], color="0.3", ls="--")]
-    labels += [r"solid: $\Omega^h > \Omega$ (too fast)", r"dashed: $\Omega^h < \Omega$ (too slow)"]
-    ax.legend(handles, labels, fontsize="xx-small", ncol=1)
-
-
 #: Drawing order of the masses: the lumped curves first, so that a singular curve close to
 #: them stays visible on top.
 _MASS_ORDER = {"lumped": 0, "consistent": 1, "singular-lumped": 2, "singular": 3}
@@ -435,7 +426,7 @@ def _plate_geometry(curves: Sequence[Mapping], r) -> str:
 def figure_per_wavelength(per_wavelength: Mapping, bar: Mapping, nu: float | None = None):
     """|Relative phase-velocity error| against elements per wavelength on log-log axes, its
     sign by line style: plate S0, A0 and the 1D bar. Colour: mass; marker: degree p."""
-    fig = new_figure(figsize=(13, 4.6))
+    fig = new_figure(figsize=(13, 6.4))
     axs = fig.subplots(1, 3, sharey=True)
     epw = per_wavelength["elements_per_wavelength"]
     curves = sorted(per_wavelength["curves"], key=lambda c: _MASS_ORDER.get(c["mass"], 9))
@@ -456,13 +447,21 @@ def figure_per_wavelength(per_wavelength: Mapping, bar: Mapping, nu: float | Non
                          _colour(mass), _DEGREE_MARKERS.get(p, "d"), f"p = {p}, {mass}",
                          offset=p)
     axs[2].set_title("1D bar, periodic B-splines (Cottrell et al. 2006)", fontsize="small")
+    keys = {}
     for ax in axs:
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel("elements per wavelength")
         ax.grid(True, which="major", alpha=0.3)
-        if ax.get_legend_handles_labels()[0]:
-            _sign_legend(ax)
+        for h, lab in zip(*ax.get_legend_handles_labels()):
+            keys.setdefault(lab, h)
+    if keys:  # one key below the panels, never over them: the curves separate where it sat
+        from matplotlib.lines import Line2D
+
+        keys[r"solid: $\Omega^h > \Omega$ (too fast)"] = Line2D([], [], color="0.3", ls="-")
+        keys[r"dashed: $\Omega^h < \Omega$ (too slow)"] = Line2D([], [], color="0.3", ls="--")
+        fig.legend(list(keys.values()), list(keys), loc="outside lower center", ncol=4,
+                   fontsize="x-small")
     axs[0].set_ylabel(r"$|c_p^h / c_p - 1| = |\Omega^h/\Omega - 1|$ (below 1e-13: round-off, "
                       "not drawn)")
     if nu is not None:

@@ -66,13 +66,15 @@ machine shared with other jobs: the lead re-times them on a quiet machine).
    part, the largest p measured within the minute (a user's rule, a redistribution of weights
    or a callable, is bounded as the registered rules other than ``dual-lumped``).
 
-   (c) *n with p*: the exact patch grows faster than n^2 and more so at higher p (consistent,
-   CPU: p = 2 at n = 25, 45 (singular), 50: 6.6, 40, 32 s; p = 12 at n = 13, 35: 3.1, 77 s;
-   n = p + 1 at p = 12, 16, 20, 24: 3.1, 7.3, 13, 25 s; singular costs up to 1.6 times the
-   consistent patch). Bound: n at most :func:`discrete_n_max` (p) = max(p + 1, 40 - 1.7 (p -
-   2)): 40 at p = 2, 23 at p = 12, p + 1 from p = 16, where the two default rules (consistent
-   and singular) were measured or fitted within the minute; so every n the command accepts
-   for its p runs at its smallest grid (count = 2) with its default rules.
+   (c) *n with p*: the exact patch grows faster than n^2, and faster at higher p (CPU,
+   consistent and singular: p = 2 at n = 25: 6.6 and 9.5 s, at n = 35: 12.4 and 21 s, at
+   n = 50: 32 s (consistent); p = 12 at n = 13: 3.1 s, at n = 23: 32 and 35 s, at n = 35: 77
+   s (consistent); n = p + 1 at p = 12, 16, 20, 24: 3.1, 7.3, 13, 25 s (consistent); p = 24,
+   n = 27: 74 s). Singular at p = 2, n = 40 met the extended-precision solver's own bound
+   (70 s a kappa). Bound: n at most :func:`discrete_n_max` (p) = max(p + 1, 35 - 1.3 (p - 2)):
+   35 at p = 2 (the two default rules 33 s), 22 at p = 12 (about 57 s, from n = 23's 66 s),
+   p + 1 from p = 16 (p = 24: 57 s), linear between the measured corners; so every n the
+   command accepts for its p runs at its smallest grid (count = 2) with its default rules.
 
 >>> check_bar_degree(24)
 Traceback (most recent call last):
@@ -107,7 +109,7 @@ PHASE_WORK_MAX = 20_000_000
 #: Most count x (mass rules) x n^3 of discrete branches (rule 6a).
 DISCRETE_WORK_MAX = 2 * 400 * 24**3
 #: Largest n of discrete branches at any p (rule 6c): :func:`discrete_n_max` at p = 1.
-DISCRETE_N_MAX = 41
+DISCRETE_N_MAX = 36
 #: Largest n whose mirror blocks (n rows each) take the exact characteristic polynomial
 #: (:data:`dispersion.discretization.pencil_polynomial.MAX_BLOCK`): the setup of 6b's
 #: "polynomial" part.
@@ -208,9 +210,9 @@ def discrete_n_max(p: int) -> int:
     """Rule 6c: the largest n of discrete branches at degree ``p``.
 
     >>> [discrete_n_max(p) for p in (1, 2, 12, 16, 24)]
-    [41, 40, 23, 17, 25]
+    [36, 35, 22, 17, 25]
     """
-    return max(int(p) + 1, 40 - int(1.7 * (int(p) - 2)))
+    return max(int(p) + 1, 35 - int(1.3 * (int(p) - 2)))
 
 
 def check_discrete_branches(count, rules, p, n) -> int:
@@ -225,7 +227,7 @@ def check_discrete_branches(count, rules, p, n) -> int:
     >>> check_discrete_branches(2, ["consistent", "singular"], 2, 200)
     Traceback (most recent call last):
     ...
-    dispersion.errors.InputError: n = 200 at p = 2 is beyond the work bound of discrete branches: at most n = 40 at this p (the exact patches of two rules in about a minute)
+    dispersion.errors.InputError: n = 200 at p = 2 is beyond the work bound of discrete branches: at most n = 35 at this p (the exact patches of two rules in about a minute)
     """
     count, p, n = _integer("count", count), _integer("p", p), _integer("n", n)
     names = [getattr(r, "name", r) for r in rules]

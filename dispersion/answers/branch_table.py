@@ -33,7 +33,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 from dispersion import defaults
-from dispersion.budget import DISCRETE_WORK_MAX, check_discrete_branches
+from dispersion.budget import DISCRETE_N_MAX, DISCRETE_WORK_MAX, check_discrete_branches
 from dispersion.errors import InputError
 from dispersion.rendering import Rendered
 
@@ -45,9 +45,9 @@ if TYPE_CHECKING:  # numpy and the solvers load when a table is computed, not on
     from dispersion.materials.materials import Material
     from dispersion.continuum.velocities import Velocities
 
-__all__ = ["MAX_COUNT", "MAX_OMEGA", "MAX_DISCRETE_WORK", "KAPPA_MIN", "KAPPA_MAX", "COUNT",
-           "OMEGA_MAX", "DEFAULT_MASSES", "COURANT_MAX", "BranchTable", "branch_table",
-           "kappa_grid", "check_discrete_work"]
+__all__ = ["MAX_COUNT", "MAX_OMEGA", "MAX_DISCRETE_WORK", "DISCRETE_N_MAX", "KAPPA_MIN",
+           "KAPPA_MAX", "COUNT", "OMEGA_MAX", "DEFAULT_MASSES", "COURANT_MAX", "BranchTable",
+           "branch_table", "kappa_grid", "check_discrete_work"]
 
 #: Most kappa points of one request (the tracer's own scan bound applies as well:
 #: :data:`dispersion.waves.exact_branches.MAX_SAMPLES`, count * (omega_max / 0.05 + 1)).

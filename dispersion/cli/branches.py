@@ -12,7 +12,6 @@ from dispersion.cli.options import (check_applies, choice, given, integer, lazy_
                                     real, thickness_hints)
 from dispersion.cli.outputs import (add_outputs, check_outputs, progress_bar, warn_failures,
                                     write_outputs)
-from dispersion.budget import DISCRETE_N_MAX
 from dispersion.defaults import CONTACT_SETS, P_MAX, PATCH_MODELS, R_RANGE
 
 
@@ -29,7 +28,8 @@ def _schemes():
 
 
 def register(sub) -> None:
-    from dispersion.answers.branch_table import COUNT, KAPPA_MAX, MAX_COUNT, MAX_OMEGA, OMEGA_MAX
+    from dispersion.answers.branch_table import (COUNT, DISCRETE_N_MAX, KAPPA_MAX, MAX_COUNT,
+                                                 MAX_OMEGA, OMEGA_MAX)
 
     p = sub.add_parser(
         "branches", help="dispersion branches: discrete patch and Rayleigh-Lamb",
@@ -60,8 +60,8 @@ def register(sub) -> None:
     p.add_argument("--p", type=integer("--p", 1, P_MAX),
                    help=f"degree through the thickness, in [1, {P_MAX}] (default: {defaults.P})")
     p.add_argument("--n", type=integer("--n", 2, DISCRETE_N_MAX),
-                   help="control points through the thickness, in [p + 1, max(p + 1, 40 - "
-                        "1.7 (p - 2))]: the work bound of discrete branches, 40 at p = 2, 23 at "
+                   help="control points through the thickness, in [p + 1, max(p + 1, 35 - "
+                        "1.3 (p - 2))]: the work bound of discrete branches, 35 at p = 2, 22 at "
                         f"p = 12, p + 1 from p = 16 (default: {defaults.N})")
     p.add_argument("--nu", type=real("--nu", -1, 0.5, lo_open=True, hi_open=True),
                    help=f"Poisson's ratio, in (-1, 0.5) (default: {defaults.NU_FLOAT}; a "

@@ -61,7 +61,8 @@ machine shared with other jobs: the lead re-times them on a quiet machine).
    minute up to p = 24: at n = p + 1, p = 24, consistent 25 s, lumped 25 s, singular 32 s,
    nodal-lobatto 32 s; at n = 12, p = 10, consistent 12 s. The approximate-dual rule
    ``dual-lumped`` does not: its exact patch took 6.5, 12.5 and 39 s at p = 12, 14, 16
-   (n = p + 1) and more than 15 minutes at p = 24; its polynomial at n = 12 took 2.5, 7.4,
+   (n = p + 1; 38 s at p = 12, n = 23; 15 s at p = 4, n = 30) and more than 15 minutes at
+   p = 24; its polynomial at n = 12 took 2.5, 7.4,
    17, 40 and 95 s at p = 2, 4, 6, 8, 10. Bounds: :data:`DISCRETE_P_MAX`, per rule and
    part, the largest p measured within the minute (a user's rule, a redistribution of weights
    or a callable, is bounded as the registered rules other than ``dual-lumped``).

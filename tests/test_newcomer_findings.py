@@ -286,27 +286,6 @@ def test_simulate_is_in_the_top_level_help_and_the_readme(capsys):
     assert f"`dispersion {' | '.join(_SUBCOMMANDS)}`, and `dispersion --version`" in readme
 
 
-def test_a_failed_station_is_marked_not_reported(monkeypatch):
-    from dispersion.simulation.wave_run import WaveRun
-
-    class E:
-        failure = "the simulated burst runs past the end of the record"
-
-    class Plan:
-        stations = (0.0, 1.0)
-        wavelength = 1.0
-
-    class Run:  # what station_lines reads, nothing more
-        plan, errors, prediction, phase_certain = Plan(), (E(),), None, True
-        seconds_per_step, n_steps, dofs = (1.0, 1.0, 1.0), 1, 1
-        seconds_per_time, modelled_cost, modelled_work, nbytes = 1.0, 1.0, None, 1
-        plan.time_unit_us = 1.0
-
-    lines = WaveRun.station_lines(Run())
-    assert lines[0] == ("after 1 wavelengths: FAILED, not measured: the simulated burst runs "
-                        "past the end of the record")
-
-
 @pytest.mark.parametrize("extra, first, absent", [
     (["--thickness", "0.003", "--frequency", "200"], "--thickness = 0.003 mm", "MHz"),
     (["--thickness", "3", "--frequency", "200Hz"], "--frequency must lie", "MHz given"),

@@ -1,14 +1,16 @@
 """Figures of the guided-wave simulation study (:mod:`dispersion.studies.wave_simulation`),
 drawn from its stored result (plain JSON) alone: the measured Pareto front, the prediction of
-the dispersion analysis against the measurement, the signals against their exact reference,
-and the measured cost against today's modelled cost; and the figure of one run
+the dispersion analysis against the measurement, space and time apart (each run beside its
+semi-discrete twin), the signals against their exact reference, and the measured cost
+against today's modelled cost; and the figure of one run
 (:func:`plot_run`, ``dispersion simulate --figure``).
 """
 from __future__ import annotations
 
 from dispersion.plotting import axes, new_figure
 
-__all__ = ["plot_pareto", "plot_prediction", "plot_signals", "plot_costs", "plot_run"]
+__all__ = ["plot_pareto", "plot_prediction", "plot_signals", "plot_costs", "plot_run",
+           "plot_split", "SPLIT_MEASURES", "trace_title"]
 
 _MARKERS = "osD^v<>pPX*h"
 
@@ -38,25 +40,37 @@ def _legend(ax, data, where="lower left"):
               fontsize="x-small", ncol=2, loc=where)
 
 
+def _headline_words(data) -> str:
+    """'the largest of arrival, phase and waveform', from the stored headline names."""
+    names = [h[0] for h in data.get("headline", ())]
+    return ("the largest of " + ", ".join(names[:-1]) + " and " + names[-1]) if names else ""
+
+
 def plot_pareto(data: dict, mode: str = "S0", ax=None):
-    """Loop seconds against the arrival-time error after the travel, every run (the bar: the
-    fastest and slowest of its five timed segments); the measured Pareto front as a step line;
-    the targets as horizontal lines; failed runs hollow."""
-    ax = axes(ax, size=(7.5, 5.2))
+    """What a user pays (total seconds: setup and loop) against the run's error after the
+    travel (the largest of its three measures), every measurable run (the bar: the fastest
+    and slowest of the loop's five timed segments); the measured Pareto front as a step
+    line; the targets as horizontal lines. Runs that cannot be measured are not on the error
+    scale: they are drawn as crosses in a strip of their own above it."""
+    ax = axes(ax, size=(7.5, 5.6))
     _, _, colours, markers = _style(data)
     pts = data["points"]
+    failed = []
     for pt in pts:
-        if pt["mode"] != mode or pt["arrival_error"] is None:
+        if pt["mode"] != mode:
             continue
-        ok = not pt["failures"]
+        if pt["failures"] or pt["error"] is None:
+            failed.append(pt)
+            continue
         lo, _, hi = (v * pt["n_steps"] for v in pt["seconds_per_step"])
-        ax.errorbar(pt["loop_seconds"], pt["arrival_error"],
-                    xerr=[[pt["loop_seconds"] - lo], [hi - pt["loop_seconds"]]],
-                    color=colours[pt["mass"]], lw=0.6, zorder=2)
-        ax.scatter(pt["loop_seconds"], pt["arrival_error"], marker=markers[pt["p"]], s=34,
-                   facecolor=colours[pt["mass"]] if ok else "none",
-                   edgecolor=colours[pt["mass"]], lw=1.0, zorder=3)
-    front = sorted((pts[i]["loop_seconds"], pts[i]["arrival_error"]) for i in data["front"]
+        x = pt["total_seconds"]
+        setup = x - pt["loop_seconds"]
+        bar = [[max(x - setup - lo, 0.0)], [max(setup + hi - x, 0.0)]]
+        ax.errorbar(x, pt["error"], xerr=bar, color=colours[pt["mass"]], lw=0.6, zorder=2)
+        ax.scatter(x, pt["error"], marker=markers[pt["p"]], s=34,
+                   facecolor=colours[pt["mass"]], edgecolor=colours[pt["mass"]], lw=1.0,
+                   zorder=3)
+    front = sorted((pts[i]["total_seconds"], pts[i]["error"]) for i in data["front"]
                    if pts[i]["mode"] == mode)
     if front:
         xs, ys = zip(*front)
@@ -68,74 +82,189 @@ def plot_pareto(data: dict, mode: str = "S0", ax=None):
                     ha="right", va="bottom", fontsize="x-small", color="0.3")
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlabel("measured cost: wall seconds of the explicit loop (the same simulated "
-                  "time)\nbar: the spread of its five timed segments")
-    ax.set_ylabel("arrival-time error after the travel (larger of peak and energy)")
+    costs = [pt["total_seconds"] for pt in pts if pt["mode"] == mode and pt["total_seconds"] > 0]
+    if costs:  # the failed runs' costs too: they are drawn in the strip above
+        ax.set_xlim(min(costs) / 1.3, max(costs) * 1.3)
+    strip = ax.inset_axes([0.0, 1.01, 1.0, 0.1])
+    for pt in failed:
+        strip.scatter(pt["total_seconds"], 0.3, marker="x", s=30, color=colours[pt["mass"]],
+                      lw=1.0)
+    strip.set_xscale("log")
+    strip.set_xlim(ax.get_xlim())
+    strip.set_ylim(0, 1)
+    strip.set_yticks([])
+    strip.tick_params(which="both", bottom=False, labelbottom=False)
+    strip.set_facecolor("0.93")
+    strip.text(0.005, 0.75, f"not measurable: {len(failed)} failed runs at their cost, no "
+               "error to draw", transform=strip.transAxes, va="center", fontsize="x-small",
+               color="0.25")
+    ax.set_xlabel("what a user pays: wall seconds of the run (assembly, factorization, step "
+                  "estimate and loop)\nbar: the spread of the loop's five timed segments")
+    ax.set_ylabel(f"error after the travel: {_headline_words(data)}")
     s = data["strip"]
-    ax.set_title(f"{mode}: {s['cycles']}-cycle burst, kappa_c = {s['kappa_c']:g}, "
-                 f"{s['travel']:g} wavelengths, central differences at {s['courant']:g} x "
-                 "the critical step\nhollow: a failure at the far station (not measurable, "
-                 "meets no target)", fontsize="small")
+    strip.set_title(f"{mode}: {s['cycles']}-cycle burst, kappa_c = {s['kappa_c']:g}, "
+                    f"{s['travel']:g} wavelengths, central differences at {s['courant']:g} x "
+                    "the critical step", fontsize="small")
     _legend(ax, data)
     ax.grid(True, which="both", lw=0.3, alpha=0.5)
+    strip.set_xlim(ax.get_xlim())
     return ax.figure
+
+
+#: The measures of the space/time figure: (field of the fully discrete run, its semi-discrete
+#: twin, axis label).
+SPLIT_MEASURES = (("phase_velocity_error", "semi_phase_velocity_error",
+                   "|phase-velocity error| of the carrier"),
+                  ("l2_error", "semi_l2_error", "relative L2 error of the received signal"))
+
+
+def plot_split(data: dict, mode: str = "S0"):
+    """Space and time apart: for every degree (columns) and rule (colours), the fully
+    discrete error of each run (filled, solid) and its semi-discrete (space only) twin
+    (hollow, dashed) against N, for the carrier's phase velocity and the waveform (rows);
+    guide slopes N^-2 (what central differences add at a fixed Courant number) and N^-2p."""
+    import numpy as np
+
+    pts = [pt for pt in data["points"] if pt["mode"] == mode and not pt["failures"]]
+    degrees = sorted({pt["p"] for pt in pts}) or [1]
+    fig = new_figure(figsize=(3.4 * len(degrees) + 1.0, 7.4))
+    grid = fig.subplots(len(SPLIT_MEASURES), len(degrees), squeeze=False, sharex=True,
+                        sharey="row")
+    _, _, colours, markers = _style(data)
+    for col, p in enumerate(degrees):
+        for row, (full, semi, label) in enumerate(SPLIT_MEASURES):
+            ax = grid[row, col]
+            values = []
+            for mass in data["rules"]:
+                line = sorted((pt for pt in pts if pt["p"] == p and pt["mass"] == mass),
+                              key=lambda q: q["elements_per_wavelength"])
+                for key, ls, face in ((full, "-", True), (semi, "--", False)):
+                    xy = [(q["elements_per_wavelength"], abs(q[key])) for q in line
+                          if q[key] is not None and q[key] != 0]
+                    if not xy:
+                        continue
+                    x, y = zip(*xy)
+                    values += y
+                    ax.plot(x, y, ls=ls, lw=0.8, color=colours[mass],
+                            marker=markers[p], ms=4.5,
+                            mfc=colours[mass] if face else "none", mec=colours[mass])
+            if values:
+                n = np.array([3.5, 17.0])
+                top = max(values)
+                for k, ls in {2: ":", 2 * p: "-."}.items():
+                    ax.plot(n, top * (n / n[0]) ** -k, color="0.35", lw=0.8, ls=ls)
+                    ax.annotate(f"N^-{k}", (n[1], top * (n[1] / n[0]) ** -k), fontsize="x-small",
+                                color="0.3", ha="left", va="center")
+            ax.set_xscale("log")
+            ax.set_yscale("log")
+            ax.grid(True, which="both", lw=0.3, alpha=0.5)
+            if row == 0:
+                ax.set_title(f"p = {p}", fontsize="small")
+            if col == 0:
+                ax.set_ylabel(label, fontsize="small")
+            if row == len(SPLIT_MEASURES) - 1:
+                ax.set_xlabel("N, elements per wavelength")
+                ax.set_xticks([4, 6, 8, 12, 16], labels=["4", "6", "8", "12", "16"])
+    from matplotlib.lines import Line2D
+
+    handles = (_handles(data)[:len(data["rules"])]
+               + [Line2D([], [], color="0.3", marker="o", label="fully discrete (the run)"),
+                  Line2D([], [], color="0.3", ls="--", marker="o", mfc="none",
+                         label="semi-discrete (space only)")])
+    fig.legend(handles=handles, loc="outside lower center", ncol=8 if len(degrees) > 2 else 4,
+               fontsize="x-small")
+    s = data["strip"]
+    fig.suptitle(f"{mode}: space and time apart after {s['travel']:g} wavelengths, central "
+                 f"differences at {s['courant']:g} x the critical step", fontsize="medium")
+    return fig
 
 
 def _pairs(data, mode, measured, predicted):
     out = []
-    for pt in data["points"]:
+    for i, pt in enumerate(data["points"]):
         if pt["mode"] != mode or pt["failures"] or pt[predicted] is None or pt[measured] is None:
             continue
-        out.append((pt, pt[predicted], pt[measured]))
+        out.append((i, pt, pt[predicted], pt[measured]))
     return out
 
 
+#: The panels of :func:`plot_prediction`: (measured fields, predicted field, the verdict's
+#: measure name for each measured field, what, over what).
+_PANELS = ((("peak_arrival_error", "energy_arrival_error"), "predicted_arrival_error",
+            ("envelope-peak arrival (carrier)", "energy arrival (carrier)"),
+            "arrival-time error", "the carrier"),
+           (("energy_arrival_error",), "predicted_band_arrival_error",
+            ("energy arrival (band)",), "energy arrival-time error", "the band"),
+           (("phase_velocity_error",), "predicted_phase_velocity_error",
+            ("phase velocity (carrier)",), "phase-velocity error", "the carrier"))
+
+
 def plot_prediction(data: dict, mode: str = "S0"):
-    """Predicted (fully discrete branch) against measured: arrival time at the carrier
+    """Top: predicted (fully discrete branch) against measured: arrival time at the carrier
     (envelope peak hollow, energy centroid filled), energy arrival over the band, phase
-    velocity; the diagonal and the band within which the prediction is said to hold."""
+    velocity, with the diagonal; a run whose prediction does not hold is ringed. Bottom: the
+    test itself, each run's disagreement |measured - predicted| against its tolerance (the
+    floor plus its own spreads), both relative to the prediction: below the diagonal the
+    prediction holds."""
     import numpy as np
 
-    fig = new_figure(figsize=(15.0, 6.0))
-    left, middle, right = fig.subplots(1, 3)
+    fig = new_figure(figsize=(15.0, 10.5))
+    grid = fig.subplots(2, 3)
     _, _, colours, markers = _style(data)
-    rtol, atol = data["prediction_rtol"], data["prediction_atol"]
-    panels = ((left, ("peak_arrival_error", "energy_arrival_error"), "predicted_arrival_error",
-               "arrival-time error", "the carrier"),
-              (middle, ("energy_arrival_error",), "predicted_band_arrival_error",
-               "energy arrival-time error", "the band"),
-              (right, ("phase_velocity_error",), "predicted_phase_velocity_error",
-               "phase-velocity error", "the carrier"))
-    for ax, measured, predicted, what, where in panels:
+    verdicts = {(v["index"], v["measure"]): v for v in data["prediction"]}
+    for col, (measured, predicted, names, what, where) in enumerate(_PANELS):
+        ax, test = grid[0, col], grid[1, col]
         lo, hi = np.inf, 0.0
-        for k, m in enumerate(measured):
-            for pt, x, y in _pairs(data, mode, m, predicted):
+        tlo, thi = np.inf, 0.0
+        for k, (m, name) in enumerate(zip(measured, names)):
+            for i, pt, x, y in _pairs(data, mode, m, predicted):
+                v = verdicts.get((i, name))
                 face = colours[pt["mass"]] if k == len(measured) - 1 else "none"
                 ax.scatter(abs(x), abs(y), marker=markers[pt["p"]], s=30, facecolor=face,
                            edgecolor=colours[pt["mass"]], lw=0.9, zorder=3)
+                if v is not None and not v["holds"]:
+                    ax.scatter(abs(x), abs(y), marker="o", s=90, facecolor="none",
+                               edgecolor="k", lw=0.7, zorder=4)
                 if x * y < 0:  # opposite signs: a cross through the marker
                     ax.scatter(abs(x), abs(y), marker="x", s=16, color="k", lw=0.7, zorder=4)
                 lo, hi = min(lo, abs(x), abs(y)), max(hi, abs(x), abs(y))
+                if v is not None and v["tolerance"] and x:
+                    gap = max(abs(y - x), 1e-12 * abs(x)) / abs(x)
+                    tol = v["tolerance"] / abs(x)
+                    test.scatter(tol, gap, marker=markers[pt["p"]], s=30, facecolor=face,
+                                 edgecolor=colours[pt["mass"]], lw=0.9, zorder=3)
+                    tlo, thi = min(tlo, tol, gap), max(thi, tol, gap)
         if hi > 0:
             lo = max(lo, 1e-8)
-            grid = np.geomspace(lo / 2, hi * 2, 50)
-            ax.plot(grid, grid, color="k", lw=0.8)
-            width = np.maximum(rtol * grid, atol)
-            ax.fill_between(grid, np.maximum(grid - width, lo / 3), grid + width,
-                            color="0.85", zorder=1, label=f"holds: within {100 * rtol:g} % "
-                            f"or {atol:g}")
+            line = np.geomspace(lo / 2, hi * 2, 50)
+            ax.plot(line, line, color="k", lw=0.8)
             ax.set_ylim(lo / 3, hi * 3)
-        ax.set_xscale("log")
-        ax.set_yscale("log")
+        if thi > 0:
+            tlo = max(tlo, 1e-12)
+            line = np.geomspace(tlo / 2, thi * 2, 50)
+            test.plot(line, line, color="k", lw=0.8)
+            test.fill_between(line, tlo / 3, line, color="0.9", zorder=1)
+            test.set_ylim(tlo / 3, thi * 3)
+        for a in (ax, test):
+            a.set_xscale("log")
+            a.set_yscale("log")
+            a.grid(True, which="both", lw=0.3, alpha=0.5)
         ax.set_xlabel(f"predicted {what}\n(fully discrete branch over {where})")
         ax.set_ylabel(f"measured {what}")
-        ax.grid(True, which="both", lw=0.3, alpha=0.5)
-    left.set_title("arrival time against the carrier's group delay\nhollow = envelope peak, "
-                   "filled = energy centroid; x = opposite sign", fontsize="small")
-    middle.set_title("energy arrival against the group delay averaged over\nthe burst's "
-                     "spectrum at the reference station", fontsize="small")
-    right.set_title("phase velocity of the carrier over the travel", fontsize="small")
-    right.legend(fontsize="x-small", loc="upper left")
+        test.set_xlabel("tolerance of the run / |predicted|\n(floor + the run's own spreads)")
+        test.set_ylabel("|measured - predicted| / |predicted|")
+    grid[0, 0].set_title("arrival time against the carrier's group delay\nhollow = envelope "
+                         "peak, filled = energy centroid; x = opposite sign", fontsize="small")
+    grid[0, 1].set_title("energy arrival against the group delay averaged over\nthe burst's "
+                         "spectrum at the reference station", fontsize="small")
+    grid[0, 2].set_title("phase velocity of the carrier over the travel", fontsize="small")
+    for ax in grid[1]:
+        ax.set_title("the test: below the diagonal the prediction holds", fontsize="small")
+    from matplotlib.lines import Line2D
+
+    grid[0, 2].legend(handles=[Line2D([], [], ls="", marker="o", mfc="none", mec="k", ms=9,
+                                      label="the prediction does not hold")],
+                      fontsize="x-small", loc="upper left")
     fig.legend(handles=_handles(data), loc="outside lower center", ncol=10,
                fontsize="x-small")
     fig.suptitle(f"{mode}: what the dispersion analysis predicted against what the simulation "
@@ -143,19 +272,32 @@ def plot_prediction(data: dict, mode: str = "S0"):
     return fig
 
 
+def trace_title(tr: dict) -> str:
+    """A stored trace's title: what it is, and its three errors or why it has none."""
+    what = (f"{tr['why']}: {tr['mode']}, p = {tr['p']}, {tr['mass']} mass, "
+            f"{tr['elements_per_wavelength']:g} elements per wavelength, courant "
+            f"{tr['courant']:g}")
+    if tr.get("failure"):
+        return f"{what}\nfailed, not measurable: {tr['failure']}"
+    return (f"{what}\narrival {100 * tr['arrival_error']:.3g} %, phase "
+            f"{tr['phase_error']:+.3g} rad, L2 {100 * tr['l2_error']:.3g} % (the largest: "
+            f"{tr['error_kind']})")
+
+
 def plot_signals(data: dict):
-    """Each stored trace: the simulated far-station signal over its exact reference."""
+    """Each stored trace: the simulated far-station signal and its semi-discrete (space only)
+    twin over the exact reference; a failed run is titled as failed, not by a number."""
     traces = data["traces"]
-    fig = new_figure(figsize=(10.0, 2.1 * max(len(traces), 1) + 0.6))
+    fig = new_figure(figsize=(10.0, 2.5 * max(len(traces), 1) + 0.6))
     axs = fig.subplots(max(len(traces), 1), 1, squeeze=False)[:, 0]
     s = data["strip"]
     for ax, tr in zip(axs, traces):
         ax.plot(tr["t"], tr["reference"], color="k", lw=1.6, label="exact reference")
+        if tr.get("semi") is not None:
+            ax.plot(tr["t"], tr["semi"], color="C0", lw=0.9, ls="--",
+                    label="semi-discrete (space only)")
         ax.plot(tr["t"], tr["simulated"], color="C3", lw=0.9, label="simulated")
-        ax.set_title(f"{tr['why']}: {tr['mode']}, p = {tr['p']}, {tr['mass']} mass, "
-                     f"{tr['elements_per_wavelength']:g} elements per wavelength, courant "
-                     f"{tr['courant']:g}; arrival-time error {100 * tr['arrival_error']:.3g} %",
-                     fontsize="small")
+        ax.set_title(trace_title(tr), fontsize="small")
         ax.set_ylabel("v at the far station [c_T]", fontsize="small")
         ax.grid(True, lw=0.3, alpha=0.5)
     axs[0].legend(fontsize="x-small", loc="upper right")
@@ -207,9 +349,16 @@ def plot_run(run):
                 label="simulated" if s == 0 else None)
     ax.set_xlabel("t [H / c_T]")
     ax.set_ylabel("station [wavelengths from the loaded end]")
-    ax.set_title(run.title() + "\narrival-time error at the far station "
-                 f"{100 * run.far.arrival_error:+.3g} % (peak), "
-                 f"{100 * run.far.energy_arrival_error:+.3g} % (energy)", fontsize="small")
+    e = run.far
+    if e.failure:
+        words = f"far station: failed, not measurable: {e.failure}"
+    else:
+        phase = (f"phase {e.phase_error:+.3g} rad" if run.phase_certain
+                 else "phase not followed")
+        words = (f"at the far station: arrival {100 * e.arrival_error:+.3g} % (peak), "
+                 f"{100 * e.energy_arrival_error:+.3g} % (energy); {phase}; "
+                 f"L2 {100 * e.l2_error:.3g} %")
+    ax.set_title(run.title() + "\n" + words, fontsize="small")
     ax.legend(fontsize="x-small", loc="lower right")
     ax.grid(True, lw=0.3, alpha=0.5)
     return fig

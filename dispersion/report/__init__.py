@@ -38,9 +38,9 @@ __all__ = ["SECTIONS", "DEFAULT_SECTIONS", "OPT_IN_SECTIONS", "section_module"]
 SECTIONS = ("coefficients", "branches", "ring", "series_speed", "studies", "peers",
             "cost_accuracy", "lumping", "wave_simulation")
 #: Sections measured only when named (``--sections``): a sweep beyond the paper that takes
-#: minutes (wave_simulation: 189 simulations; the seconds each section took are in the timing
-#: table of its index page), which the main job does not ask of every user. Their committed results stay in
-#: the reference and are rendered with it.
+#: minutes (wave_simulation: a few hundred simulations; the seconds each section took are in
+#: the timing table of its index page), which the main job does not ask of every user. Their
+#: committed results stay in the reference and are rendered with it.
 OPT_IN_SECTIONS = ("wave_simulation",)
 #: What ``dispersion reproduce`` measures by default.
 DEFAULT_SECTIONS = tuple(s for s in SECTIONS if s not in OPT_IN_SECTIONS)

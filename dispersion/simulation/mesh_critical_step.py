@@ -57,7 +57,9 @@ LANCZOS_TOL = 1e-6
 class MeshCriticalStep:
     """``omega_lanczos`` (the Ritz value's root), ``omega_max`` (rounded up to 6 digits),
     ``dt_crit = 2 / omega_max``; ``omega_bloch`` and ``dt_bloch`` the toolkit's periodic
-    patch (None if not asked); ``iterations``: Lanczos operator applications; ``seconds``."""
+    patch (None if not asked); ``iterations``: Lanczos operator applications; ``seconds``:
+    the Lanczos estimate (what a run pays for its step); ``bloch_seconds``: the toolkit's
+    Bloch-patch step beside it (a comparison, not needed to run)."""
 
     omega_lanczos: float
     omega_max: float
@@ -68,6 +70,7 @@ class MeshCriticalStep:
     seconds: float
     #: Why the toolkit has no Bloch-patch step for this rule (None: it has one, or not asked).
     bloch_failure: str | None = None
+    bloch_seconds: float = 0.0
 
     @property
     def ratio_to_bloch(self) -> float | None:
@@ -166,6 +169,8 @@ def mesh_critical_step(mesh, op, *, bloch: bool = False, tol: float = LANCZOS_TO
         raise ConvergenceError(f"the strip's largest eigenvalue is {w2}, not positive")
     omega = math.sqrt(w2)
     omega_max = round_up(omega)
+    seconds = time.perf_counter() - t0
+    t0 = time.perf_counter()
     omega_b = dt_b = why = None
     if bloch:
         from dispersion.errors import InputError
@@ -175,7 +180,7 @@ def mesh_critical_step(mesh, op, *, bloch: bool = False, tol: float = LANCZOS_TO
         except InputError as exc:  # a rule the Bloch plate patch does not model
             why = exc.reason  # the fact, without advice the strip cannot follow
     return MeshCriticalStep(omega, omega_max, 2.0 / omega_max, omega_b, dt_b, count[0],
-                            time.perf_counter() - t0, why)
+                            seconds, why, time.perf_counter() - t0)
 
 
 def bloch_step(plan) -> tuple[float, float]:

@@ -26,7 +26,7 @@ loop.
 >>> from dispersion.simulation.strip import Strip, plan_strip
 >>> cost = estimate_cost(plan_strip(Strip(p=1, travel=1, stations=2, elements_per_wavelength=3)))
 >>> cost.dofs, cost.dof_steps < MAX_DOF_STEPS
-(114, True)
+(132, True)
 """
 from __future__ import annotations
 

@@ -47,7 +47,7 @@ import numpy as np
 from dispersion.simulation.modal_synthesis import fft_length
 
 __all__ = ["SignalError", "envelope_peak", "envelope_centroid", "carrier_phase", "signal_error",
-           "TAIL_LEVEL"]
+           "TAIL_LEVEL", "tail_fraction"]
 
 @dataclass(frozen=True)
 class SignalError:
@@ -119,6 +119,14 @@ def envelope_centroid(u, dt: float, band) -> float:
 TAIL_LEVEL = 1e-2
 
 
+def tail_fraction(u, dt: float, band) -> float:
+    """Fraction of the band-limited envelope's energy in the last 5 % of the record (above
+    :data:`TAIL_LEVEL`: the burst runs past the end of the record)."""
+    e2 = _envelope2(np.asarray(u, dtype=float), dt, band)
+    total = float(np.sum(e2))
+    return float(np.sum(e2[int(0.95 * e2.size):])) / total if total > 0 else 0.0
+
+
 def _dtft(u, dt, omega):
     t = np.arange(u.size) * dt
     return np.sum(u * np.exp(-1j * omega * t)) * dt
@@ -159,8 +167,7 @@ def signal_error(simulated, reference, dt: float, band, omega_c: float, *, origi
     t_ref, _, in_ref = envelope_peak(r, dt, band)
     if not (in_sim and in_ref):
         failures.append("envelope peak at an end of the record (the burst is not inside it)")
-    e2 = _envelope2(u, dt, band)
-    if np.sum(e2[int(0.95 * e2.size):]) > TAIL_LEVEL * np.sum(e2):
+    if tail_fraction(u, dt, band) > TAIL_LEVEL:
         failures.append("the simulated burst runs past the end of the record (slower than "
                         "the record's room for it)")
     travel = t_ref - origin[0]

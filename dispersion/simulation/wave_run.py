@@ -14,13 +14,22 @@ The steps, in order (each timed):
 5. the reference at every station, continued from the reference station by the exact branch
    (:func:`~.modal_synthesis.continue_signal`), and the errors
    (:func:`~.signal_error.signal_error`);
-6. the prediction of the dispersion analysis (:func:`~.dispersion_prediction.predict`: at the
+6. the same errors of the semi-discrete (space only) records, formed from the run's own
+   records by the exact frequency map of central differences
+   (:func:`~.semi_discrete.semi_discrete_records`): what the mesh alone does, beside what the
+   mesh and the step do together;
+7. the prediction of the dispersion analysis (:func:`~.dispersion_prediction.predict`: at the
    carrier; :func:`~.dispersion_prediction.band_arrival_error`: the energy arrival over the
    band, weighted by the spectrum received at the reference station).
 
+What a user pays (:data:`USER_PAYS`, :attr:`WaveRun.total_seconds`): the assembly, the
+mass's factorization, the step estimate (Lanczos) and the loop. Not counted: the plan (the
+exact roots of the scene's band, the same for every discretization), the toolkit's
+Bloch-patch step (a comparison) and everything after the loop (the measurement).
+
 The result, :class:`WaveRun`, carries the strip it was computed from and renders its own
-title, header lines (inputs in words, with units), CSV columns and rows (the signals and
-their references), JSON and failures.
+title, header lines (inputs in words, with units; numbers a re-run needs, such as nu, at full
+precision), CSV columns and rows (the signals and their references), JSON and failures.
 
 >>> run = simulate(Strip(p=1, mass="lumped", travel=1, stations=2, elements_per_wavelength=3,
 ...                      kappa_c=1.0))
@@ -38,7 +47,10 @@ import numpy as np
 from dispersion.rendering import Rendered
 from dispersion.simulation.strip import Strip
 
-__all__ = ["WaveRun", "simulate", "Strip"]
+__all__ = ["WaveRun", "simulate", "Strip", "USER_PAYS"]
+
+#: The timed steps a user of a discretization pays for (keys of :attr:`WaveRun.seconds`).
+USER_PAYS = ("assembly", "factorization", "critical_step", "loop")
 
 
 @dataclass(frozen=True, repr=False)
@@ -53,7 +65,8 @@ class WaveRun(Rendered):
     unit traction over mu, in units of c_T) at station s and time ``times[k]`` (the half steps
     :math:`(k + 1/2)\\Delta t` of central differences); ``reference`` the exact continuation
     of station 0's record (band-limited) to each station. ``errors[s - 1]`` are those of
-    station s against its reference. Times in H/c_T.
+    station s against its reference; ``semi_errors[s - 1]`` those of the semi-discrete (space
+    only) record of station s (:mod:`~.semi_discrete`). Times in H/c_T.
     """
 
     strip: Strip
@@ -79,6 +92,12 @@ class WaveRun(Rendered):
     #: The energy arrival error the fully discrete branch predicts over the burst's band
     #: (:func:`~.dispersion_prediction.band_arrival_error`), or None.
     band_prediction: float | None = None
+    #: The errors of the semi-discrete records (:mod:`~.semi_discrete`), station by station.
+    semi_errors: tuple = ()
+    #: As ``phase_certain``, for the semi-discrete records.
+    semi_phase_certain: bool = True
+    #: The semi-discrete velocity at the stations (as ``records``), or None if not formed.
+    semi_records: np.ndarray | None = field(default=None, repr=False)
 
     @property
     def times(self) -> np.ndarray:
@@ -86,6 +105,21 @@ class WaveRun(Rendered):
         return (np.arange(self.n_steps) + 0.5) * self.dt
 
     # ----------------------------------------------------------------- costs
+    @property
+    def setup_seconds(self) -> float:
+        """Wall seconds before the loop that a user pays: assembly, factorization, step."""
+        return float(sum(self.seconds[k] for k in USER_PAYS if k != "loop"))
+
+    @property
+    def loop_seconds(self) -> float:
+        """Wall seconds of the loop: the median segment's rate times the steps."""
+        return float(self.seconds_per_step[1] * self.n_steps)
+
+    @property
+    def total_seconds(self) -> float:
+        """What a user pays (:data:`USER_PAYS`): the setup and the loop."""
+        return self.setup_seconds + self.loop_seconds
+
     @property
     def seconds_per_time(self) -> float:
         """Measured cost: wall seconds of the loop per simulated H/c_T (median segment rate)."""
@@ -113,6 +147,11 @@ class WaveRun(Rendered):
         """The errors at the far station (the travel of ``strip.travel`` wavelengths)."""
         return self.errors[-1]
 
+    @property
+    def semi_far(self):
+        """The semi-discrete errors at the far station (None if not formed)."""
+        return self.semi_errors[-1] if self.semi_errors else None
+
     # ----------------------------------------------------------------- rendering
     def title(self) -> str:
         return (f"{self.strip.mode} burst over {self.strip.travel:g} wavelengths: "
@@ -125,7 +164,7 @@ class WaveRun(Rendered):
         mat = MATERIALS[s.material]
         f_khz = pl.omega_c / (2 * math.pi) / pl.time_unit_us * 1e3
         lines = [
-            f"material: {mat.name} (c_L {mat.c_L:g} m/s, c_T {mat.c_T:g} m/s, nu {pl.nu:.4g}), "
+            f"material: {mat.name} (c_L {mat.c_L!r} m/s, c_T {mat.c_T!r} m/s, nu {pl.nu!r}), "
             f"plane strain, thickness d = {s.thickness_mm:g} mm (H = d/2)",
             f"burst: {s.cycles}-cycle Hann-windowed tone burst, {s.mode}, carrier kappa_c = "
             f"k H = {s.kappa_c:g}, Omega_c = omega H / c_T = {pl.omega_c:.6g} "
@@ -193,7 +232,10 @@ class WaveRun(Rendered):
             "energy_arrival_error": e.energy_arrival_error,
             "out_of_band": e.out_of_band, "errors": self.errors,
             "prediction": self.prediction, "band_prediction": self.band_prediction,
+            "semi_errors": self.semi_errors, "semi_phase_certain": self.semi_phase_certain,
             "seconds": self.seconds, "seconds_per_step": self.seconds_per_step,
+            "loop_seconds": self.loop_seconds, "setup_seconds": self.setup_seconds,
+            "total_seconds": self.total_seconds, "user_pays": USER_PAYS,
             "seconds_per_time": self.seconds_per_time, "modelled_cost": self.modelled_cost,
             "modelled_work": self.modelled_work,
             "nbytes": self.nbytes, "failures": self.failures,
@@ -204,19 +246,16 @@ class WaveRun(Rendered):
         return {"summary": self.summary()}
 
     def station_lines(self) -> list[str]:
-        """The errors at every station and the prediction, one line each (text forms)."""
+        """The errors at every station (fully discrete, then semi-discrete: space only), the
+        prediction and the cost, one line each (text forms)."""
         lines = []
-        for x, e in zip(self.plan.stations[1:], self.errors):
+        semi = self.semi_errors or (None,) * len(self.errors)
+        for x, e, sd in zip(self.plan.stations[1:], self.errors, semi):
             lam = (x - self.plan.stations[0]) / self.plan.wavelength
-            if e.failure:  # no numbers for a station whose error could not be measured
-                lines.append(f"after {lam:.4g} wavelengths: FAILED, not measured: {e.failure}")
-                continue
-            phase = (f"phase {e.phase_error:+.4g} rad (phase velocity "
-                     f"{100 * e.phase_velocity_error:+.4g} %)" if self.phase_certain
-                     else "phase not followed")
-            lines.append(f"after {lam:.4g} wavelengths: arrival {100 * e.arrival_error:+.4g} % "
-                         f"(peak), {100 * e.energy_arrival_error:+.4g} % (energy); {phase}; "
-                         f"L2 {e.l2_error:.4g}")
+            lines.append(f"after {lam:.4g} wavelengths: {_error_words(e, self.phase_certain)}; "
+                         "semi-discrete (space only): "
+                         + ("not formed" if sd is None else
+                            _error_words(sd, self.semi_phase_certain)))
         pred = self.prediction
         if pred is not None and pred.failure is None:
             band = ("" if self.band_prediction is None else
@@ -226,10 +265,17 @@ class WaveRun(Rendered):
                          f"{pred.phase_error:+.4g} rad (phase velocity "
                          f"{100 * pred.phase_velocity_error:+.4g} %)")
         lo, med, hi = self.seconds_per_step
-        lines.append(f"cost: {med * self.n_steps:.3g} s for {self.n_steps} steps of "
-                     f"{self.dofs} DOFs ({med:.3g} s per step, {lo:.3g} to {hi:.3g} over the "
-                     f"timed segments; {self.seconds_per_time / self.plan.time_unit_us:.3g} s "
-                     f"per simulated us); modelled: {self.modelled_cost:.4g} DOF-steps per H/c_T"
+        sec = self.seconds
+        lines.append(f"cost: {self.total_seconds:.3g} s in all = assembly "
+                     f"{sec['assembly']:.3g} s + factorization {sec['factorization']:.3g} s + "
+                     f"step estimate (Lanczos, {self.step.iterations} products) "
+                     f"{sec['critical_step']:.3g} s + loop {self.loop_seconds:.3g} s for "
+                     f"{self.n_steps} steps of {self.dofs} DOFs ({med:.3g} s per step, "
+                     f"{lo:.3g} to {hi:.3g} over the timed segments; "
+                     f"{self.seconds_per_time / self.plan.time_unit_us:.3g} s per simulated us); "
+                     f"not counted: the plan {sec['plan']:.3g} s, the Bloch-patch step "
+                     f"{sec['bloch_step']:.3g} s and the measurement; modelled: "
+                     f"{self.modelled_cost:.4g} DOF-steps per H/c_T"
                      + ("" if self.modelled_work is None else
                         f", {self.modelled_work:.4g} multiply-adds per H/c_T")
                      + f"; {self.nbytes / 1e6:.3g} MB")
@@ -250,6 +296,71 @@ class WaveRun(Rendered):
         return "\n\n".join(parts)
 
 
+def _error_words(e, phase_certain: bool) -> str:
+    """One station's errors in words: arrival (peak, energy), carrier phase, L2."""
+    if e.failure:
+        return f"not measurable ({e.failure})"
+    phase = (f"phase {e.phase_error:+.4g} rad (phase velocity "
+             f"{100 * e.phase_velocity_error:+.4g} %)" if phase_certain
+             else "phase not followed")
+    return (f"arrival {100 * e.arrival_error:+.4g} % (peak), "
+            f"{100 * e.energy_arrival_error:+.4g} % (energy); {phase}; L2 {e.l2_error:.4g}")
+
+
+def _measure(rec, dt: float, plan, bins, wavenumber, label: str = ""):
+    """Errors of velocity records ``rec`` (the plan's stations, then its phase stations)
+    against the exact continuation of the first: ``(errors, phase_certain, failures)``."""
+    from dispersion.simulation.modal_synthesis import continue_signal
+    from dispersion.simulation.signal_error import (carrier_phase, envelope_centroid,
+                                                    envelope_peak, signal_error)
+
+    n_user = len(plan.stations)
+    x = np.asarray(plan.stations + plan.phase_stations)
+    ref = continue_signal(rec[:, 0], dt, x - x[0], wavenumber, plan.band)
+    # the carrier phase error followed from zero at x0, one wavelength at a time
+    wrapped = [carrier_phase(rec[:, j], ref[:, j], dt, plan.band, plan.omega_c)
+               for j in range(n_user, x.size)]
+    unwrapped = np.unwrap(wrapped)
+    phase_x = x[n_user:]
+    failures = []
+    # (at x0 the phase is that of a record against itself band-limited: zero up to the
+    # truncation of the band-limited record to its length)
+    phase_certain = not (wrapped and (abs(wrapped[0]) > 1e-2 or np.max(
+        np.abs(np.diff(unwrapped)), initial=0) > math.pi / 2))
+    if not phase_certain:
+        failures.append(f"{label}the carrier phase turns by more than a quarter turn over a "
+                        "wavelength: its branch at the stations is not certain")
+    t_origin = (envelope_peak(rec[:, 0], dt, plan.band)[0],
+                envelope_centroid(rec[:, 0], dt, plan.band))
+    kappa_c = plan.strip.kappa_c  # the carrier is the exact branch's at kappa_c (plan_strip)
+    errors = tuple(signal_error(rec[:, s], ref[:, s], dt, plan.band, plan.omega_c,
+                                origin=t_origin, distance=float(x[s] - x[0]), kappa=kappa_c,
+                                phase_guess=float(np.interp(x[s], phase_x, unwrapped)))
+                   for s in range(1, n_user))
+    failures += [f"{label}station {s + 1}: {e.failure}" for s, e in enumerate(errors)
+                 if e.failure]
+    return errors, bool(phase_certain), failures, ref[:, :n_user]
+
+
+def _semi_discrete(run, dt: float, plan, bins, wavenumber):
+    """``(errors, phase_certain, records, failures)`` of the semi-discrete records (module
+    docstring); no errors and no records where the fully discrete records are incomplete (the
+    map needs the whole in-band response)."""
+    from dispersion.simulation.semi_discrete import semi_discrete_records
+    from dispersion.simulation.signal_error import TAIL_LEVEL, tail_fraction
+
+    x_rec = np.diff(run.records, axis=0) / dt
+    incomplete = [j for j in range(x_rec.shape[1])
+                  if tail_fraction(x_rec[:, j], dt, plan.band) > TAIL_LEVEL]
+    if incomplete:
+        return (), True, None, [f"semi-discrete: not formed, the fully discrete record at "
+                          f"{len(incomplete)} station(s) runs past its end (the map needs the "
+                          "whole response in the band)"]
+    semi = semi_discrete_records(x_rec, dt, plan.band)
+    errors, certain, failures, _ = _measure(semi, dt, plan, bins, wavenumber, "semi-discrete ")
+    return errors, certain, semi[:, :len(plan.stations)], failures
+
+
 def simulate(strip: Strip, *, bloch: bool = True, predict: bool = True, segments: int = 5,
              energy_every: int = 0, cost_limit: int | None = None) -> WaveRun:
     """Run one simulation of ``strip`` and measure it (module docstring).
@@ -261,11 +372,9 @@ def simulate(strip: Strip, *, bloch: bool = True, predict: bool = True, segments
     from dispersion.simulation.dispersion_prediction import predict as prediction
     from dispersion.simulation.mass_operator import mass_operator
     from dispersion.simulation.mesh_critical_step import mesh_critical_step
-    from dispersion.simulation.modal_synthesis import continue_signal, exact_branch, fft_length
+    from dispersion.simulation.modal_synthesis import exact_branch, fft_length
     from dispersion.simulation.run_cost import (MAX_DOF_STEPS, RunCost, check_cost,
                                                 estimate_cost)
-    from dispersion.simulation.signal_error import (carrier_phase, envelope_centroid,
-                                                    envelope_peak, signal_error)
     from dispersion.simulation.strip import plan_strip
     from dispersion.simulation.strip_mesh import strip_mesh
     from dispersion.simulation.tone_burst import ToneBurst
@@ -286,6 +395,7 @@ def simulate(strip: Strip, *, bloch: bool = True, predict: bool = True, segments
     seconds["factorization"] = op.seconds
     step = mesh_critical_step(mesh, op, bloch=bloch)
     seconds["critical_step"] = step.seconds
+    seconds["bloch_step"] = step.bloch_seconds
     dt = strip.courant * step.dt_crit
     n_steps = math.ceil(plan.t_end / dt)
     check_cost(RunCost(mesh.n_dofs, n_steps, False, mesh.step_kind[0] == "dense"), what, limit)
@@ -304,32 +414,13 @@ def simulate(strip: Strip, *, bloch: bool = True, predict: bool = True, segments
         return kappa_b if omega.shape == bins.shape else exact_branch(strip.kind, plan.nu,
                                                                       omega)[0]
 
-    n_user = len(plan.stations)
-    x = np.asarray(plan.stations + plan.phase_stations)
-    rec = x_rec
-    ref = continue_signal(rec[:, 0], dt, x - x[0], wavenumber, plan.band)
-    # the carrier phase error followed from zero at x0, one wavelength at a time
-    wrapped = [carrier_phase(rec[:, j], ref[:, j], dt, plan.band, plan.omega_c)
-               for j in range(n_user, x.size)]
-    unwrapped = np.unwrap(wrapped)
-    phase_x = x[n_user:]
-    failures = []
-    # (at x0 the phase is that of a record against itself band-limited: zero up to the
-    # truncation of the band-limited record to its length)
-    phase_certain = not (wrapped and (abs(wrapped[0]) > 1e-2 or np.max(
-        np.abs(np.diff(unwrapped)), initial=0) > math.pi / 2))
-    if not phase_certain:
-        failures.append("the carrier phase turns by more than a quarter turn over a wavelength: "
-                        "its branch at the stations is not certain")
-    t_origin = (envelope_peak(rec[:, 0], dt, plan.band)[0],
-                envelope_centroid(rec[:, 0], dt, plan.band))
-    kappa_c = strip.kappa_c  # the carrier is the exact branch's at kappa_c (plan_strip)
-    errors = tuple(signal_error(rec[:, s], ref[:, s], dt, plan.band, plan.omega_c,
-                                origin=t_origin, distance=float(x[s] - x[0]), kappa=kappa_c,
-                                phase_guess=float(np.interp(x[s], phase_x, unwrapped)))
-                   for s in range(1, n_user))
-    rec, ref = rec[:, :n_user], ref[:, :n_user]
+    errors, phase_certain, failures, ref = _measure(x_rec, dt, plan, bins, wavenumber)
+    rec = x_rec[:, :len(plan.stations)]
     seconds["reference"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    semi, semi_certain, semi_rec, semi_failures = _semi_discrete(run, dt, plan, bins,
+                                                                 wavenumber)
+    seconds["semi_discrete"] = time.perf_counter() - t0
     t0 = time.perf_counter()
     pred = prediction(plan, dt) if predict else None
     band = (None, "not asked")
@@ -341,7 +432,7 @@ def simulate(strip: Strip, *, bloch: bool = True, predict: bool = True, segments
         inside = (omega_all >= plan.band[0]) & (omega_all <= plan.band[1])
         band = band_arrival_error(pred, bins, weights[inside], group_b)
     seconds["prediction"] = time.perf_counter() - t0
-    failures += [f"station {s + 1}: {e.failure}" for s, e in enumerate(errors) if e.failure]
+    failures += semi_failures
     if pred is not None and pred.failure:
         failures.append(f"prediction: {pred.failure}")
     elif pred is not None and band[1]:
@@ -352,4 +443,4 @@ def simulate(strip: Strip, *, bloch: bool = True, predict: bool = True, segments
     nbytes = int(run.nbytes + held.data.nbytes + held.indices.nbytes)
     return WaveRun(strip, plan, mesh.n_dofs, int(mesh.massless.size), op.kind, op.why, step,
                    dt, n_steps, rec, ref, errors, pred, seconds, spread, nbytes,
-                   tuple(failures), bool(phase_certain), band[0])
+                   tuple(failures), bool(phase_certain), band[0], semi, semi_certain, semi_rec)

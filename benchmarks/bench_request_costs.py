@@ -16,7 +16,11 @@ it implies at the module's budget (60 s of CPU, 1 GiB):
 4. ``phases``: ``critical_time_step`` of a singular plate patch (p, n) = (2, 3), (4, 24)
    for 10^3 and 10^4 phases: seconds and bytes per phase and squared size;
 5. ``refusals``: the requests of issue 27 item 8, each refused (wall and CPU seconds of the
-   whole child, imports included).
+   whole child, imports included);
+6. ``discrete``: ``branch_table(mass=[rule], patch=Patch(p=p, n=n), count=2)`` (the setup of
+   discrete branches: the exact patch and its characteristic polynomial, once per rule, with
+   two kappa points) for every rule of the Bloch patch, p = 2, 4, ... 24 at n = p + 1 until
+   a point exceeds the minute, then n = 12, 25, 50, 100, 200 at p = 2 (consistent, singular).
 
 The figures in the docstring of :mod:`dispersion.budget` come from a run on the shared
 2-core development machine (loaded by other jobs): time it again on a quiet machine.
@@ -199,8 +203,40 @@ def refusals(timeout: float, quick: bool) -> None:
                   f"{last[:110]}")
 
 
+def discrete(timeout: float, quick: bool) -> None:
+    """Setup CPU of discrete branches per rule and degree, and against n (rule 6 of budget)."""
+    from dispersion.mass_rules.mass_rule import BLOCH_RULE_NAMES
+
+    setup = ("from dispersion.answers import branch_table as bt\n"
+             "from dispersion.symbolic.patch import Patch\n"
+             "import dispersion.budget as b\n"
+             "b.DISCRETE_P_MAX = {}\nb.DISCRETE_WORK_MAX = b.DISCRETE_N_MAX = 10**18")
+    bound = {}
+    for rule in BLOCH_RULE_NAMES:
+        for p in (2, 8, 16, 24) if quick else range(2, 25, 2):
+            got = _measure(setup, f"bt.branch_table(mass=[{rule!r}], patch=Patch(p={p}, "
+                                  f"n={max(p + 1, 3)}), count=2, omega_max=1.0)", timeout)
+            print(f"discrete {rule:20s} p = {p:2d}, n = {max(p + 1, 3):2d}: "
+                  + (f"{got['cpu']:7.2f} s CPU, {got['rss'] / 2**20:6.0f} MiB" if got
+                     else f"timed out (> {timeout:g} s)"), flush=True)
+            if got is None or got["cpu"] > 60:
+                break
+            bound[rule] = p
+    print("discrete: largest p measured within the minute: " + ", ".join(
+        f"{r} {p}" for r, p in bound.items()))
+    for rule in ("consistent", "singular"):
+        for n in (12, 25, 50) if quick else (12, 25, 50, 100, 200):
+            got = _measure(setup, f"bt.branch_table(mass=[{rule!r}], patch=Patch(p=2, n={n}), "
+                                  "count=2, omega_max=1.0)", timeout)
+            print(f"discrete {rule:20s} p =  2, n = {n:3d}: "
+                  + (f"{got['cpu']:7.2f} s CPU, {got['rss'] / 2**20:6.0f} MiB" if got
+                     else f"timed out (> {timeout:g} s)"), flush=True)
+            if got is None or got["cpu"] > 60:
+                break
+
+
 RULES = {"bar": bar, "terms": terms, "bar_series": bar_series, "phases": phases,
-         "refusals": refusals}
+         "refusals": refusals, "discrete": discrete}
 
 
 def main() -> None:

@@ -26,7 +26,8 @@ from __future__ import annotations
 
 import importlib
 
-from dispersion.errors import ConvergenceError, DispersionError, IndefiniteMassWarning, InputError
+from dispersion.errors import (ConvergenceError, DispersionError, IndefiniteMassWarning, InputError,
+                               ParameterError)
 
 #: Distribution name on the package index (the import name is ``dispersion``).
 DISTRIBUTION = "dispersion-iga"
@@ -99,7 +100,8 @@ _MODULES = {
 }
 _SUBMODULES = tuple(_MODULES)
 
-__all__ = ["DispersionError", "InputError", "ConvergenceError", "IndefiniteMassWarning",
+__all__ = ["DispersionError", "InputError", "ParameterError", "ConvergenceError",
+           "IndefiniteMassWarning",
            "__version__", *_API]
 
 

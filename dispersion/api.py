@@ -28,7 +28,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from dispersion import defaults
-from dispersion.errors import InputError
+from dispersion.errors import InputError, ParameterError
 
 if TYPE_CHECKING:  # pragma: no cover
     import sympy
@@ -41,6 +41,43 @@ __all__ = ["Patch", "PatchModel", "patch", "series", "exact_branches", "lamb_mod
            "critical_steps", "figure"]
 
 
+def _fits(name: str, target, args=(), kwargs=None) -> None:
+    """Raise :class:`ParameterError` (an InputError and a TypeError) if ``name(*args,
+    **kwargs)`` does not fit the signature of ``target``: the unknown keyword named with the
+    accepted ones (and the nearest), never a bare TypeError from deep inside."""
+    import inspect
+
+    from dispersion.errors import did_you_mean
+
+    kwargs = kwargs or {}
+    sig = inspect.signature(target)
+    try:
+        sig.bind(*args, **kwargs)
+    except TypeError as exc:
+        accepted = [n for n, p in sig.parameters.items()
+                    if p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY)]
+        unknown = [k for k in kwargs if k not in accepted]
+        if unknown:
+            raise ParameterError(f"{name}() got an unknown keyword {unknown[0]!r}; it accepts "
+                                 f"{', '.join(accepted)}{did_you_mean(unknown[0], accepted)}"
+                                 ) from None
+        raise ParameterError(f"{name}(): {exc}; it accepts {', '.join(accepted)}") from None
+
+
+def _front_door(func):
+    """A function of the front door: a call that does not fit its own signature raises
+    :class:`ParameterError` naming the keyword (:func:`_fits`), as a call that does not fit
+    what it forwards to does."""
+    import functools
+
+    @functools.wraps(func)
+    def call(*args, **kwargs):
+        _fits(func.__name__, func, args, kwargs)
+        return func(*args, **kwargs)
+    return call
+
+
+@_front_door
 def patch(*args, **fields) -> PatchModel:
     """The patch to compute with (:class:`~dispersion.patch_model.PatchModel`): its
     :class:`~dispersion.symbolic.patch.Patch` value ``.spec`` of ``fields`` (p, n, model, r,
@@ -60,13 +97,11 @@ def patch(*args, **fields) -> PatchModel:
     from dispersion.patch_model import PatchModel
     from dispersion.symbolic.patch import Patch
 
-    try:
-        spec = Patch(*args, **fields)
-    except TypeError as exc:  # an unknown field or too many values: named, one line
-        raise InputError(f"patch(): {exc}; the fields are those of Patch") from None
-    return PatchModel(spec)
+    _fits("patch", Patch, args, fields)
+    return PatchModel(Patch(*args, **fields))
 
 
+@_front_door
 def series(branch: str = "S0", order: int = 8, *, exact: bool = False, nu=None,
            **patch_kwargs) -> dict[int, sympy.Expr]:
     """Series of the S0/A0 branch: exact Rayleigh-Lamb (``exact=True``, eqs 14-15) or of
@@ -85,6 +120,7 @@ def series(branch: str = "S0", order: int = 8, *, exact: bool = False, nu=None,
     return patch(**patch_kwargs).series(branch, order, nu)
 
 
+@_front_door
 def exact_branches(kappa, nu=defaults.NU_FLOAT, omega_max: float = 8.0, **kwargs):
     """Exact Rayleigh-Lamb branches with :math:`\\Omega \\le` ``omega_max`` on ``kappa``
     (:func:`dispersion.waves.exact_branches.trace_branches`); ``nu`` may be an isotropic
@@ -92,11 +128,13 @@ def exact_branches(kappa, nu=defaults.NU_FLOAT, omega_max: float = 8.0, **kwargs
     refused)."""
     from dispersion.continuum.exact_branches import trace_branches
 
+    _fits("exact_branches", trace_branches, (nu, kappa, omega_max), kwargs)
     if hasattr(nu, "poisson_ratio"):  # an ElasticLaw
         nu = nu.poisson_ratio("exact Rayleigh-Lamb branches")
     return trace_branches(nu, kappa, omega_max, **kwargs)
 
 
+@_front_door
 def material(name: str):
     """A material of the table (:data:`dispersion.waves.materials.MATERIALS`, with sources);
     user materials: :func:`dispersion.waves.materials.user_material`."""
@@ -105,6 +143,7 @@ def material(name: str):
     return _material(name)
 
 
+@_front_door
 def lamb_modes(material, thickness_mm: float, *, frequency_khz=None, fd_mhz_mm=None, **kwargs):
     """Every propagating S, A and SH mode of the plate at the given frequencies (kHz) or
     frequency-thickness products (MHz mm), in physical units
@@ -116,27 +155,31 @@ def lamb_modes(material, thickness_mm: float, *, frequency_khz=None, fd_mhz_mm=N
     """
     from dispersion.answers.mode_table import lamb_modes as _lamb_modes
 
+    _fits("lamb_modes", _lamb_modes, (material, thickness_mm), kwargs)
     if isinstance(material, str):
         material = globals()["material"](material)
     return _lamb_modes(material, thickness_mm, frequency_khz=frequency_khz,
                        fd_mhz_mm=fd_mhz_mm, **kwargs)
 
 
+@_front_door
 def branch_table(**request):
     """``dispersion branches`` as a function: exact and discrete branches on a kappa grid, in
     units with a material, bounded as the command bounds them
     (:func:`dispersion.waves.branch_table.branch_table`; a
     :class:`~dispersion.waves.branch_table.BranchTable` that renders itself).
 
-    >>> t = branch_table(exact_only=True, count=3, kappa_max=1.0, omega_max=2.0)
+    >>> t = branch_table(exact=True, count=3, kappa_max=1.0, omega_max=2.0)
     >>> t.title()
     'Rayleigh-Lamb branches, nu = 0.3, 3 kappa in [0, 1], Omega <= 2'
     """
     from dispersion.answers.branch_table import branch_table as _branch_table
 
+    _fits("branch_table", _branch_table, (), request)
     return _branch_table(**request)
 
 
+@_front_door
 def mode_shapes(table, mode: str, points: int = 41):
     """Displacements and stresses through the thickness of ``mode`` of a one-frequency
     :func:`lamb_modes` table (:func:`dispersion.waves.mode_shape_table.mode_shapes`)."""
@@ -145,21 +188,26 @@ def mode_shapes(table, mode: str, points: int = 41):
     return _mode_shapes(table, mode, points)
 
 
+@_front_door
 def series_table(branches=("S0", "A0"), order: int = 8, **request):
     """``dispersion series`` as a function (:func:`dispersion.waves.series_table.series_table`:
     a :class:`~dispersion.waves.series_table.SeriesTable` that prints itself)."""
     from dispersion.answers.series_table import series_table as _series_table
 
+    _fits("series_table", _series_table, (branches, order), request)
     return _series_table(branches, order, **request)
 
 
+@_front_door
 def critical_steps(masses=None, p: int = 2, **request):
     """``dispersion timestep`` as a function (:func:`dispersion.waves.critical_steps.critical_steps`)."""
     from dispersion.answers.critical_steps import critical_steps as _critical_steps
 
+    _fits("critical_steps", _critical_steps, (masses, p), request)
     return _critical_steps(masses, p, **request)
 
 
+@_front_door
 def figure(result):
     """The figure of a result (the ``plots`` extra), drawn from the result alone, as the
     command's ``--figure`` draws it: a :class:`~dispersion.waves.branch_table.BranchTable`,
@@ -184,13 +232,14 @@ def figure(result):
     elif kind == "RingResult":
         from dispersion.plotting.ring import plot_contact_energy
 
-        return plot_contact_energy(result.to_dict())
+        return plot_contact_energy(result.record())
     else:
         raise InputError(f"figure() draws a BranchTable, ModeTable, ModeShapeTable, RingResult "
                          f"or SignoriniResult, got {kind}")
     return draw(result)
 
 
+@_front_door
 def simulate_ring(mass: str = "singular", scheme: str = "kane", scenario=None, **changes):
     """The ring benchmark (Figure 4): :func:`dispersion.contact.simulate.simulate_ring` on
     ``scenario`` (default: the reconstructed :class:`~dispersion.contact.scenario.Scenario`)
@@ -203,15 +252,17 @@ def simulate_ring(mass: str = "singular", scheme: str = "kane", scenario=None, *
     sc = scenario if scenario is not None else Scenario()
     unknown = sorted(set(changes) - {f.name for f in fields(sc)})
     if unknown:
-        raise InputError(f"unknown scenario fields {unknown}; valid: "
-                         f"{', '.join(f.name for f in fields(sc))}")
+        raise ParameterError(f"simulate_ring() got unknown scenario fields {unknown}; valid: "
+                             f"{', '.join(f.name for f in fields(sc))}")
     return _simulate(replace(sc, **changes), mass, scheme)
 
 
+@_front_door
 def simulate_bar(n_elements: int = 40, p: int = defaults.P, mass: str = "lumped", **kwargs):
     """The 1-D bar impact (:func:`dispersion.contact.bar.simulate_bar`)."""
     from dispersion.contact.bar import simulate_bar as _simulate
 
+    _fits("simulate_bar", _simulate, (n_elements, p, mass), kwargs)
     return _simulate(n_elements, p, mass, **kwargs)
 
 

@@ -47,6 +47,35 @@ machine shared with other jobs: the lead re-times them on a quiet machine).
 5. **Worker processes** (:func:`dispersion.sweep.parallel_map`,
    :func:`dispersion.sweep.process_pool`): at most :data:`dispersion.defaults.MAX_JOBS_PER_CPU`
    per usable CPU (each holds its own copy of the toolkit, about 150 MB).
+6. **Discrete branches** (:func:`dispersion.answers.branch_table.branch_table`,
+   :meth:`dispersion.patch_model.PatchModel.branches`, ``dispersion branches``), two costs:
+
+   (a) *per kappa*: every kappa solves the pencil of each rule, of size 2n. Measured, 400
+   kappa, consistent + singular: n = 10 in 3.4 s, n = 20 in 48 s, n = 30 in 180 s (like n^3).
+   Bound: count x (mass rules) x n^3 at most :data:`DISCRETE_WORK_MAX` (the default run of
+   two rules and 400 kappa at n = 24 in about a minute).
+
+   (b) *once per rule*: the exact patch of the rule and, where the mirror blocks have at most
+   12 rows (n <= 12), its exact characteristic polynomial (``bench_request_costs.py --only
+   discrete``: CPU of ``branch_table`` with two kappa). Every rule but one stays within the
+   minute up to p = 24: at n = p + 1, p = 24, consistent 25 s, lumped 25 s, singular 32 s,
+   nodal-lobatto 32 s; at n = 12, p = 10, consistent 12 s. The approximate-dual rule
+   ``dual-lumped`` does not: its exact patch took 6.5, 12.5 and 39 s at p = 12, 14, 16
+   (n = p + 1; 38 s at p = 12, n = 23; 15 s at p = 4, n = 30) and more than 15 minutes at
+   p = 24; its polynomial at n = 12 took 2.5, 7.4,
+   17, 40 and 95 s at p = 2, 4, 6, 8, 10. Bounds: :data:`DISCRETE_P_MAX`, per rule and
+   part, the largest p measured within the minute (a user's rule, a redistribution of weights
+   or a callable, is bounded as the registered rules other than ``dual-lumped``).
+
+   (c) *n with p*: the exact patch grows faster than n^2, and faster at higher p (CPU,
+   consistent and singular: p = 2 at n = 25: 6.6 and 9.5 s, at n = 35: 12.4 and 21 s, at
+   n = 50: 32 s (consistent); p = 12 at n = 13: 3.1 s, at n = 23: 32 and 35 s, at n = 35: 77
+   s (consistent); n = p + 1 at p = 12, 16, 20, 24: 3.1, 7.3, 13, 25 s (consistent); p = 24,
+   n = 27: 74 s). Singular at p = 2, n = 40 met the extended-precision solver's own bound
+   (70 s a kappa). Bound: n at most :func:`discrete_n_max` (p) = max(p + 1, 35 - 1.3 (p - 2)):
+   35 at p = 2 (the two default rules 33 s), 22 at p = 12 (about 57 s, from n = 23's 66 s),
+   p + 1 from p = 16 (p = 24: 57 s), linear between the measured corners; so every n the
+   command accepts for its p runs at its smallest grid (count = 2) with its default rules.
 
 >>> check_bar_degree(24)
 Traceback (most recent call last):
@@ -61,9 +90,10 @@ from dispersion import defaults
 from dispersion.errors import InputError
 
 __all__ = ["BAR_P_MAX", "TIME_TERMS_MAX", "SERIES_WORK_MAX", "SYMBOLIC_SERIES_WORK_MAX",
-           "BAR_SERIES_ORDER_MAX", "PHASE_WORK_MAX", "check_bar_degree", "check_time_terms",
+           "BAR_SERIES_ORDER_MAX", "PHASE_WORK_MAX", "DISCRETE_WORK_MAX", "DISCRETE_P_MAX",
+           "DISCRETE_N_MAX", "POLYNOMIAL_N_MAX", "discrete_n_max", "check_bar_degree", "check_time_terms",
            "series_work", "check_series_work", "check_bar_series", "check_phases",
-           "check_jobs", "max_jobs", "check_claim"]
+           "check_discrete_branches", "check_jobs", "max_jobs", "check_claim"]
 
 #: Highest degree of the exact maximum of the periodic bar (rule 1).
 BAR_P_MAX = 12
@@ -77,6 +107,18 @@ SYMBOLIC_SERIES_WORK_MAX = 70
 BAR_SERIES_ORDER_MAX = 16
 #: Most phases x (2n)^2 of the critical-step grid (rule 4).
 PHASE_WORK_MAX = 20_000_000
+#: Most count x (mass rules) x n^3 of discrete branches (rule 6a).
+DISCRETE_WORK_MAX = 2 * 400 * 24**3
+#: Largest n of discrete branches at any p (rule 6c): :func:`discrete_n_max` at p = 1.
+DISCRETE_N_MAX = 36
+#: Largest n whose mirror blocks (n rows each) take the exact characteristic polynomial
+#: (:data:`dispersion.discretization.pencil_polynomial.MAX_BLOCK`): the setup of 6b's
+#: "polynomial" part.
+POLYNOMIAL_N_MAX = 12
+#: Largest p of discrete branches per rule and part of its setup (rule 6b): ``"patch"`` (its
+#: exact patch, any n) and ``"polynomial"`` (its characteristic polynomial, n <= 12). A rule
+#: not named here is within the minute up to :data:`dispersion.defaults.P_MAX`.
+DISCRETE_P_MAX = {"dual-lumped": {"patch": 16, "polynomial": 8}}
 
 
 def _integer(name: str, value) -> int:
@@ -163,6 +205,62 @@ def check_phases(n_theta, size: int) -> int:
                          f"the limit of n_theta x size^2 <= {PHASE_WORK_MAX} (about 1 GiB): at "
                          f"most n_theta = {PHASE_WORK_MAX // (size * size)}")
     return n_theta
+
+
+def discrete_n_max(p: int) -> int:
+    """Rule 6c: the largest n of discrete branches at degree ``p``.
+
+    >>> [discrete_n_max(p) for p in (1, 2, 12, 16, 24)]
+    [36, 35, 22, 17, 25]
+    """
+    return max(int(p) + 1, 35 - int(1.3 * (int(p) - 2)))
+
+
+def check_discrete_branches(count, rules, p, n) -> int:
+    """Rule 6: discrete branches of ``rules`` (names or rules) at degree ``p``, ``n`` control
+    points, on ``count`` kappa; returns count x (rules) x n^3. Every refusal names values the
+    command accepts: a count of at least 2, an n of at least p + 1.
+
+    >>> check_discrete_branches(2, ["dual-lumped"], 24, 25)
+    Traceback (most recent call last):
+    ...
+    dispersion.errors.InputError: mass rule 'dual-lumped' at p = 24 is beyond the work bound of discrete branches: its exact patch at most p = 16 (the dearest p measured within a minute; it grows several-fold with each two degrees)
+    >>> check_discrete_branches(2, ["consistent", "singular"], 2, 200)
+    Traceback (most recent call last):
+    ...
+    dispersion.errors.InputError: n = 200 at p = 2 is beyond the work bound of discrete branches: at most n = 35 at this p (the exact patches of two rules in about a minute)
+    """
+    count, p, n = _integer("count", count), _integer("p", p), _integer("n", n)
+    names = [getattr(r, "name", r) for r in rules]
+    for name in names:
+        bounds = DISCRETE_P_MAX.get(name, {})  # a user rule cannot take a registered name
+        if p > bounds.get("patch", defaults.P_MAX):
+            raise InputError(f"mass rule {name!r} at p = {p} is beyond the work bound of "
+                             f"discrete branches: its exact patch at most p = "
+                             f"{bounds['patch']} (the dearest p measured within a minute; it "
+                             "grows several-fold with each two degrees)")
+        if n <= POLYNOMIAL_N_MAX and p > bounds.get("polynomial", defaults.P_MAX):
+            raise InputError(f"mass rule {name!r} at p = {p} with n = {n} is beyond the work "
+                             f"bound of discrete branches: its exact characteristic "
+                             f"polynomial (n <= {POLYNOMIAL_N_MAX}) at most p = "
+                             f"{bounds['polynomial']}; with n >= {POLYNOMIAL_N_MAX + 1} it "
+                             "takes the float eigen-solver instead")
+    if n > discrete_n_max(p):
+        raise InputError(f"n = {n} at p = {p} is beyond the work bound of discrete branches: "
+                         f"at most n = {discrete_n_max(p)} at this p (the exact patches of two "
+                         "rules in about a minute)")
+    work = count * len(names) * n**3
+    if work > DISCRETE_WORK_MAX:
+        most = DISCRETE_WORK_MAX // (len(names) * n**3)
+        if most >= 2:
+            advice = f"at most count = {most} at n = {n} with {len(names)} mass rule(s)"
+        else:  # no grid fits: the n that does, with these rules and with one
+            n_fit = int((DISCRETE_WORK_MAX // (2 * len(names))) ** (1 / 3) + 1e-9)
+            advice = (f"no grid of 2 kappa or more fits at n = {n} with {len(names)} mass "
+                      f"rule(s): at most n = {n_fit}")
+        raise InputError(f"count * (mass rules) * n^3 must be <= {DISCRETE_WORK_MAX} (about a "
+                         f"minute), got {work}: {advice}")
+    return work
 
 
 def max_jobs() -> int:

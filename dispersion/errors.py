@@ -16,6 +16,7 @@ import numbers
 __all__ = [
     "DispersionError",
     "InputError",
+    "ParameterError",
     "ConvergenceError",
     "IndefiniteMassWarning",
     "check_nu",
@@ -38,7 +39,30 @@ class DispersionError(Exception):
 
 
 class InputError(DispersionError, ValueError):
-    """A parameter lies outside its valid range; the message names both."""
+    """A parameter lies outside its valid range; the message names both.
+
+    ``ways``: settings that avoid the error, each ``(parameter, value)``: the message says
+    them in Python (``model='x-exact'``), and the command line in the options of the command
+    being run, only those it has (``--model x-exact``); ``reason`` is the message without
+    them.
+
+    >>> str(InputError("no Bloch patch", ways=[("model", "x-exact")]))
+    "no Bloch patch: use model='x-exact'"
+    """
+
+    def __init__(self, message: str = "", *args, ways=()):
+        self.reason = str(message)
+        self.ways = tuple(ways)
+        if self.ways:
+            message = (f"{message}: use "
+                       + " or ".join(f"{name}={value!r}" for name, value in self.ways))
+        super().__init__(message, *args)
+
+
+class ParameterError(InputError, TypeError):
+    """A call that does not fit a function of the toolkit (an unknown keyword): an
+    :class:`InputError` naming the keyword and the accepted ones, and the ``TypeError`` Python
+    raises for such a call, so either ``except`` catches it."""
 
 
 class ConvergenceError(DispersionError, RuntimeError):
@@ -56,7 +80,10 @@ def _is_number(value) -> bool:
 def _interval(lo, hi, lo_open: bool, hi_open: bool) -> str:
     left = "(" if lo_open or lo is None else "["
     right = ")" if hi_open or hi is None else "]"
-    return f"{left}{'-inf' if lo is None else lo}, {'inf' if hi is None else hi}{right}"
+
+    def end(x):  # a float end in its short form: 1e+12, not 1000000000000.0
+        return f"{x:g}" if isinstance(x, float) and len(repr(x)) > len(f"{x:g}") else x
+    return f"{left}{'-inf' if lo is None else end(lo)}, {'inf' if hi is None else end(hi)}{right}"
 
 
 def as_real(name: str, value, valid: str = "a finite real number"):
@@ -125,7 +152,7 @@ def check_real_in_range(name: str, value, lo=None, hi=None, *, lo_open: bool = F
     >>> check_real_in_range("r", 10**400, 0, 1e6, lo_open=True)
     Traceback (most recent call last):
     ...
-    dispersion.errors.InputError: r must lie in (0, 1000000.0], got 1e+400
+    dispersion.errors.InputError: r must lie in (0, 1e+06], got 1e+400
     """
     span = _interval(lo, hi, lo_open, hi_open)
     value = as_real(name, value, f"a finite real number in {span}")

@@ -187,10 +187,20 @@ def _text(path, option: str, what: str) -> str:
     return text
 
 
+#: Longest name of one file or folder (bytes): NAME_MAX of Linux file systems; a longer name
+#: failed only when written, after the work, without naming the option.
+NAME_MAX = 255
+
+
 def _parts(text: str, option: str, what: str) -> tuple[bool, list[str], str]:
     parts = [p for p in text.split("/") if p]
     if not parts:
         _fail(f"{option} must not be the root folder")
+    for part in parts:
+        size = len(os.fsencode(part))
+        if size > NAME_MAX:
+            _fail(f"{option}: a name in the path is {size} bytes long, more than the "
+                  f"{NAME_MAX} a file system allows ({printable(part[:40])!r}...)")
     if parts[-1] in (".", ".."):
         _fail(f"{option} must end in the name of the {what}, got {printable(text)!r}")
     return text.startswith("/"), parts[:-1], parts[-1]

@@ -127,16 +127,17 @@ class PatchModel:
         ``group=True`` adds the
         group velocities (``DiscreteBranches.group``). The request is bounded as ``dispersion
         branches`` bounds it (:data:`dispersion.waves.branch_table.MAX_COUNT`,
-        :func:`~dispersion.waves.branch_table.check_discrete_work`), before any work.
+        :func:`~dispersion.budget.check_discrete_branches`), before any work.
 
         >>> PatchModel(Patch(n=30)).branches(range(20000))
         Traceback (most recent call last):
         ...
-        dispersion.errors.InputError: count * (mass rules) * n^3 must be <= 11059200 (about a minute), got 540000000
+        dispersion.errors.InputError: count * (mass rules) * n^3 must be <= 11059200 (about a minute), got 540000000: at most count = 409 at n = 30 with 1 mass rule(s)
         """
         import numpy as np
 
-        from dispersion.answers.branch_table import MAX_COUNT, check_discrete_work
+        from dispersion.answers.branch_table import MAX_COUNT
+        from dispersion.budget import check_discrete_branches
         from dispersion.discretization.discrete_branches import discrete_branches
 
         if self.spec.symbolic_r:
@@ -145,7 +146,7 @@ class PatchModel:
         size = np.size(kappa)
         if size > MAX_COUNT:
             raise InputError(f"kappa must have at most {MAX_COUNT} points, got {size}")
-        check_discrete_work(size, 1, self.spec.n)
+        check_discrete_branches(size, [self.spec.mass], self.spec.p, self.spec.n)
         if nu is not None or self.spec.isotropic:  # Poisson's ratio, as a float route takes it
             nu = float(self.spec.nu_value if nu is None else nu)
         return discrete_branches(self.plate, nu, kappa, group=group)

@@ -14,8 +14,9 @@ A result is a frozen dataclass that carries the value it was computed from and m
 From these :class:`Rendered` draws every format: :meth:`~Rendered.to_text` (an aligned table
 rounded to 7 significant digits, the failures as a footer), :meth:`~Rendered.to_csv` (``#``
 lines with the title, the inputs and every failure, then exact floats), :meth:`~Rendered.to_json`
-(strict JSON: ``null``, never NaN; keys ``title``, ``header``, ``columns``, ``rows``,
-``failures``), :meth:`~Rendered.to_markdown`, :meth:`~Rendered.to_dataframe` (pandas, imported
+(strict JSON text: ``null``, never NaN; keys ``title``, ``header``, ``columns``, ``rows``,
+``failures``; the same data as Python values: :meth:`~Rendered.to_dict`),
+:meth:`~Rendered.to_markdown`, :meth:`~Rendered.to_dataframe` (pandas, imported
 when called), a short ``repr`` and ``_repr_html_`` for notebooks. :data:`FORMATS` is the one
 ``--format`` vocabulary of the command line; :func:`render` picks a format by name.
 
@@ -55,8 +56,10 @@ failure: c_T: not measured
 wave,c [m/s]
 L,5960.0
 T,
->>> s.to_json()["rows"][1]
+>>> s.to_dict()["rows"][1]
 {'wave': 'T', 'c [m/s]': None}
+>>> s.to_json().splitlines()[0:2]      # text, like every other to_ method
+['{', ' "title": "bulk speeds of steel",']
 """
 from __future__ import annotations
 
@@ -252,12 +255,19 @@ class Rendered:
         return buf.getvalue()
 
     def json_extra(self) -> dict:
-        """More keys of :meth:`to_json` (cut-offs, ZGV points, ...); none by default."""
+        """More keys of :meth:`to_dict` (cut-offs, ZGV points, ...); none by default."""
         return {}
 
-    def to_json(self) -> dict:
+    def to_json(self) -> str:
+        """The result as strict JSON text (what ``--format json`` prints): :meth:`to_dict`
+        dumped, ``null`` for every non-finite number, never NaN."""
+        import json
+
+        return json.dumps(self.to_dict(), indent=1, allow_nan=False) + "\n"
+
+    def to_dict(self) -> dict:
         """Strict-JSON data: ``title``, ``header``, ``columns``, ``rows``, ``failures``, the
-        package version and the result's own extra keys (non-finite numbers become ``null``)."""
+        package version and the result's own extra keys (non-finite numbers become ``None``)."""
         from dispersion.results import jsonable
 
         cols = self.columns()
@@ -339,9 +349,7 @@ def render(result, fmt: str) -> str:
     if fmt not in FORMATS:
         raise InputError(f"--format must be one of {', '.join(FORMATS)}, got {fmt!r}")
     if fmt == "json":
-        import json
-
-        return json.dumps(result.to_json(), indent=1, allow_nan=False) + "\n"
+        return result.to_json()
     text = {"text": result.to_text, "csv": result.to_csv,
             "markdown": result.to_markdown}[fmt]()
     return text if text.endswith("\n") else text + "\n"

@@ -48,7 +48,7 @@ table.to_dataframe().head()
 # cut-off sits at f d = c_T / 2.
 
 # %%
-al = dispersion.branch_table(exact_only=True, material="aluminium", thickness_mm=1.0,
+al = dispersion.branch_table(exact=True, material="aluminium", thickness_mm=1.0,
                              kappa_max=4.0, omega_max=6.0, count=300)
 print([line for line in al.header_lines() if line.startswith("ZGV")])
 print("A1 cut-off:", round(al.cutoffs_khz()["A1"], 2), "kHz; c_T / 2 =",

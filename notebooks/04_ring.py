@@ -66,7 +66,7 @@ for m, res in runs.items():
           f"between them {s['max_penetration']:.2g} m")
 
 # %%
-figure4(runs["lumped"].to_dict(), runs["singular"].to_dict(), PAPER)
+figure4(runs["lumped"].record(), runs["singular"].record(), PAPER)
 
 # %% [markdown]
 # Paper (its own scene, whose dimensions our copy lacks): lumped -9.5 %, singular -0.097 %.

@@ -123,7 +123,7 @@ def test_largest_discrete_patch_is_accepted(tmp_path, capsys):
     # the size limits are the patch's own (patch.check_size), the same as for the series;
     # the numeric work bound count * masses * n^3 is the branches' own
     from dispersion.answers.branch_table import MAX_DISCRETE_WORK
-    from dispersion.symbolic.plate import N_MAX
+    from dispersion.budget import DISCRETE_N_MAX
 
     out = tmp_path / "o.csv"
     argv = ["branches", "--mass", "consistent", "--kappa-min", "0.5", "--kappa-max", "1",
@@ -137,5 +137,5 @@ def test_largest_discrete_patch_is_accepted(tmp_path, capsys):
                          and len(err.strip().splitlines()) == 1), err
     assert main([*argv, "--n", str(n_work + 1)]) == 2
     assert f"<= {MAX_DISCRETE_WORK}" in capsys.readouterr().err
-    assert main([*argv, "--n", str(N_MAX + 1)]) == 2
-    assert str(N_MAX) in capsys.readouterr().err
+    assert main([*argv, "--n", str(DISCRETE_N_MAX + 1)]) == 2   # the range is the bound's
+    assert f"[2, {DISCRETE_N_MAX}]" in capsys.readouterr().err

@@ -3,6 +3,7 @@ quadrature exactness, closed-form critical steps, spectra, stated costs, leading
 (two routes), and the order_range / relative_to claims."""
 from __future__ import annotations
 
+import json
 import math
 
 import pytest
@@ -108,7 +109,8 @@ def test_study_small():
     keeps = {(r.rule, r.model): r.keeps_order for r in res.terms}
     assert keeps[("dual-lumped", "plate S0")] and keeps[("dual-lumped", "bar")]
     assert not keeps[("lumped", "bar")]
-    assert res.to_json()["terms"] and res.rows() and "rules" in repr(res)
+    assert res.to_dict()["terms"] and res.rows() and "rules" in repr(res)
+    assert json.loads(res.to_json())["terms"]
 
 
 ORDER = '''

@@ -166,7 +166,8 @@ def test_every_format_carries_the_failures(result):
     assert csv_text.startswith(f"# {result.title()}\n")
     for f in fails:
         assert f"# failure: {f}" in csv_text
-    data = json.loads(json.dumps(result.to_json(), allow_nan=False))
+    data = json.loads(result.to_json())
+    assert data == json.loads(json.dumps(result.to_dict(), allow_nan=False))
     if type(result).__name__ != "SeriesTable":  # the documented series records (no failures
         assert data["failures"] == fails       # exist: the derivation is exact)
         assert len(data["rows"]) == len(result.rows())

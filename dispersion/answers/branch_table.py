@@ -15,7 +15,7 @@ Rows: ``kappa, Omega, branch, symmetry, source, c_p/c_T, c_g/c_T`` (kappa = kh,
 Omega = omega h / c_T, h the half-thickness) and, with a material, ``f [kHz], fd [MHz mm],
 c_p [m/s], c_g [m/s], wavelength [mm]``.
 
->>> t = branch_table(exact_only=True, kappa_max=2.0, count=3, omega_max=3.0)
+>>> t = branch_table(exact=True, kappa_max=2.0, count=3, omega_max=3.0)
 >>> t
 <BranchTable: Rayleigh-Lamb branches, nu = 0.3, 3 kappa in [0, 2], Omega <= 3 (10 rows)>
 >>> [(r["branch"], round(r["Omega"], 6)) for r in t.rows() if r["kappa"] == 1.0]
@@ -33,6 +33,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 from dispersion import defaults
+from dispersion.budget import DISCRETE_N_MAX, DISCRETE_WORK_MAX, check_discrete_branches
 from dispersion.errors import InputError
 from dispersion.rendering import Rendered
 
@@ -44,19 +45,18 @@ if TYPE_CHECKING:  # numpy and the solvers load when a table is computed, not on
     from dispersion.materials.materials import Material
     from dispersion.continuum.velocities import Velocities
 
-__all__ = ["MAX_COUNT", "MAX_OMEGA", "MAX_DISCRETE_WORK", "KAPPA_MIN", "KAPPA_MAX", "COUNT",
-           "OMEGA_MAX", "DEFAULT_MASSES", "COURANT_MAX", "BranchTable", "branch_table",
-           "kappa_grid", "check_discrete_work"]
+__all__ = ["MAX_COUNT", "MAX_OMEGA", "MAX_DISCRETE_WORK", "DISCRETE_N_MAX", "KAPPA_MIN",
+           "KAPPA_MAX", "COUNT", "OMEGA_MAX", "DEFAULT_MASSES", "COURANT_MAX", "BranchTable",
+           "branch_table", "kappa_grid", "check_discrete_work"]
 
 #: Most kappa points of one request (the tracer's own scan bound applies as well:
 #: :data:`dispersion.waves.exact_branches.MAX_SAMPLES`, count * (omega_max / 0.05 + 1)).
 MAX_COUNT = 200_000
 #: Largest Omega = omega h / c_T of a request.
 MAX_OMEGA = 200.0
-#: Discrete branches: count * (mass rules) * n^3 <= MAX_DISCRETE_WORK. Rule: the default run
-#: (two masses, 400 kappa) at n = 24 in about a minute. Measured on the 2-core machine, 400
-#: kappa, consistent + singular: n = 10 in 3.4 s, n = 20 in 48 s, n = 30 in 180 s (like n^3).
-MAX_DISCRETE_WORK = 2 * 400 * 24**3
+#: Discrete branches: count * (mass rules) * n^3 <= MAX_DISCRETE_WORK (the rule and its
+#: measurements: :data:`dispersion.budget.DISCRETE_WORK_MAX`, rule 6 of :mod:`dispersion.budget`).
+MAX_DISCRETE_WORK = DISCRETE_WORK_MAX
 #: The default grid and ceiling: Figure 2's axes.
 KAPPA_MIN, KAPPA_MAX, COUNT, OMEGA_MAX = 0.0, 8.0, 400, 8.0
 #: The mass rules compared when none is named (Figure 2).
@@ -92,18 +92,16 @@ def kappa_grid(kappa_min: float = KAPPA_MIN, kappa_max: float = KAPPA_MAX,
 
 def check_discrete_work(count: int, masses: int, n: int) -> int:
     """Refuse, before any work, discrete branches costing more than
-    :data:`MAX_DISCRETE_WORK` (``count * masses * n^3``); returns the work.
+    :data:`MAX_DISCRETE_WORK` (``count * masses * n^3``, rule 6a of :mod:`dispersion.budget`;
+    the whole rule, with the setup of each mass rule: :func:`~dispersion.budget.check_discrete_branches`);
+    returns the work.
 
     >>> check_discrete_work(400, 2, 30)
     Traceback (most recent call last):
     ...
-    dispersion.errors.InputError: count * (mass rules) * n^3 must be <= 11059200 (about a minute), got 21600000
+    dispersion.errors.InputError: count * (mass rules) * n^3 must be <= 11059200 (about a minute), got 21600000: at most count = 204 at n = 30 with 2 mass rule(s)
     """
-    work = int(count) * int(masses) * int(n) ** 3
-    if work > MAX_DISCRETE_WORK:
-        raise InputError(f"count * (mass rules) * n^3 must be <= {MAX_DISCRETE_WORK} (about a "
-                         f"minute), got {work}")
-    return work
+    return check_discrete_branches(count, ["consistent"] * int(masses), 1, max(int(n), 2))
 
 
 def _name(mass) -> str:
@@ -121,6 +119,8 @@ class DiscreteSet:
     branches: Any
     tau: float | None = None
     paired_error: dict | None = None
+    #: Per exact label, the discrete partner of each kappa (-1: none; see paired_error).
+    paired_partner: dict | None = None
 
     def words(self) -> str:
         """The set in words: its mass rule with what applies to it, and its time scheme."""
@@ -311,7 +311,8 @@ def _check_scheme(scheme, courant, masses, patch):
                          f"{limit:g}] for scheme {scheme}, got {courant}")
 
 
-def branch_table(*, masses=None, exact_only: bool = False, patch=None, nu=None,
+def branch_table(*, mass=None, exact: bool | None = None, masses=None,
+                 exact_only: bool | None = None, patch=None, nu=None,
                  material=None, thickness_mm: float | None = None,
                  kappa_min: float = KAPPA_MIN, kappa_max: float = KAPPA_MAX,
                  count: int = COUNT, omega_max: float = OMEGA_MAX, scheme: str | None = None,
@@ -319,24 +320,40 @@ def branch_table(*, masses=None, exact_only: bool = False, patch=None, nu=None,
                  progress=None) -> BranchTable:
     """Exact and discrete branches on a kappa grid (see the module docstring).
 
+    The keywords are the options of ``dispersion branches`` (``--mass`` is ``mass``,
+    ``--exact`` is ``exact``, ``--kappa-max`` is ``kappa_max``, ...); ``masses`` and
+    ``exact_only`` are the older names of ``mass`` and ``exact`` and keep working.
+
     Parameters
     ----------
-    masses : sequence of str or MassRule, optional
-        Mass rules of the discrete patch (default :data:`DEFAULT_MASSES`; none with
-        ``exact_only``).
-    exact_only : bool
-        The exact Rayleigh-Lamb branches alone.
+    mass : str, MassRule or a sequence of them, optional
+        Mass rule(s) of the discrete patch, names of
+        :data:`~dispersion.symbolic.mass_rule.RULE_NAMES` or rules (default
+        :data:`DEFAULT_MASSES`; none with ``exact``). One name is one rule; an empty
+        sequence is refused (``exact=True`` asks for the exact branches alone).
+    exact : bool
+        The exact Rayleigh-Lamb branches alone (default False).
+    masses, exact_only :
+        The same as ``mass`` and ``exact`` (give one name of each pair, not both).
     patch : Patch, optional
         The discrete patch (p, n, model, r, contact, gamma_s); its mass is replaced by each of
         ``masses``. Default: the toolkit's (:mod:`dispersion.defaults`).
     nu : float, optional
         Poisson's ratio (default 0.3); a material fixes it instead.
-    material : Material or str, optional
-        With ``thickness_mm`` (d = 2h in mm): rows in physical units and the ZGV points.
-    kappa_min, kappa_max, count : float, float, int
-        The uniform kappa grid (``count`` in [2, :data:`MAX_COUNT`]).
+    material, thickness_mm : Material or str, float, optional
+        A material (or its name in :data:`~dispersion.waves.materials.MATERIALS`) and the
+        plate thickness d = 2h in mm, given together: rows in physical units and the ZGV
+        points.
+    kappa_min, kappa_max : float
+        The kappa grid :math:`\\kappa = k h` (h half the thickness, dimensionless) from
+        ``kappa_min`` >= 0 to ``kappa_max`` > ``kappa_min`` (default 0 to :data:`KAPPA_MAX`).
+    count : int
+        Points of the uniform kappa grid, in [2, :data:`MAX_COUNT`] (default :data:`COUNT`);
+        discrete branches also within the work bound of
+        :func:`dispersion.budget.check_discrete_branches`.
     omega_max : float
-        Largest Omega drawn, in (0, :data:`MAX_OMEGA`].
+        Largest :math:`\\Omega = \\omega h / c_T` drawn, in (0, :data:`MAX_OMEGA`]
+        (default :data:`OMEGA_MAX`).
     scheme, courant : str, float, optional
         Fully discrete branches: a Newmark member
         (:data:`~dispersion.waves.time_integration.NEWMARK_MEMBERS`) at ``courant`` times each
@@ -346,7 +363,25 @@ def branch_table(*, masses=None, exact_only: bool = False, patch=None, nu=None,
         signed errors (the figure's error panel).
     progress : callable, optional
         Called with the number of kappa points done (a progress bar's ``update``).
+
+    Returns
+    -------
+    BranchTable
+        Rows, every format (``to_text``, ``to_csv``, ``to_json``, ``to_dict``) and
+        ``failures``; :func:`dispersion.figure` draws it.
+
+    Raises
+    ------
+    InputError
+        A value outside its range, or a request over the work bounds (before any work).
+
+    >>> branch_table(mass="lumped", count=3, kappa_max=1.0, omega_max=1.0).title()
+    'Rayleigh-Lamb and discrete branches of the Bloch r = b/h = 2, p = 2, n = 3 patch, nu = 0.3, 3 kappa in [0, 1], Omega <= 1'
     """
+    masses = _one_of("mass", mass, "masses", masses)
+    exact_only = bool(_one_of("exact", exact, "exact_only", exact_only))
+    if isinstance(masses, str) or hasattr(masses, "build"):  # one rule, not its letters
+        masses = (masses,)
     from dispersion.symbolic.patch import Patch
     from dispersion.continuum.exact_branches import check_samples, trace_branches
     from dispersion.continuum.velocities import exact_velocities
@@ -369,10 +404,13 @@ def branch_table(*, masses=None, exact_only: bool = False, patch=None, nu=None,
     check_samples(count, omega_max, what="count * (omega_max / 0.05 + 1)")
     if exact_only:
         if masses:
-            raise InputError("masses do not apply to the exact branches alone")
+            raise InputError("mass does not apply to the exact branches alone (exact=True)")
         masses = ()
     else:
         masses = tuple(DEFAULT_MASSES if masses is None else masses)
+        if not masses:
+            raise InputError("mass must name at least one mass rule (exact=True asks for the "
+                             "exact branches alone), got an empty sequence")
     base = Patch() if patch is None else patch
     if not isinstance(base, Patch):
         raise InputError(f"patch must be a Patch (dispersion.symbolic.patch), got "
@@ -380,7 +418,7 @@ def branch_table(*, masses=None, exact_only: bool = False, patch=None, nu=None,
     if masses:
         if base.symbolic_r:
             raise InputError("r must be a number > 0 for numeric branches, got the symbol r")
-        check_discrete_work(count, len(masses), base.n)
+        check_discrete_branches(count, masses, base.p, base.n)
     _check_scheme(scheme, courant, masses, base)
     exact = trace_branches(nu, kappa, omega_max, progress=progress)
     velocities = exact_velocities(exact)
@@ -402,6 +440,13 @@ def branch_table(*, masses=None, exact_only: bool = False, patch=None, nu=None,
                        None if scheme is None else float(courant), zgv, tuple(failures))
 
 
+def _one_of(name: str, value, old: str, old_value):
+    """The value of a keyword given under its name or its older name (not both)."""
+    if value is not None and old_value is not None:
+        raise InputError(f"give {name} or its older name {old}, not both")
+    return value if value is not None else old_value
+
+
 def _discrete(patch, nu, kappa, exact, scheme, courant, paired, progress) -> DiscreteSet:
     from dispersion.symbolic.plate import plate_patch
     from dispersion.discretization.discrete_branches import discrete_branches
@@ -416,13 +461,14 @@ def _discrete(patch, nu, kappa, exact, scheme, courant, paired, progress) -> Dis
         tau = courant * 2 / patch_omega_max(plate, nu)[0]
         return DiscreteSet(f"{name} {scheme} C={courant:g}", patch,
                            fully_discrete_branches(d, tau, scheme), tau)
-    errors = _paired_errors(plate, nu, kappa, exact, d) if paired else None
-    return DiscreteSet(name, patch, d, None, errors)
+    errors, partners = _paired_errors(plate, nu, kappa, exact, d) if paired else (None, None)
+    return DiscreteSet(name, patch, d, None, errors, partners)
 
 
-def _paired_errors(plate, nu, kappa, exact, d) -> dict:
+def _paired_errors(plate, nu, kappa, exact, d) -> tuple[dict, dict]:
     """Signed error of each exact branch against the discrete mode of the same shape, on the
-    whole grid (NaN beyond the first Brillouin zone, where no exact partner exists)."""
+    whole grid (NaN beyond the first Brillouin zone, where no exact partner exists), and that
+    partner's place at each kappa (-1: none)."""
     import numpy as np
 
     from dispersion.continuum.exact_branches import ExactBranches
@@ -432,5 +478,7 @@ def _paired_errors(plate, nu, kappa, exact, d) -> dict:
     sub = ExactBranches(kappa[inside], {lab: w[inside] for lab, w in exact.omega.items()},
                         exact.nu, exact.omega_max)
     pad = int(np.count_nonzero(~inside))
-    return {lab: np.concatenate([e, np.full(pad, np.nan)])
-            for lab, e in pair_by_shape(plate, nu, sub).relative_error(sub).items()}
+    pb = pair_by_shape(plate, nu, sub)
+    return ({lab: np.concatenate([e, np.full(pad, np.nan)])
+             for lab, e in pb.relative_error(sub).items()},
+            {lab: np.concatenate([c, np.full(pad, -1)]) for lab, c in pb.partner.items()})

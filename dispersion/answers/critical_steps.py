@@ -37,6 +37,10 @@ class CriticalSteps(Rendered):
     certify: bool = False
     contact: str | None = None
     gamma_s: object = None
+    #: Default rules left out, each ``(rule, why)``: a rule of the registry that has no
+    #: critical step on this setting (indefinite at this degree, say); a rule the user named
+    #: is never skipped, it is refused.
+    skipped: tuple = ()
 
     @property
     def failures(self) -> tuple[str, ...]:
@@ -80,6 +84,7 @@ class CriticalSteps(Rendered):
                      "differences; ratio: dt_crit over the consistent mass's")
         lines.append("theta: the phase where omega_max lies; found: how (exact: a closed form; "
                      "numeric: the largest over a grid of phases, refined)")
+        lines += [f"skipped: mass {name}: {why}" for name, why in self.skipped]
         return lines
 
     def columns(self) -> tuple[str, ...]:
@@ -126,7 +131,6 @@ def critical_steps(masses=None, p: int = 2, *, model: str = "plate", material="s
     setting; the parameters are those of :func:`dispersion.waves.timestep.critical_step`."""
     from dispersion.errors import InputError
     from dispersion.materials.materials import MATERIALS, Material
-    from dispersion.time_stepping.timestep import critical_step
 
     if isinstance(material, str):
         from dispersion.materials.materials import material as by_name
@@ -134,18 +138,73 @@ def critical_steps(masses=None, p: int = 2, *, model: str = "plate", material="s
         material = by_name(material)
     if not isinstance(material, Material):
         raise InputError(f"material must be a Material or one of {', '.join(MATERIALS)}")
+    if isinstance(masses, str) or hasattr(masses, "build"):  # one rule, not its letters
+        masses = (masses,)
     rules = default_rules(model) if masses is None else tuple(masses)
     if not rules:
         raise InputError("masses must name at least one mass rule")
     from dispersion.mass_rules.mass_rule import get_rule
 
     gamma_s = defaults.text("GAMMA_S") if gamma_s is None else gamma_s
-    steps = tuple(critical_step(rule, p, model=model, material=material, h=h, n=n,
-                                wave_speed=wave_speed, contact=contact, certify=certify,
-                                gamma_s=_exact(gamma_s)) for rule in rules)
-    singular = model == "plate" and any(get_rule(r).redistributes for r in rules)
-    return CriticalSteps(steps, model, material, bool(certify),
-                         contact if singular else None, gamma_s if singular else None)
+    steps, kept, skipped = [], [], []
+    for rule in rules:
+        try:
+            steps.append(_step(rule, p, model=model, material=material, h=h, n=n,
+                               wave_speed=wave_speed, contact=contact, certify=certify,
+                               gamma_s=_exact(gamma_s)))
+            kept.append(rule)
+        except _NoStep as exc:
+            if masses is not None:  # named by the user: refused, not skipped
+                raise InputError(f"the mass rule {_name(rule)!r} has no critical step at "
+                                 f"p = {p}: {exc}") from None
+            skipped.append((_name(rule), f"no critical step at p = {p}: {exc}"))
+    if not steps:
+        raise InputError(f"no default mass rule has a critical step at p = {p}: "
+                         + "; ".join(f"{name}: {why}" for name, why in skipped))
+    singular = model == "plate" and any(get_rule(r).redistributes for r in kept)
+    return CriticalSteps(tuple(steps), model, material, bool(certify),
+                         contact if singular else None, gamma_s if singular else None,
+                         tuple(skipped))
+
+
+class _NoStep(Exception):
+    """A rule without a critical step on the setting (its mass is indefinite)."""
+
+
+def _reason(message) -> str:
+    """A rule's warning without its "mass rule 'name': " prefix (the caller names the rule)."""
+    import re
+
+    return re.sub(r"^mass rule '[^']*': ", "", str(message))
+
+
+def _name(rule) -> str:
+    return getattr(rule, "name", rule)
+
+
+def _step(rule, p, **setting):
+    """:func:`~dispersion.waves.timestep.critical_step`, with an indefinite mass (warned by
+    the rule's check, or met by the Cholesky factorization) raised as :class:`_NoStep`."""
+    import warnings
+
+    from dispersion.errors import IndefiniteMassWarning, InputError
+    from dispersion.time_stepping.timestep import critical_step
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        try:
+            step = critical_step(rule, p, **setting)
+        except InputError as exc:
+            if "not positive definite" not in str(exc):
+                raise
+            why = [_reason(w.message) for w in caught if issubclass(w.category,
+                                                                    IndefiniteMassWarning)]
+            raise _NoStep(why[0] if why else str(exc)) from None
+    for w in caught:
+        if issubclass(w.category, IndefiniteMassWarning):
+            raise _NoStep(_reason(w.message))
+        warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+    return step
 
 
 def _exact(value):

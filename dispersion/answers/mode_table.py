@@ -200,10 +200,16 @@ def lamb_modes(material: Material, thickness_mm: float, *, frequency_khz=None,
         hints = unit_mixups(thickness_mm=thickness_mm, c_L=material.c_L, c_T=material.c_T,
                             rho=material.rho,
                             E_gpa=None if mu is None else 2 * mu * (1 + material.nu) / 1e9)
-        if fd_mhz_mm is None and not hints:
-            hints = frequency_mixup(float(f_khz[bad][0]), lo, hi)
-        raise InputError(f"{name} must lie in [{lo * scale:.4g}, {hi * scale:.4g}] {unit} for "
-                         f"this plate ({material.name}, d = {thickness_mm:g} mm), got "
-                         f"{float(values[bad][0]):.6g} {unit}" + "".join(f"; {h}" for h in hints))
+        where = f"{name} must lie in [{lo * scale:.4g}, {hi * scale:.4g}] {unit} for this " \
+                f"plate ({material.name}, d = {thickness_mm:g} mm), got " \
+                f"{float(values[bad][0]):.6g} {unit}"
+        if hints:  # the plate's own inputs are off: named first, the frequency range after
+            raise InputError("; ".join(hints) + f"; with these inputs, {where}")
+        if fd_mhz_mm is None:
+            first = int(np.flatnonzero(bad)[0])
+            typed = getattr(raw[first], "unit", None) if isinstance(raw, (list, tuple)) \
+                else getattr(raw, "unit", None)
+            hints = frequency_mixup(float(f_khz[bad][0]), lo, hi, typed)
+        raise InputError(where + "".join(f"; {h}" for h in hints))
     roots = modes_at_frequency(material.nu_exact, omega, kinds=tuple(kinds), zgv=zgv)
     return ModeTable(material, thickness_mm, f_khz, roots)

@@ -100,7 +100,7 @@ class SeriesTable(Rendered):
         return [{"branch": r["branch"], "power": int(k), "coefficient": c}
                 for r in self.records for k, c in r["coefficients"].items()]
 
-    def to_json(self):
+    def to_dict(self):
         """The documented interface: one record ``{"branch", "mass", "model",
         "coefficients": {"2": "...", ...}}`` for one branch, a list for both; each
         coefficient sympy-parsable text. (An exact derivation has no failures to carry.)"""

@@ -26,7 +26,7 @@ from dispersion.claims.claims_file import Lines, paper_claims_path, read_text, r
 from dispersion.claims.exact_model import EXACT, ExactModel
 from dispersion.claims.claim_fields import expression, number, rational, shown
 from dispersion.claims.report import readable
-from dispersion.errors import InputError
+from dispersion.errors import InputError, did_you_mean
 from dispersion.symbolic.patch import Patch
 from dispersion.symbolic.power_balance import BRANCHES, NU, R_SYM
 
@@ -64,7 +64,7 @@ def parse_claims(text: str, file: str = "<string>") -> list[Claim]:
     if unknown:
         key = sorted(unknown)[0]
         raise InputError(f"{lines.top(key)}: unknown key {shown(key)} (allowed: "
-                         f"{', '.join(TOP_KEYS)})")
+                         f"{', '.join(TOP_KEYS)}){did_you_mean(key, TOP_KEYS)}")
     if "title" in data and not isinstance(data["title"], str):
         raise InputError(f"{lines.top('title')}: title must be a string, got "
                          f"{shown(data['title'])}")
@@ -109,7 +109,8 @@ def _claim(entry: dict, own: dict, i: int, lines: Lines) -> Claim:
 
     unknown = sorted(set(entry) - CLAIM_KEYS)
     if unknown:
-        fail(unknown[0], f"unknown key (allowed: {', '.join(sorted(CLAIM_KEYS))})")
+        fail(unknown[0], f"unknown key (allowed: {', '.join(sorted(CLAIM_KEYS))})"
+                         + did_you_mean(unknown[0], CLAIM_KEYS))
     for key in ("kind", "branch", "model", "expect", "syntax", "source", "note", "mass",
                 "contact", "series"):
         if key in entry and not isinstance(entry[key], str):

@@ -1,4 +1,4 @@
-"""Command line: ``dispersion series | branches | ring | impact | verify | reproduce | bench | timestep``.
+"""Command line: ``dispersion series | branches | ring | impact | verify | reproduce | bench | timestep | simulate``.
 
 A thin layer over the API. Each subcommand lives in its own module exposing
 ``register(subparsers)``, which adds the parser and sets ``func(args) -> int``.
@@ -60,7 +60,8 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
     The others get an empty placeholder, so ``dispersion series ...`` pays neither the import
     of sympy nor numpy unless the series command itself needs them.
     """
-    parser = _Parser(prog="dispersion", description=__doc__.splitlines()[0])
+    parser = _Parser(prog="dispersion",
+                     description=f"Command line: dispersion {' | '.join(_SUBCOMMANDS)}.")
     parser.add_argument("--version", action="store_true",
                         help="print the version of the toolkit and exit")
     sub = parser.add_subparsers(dest="command", parser_class=_Parser)
@@ -91,6 +92,22 @@ def version() -> str:
 
 
 def main(argv: list[str] | None = None) -> int:
+    """Parse ``argv`` (default: the process's arguments) and run the command; its exit status.
+
+    Ctrl-C anywhere from here on (while a command's modules load, while it parses, while it
+    runs) is one line and status 130, never a traceback.
+    """
+    try:
+        return _main(argv)
+    except Terminated:
+        print("dispersion: terminated", file=sys.stderr)
+        return 143
+    except KeyboardInterrupt:
+        print("dispersion: interrupted", file=sys.stderr)
+        return 130
+
+
+def _main(argv: list[str] | None) -> int:
     words = sys.argv[1:] if argv is None else list(argv)
     chosen = next((w for w in words if not w.startswith("-")), None)
     parser = build_parser(chosen if chosen in _SUBCOMMANDS else None)
@@ -109,14 +126,50 @@ def main(argv: list[str] | None = None) -> int:
         return run_parsed(args)
 
 
+def _one_line_warning(message, category, filename, lineno, file=None, line=None):
+    """A warning as the command line shows it: one line, no source location."""
+    print(f"warning: {message}", file=sys.stderr if file is None else file)
+
+
+def _cli_ways(command: str, ways) -> str:
+    """``: use --model x-exact`` for the ways (parameter, value) that ``command`` accepts as
+    an option and a value; nothing if it accepts none (no advice it could not follow)."""
+    from dispersion.cli.options import PARAMETER_OPTIONS
+
+    sub = build_parser(command)._subparsers._group_actions[0].choices[command]
+    actions = {opt: a for a in sub._actions for opt in a.option_strings}
+    shown = []
+    for name, value in ways:
+        action = actions.get(PARAMETER_OPTIONS.get(name, f"--{name.replace('_', '-')}"))
+        if action is None:
+            continue
+        try:
+            if action.type is not None:
+                action.type(str(value))
+        except (argparse.ArgumentTypeError, ValueError, TypeError):
+            continue
+        shown.append(f"{action.option_strings[0]} {value}")
+    return f": use {' or '.join(shown)}" if shown else ""
+
+
 def run_parsed(args: argparse.Namespace) -> int:
     """Run a parsed subcommand: its exit status, or one line on stderr for every failure."""
+    import warnings
+
     try:
-        return int(args.func(args) or 0)
+        with warnings.catch_warnings():
+            warnings.showwarning = _one_line_warning
+            return int(args.func(args) or 0)
     except InputError as exc:  # in the command's words: its options, not Python parameters
         from dispersion.cli.options import cli_words
 
-        print(f"dispersion {args.command}: error: {cli_words(str(exc))}", file=sys.stderr)
+        if getattr(args, "file_words", False):
+            text = str(exc)
+        elif getattr(exc, "ways", ()):  # the ways out, as options this command has
+            text = cli_words(exc.reason) + _cli_ways(args.command, exc.ways)
+        else:
+            text = cli_words(str(exc))
+        print(f"dispersion {args.command}: error: {text}", file=sys.stderr)
         return 2
     except DispersionError as exc:
         print(f"dispersion {args.command}: {type(exc).__name__}: {exc}", file=sys.stderr)

@@ -9,10 +9,10 @@ import argparse
 from dispersion import defaults
 from dispersion.cli import frequency
 from dispersion.cli.options import (check_applies, choice, given, integer, lazy_help, rational,
-                                    real)
+                                    real, thickness_hints)
 from dispersion.cli.outputs import (add_outputs, check_outputs, progress_bar, warn_failures,
                                     write_outputs)
-from dispersion.defaults import CONTACT_SETS, N_MAX, P_MAX, PATCH_MODELS, R_RANGE
+from dispersion.defaults import CONTACT_SETS, P_MAX, PATCH_MODELS, R_RANGE
 
 
 def _rules():
@@ -28,7 +28,8 @@ def _schemes():
 
 
 def register(sub) -> None:
-    from dispersion.answers.branch_table import COUNT, KAPPA_MAX, MAX_COUNT, MAX_OMEGA, OMEGA_MAX
+    from dispersion.answers.branch_table import (COUNT, DISCRETE_N_MAX, KAPPA_MAX, MAX_COUNT,
+                                                 MAX_OMEGA, OMEGA_MAX)
 
     p = sub.add_parser(
         "branches", help="dispersion branches: discrete patch and Rayleigh-Lamb",
@@ -58,9 +59,10 @@ def register(sub) -> None:
                         f"{defaults.R}; the paper's Figure 2 is 1/2)")
     p.add_argument("--p", type=integer("--p", 1, P_MAX),
                    help=f"degree through the thickness, in [1, {P_MAX}] (default: {defaults.P})")
-    p.add_argument("--n", type=integer("--n", 2, N_MAX),
-                   help=f"control points through the thickness, in [p + 1, {N_MAX}] "
-                        f"(default: {defaults.N})")
+    p.add_argument("--n", type=integer("--n", 2, DISCRETE_N_MAX),
+                   help="control points through the thickness, in [p + 1, max(p + 1, 35 - "
+                        "1.3 (p - 2))]: the work bound of discrete branches, 35 at p = 2, 22 at "
+                        f"p = 12, p + 1 from p = 16 (default: {defaults.N})")
     p.add_argument("--nu", type=real("--nu", -1, 0.5, lo_open=True, hi_open=True),
                    help=f"Poisson's ratio, in (-1, 0.5) (default: {defaults.NU_FLOAT}; a "
                         "material fixes it)")
@@ -114,6 +116,7 @@ RULES = [
 
 def run(args) -> int:
     check_applies(args, RULES)
+    thickness_hints(args)
     if frequency.requested(args):
         return frequency.run(args)
     from dispersion.cli.options import material_from_args, masses_from_args
@@ -132,8 +135,8 @@ def run(args) -> int:
                                                        "gamma_s") if given(args, k)})
     bar = progress_bar(args.progress, "branches", "kappa")
     try:
-        table = branch_table(masses=masses_from_args(args), exact_only=args.exact, patch=patch, nu=args.nu,
-                             material=material, thickness_mm=args.thickness,
+        table = branch_table(mass=masses_from_args(args), exact=args.exact, patch=patch,
+                             nu=args.nu, material=material, thickness_mm=args.thickness,
                              scheme=args.scheme, courant=args.courant,
                              paired=bool(args.figure) and material is None,
                              progress=None if bar is None else bar.update, **grid)
@@ -143,5 +146,3 @@ def run(args) -> int:
     warn_failures(table, args)
     write_outputs(args, table, figure_branch_table)
     return 0
-
-

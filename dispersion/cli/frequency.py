@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import argparse
 
-from dispersion.cli.options import material_from_args, real
+from dispersion.cli.options import length, material_from_args, real
 from dispersion.errors import InputError
 
 
@@ -35,8 +35,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="density in kg/m^3 (with --cl/--ct, or with --youngs-modulus and --nu)")
     p.add_argument("--youngs-modulus", type=real("--youngs-modulus", 0, lo_open=True),
                    metavar="E", help="Young's modulus E in GPa (with --nu and --rho)")
-    p.add_argument("--thickness", type=real("--thickness", 0, lo_open=True),
-                   help="plate thickness d = 2h in mm (with a material)")
+    p.add_argument("--thickness", type=length("--thickness", "mm", 0, lo_open=True),
+                   help="plate thickness d = 2h in mm, or with a unit (3mm, 0.3cm, 0.003m), "
+                        "with a material")
     p.add_argument("--frequency", metavar="F",
                    help="frequencies f in kHz (or with a unit: 200kHz, 0.2MHz, 2e5Hz); lists "
                         "a,b,c and grids START:STOP:COUNT (both ends included); with --exact, "

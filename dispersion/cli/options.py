@@ -29,8 +29,9 @@ from fractions import Fraction
 
 from dispersion.errors import InputError, did_you_mean
 
-__all__ = ["rational", "real", "integer", "span", "choice", "lazy_help",
-           "material_from_args", "masses_from_args", "frequencies", "given", "check_applies",
+__all__ = ["rational", "real", "integer", "span", "choice", "lazy_help", "length", "UNITS",
+           "material_from_args", "masses_from_args", "thickness_hints", "frequencies", "given",
+           "check_applies",
            "cli_words"]
 
 #: Most digits of an integer option (the largest meaningful count has 7).
@@ -41,12 +42,23 @@ def span(lo=None, hi=None, lo_open: bool = False, hi_open: bool = False) -> str:
     """``[lo, hi]``, ``(lo, hi]``, ... as the messages write a range (None: unbounded)."""
     left = "(" if lo_open or lo is None else "["
     right = ")" if hi_open or hi is None else "]"
-    return f"{left}{'-inf' if lo is None else lo}, {'inf' if hi is None else hi}{right}"
+
+    def end(x):  # a float end in its short form: 1e+12, not 1000000000000.0
+        return f"{x:g}" if isinstance(x, float) and len(repr(x)) > len(f"{x:g}") else x
+    return f"{left}{'-inf' if lo is None else end(lo)}, {'inf' if hi is None else end(hi)}{right}"
 
 
 def _exact(bound) -> Fraction:
-    """A range end as a Fraction: ints, floats, "1/2", Fractions and sympy Rationals."""
-    if isinstance(bound, (int, float, str, Fraction)):
+    """A range end as a Fraction: ints, floats, "1/2", Fractions and sympy Rationals. A float
+    end means the number it is written as (0.99 is 99/100, not the binary float below it,
+    which would refuse ``--courant 0.99`` against the range "(0, 0.99]").
+
+    >>> _exact(0.99) == Fraction(99, 100)
+    True
+    """
+    if isinstance(bound, float):
+        return Fraction(repr(bound))
+    if isinstance(bound, (int, str, Fraction)):
         return Fraction(bound)
     return Fraction(int(bound.p), int(bound.q))  # sympy.Rational
 
@@ -58,12 +70,18 @@ def _in(value, lo, hi, lo_open, hi_open) -> bool:
 
 
 def _shown(q: Fraction) -> str:
+    """A value in a message: an integer, else the shortest float that reads back (repr), so
+    a value just outside a range never prints as its end.
+
+    >>> _shown(Fraction(99000001, 100000000)), _shown(Fraction(10) ** -500)
+    ('0.99000001', 'about 1e-500')
+    """
     if q.denominator == 1 and abs(q.numerator) < 10**16:
         return str(q.numerator)
     if not Fraction(10) ** -300 < abs(q) < Fraction(10) ** 300:  # beyond the floats
         digits = len(str(abs(q.numerator))) - len(str(q.denominator))
         return f"{'-' if q < 0 else ''}about 1e{digits:+d}"
-    return f"{float(q):.6g}"
+    return repr(float(q))
 
 
 def rational(name: str, lo=None, hi=None, *, lo_open: bool = False, hi_open: bool = False,
@@ -108,6 +126,79 @@ def real(name: str, lo=None, hi=None, *, lo_open: bool = False, hi_open: bool = 
         except OverflowError:
             raise argparse.ArgumentTypeError(f"{name} must be a finite number, got "
                                              f"{text[:40]!r}") from None
+    return parse
+
+
+#: Units a number may carry on the command line, by quantity: each unit's size in the base
+#: unit of its kind (metres, kHz), exact. One table for every option: ``--thickness 10mm``,
+#: ``--h 0.5cm``, ``--frequency 200kHz`` are read by the same rule (:func:`split_unit`).
+UNITS = {
+    "length": {"m": Fraction(1), "cm": Fraction(1, 100), "mm": Fraction(1, 1000),
+               "um": Fraction(1, 10**6), "\u00b5m": Fraction(1, 10**6)},
+    "frequency": {"Hz": Fraction(1, 1000), "kHz": Fraction(1), "MHz": Fraction(1000)},
+}
+
+
+def split_unit(text: str, kind: str) -> tuple[str, str | None]:
+    """``text`` as (number, unit of :data:`UNITS` [kind] or None); any letter case
+    (``200khz``); the unit ends the text, spaces before it allowed.
+
+    >>> split_unit("10mm", "length"), split_unit("2e5 Hz", "frequency"), split_unit("3", "length")
+    (('10', 'mm'), ('2e5', 'Hz'), ('3', None))
+    """
+    word = str(text).strip()
+    for unit in sorted(UNITS[kind], key=len, reverse=True):
+        if word.lower().endswith(unit.lower()) and len(word) > len(unit):
+            number = word[:-len(unit)].rstrip()
+            # "1e-3m": the number must end in a digit, a point or a bracket, never in "e"
+            if number and (number[-1].isdigit() or number[-1] in ".)"):
+                return number, unit
+    return word, None
+
+
+class Quantity(float):
+    """A float read from the command line in its option's unit; ``unit`` is the unit the
+    user typed (None: a bare number, taken in the option's unit)."""
+
+    unit: str | None = None
+
+
+def length(name: str, unit: str, lo=None, hi=None, *, lo_open: bool = False,
+           hi_open: bool = False):
+    """argparse ``type``: a length in ``unit`` (``"mm"`` or ``"m"``), with an optional unit
+    of :data:`UNITS` (``10mm``, ``1cm``, ``0.003m``); the range is in ``unit``, and the
+    message names both the range and the units accepted.
+
+    >>> length("--thickness", "mm", 0, lo_open=True)("1cm"), length("--h", "m", 0)("5mm")
+    (10.0, 0.005)
+    >>> length("--thickness", "mm", 0, 1000, lo_open=True)("2m")
+    Traceback (most recent call last):
+    ...
+    argparse.ArgumentTypeError: --thickness must lie in (0, 1000] mm, got 2000 mm (2m)
+    """
+    units = UNITS["length"]
+    scale = units[unit]
+    exact = rational(name, hi_open=hi_open)  # the grammar of numbers; the range after units
+
+    def parse(text: str) -> float:
+        number, typed = split_unit(text, "length")
+        try:
+            value = exact(number) * (units[typed] / scale if typed else 1)
+        except argparse.ArgumentTypeError:
+            raise argparse.ArgumentTypeError(
+                f"{name} must be a length in {unit} such as 3 or 3/10, or with a unit "
+                f"({', '.join(u for u in units if u.isascii())}: 10mm), got {text[:40]!r}") from None
+        if not _in(value, lo, hi, lo_open, hi_open):
+            raise argparse.ArgumentTypeError(
+                f"{name} must lie in {span(lo, hi, lo_open, hi_open)} {unit}, got "
+                f"{_shown(value)} {unit}" + (f" ({text.strip()[:40]})" if typed else ""))
+        try:
+            out = Quantity(float(value))
+        except OverflowError:
+            raise argparse.ArgumentTypeError(f"{name} must be a finite length, got "
+                                             f"{text[:40]!r}") from None
+        out.unit = typed
+        return out
     return parse
 
 
@@ -223,8 +314,9 @@ def material_from_args(args: argparse.Namespace, default: str | None = None):
     from dispersion.materials.unit_mixups import unit_mixups
 
     # valid, but likely not what was meant: said after the run (an error states them itself)
-    args.unit_hints = [cli_words(h) for h in unit_mixups(c_L=values["c_L"], c_T=values["c_T"],
-                                                          rho=values["rho"], E_gpa=values["E"])]
+    args.unit_hints = list(getattr(args, "unit_hints", None) or ()) + [
+        cli_words(h) for h in unit_mixups(c_L=values["c_L"], c_T=values["c_T"],
+                                          rho=values["rho"], E_gpa=values["E"])]
     if values["E"] is not None:
         values["E"] = values["E"] * 1e9  # GPa on the command line, Pa in the API
     try:
@@ -235,6 +327,20 @@ def material_from_args(args: argparse.Namespace, default: str | None = None):
             if key != "nu":  # "nu" in a message is Poisson's ratio, whichever input fixed it
                 msg = re.sub(rf"\b{key}\b", opt, msg)
         raise InputError(msg) from None
+
+
+def thickness_hints(args: argparse.Namespace) -> None:
+    """Add to ``args.unit_hints`` a line if ``--thickness`` was a bare number that is
+    implausible in mm yet plausible in another unit (``--thickness 0.003``: metres?); a value
+    given with its unit (``0.003m``) is taken as written."""
+    value = getattr(args, "thickness", None)
+    if not isinstance(value, Quantity) or value.unit is not None:
+        return
+    from dispersion.materials.unit_mixups import unit_mixups
+
+    hints = [cli_words(h) + f"; give the unit to be sure (--thickness {float(value):g}m)"
+             for h in unit_mixups(thickness_mm=float(value))]
+    args.unit_hints = list(getattr(args, "unit_hints", None) or ()) + hints
 
 
 def masses_from_args(args: argparse.Namespace) -> list | None:
@@ -252,18 +358,25 @@ def masses_from_args(args: argparse.Namespace) -> list | None:
 
 #: Most frequencies of one request (a grid's COUNT included).
 MAX_FREQUENCIES = 100_000
-_UNITS = {"hz": 1e-3, "khz": 1.0, "mhz": 1e3}
-_VALUE = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d{1,3})?)\s*([a-zA-Z]*)\s*$")
+_UNITS = UNITS["frequency"]
+_VALUE = re.compile(r"^[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d{1,3})?$")
 
 
 def _value(text: str, option: str, units: dict | None) -> float:
-    m = _VALUE.match(text)
-    unit = m.group(2).lower() if m else ""
-    if not m or (unit and (units is None or unit not in units)):
+    number, unit = split_unit(text, "frequency") if units else (text.strip(), None)
+    if not _VALUE.match(number):
         allowed = " with an optional unit (Hz, kHz, MHz)" if units else ""
         raise InputError(f"{option} must be numbers{allowed}, lists a,b,c or grids "
                          f"START:STOP:COUNT; got {text[:40]!r}")
-    return float(m.group(1)) * (units[unit] if unit else 1.0)
+    out = Quantity(float(number) * (float(units[unit]) if unit else 1.0))
+    out.unit = unit  # a hint reads it: a unit typed is not second-guessed
+    return out
+
+
+def _typed(value: float, unit: str | None) -> Quantity:
+    out = Quantity(value)
+    out.unit = unit
+    return out
 
 
 def frequencies(text: str, option: str, units: dict | None = _UNITS) -> list[float]:
@@ -296,6 +409,7 @@ def frequencies(text: str, option: str, units: dict | None = _UNITS) -> list[flo
                                  f"{token.strip()[:40]!r}")
             count = int(parts[2])
             out += [lo + (hi - lo) * i / (count - 1) for i in range(count - 1)] + [hi]
+            out[-count:] = [_typed(v, lo.unit) for v in out[-count:]]
         else:
             raise InputError(f"{option} must be numbers, lists a,b,c or grids START:STOP:COUNT;"
                              f" got {token[:40]!r}")

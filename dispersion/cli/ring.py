@@ -133,9 +133,9 @@ def run(args) -> int:
         from dispersion.results import dumps
 
         png = io.BytesIO()
-        plot_contact_energy(res.to_dict()).savefig(png, format="png", dpi=120)
+        plot_contact_energy(res.record()).savefig(png, format="png", dpi=120)
         files = {"summary.json": dumps(res.summary),  # one unit: all new or all old
-                 "result.json": dumps(res.to_dict(), indent=None),
+                 "result.json": dumps(res.record(), indent=None),
                  "history.csv": res.to_csv(), "figure.png": png.getvalue()}
         write_files(out, files, option="--out")
     write_outputs(args, res)

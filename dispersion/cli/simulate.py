@@ -4,7 +4,7 @@ a tone burst sent along a plate strip and compared with the exact modal synthesi
 """
 from __future__ import annotations
 
-from dispersion.cli.options import check_applies, choice, integer, lazy_help, real
+from dispersion.cli.options import check_applies, choice, integer, lazy_help, length, real
 
 
 def _rules():
@@ -61,8 +61,10 @@ def register(sub) -> None:
     p.add_argument("--material", type=choice("--material", _materials), default="steel",
                    metavar="NAME", help=lazy_help("material: {names}; it fixes nu and the "
                                                   "physical units (default: steel)", _materials))
-    p.add_argument("--thickness", type=real("--thickness", 0, 1000, lo_open=True), default=1.0,
-                   help="plate thickness d in mm, for the physical units (default: 1)")
+    p.add_argument("--thickness", type=length("--thickness", "mm", 0, 1000, lo_open=True),
+                   default=1.0, help="plate thickness d in mm, or with a unit (3mm, 0.3cm, "
+                                     "0.003m), for the physical units, in (0, 1000] mm "
+                                     "(default: 1 mm)")
     p.add_argument("--contact", type=choice("--contact", lambda: CONTACT_SETS), metavar="SET",
                    help=f"singular rules: contact set, {', '.join(CONTACT_SETS)} (default: top)")
     p.add_argument("--gamma-s", type=real("--gamma-s", 0, 1),
@@ -86,8 +88,11 @@ def run(args) -> int:
     from dispersion.plotting.wave_simulation import plot_run
     from dispersion.simulation.wave_run import Strip, simulate
 
+    from dispersion.cli.options import thickness_hints
+
     check_applies(args, RULES)
     check_outputs(args, "simulate")
+    thickness_hints(args)
     strip = Strip(p=args.p, mass=args.mass, mode=args.mode,
                   elements_per_wavelength=args.elements_per_wavelength, kappa_c=args.kappa,
                   cycles=args.cycles, courant=args.courant, travel=args.travel,
@@ -96,6 +101,6 @@ def run(args) -> int:
                   contact=args.contact or "top",
                   gamma_s=0.5 if args.gamma_s is None else args.gamma_s)
     result = simulate(strip)
-    warn_failures(result)
+    warn_failures(result, args)
     write_outputs(args, result, plot_run)
     return 0

@@ -3,7 +3,10 @@ command line: the critical step of central differences of mass rules and its rat
 consistent mass's."""
 from __future__ import annotations
 
-from dispersion.cli.options import check_applies, choice, integer, lazy_help, rational, real
+import sys
+
+from dispersion.cli.options import (check_applies, choice, integer, lazy_help, length, rational,
+                                    real)
 
 
 def _rules():
@@ -22,6 +25,7 @@ def register(sub) -> None:
     from dispersion.cli.frequency import _materials
     from dispersion.cli.outputs import add_outputs
     from dispersion.defaults import CONTACT_SETS, P_MAX
+    from dispersion.time_stepping.time_integration import H_RANGE
 
     p = sub.add_parser(
         "timestep", help="critical time step of central differences for mass rules",
@@ -40,8 +44,9 @@ def register(sub) -> None:
     p.add_argument("--model", type=choice("--model", _models), metavar="MODEL",
                    help=lazy_help("{names}: the Bloch plate patch with square elements, or the "
                                   "periodic 1D bar (default: plate)", _models))
-    p.add_argument("--h", type=real("--h", 0, lo_open=True), default=None,
-                   help="element size h in m (default: 1)")
+    p.add_argument("--h", type=length("--h", "m", *H_RANGE), default=None,
+                   help=f"element size h in m, or with a unit (5mm, 0.5cm), in "
+                        f"[{H_RANGE[0]:g}, {H_RANGE[1]:g}] m (default: 1 m)")
     p.add_argument("--material", type=choice("--material", _materials), metavar="NAME",
                    help=lazy_help("material: {names} (default: steel unless --cl/--ct are "
                                   "given)", _materials))
@@ -97,6 +102,8 @@ def run(args) -> int:
                            material=material, h=1.0 if args.h is None else args.h, n=args.n,
                            wave_speed=args.c, contact=args.contact or "top",
                            gamma_s=args.gamma_s, certify=args.certify)
+    for name, why in table.skipped:  # a default rule without a step here: one line each
+        print(f"skipped: mass {name}: {why}", file=sys.stderr)
     warn_failures(table, args)
     write_outputs(args, table)
     return 0

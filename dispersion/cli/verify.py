@@ -32,7 +32,8 @@ def register(sub) -> None:
                         "(default: in-process for series to kappa^8 or less, else the CPU "
                         "count)")
     add_outputs(p, figure=None, piped="text")
-    p.set_defaults(func=run)
+    # its errors name the keys of the claims files as written there (gamma_s), not options
+    p.set_defaults(func=run, file_words=True)
 
 
 def run(args) -> int:

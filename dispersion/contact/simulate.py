@@ -78,8 +78,10 @@ class RingResult(Rendered):
         return ((f"ring ({self.mass} mass, {self.scheme}): {flag}; the figures of this run are "
                  "not a result",) if flag else ())
 
-    def to_dict(self) -> dict:
-        """JSON-ready dict: scenario, summary and the time histories as lists."""
+    def record(self) -> dict:
+        """The run as plain data: scenario, summary and the time histories as lists (what
+        ``ring --out`` saves as ``result.json`` and the figures read; :meth:`to_dict` is the
+        rendered form every result has)."""
         return {"scenario": dict(asdict(self.scenario), E=self.scenario.E),
                 "summary": self.summary,
                 "series": {k: np.asarray(v).tolist() for k, v in self.series.items()}}

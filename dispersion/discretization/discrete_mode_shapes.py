@@ -93,11 +93,14 @@ def discrete_modes(patch: PlatePatch, nu, kappa) -> tuple[np.ndarray, np.ndarray
 
 @dataclass(frozen=True)
 class PairedBranches:
-    """Discrete partners of the exact branches: ``omega[label]`` and its ``mac[label]``."""
+    """Discrete partners of the exact branches: ``omega[label]`` and its ``mac[label]``;
+    ``partner[label]``: which discrete mode (its place in ascending Omega, -1: none) it is at
+    each kappa, so a change of partner shows as one (a plot breaks its line there)."""
 
     kappa: np.ndarray
     omega: dict[str, np.ndarray]
     mac: dict[str, np.ndarray]
+    partner: dict[str, np.ndarray] | None = None
 
     def relative_error(self, exact) -> dict[str, np.ndarray]:
         """Signed :math:`(\\Omega^h - \\Omega)/\\Omega` per exact label (NaN where unpaired)."""
@@ -126,6 +129,7 @@ def pair_by_shape(patch: PlatePatch, nu, exact, y=SAMPLES,
     labels = list(exact.omega)
     omega = {lab: np.full(kappa.size, np.nan) for lab in labels}
     score = {lab: np.full(kappa.size, np.nan) for lab in labels}
+    partner = {lab: np.full(kappa.size, -1, dtype=int) for lab in labels}
     disc_shapes = [[np.concatenate(discrete_mode_shape(patch, X[i, :, j], y))
                     for j in range(W.shape[1])] for i in range(kappa.size)]
     for i, k in enumerate(kappa):
@@ -140,4 +144,5 @@ def pair_by_shape(patch: PlatePatch, nu, exact, y=SAMPLES,
             score[present[r]][i] = C[r, c]
             if C[r, c] >= mac_min:
                 omega[present[r]][i] = W[i, c]
-    return PairedBranches(kappa, omega, score)
+                partner[present[r]][i] = c
+    return PairedBranches(kappa, omega, score, partner)

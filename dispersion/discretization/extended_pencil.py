@@ -253,12 +253,16 @@ def refine_inaccurate(patch, nu, kappa, W, basis, G=None, failures=None, error=N
         if done == 1 and (time.perf_counter() - started) * bad.size > MAX_EXTENDED_SECONDS:
             each = time.perf_counter() - started
             worst = float(np.max(error[bad]))
+            # the count of kappa points whose share of such points fits in the time: advice a
+            # grid accepts (2 points at least), or none about the count at all
+            fits = int(kappa.size * MAX_EXTENDED_SECONDS / (each * bad.size))
+            advice = (f"ask for fewer kappa points (count <= {fits}) or a lower p" if fits >= 2
+                      else "ask for a lower p or n (even a grid of 2 kappa points needs more)")
             raise InputError(
                 f"{bad.size} kappa points need the extended-precision eigen-solver (the float "
                 f"one certifies their eigenvalues to {worst:.1g} relative only, not {rtol:g}: "
                 f"p = {patch.p}, n = {patch.n}), at about {each:.2g} s each: over "
-                f"{MAX_EXTENDED_SECONDS:.0f} s; ask for fewer kappa points (count <= "
-                f"{max(1, int(MAX_EXTENDED_SECONDS / each))}) or a lower p")
+                f"{MAX_EXTENDED_SECONDS:.0f} s; {advice}")
         top = float(np.max(lam[i]))
         small = max(min(float(np.min(lam[i])), 0.1 * kappa[i] ** 4), 1e-300)
         ratio = top / small

@@ -158,6 +158,8 @@ def user_material(*, E=None, nu=None, rho=None, c_L=None, c_T=None,
             why = ": the speeds follow from E, nu and rho"
         raise InputError(f"material inputs ({', '.join(names) or 'none'}) do not form one of "
                          f"{combos}{why}")
+    if rho is not None:
+        _check_density(rho)
     if "E" in given:
         return material_from_moduli(E, nu, rho, name)
     label = name or (f"c_L = {c_L:g} m/s, c_T = {c_T:g} m/s"
@@ -165,6 +167,26 @@ def user_material(*, E=None, nu=None, rho=None, c_L=None, c_T=None,
     return Material(float(as_real("c_L", c_L)), float(as_real("c_T", c_T)),
                     None if rho is None else float(as_real("rho", rho)), label,
                     f"user input ({', '.join(names)})")
+
+
+def _check_density(rho) -> None:
+    """Refuse a density no solid plate has (outside the plausible range of
+    :data:`dispersion.materials.unit_mixups.PLAUSIBLE`, foams to osmium), naming the likely
+    unit mix-up: 2.7 is aluminium's density in g/cm^3, not kg/m^3 (it gave c_L = 196 km/s).
+
+    >>> _check_density(2.7)
+    Traceback (most recent call last):
+    ...
+    dispersion.errors.InputError: rho must lie in [100, 25000] kg/m^3 (solids, foams to osmium), got 2.7 kg/m^3: g/cm^3 given for kg/m^3? (2.7 g/cm^3 = 2700 kg/m^3)
+    """
+    from dispersion.materials.unit_mixups import PLAUSIBLE, unit_mixups
+
+    lo, hi, unit = PLAUSIBLE["rho"]
+    value = float(check_positive("rho", rho))
+    if not lo <= value <= hi:
+        hint = [h.split(": ", 1)[1] for h in unit_mixups(rho=value)]
+        raise InputError(f"rho must lie in [{lo:g}, {hi:g}] {unit} (solids, foams to osmium), "
+                         f"got {value:g} {unit}" + "".join(f": {h}" for h in hint))
 
 
 def _row(name: str, c_L: float, c_T: float, rho: float, row: str) -> Material:

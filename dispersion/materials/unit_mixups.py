@@ -67,16 +67,36 @@ def unit_mixups(**given) -> list[str]:
     return out
 
 
-def frequency_mixup(value_khz: float, lo_khz: float, hi_khz: float) -> list[str]:
+#: Frequency units and their size in kHz (the unit a bare number is read in).
+_FREQUENCY_UNITS = {"Hz": 1e-3, "kHz": 1.0, "MHz": 1e3}
+
+
+def frequency_mixup(value_khz: float, lo_khz: float, hi_khz: float,
+                    typed: str | None = None) -> list[str]:
     """A line if a frequency outside the plate's range ``[lo_khz, hi_khz]`` falls inside it
-    read in Hz or in MHz (the range depends on the plate, so it is passed in).
+    read in another unit (the range depends on the plate, so it is passed in). ``typed``: the
+    unit the number was written with (None: a bare number, read in kHz); the hint reads the
+    number as written in each other unit, so ``200Hz`` is answered with ``200kHz``, never
+    with "MHz given for kHz".
 
     >>> frequency_mixup(200000.0, 0.69, 1.03e4)
     ['frequency_khz = 200000 kHz is out of range: Hz given for kHz? (200000 Hz = 200 kHz; write 200000Hz)']
+    >>> frequency_mixup(0.2, 0.69, 1.03e4, typed="Hz")
+    ['frequency_khz = 200 Hz is out of range: Hz given for kHz? (200 kHz lies inside it; write 200kHz)']
     """
-    for words, factor in (("Hz", 1e-3), ("MHz", 1e3)):
-        if not lo_khz <= value_khz <= hi_khz and lo_khz <= value_khz * factor <= hi_khz:
-            return [f"frequency_khz = {value_khz:g} kHz is out of range: {words} given for kHz? "
-                    f"({value_khz:g} {words} = {value_khz * factor:g} kHz; write "
-                    f"{value_khz:g}{words})"]
+    if lo_khz <= value_khz <= hi_khz:
+        return []
+    if typed is None:
+        for words in ("Hz", "MHz"):
+            factor = _FREQUENCY_UNITS[words]
+            if lo_khz <= value_khz * factor <= hi_khz:
+                return [f"frequency_khz = {value_khz:g} kHz is out of range: {words} given for "
+                        f"kHz? ({value_khz:g} {words} = {value_khz * factor:g} kHz; write "
+                        f"{value_khz:g}{words})"]
+        return []
+    written = value_khz / _FREQUENCY_UNITS[typed]  # the number as the user wrote it
+    for unit, size in _FREQUENCY_UNITS.items():
+        if unit != typed and lo_khz <= written * size <= hi_khz:
+            return [f"frequency_khz = {written:g} {typed} is out of range: {typed} given for "
+                    f"{unit}? ({written * size:g} kHz lies inside it; write {written:g}{unit})"]
     return []

@@ -164,10 +164,26 @@ def _symlog(ax, linthresh: float, what: str):
     ax.set_ylabel(f"{what} (signed; symlog, linear below {linthresh:.0e})")
 
 
+def _broken(x: np.ndarray, y: np.ndarray, partner) -> tuple[np.ndarray, np.ndarray]:
+    """``x, y`` with a NaN put between two points whose partners differ, so the line breaks
+    where the pairing changes (a jump of the error is no vertical line of data).
+
+    >>> _broken(np.array([1., 2, 3]), np.array([1., 1, 5]), [0, 0, 1])[1].tolist()
+    [1.0, 1.0, nan, 5.0]
+    """
+    if partner is None:
+        return x, y
+    c = np.asarray(partner)
+    cut = np.flatnonzero(c[1:] != c[:-1]) + 1
+    return np.insert(x, cut, np.nan), np.insert(y, cut, np.nan)
+
+
 def plot_paired_errors(kappa, errors: Mapping, ax=None, name: str = "", color: str = "C0",
                        branches: Sequence[str] = ("S0", "A0", "S1", "A1"),
-                       linthresh: float = 1e-8):
-    """Signed relative error of each exact branch against its shape partner, symlog axis."""
+                       linthresh: float = 1e-8, partners: Mapping | None = None):
+    """Signed relative error of each exact branch against its shape partner, symlog axis;
+    with ``partners`` (label -> the partner's place at each kappa) the line breaks where
+    the partner changes."""
     ax = _axes(ax)
     kappa = _a(kappa)
     for b in branches:
@@ -176,12 +192,28 @@ def plot_paired_errors(kappa, errors: Mapping, ax=None, name: str = "", color: s
         e = _a(errors[b])
         e[np.abs(e) < ROUND_OFF] = np.nan  # round-off, not data
         if np.any(np.isfinite(e) & (kappa > 0)):
-            ax.plot(kappa, e, _BRANCH_STYLE.get(b, "-"), color=color, lw=1.2,
+            x, y = _broken(kappa, e, (partners or {}).get(b))
+            ax.plot(x, y, _BRANCH_STYLE.get(b, "-"), color=color, lw=1.2,
                     label=f"{name} {b}".strip())
     ax.set_xscale("log")
     ax.set_xlabel(r"$\kappa = kh$")
     _symlog(ax, linthresh, r"$(\Omega^h - \Omega)/\Omega$")
     return ax.figure
+
+
+def _error_legend(ax, masses: Sequence[str]) -> None:
+    """The error panel's key beside its axes, never over the curves: one entry per mass rule
+    (its colour) and one per branch (its line style), instead of one per rule and branch."""
+    from matplotlib.lines import Line2D
+
+    drawn = {ln.get_label() for ln in ax.get_lines()}
+    branches = [b for b in _BRANCH_STYLE if any(lab.endswith(f" {b}") for lab in drawn)]
+    if not branches:
+        return
+    handles = [Line2D([], [], color=_colour(m), lw=2) for m in masses]
+    handles += [Line2D([], [], color="0.3", ls=_BRANCH_STYLE[b], lw=1.2) for b in branches]
+    ax.legend(handles, [*masses, *branches], fontsize="x-small", loc="center left",
+              bbox_to_anchor=(1.01, 0.5), frameon=False)
 
 
 def caption(inputs: Mapping) -> str:
@@ -215,16 +247,17 @@ def figure2(data: Mapping, title: str = ""):
     plot_exact(kappa, {k: v["omega"] for k, v in data["exact"].items()}, data["omega_max"], ax)
     for i, (name, d) in enumerate(data["discrete"].items()):
         plot_discrete(kappa, d["omega"], d["symmetry"], ax, name, _colour(name, i), _marker(name))
-        plot_paired_errors(kappa, d["paired_error"], ax_err, name, _colour(name, i))
+        plot_paired_errors(kappa, d["paired_error"], ax_err, name, _colour(name, i),
+                           partners=d.get("paired_partner"))
     edges = {d["zone_edge"] for d in data["discrete"].values() if d["zone_edge"] is not None}
     for edge in edges:
         plot_zone_edge(edge, ax)
     fig.legend(*ax.get_legend_handles_labels(), loc="outside lower center", ncol=3,
                fontsize="small")
-    if ax_err.get_legend_handles_labels()[0]:
-        ax_err.legend(fontsize="x-small", ncol=2)
+    _error_legend(ax_err, list(data["discrete"]))
     ax_err.set_title("error of each exact branch against the discrete mode of the same shape\n"
-                     "(MAC >= 0.5; no curve: no discrete mode resembles it)", fontsize="small")
+                     "(MAC >= 0.5; no curve: no discrete mode resembles it; a gap: the partner "
+                     "changes)", fontsize="small")
     if title:
         fig.suptitle(title, fontsize="medium")
     return fig
@@ -267,7 +300,8 @@ def figure_branch_table(table):
         plot_discrete(table.kappa, d.branches.omega, d.branches.symmetry, ax, d.words(),
                       colour, marker)
         if d.paired_error is not None:
-            plot_paired_errors(table.kappa, d.paired_error, ax_err, d.patch.mass_name, colour)
+            plot_paired_errors(table.kappa, d.paired_error, ax_err, d.patch.mass_name, colour,
+                               partners=d.paired_partner)
     for edge in {d.branches.zone_edge for d in table.discrete} - {None}:
         plot_zone_edge(edge, ax)
     if table.discrete:
@@ -276,11 +310,11 @@ def figure_branch_table(table):
     else:
         ax.legend(fontsize="small")
     if ax_err is not None:
-        if ax_err.get_legend_handles_labels()[0]:
-            ax_err.legend(fontsize="x-small", ncol=2)
+        _error_legend(ax_err, [d.patch.mass_name for d in table.discrete
+                               if d.paired_error is not None])
         ax_err.set_title("error of each exact branch against the discrete mode of the same "
-                         "shape\n(MAC >= 0.5; no curve: no discrete mode resembles it)",
-                         fontsize="small")
+                         "shape\n(MAC >= 0.5; no curve: no discrete mode resembles it; a gap: "
+                         "the partner changes)", fontsize="small")
     import re
     import textwrap
 
@@ -357,15 +391,6 @@ def _plot_signed_log(ax, x, e, color, marker, label, offset=0, zorder=2):
             markevery=every, mfc="none", lw=1.2, zorder=zorder)
 
 
-def _sign_legend(ax):
-    from matplotlib.lines import Line2D
-
-    handles, labels = ax.get_legend_handles_labels()
-    handles += [Line2D([], [], color="0.3", ls="-"), Line2D([], [], color="0.3", ls="--")]
-    labels += [r"solid: $\Omega^h > \Omega$ (too fast)", r"dashed: $\Omega^h < \Omega$ (too slow)"]
-    ax.legend(handles, labels, fontsize="xx-small", ncol=1)
-
-
 #: Drawing order of the masses: the lumped curves first, so that a singular curve close to
 #: them stays visible on top.
 _MASS_ORDER = {"lumped": 0, "consistent": 1, "singular-lumped": 2, "singular": 3}
@@ -401,7 +426,7 @@ def _plate_geometry(curves: Sequence[Mapping], r) -> str:
 def figure_per_wavelength(per_wavelength: Mapping, bar: Mapping, nu: float | None = None):
     """|Relative phase-velocity error| against elements per wavelength on log-log axes, its
     sign by line style: plate S0, A0 and the 1D bar. Colour: mass; marker: degree p."""
-    fig = new_figure(figsize=(13, 4.6))
+    fig = new_figure(figsize=(13, 6.4))
     axs = fig.subplots(1, 3, sharey=True)
     epw = per_wavelength["elements_per_wavelength"]
     curves = sorted(per_wavelength["curves"], key=lambda c: _MASS_ORDER.get(c["mass"], 9))
@@ -422,13 +447,21 @@ def figure_per_wavelength(per_wavelength: Mapping, bar: Mapping, nu: float | Non
                          _colour(mass), _DEGREE_MARKERS.get(p, "d"), f"p = {p}, {mass}",
                          offset=p)
     axs[2].set_title("1D bar, periodic B-splines (Cottrell et al. 2006)", fontsize="small")
+    keys = {}
     for ax in axs:
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel("elements per wavelength")
         ax.grid(True, which="major", alpha=0.3)
-        if ax.get_legend_handles_labels()[0]:
-            _sign_legend(ax)
+        for h, lab in zip(*ax.get_legend_handles_labels()):
+            keys.setdefault(lab, h)
+    if keys:  # one key below the panels, never over them: the curves separate where it sat
+        from matplotlib.lines import Line2D
+
+        keys[r"solid: $\Omega^h > \Omega$ (too fast)"] = Line2D([], [], color="0.3", ls="-")
+        keys[r"dashed: $\Omega^h < \Omega$ (too slow)"] = Line2D([], [], color="0.3", ls="--")
+        fig.legend(list(keys.values()), list(keys), loc="outside lower center", ncol=4,
+                   fontsize="x-small")
     axs[0].set_ylabel(r"$|c_p^h / c_p - 1| = |\Omega^h/\Omega - 1|$ (below 1e-13: round-off, "
                       "not drawn)")
     if nu is not None:
@@ -475,6 +508,7 @@ def plot_speed_accuracy(rows: Sequence[Mapping], ax=None, label=None, floor: flo
     for row in rows:
         groups.setdefault(label(row), []).append(row)
     any_below = False
+    point_labels = []
     for i, (name, rs) in enumerate(groups.items()):
         rs = sorted(rs, key=order or (lambda r: r["time_s"]))
         t = np.array([r["time_s"] for r in rs])
@@ -487,19 +521,45 @@ def plot_speed_accuracy(rows: Sequence[Mapping], ax=None, label=None, floor: flo
             any_below = True
             ax.loglog(t[below], np.full(below.sum(), lo), "o", color=f"C{i}", mfc="none")
         if point_label is not None:
-            for ti, ei, row in zip(t, np.where(below, lo, e), rs):
-                ax.annotate(point_label(row), (ti, ei), xytext=(3, 3 if i % 2 else -8),
-                            textcoords="offset points", fontsize="xx-small", color=f"C{i}")
+            point_labels += [(ti, ei, point_label(row), f"C{i}")
+                             for ti, ei, row in zip(t, np.where(below, lo, e), rs)]
     if floor:
         ax.axhline(floor, color="0.4", lw=0.8, ls=":",
                    label="reference's own error" + (" (open markers: at or below it)"
                                                     if any_below else ""))
-    from matplotlib.ticker import NullFormatter
+    _time_ticks(ax)
+    if point_labels:
+        from dispersion.plotting.labels import place_labels
 
-    ax.xaxis.set_minor_formatter(NullFormatter())
+        ax.autoscale_view()
+        place_labels(ax, point_labels, fontsize=6)  # apart: no label over another
     ax.set_xlabel("wall time [s]")
     ax.legend(fontsize="x-small")
     return ax.figure
+
+
+def _time_ticks(ax) -> None:
+    """Labelled ticks on a logarithmic time axis however short its range: 1, 2 and 5 times
+    the decades inside it, or, if fewer than two of those fall inside (a range within one
+    decade had no labelled tick at all), four evenly spaced round values; written short
+    (``0.045``), never in scientific notation that runs into its neighbour."""
+    import math
+
+    from matplotlib.ticker import FixedLocator, FuncFormatter, MaxNLocator, NullFormatter
+
+    ax.autoscale_view()
+    lo, hi = ax.get_xlim()
+    if not (lo > 0 and hi > lo):
+        return
+    ticks = [m * 10.0**k for k in range(math.floor(math.log10(lo)), math.ceil(math.log10(hi)) + 1)
+             for m in (1, 2, 5) if lo <= m * 10.0**k <= hi]
+    if len(ticks) < 2:
+        ticks = [t for t in MaxNLocator(nbins=4).tick_values(lo, hi) if lo <= t <= hi]
+    if len(ticks) > 8:  # many decades: the decades alone
+        ticks = [t for t in ticks if math.isclose(10 ** round(math.log10(t)), t)]
+    ax.xaxis.set_major_locator(FixedLocator(ticks))
+    ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:.3g}"))
+    ax.xaxis.set_minor_formatter(NullFormatter())
 
 
 def figure_speed_accuracy(tracer: Mapping, discrete_rows: Sequence[Mapping]):

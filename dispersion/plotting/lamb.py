@@ -43,7 +43,10 @@ def plot_curves(curves: Mapping, x: str, y: str, ax=None, ymax: float | None = N
     family's colour, or all in ``colour``)."""
     from dispersion.plotting import axes
 
+    from dispersion.plotting.labels import place_labels
+
     ax = axes(ax)
+    labels = []
     for label, d in curves.items():
         xs, ys = np.asarray(d[x], float), np.asarray(d[y], float)
         ok = np.isfinite(xs) & np.isfinite(ys)
@@ -53,10 +56,15 @@ def plot_curves(curves: Mapping, x: str, y: str, ax=None, ymax: float | None = N
         if not np.any(ok):
             continue
         own, ls = _STYLE.get(_family(label), ("k", "-"))
-        ax.plot(xs, ys, color=colour or own, ls=ls, lw=1.1)
+        # a mode at one frequency (or one point left after the cap) is a point, not a line:
+        # drawn as a marker, so a table at one frequency does not give empty panels
+        alone = np.count_nonzero(ok) < 2
+        ax.plot(xs, ys, color=colour or own, ls=ls, lw=1.1, marker="o" if alone else None,
+                ms=4, mfc="none" if _family(label) == "A" else (colour or own))
         i = np.flatnonzero(ok)[-1] if y != "c_p" else np.flatnonzero(ok)[0]
-        ax.annotate(label, (xs[i], ys[i]), fontsize=7, color=colour or own,
-                    xytext=(2, 2), textcoords="offset points")
+        labels.append((xs[i], ys[i], label, colour or own))
+    ax.autoscale_view()
+    place_labels(ax, labels)  # apart where two modes end at one place (SH0 and A0, S0 and S1)
     return ax.figure
 
 

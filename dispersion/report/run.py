@@ -135,12 +135,17 @@ def measure_sections(
     command: str = "dispersion reproduce",
     progress: bool = True,
 ) -> dict[str, float]:
-    """Measure each section and save ``folder/<name>.json``; return the seconds per section."""
+    """Measure each section and save ``folder/<name>.json``; return the seconds per section.
+
+    With ``progress`` a bar on stderr; without it (stderr not a terminal: a log, a CI job)
+    one line on stderr as each section finishes, ``measured NAME in S s (i of n)``, so a run
+    of minutes is never silent.
+    """
     from tqdm import tqdm
 
     seconds = {}
     bar = tqdm(names, desc="reproduce", unit="section", disable=not progress, file=sys.stderr)
-    for name in bar:
+    for i, name in enumerate(bar, 1):
         bar.set_postfix_str(name)
         module = section_module(name)
         t0 = time.perf_counter()
@@ -152,6 +157,9 @@ def measure_sections(
         seconds[name] = time.perf_counter() - t0
         results.save(Path(folder) / f"{name}.json", name, result,
                      inputs={"quick": quick}, seconds=seconds[name], command=command)
+        if not progress:
+            print(f"dispersion reproduce: measured {name} in {seconds[name]:.1f} s "
+                  f"({i} of {len(names)})", file=sys.stderr, flush=True)
     bar.close()
     return seconds
 

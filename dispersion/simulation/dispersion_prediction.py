@@ -131,7 +131,7 @@ def predict(plan, tau: float) -> DispersionPrediction:
                             sympy.Rational(repr(s.gamma_s)))
     except InputError as exc:  # a rule the Bloch plate patch does not model
         return DispersionPrediction(plan.omega_c, tau, plan.distance, k_ex, cg_ex, None, None,
-                                    None, None, None, f"no Bloch plate patch: {exc}")
+                                    None, None, None, f"no Bloch plate patch: {exc.reason}")
     at = _branch(patch, plan.nu, label, tau)
     edge = math.pi / float(r)
     target = plan.omega_c

@@ -178,7 +178,7 @@ def mesh_critical_step(mesh, op, *, bloch: bool = False, tol: float = LANCZOS_TO
         try:
             omega_b, dt_b = bloch_step(mesh.plan)
         except InputError as exc:  # a rule the Bloch plate patch does not model
-            why = str(exc)
+            why = exc.reason  # the fact, without advice the strip cannot follow
     return MeshCriticalStep(omega, omega_max, 2.0 / omega_max, omega_b, dt_b, count[0],
                             seconds, why, time.perf_counter() - t0)
 

@@ -221,6 +221,10 @@ def figure2_data(nu: float, kappa, omega_max: float, patches: dict, *, exact=Non
                              for lab, e in pb.relative_error(sub).items()},
             "mac": {lab: _arr(np.concatenate([m, np.full(pad, np.nan)]))
                     for lab, m in pb.mac.items()},
+            # which discrete mode is the partner (-1: none): the figure breaks its line where
+            # the partner changes instead of drawing the jump as a vertical line
+            "paired_partner": {lab: [int(v) for v in np.concatenate([c, np.full(pad, -1)])]
+                               for lab, c in pb.partner.items()},
         }
     data = {"nu": nu, "kappa": _arr(kappa), "omega_max": omega_max, "exact": ex_data,
             "discrete": discrete_data}

@@ -83,7 +83,15 @@ class LumpingOrders:
     def rows(self) -> list[dict]:
         return [asdict(r) for r in self.terms]
 
-    def to_json(self) -> dict:
+    def to_json(self) -> str:
+        """:meth:`to_dict` as strict JSON text."""
+        import json
+
+        from dispersion.results import jsonable
+
+        return json.dumps(jsonable(self.to_dict()), indent=1, allow_nan=False) + "\n"
+
+    def to_dict(self) -> dict:
         out = asdict(self)
         out["terms"] = self.rows()
         out["failures"] = list(self.failures)

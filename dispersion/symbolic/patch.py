@@ -159,7 +159,7 @@ class Patch:
             if self.model == "bloch":
                 raise InputError(f"mass {rule.name!r} uses C0 Lagrange elements, which carry "
                                  "p DOFs a cell along x; the Bloch patch has one B-spline "
-                                 "symbol there: use model='x-exact' or the periodic bar")
+                                 "symbol there", ways=[("model", "x-exact")])
             c0_elements(p, n)
         r = self.r
         if self.model == "x-exact":

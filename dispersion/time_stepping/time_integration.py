@@ -27,7 +27,7 @@ from __future__ import annotations
 
 from fractions import Fraction
 
-__all__ = ["NEWMARK_MEMBERS", "CRITICAL_STEP_MODELS"]
+__all__ = ["NEWMARK_MEMBERS", "CRITICAL_STEP_MODELS", "H_RANGE"]
 
 #: Named Newmark members: name -> (beta, gamma), exact.
 NEWMARK_MEMBERS = {
@@ -42,3 +42,8 @@ CRITICAL_STEP_MODELS = {
     "plate": "the Bloch plate patch with square elements (plane strain)",
     "bar": "the periodic 1D bar",
 }
+
+#: Element sizes h (m) of a critical step: the step 2 h / (c omega_max h/c) must be a normal
+#: float for every wave speed of a solid (10 m/s to 100 km/s) and every omega_max h / c up to
+#: 1e4; 1e-320 m made the consistent reference's step round to 0 (a division by zero).
+H_RANGE = (1e-12, 1e12)

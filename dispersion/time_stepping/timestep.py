@@ -48,15 +48,17 @@ import numpy as np
 import sympy
 
 from dispersion.budget import check_bar_degree, check_phases
-from dispersion.errors import InputError, check_positive, check_positive_int
+from dispersion.errors import (InputError, check_positive, check_positive_int,
+                               check_real_in_range)
 from dispersion.rendering import Rendered
 from dispersion.mass_rules.mass_rule import get_rule, x_mass_coefficients
 from dispersion.discretization.bar_dispersion import bar_rule
 from dispersion.materials.materials import MATERIALS, Material
 from dispersion.time_stepping.omega_max_bound import certified_omega_max
-from dispersion.time_stepping.time_integration import CRITICAL_STEP_MODELS
+from dispersion.time_stepping.time_integration import CRITICAL_STEP_MODELS, H_RANGE
 
-__all__ = ["MATERIALS", "CRITICAL_STEP_MODELS", "EXACT_MAX_DOFS", "MAX_N", "certified_omega_max",
+__all__ = ["MATERIALS", "CRITICAL_STEP_MODELS", "EXACT_MAX_DOFS", "MAX_N", "H_RANGE",
+           "certified_omega_max",
            "CriticalStep", "bar_omega_squared", "critical_time_step", "float_pencil",
            "bar_omega_max", "patch_omega_max", "critical_step", "matrix_critical_step"]
 
@@ -394,7 +396,7 @@ def critical_step(mass, p: int = 2, *, model: str = "plate", material: Material 
         if material not in MATERIALS:
             raise InputError(f"material must be one of {', '.join(MATERIALS)}; got {material!r}")
         material = MATERIALS[material]
-    h = float(check_positive("h", h))
+    h = float(check_real_in_range("h", h, *H_RANGE))
     rule = get_rule(mass)
     if model == "bar":
         c = float(check_positive("wave_speed", wave_speed)) if wave_speed is not None \
@@ -419,6 +421,10 @@ def critical_step(mass, p: int = 2, *, model: str = "plate", material: Material 
     p, n = check_size(p, n)
     r = sympy.Rational(2, n - p)
     nu = material.nu
+    if rule.basis == "lagrange":  # the plate's Bloch patch has no such rule; the bar has
+        raise InputError(f"mass {rule.name!r} uses C0 Lagrange elements, which carry p DOFs a "
+                         "cell along x; the Bloch plate patch has one B-spline symbol there",
+                         ways=[("model", "bar")])
     patch = plate_patch(p, n, "bloch", r, rule, contact, gamma_s, nu=nu)
     w, exact, theta, method = patch_omega_max(patch, None, n_theta)
     w_ref = patch_omega_max(plate_patch(p, n, "bloch", r, "consistent", nu=nu), None, n_theta)[0]

@@ -305,7 +305,9 @@ BLOCH_RULE_NAMES = tuple(name for name, rule in RULES.items() if rule.basis == "
 
 
 def get_rule(mass) -> MassRule:
-    """The :class:`MassRule` for a registered name or a rule object.
+    """The :class:`MassRule` for a registered name, a family member's name
+    (:func:`dispersion.symbolic.rule_families.family_rule`: ``dual-lumped-q1``) or a rule
+    object.
 
     >>> get_rule("hrz").states.diagonal
     True
@@ -314,11 +316,16 @@ def get_rule(mass) -> MassRule:
         return mass
     if isinstance(mass, str) and mass in RULES:
         return RULES[mass]
+    from dispersion.symbolic.rule_families import FAMILY_NAMES, family_rule
+
+    member = family_rule(mass)  # a member of a rule family by name: dual-lumped-q1
+    if member is not None:
+        return member
     from dispersion.errors import did_you_mean
 
     hint = did_you_mean(mass, RULE_NAMES) if isinstance(mass, str) else ""
-    raise InputError(f"mass must be one of {', '.join(RULE_NAMES)} or a MassRule; got "
-                     f"{mass!r}{hint}")
+    raise InputError(f"mass must be one of {', '.join(RULE_NAMES)}, {FAMILY_NAMES} or a "
+                     f"MassRule; got {mass!r}{hint}")
 
 
 def gram_space(kv, R=None) -> MassSpace:

@@ -245,6 +245,7 @@ def verdict(claim, derived) -> tuple[bool, str, str, str]:
 
 
 def _coefficient_difference(printed, derived) -> str:
-    from dispersion.claims.verify import describe_difference
-
-    return "coefficient: " + describe_difference(printed, derived)
+    ratio = sympy.cancel(printed / derived)
+    if ratio.is_number:
+        return f"coefficient: printed = {ratio} * derived"
+    return f"coefficient: printed {printed}, derived {derived}"

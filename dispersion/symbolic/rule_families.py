@@ -21,37 +21,21 @@ wherever a registered name does.
 """
 from __future__ import annotations
 
-import re
-from functools import lru_cache
-
 from dispersion.symbolic.lumping_rules import approximate_dual_entry, sms_entry
-from dispersion.symbolic.mass_rule import MassRule, literature_rule
+from dispersion.symbolic.mass_rule import (FAMILY_NAMES, MassRule, family_rule,
+                                           literature_rule)
 
 __all__ = ["FAMILY_NAMES", "approximate_dual_rule", "family_rule", "sms_rule"]
 
-#: The family names :func:`family_rule` reads, as error messages show them.
-FAMILY_NAMES = "dual-lumped-q<q> (q = 0..8)"
-#: ``dual-lumped-q<q>``: one digit, whole string (no signs, spaces or leading zeros).
-_DUAL = re.compile(r"dual-lumped-q([0-8])")
 
-
-def family_rule(name) -> MassRule | None:
-    """The family member a name denotes (``dual-lumped-q<q>``, q = 0..8), else None.
-
-    The name is matched by a regular expression on the whole string (at most one digit):
-    text never reaches anything but that pattern.
-    """
-    m = _DUAL.fullmatch(name) if isinstance(name, str) and len(name) <= 16 else None
-    return approximate_dual_rule(int(m.group(1))) if m else None
-
-
-@lru_cache(maxsize=None)
 def approximate_dual_rule(q: int) -> MassRule:
     """``dual-lumped-q<q>``: approximate-dual lumping with reproduction degree ``q`` (capped at
-    the degree p of the space along x; a space of degree below q is refused). One object per
-    q (cached), so equal names give equal rules."""
-    return literature_rule(f"dual-lumped-q{q}", dict(approximate_dual_entry(q),
-                                                     x_rule="dual-lumped"))
+    the degree p of the space along x; a space of degree below q is refused). For q <= 8 the
+    one object of its name (:func:`~dispersion.symbolic.mass_rule.family_rule`), so equal
+    names give equal rules."""
+    member = family_rule(f"dual-lumped-q{q}") if isinstance(q, int) else None
+    return member or literature_rule(f"dual-lumped-q{q}", dict(approximate_dual_entry(q),
+                                                               x_rule="dual-lumped"))
 
 
 def sms_rule(beta) -> MassRule:

@@ -29,6 +29,7 @@ from dispersion.symbolic.bspline import open_knot_vector
 from dispersion.errors import InputError, check_positive, check_positive_int
 from dispersion.symbolic.mass_rule import get_rule
 from dispersion.contact.assembly import discretize, internal_force, patch_mass, strain_energy
+from dispersion.contact.elastic_forces import ElasticForces
 from dispersion.contact.material import StVenantKirchhoff
 from dispersion.contact.contact_problem import ContactProblem
 from dispersion.contact.newmark_scheme import DENSE_MAX
@@ -139,13 +140,15 @@ def restrict(prob: ContactProblem, free: np.ndarray) -> ContactProblem:
         return f[free], K
 
     force = None if prob.force is None else (lambda u: prob.force(full(u))[free])
+
     M = sp.csr_matrix(prob.M)[free][:, free]
     G = sp.csr_matrix(prob.G)[:, free]
     f_ext = None if prob.f_ext is None else np.asarray(prob.f_ext)[free]
     directions = None if prob.directions is None else np.asarray(prob.directions)[:, free]
     K = None if prob.K is None else sp.csr_matrix(prob.K)[free][:, free]
     return ContactProblem(M, internal, G, prob.g0, lambda u: prob.energy(full(u)), f_ext,
-                          directions, K, force)
+                          directions, K, force,
+                          None if prob.forces is None else prob.forces.restrict(free))
 
 
 def patch_problem(patch: RingPatch, material: StVenantKirchhoff, rho: float,
@@ -206,6 +209,7 @@ def patch_problem(patch: RingPatch, material: StVenantKirchhoff, rho: float,
     dense = n <= DENSE_MAX
     prob = ContactProblem(M2, lambda u: internal_force(disc, material, u, dense=dense), G, g0,
                           lambda u: strain_energy(disc, material, u), None, directions,
-                          force=lambda u: internal_force(disc, material, u, tangent=False))
+                          force=lambda u: internal_force(disc, material, u, tangent=False),
+                          forces=ElasticForces.of(disc, material))
     free = np.flatnonzero(~fixed)
     return PatchProblem(restrict(prob, free), patch, free, contact_side, s, disc)

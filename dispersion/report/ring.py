@@ -92,7 +92,7 @@ def _err(r: dict, name: str, spec: str = ".3f") -> str:
 
 
 def _runs_text(rows: list, count_rule: str = "") -> str:
-    runs = [r["spread"]["runs"] for r in rows if r.get("spread")]
+    runs = sorted({r["spread"]["runs"] for r in rows if r.get("spread")})
     if not runs:
         return ""
     return (" " + SIGNORINI_SPREAD_RULE + (" " + count_rule if count_rule else "")

@@ -19,7 +19,16 @@ value at one wavenumber. A claims file is TOML::
 Keys of a claim (``[defaults]`` may set any of them except ``name``):
 
 ``kind``
-    ``"series"`` (default), ``"error_order"`` or ``"value"``.
+    ``"series"`` (default), ``"error_order"`` or ``"value"``; the explicit-dynamics kinds
+    ``"critical_step"`` and ``"fully_discrete_series"`` (:mod:`~dispersion.claims.explicit`);
+    the leading-error-term kinds ``"order_range"`` and ``"leading_term"``
+    (:mod:`~dispersion.claims.orders`). An ``order_range`` claim compares a rule with a
+    reference over a range of degrees, either exactly (``same_leading_term_as``: power and
+    coefficient) or as a bound (``at_least_order_of``: the power is never lower). The old
+    key ``same_order_as`` is read as the deprecated name of ``at_least_order_of`` (it meant
+    "at least that order", so claims with it held by default against weaker rules); the
+    result's text names the deprecation. A ``leading_term`` claim states the term c x^k
+    itself (``power``, ``coefficient``, exact in nu on the plate).
 ``model``
     ``"rayleigh-lamb"`` (the exact plate, eq 13 in its standard form) or a plate patch,
     ``"bloch"`` or ``"x-exact"`` with ``p``, ``n``, ``r`` (number, ``"1/2"`` or ``"r"`` for
@@ -87,6 +96,7 @@ field by field, with :mod:`~dispersion.claims.claim_fields`),
 :mod:`~dispersion.claims.claim_model` (the model keys to one :class:`~dispersion.symbolic.patch.Patch`, or the
 :mod:`~dispersion.claims.exact_model` or the :mod:`~dispersion.claims.bar_model`),
 :mod:`~dispersion.claims.explicit` (the explicit-dynamics kinds),
+:mod:`~dispersion.claims.orders` (the leading-error-term kinds),
 :mod:`~dispersion.claims.verify` (derivations, scheduling, verdicts),
 :mod:`~dispersion.claims.report` (text, Markdown, JUnit XML) and
 :mod:`~dispersion.claims.errata` (the paper's errata table).

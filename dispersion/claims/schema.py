@@ -289,4 +289,4 @@ def _series_claim(entry: dict, common: dict, fail) -> Claim:
 KIND_PARSERS = {"series": _series_claim, "error_order": _error_order_claim,
                 "value": _value_claim, "critical_step": explicit.step_claim,
                 "fully_discrete_series": explicit.series_claim,
-                "order_range": orders.order_claim}
+                "order_range": orders.order_claim, "leading_term": orders.leading_claim}

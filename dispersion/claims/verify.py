@@ -367,8 +367,8 @@ KIND_RULES = {
     "value": KindRule(_value_tasks, _value_verdict),
     "critical_step": KindRule(_explicit_tasks, _explicit_verdict),
     "fully_discrete_series": KindRule(_explicit_tasks, _explicit_verdict),
-    "order_range": KindRule(lambda c: [orders.task(c)],
-                            lambda c, d: verdict(c, *orders.verdict(c, d))),
+    **{kind: KindRule(lambda c: [orders.task(c)],
+                      lambda c, d: verdict(c, *orders.verdict(c, d))) for kind in orders.KINDS},
 }
 
 

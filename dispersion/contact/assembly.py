@@ -39,6 +39,7 @@ import scipy.sparse as sp
 
 from dispersion.errors import InputError
 from dispersion.mass_rules.mass_rule import mass_variant
+from dispersion.contact.elastic_forces import ElasticForces
 from dispersion.contact.material import StVenantKirchhoff
 from dispersion.contact.nurbs import RingPatch, SplineBasis1D
 from dispersion.contact.redistribution import float_redistribution
@@ -48,6 +49,7 @@ __all__ = [
     "consistent_mass",
     "discretize",
     "float_redistribution",
+    "force_and_energy",
     "patch_mass",
     "patch_redistribution",
     "internal_force",
@@ -187,16 +189,19 @@ def _green_components(disc: Discretization, u: np.ndarray):
     return (F00, F01, F10, F11), (E00, E11, E01)
 
 
-def _force(disc: Discretization, mat: StVenantKirchhoff, u: np.ndarray) -> np.ndarray:
-    """Internal force alone, by components (no 2 x 2 matrix products per Gauss point)."""
-    (F00, F01, F10, F11), (E00, E11, E01) = _green_components(disc, u)
-    tr = mat.lam_bar * (E00 + E11)
-    w = disc.wdet.ravel()
-    S00, S11, S01 = (tr + 2 * mat.mu * E00) * w, (tr + 2 * mat.mu * E11) * w, 2 * mat.mu * E01 * w
-    # f_ak = sum_g sum_J P_kJ dR_aJ: the transpose of the gradient map applied to P
-    P = np.concatenate([F00 * S00 + F01 * S01, F00 * S01 + F01 * S11,
-                        F10 * S00 + F11 * S01, F10 * S01 + F11 * S11])
-    return disc.BFT @ P
+def _force(disc: Discretization, mat: StVenantKirchhoff, u: np.ndarray,
+           energy: bool = False):
+    """Internal force alone (and, with ``energy``, the stored energy at ``u``), by components
+    at all Gauss points at once (:class:`~.elastic_forces.ElasticForces`)."""
+    f, W = ElasticForces.of(disc, mat).force_energy(u)
+    return (f, W) if energy else f
+
+
+def force_and_energy(disc: Discretization, mat: StVenantKirchhoff,
+                     u: np.ndarray) -> tuple[np.ndarray, float]:
+    """Internal force ``(n_dofs,)`` and stored energy (J per unit thickness) at ``u``, from
+    one evaluation of the strains (the time stepper records the energy of every step)."""
+    return _force(disc, mat, u, energy=True)
 
 
 def internal_force(disc: Discretization, mat: StVenantKirchhoff, u: np.ndarray,
@@ -264,7 +269,7 @@ def patch_redistribution(patch: RingPatch, side: str = "eta1",
     """Redistribution ``R`` (``N_m = N R``) moving every function of ``side`` inward.
 
     Each line of control points across the patch gets the paper's weights
-    (:func:`dispersion.symbolic.mass.contact_weights`, eqs 2-4): ``1 - gamma_s`` to the neighbour,
+    (:func:`dispersion.mass_rules.mass.contact_weights`, eqs 2-4): ``1 - gamma_s`` to the neighbour,
     ``gamma_s`` to the next one.
     """
     if side.startswith("eta"):
@@ -282,7 +287,7 @@ def ring_redistribution(patch: RingPatch, gamma_s: float = 0.5) -> sp.csr_matrix
 def patch_mass(disc: Discretization, rho: float, variant: str = "consistent",
                side: str = "eta1", gamma_s: float = 0.5) -> sp.csr_matrix:
     """Mass matrix on the interleaved DOFs for ``variant`` (see
-    :func:`dispersion.symbolic.mass_rule.mass_variant`); singular variants redistribute ``side``."""
+    :func:`dispersion.mass_rules.mass_rule.mass_variant`); singular variants redistribute ``side``."""
     from dispersion.mass_rules.mass_rule import get_rule
 
     rule = get_rule(variant)

@@ -25,8 +25,12 @@ class ContactProblem:
 
     ``f_ext`` is a constant external force (its potential ``-f_ext . u`` enters the total
     energy); ``directions`` (``(k, n)``) maps ``M v`` to momentum components; ``K`` (constant
-    stiffness) marks a linear problem, ``internal(u) = (K u, K)``, whose step matrix is
-    factorized once; ``force(u)`` (optional) is ``f_int`` alone, cheaper than ``internal``.
+    stiffness) marks a linear problem, ``internal(u) = (K u, K)`` and ``energy(u) =
+    u.K u / 2`` (the time stepper evaluates it so), whose step matrix is factorized once; ``force(u)`` (optional) is ``f_int`` alone, cheaper than ``internal``;
+    ``forces`` (optional, an :class:`~dispersion.contact.elastic_forces.ElasticForces`) gives
+    ``f_int`` and ``energy(u)`` from one evaluation and stacks with other runs' operators, so
+    the time stepper records each step's strain energy without evaluating it again and steps
+    several runs together (:func:`~dispersion.contact.newmark.integrate_many`).
     """
 
     M: sp.csr_matrix
@@ -38,6 +42,7 @@ class ContactProblem:
     directions: np.ndarray | None = None
     K: sp.csr_matrix | None = None
     force: Callable | None = None
+    forces: ElasticForces | None = None
 
     @property
     def n(self) -> int:

@@ -52,7 +52,12 @@ class LinearSolver:
             if self.dense:
                 # a few dozen unknowns: one product with the inverse beats any solve call
                 inv = np.linalg.inv(dense(A))
-                return lambda b: inv @ b
+
+                def solve(b):
+                    return inv @ b
+
+                solve.inverse = inv  # several runs stepped together: one batched product
+                return solve
             import scipy.sparse.linalg as spla
 
             return spla.splu(A).solve

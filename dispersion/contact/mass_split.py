@@ -25,7 +25,8 @@ MATVEC_DENSE_MAX = 400
 
 
 class MassSplit:
-    """Massive / massless DOF split and a factorization of the massive block of ``M``."""
+    """Massive / massless DOF split and a factorization of the massive block of ``M``
+    (``mass_diagonal``: that block's diagonal where it is diagonal, else None)."""
 
     def __init__(self, prob: ContactProblem, nm: Newmark):
         if not (is_sparse(prob.M) or is_sparse(prob.G)):
@@ -39,19 +40,21 @@ class MassSplit:
         self.massive = np.setdiff1d(np.arange(M.shape[0]), self.massless)
         Mmm = M[self.massive][:, self.massive]
         self.diagonal = Mmm.nnz == Mmm.shape[0] and np.all(Mmm.indices == np.arange(Mmm.shape[0]))
+        self.mass_diagonal = None
         if self.diagonal:
-            d = Mmm.diagonal()
+            d = self.mass_diagonal = Mmm.diagonal()
             self.solve = lambda b: b / d
         else:
             solver = LinearSolver(Mmm.shape[0], nm)
             self.solve = solver.factor(solver.matrix(Mmm.tocsc()))
         G = sp.csr_matrix(prob.G)
         # a constraint that acts only on massless DOFs carries lambda = mu (eq 12)
-        only_massless = np.ones(G.shape[0], bool)
-        for k in range(G.shape[0]):
-            cols = G.indices[G.indptr[k]:G.indptr[k + 1]]
-            only_massless[k] = bool(np.all(np.isin(cols, self.massless)))
-        self.only_massless = only_massless
+        massive = np.ones(M.shape[0], bool)
+        massive[self.massless] = False
+        # stored entries on DOFs with mass, per row (np.isin per row imported numpy.ma)
+        on_massive = np.add.reduceat(np.r_[massive[G.indices], False].astype(int),
+                                     G.indptr[:-1]) if G.shape[0] else np.zeros(0, int)
+        self.only_massless = (on_massive == 0) | (np.diff(G.indptr) == 0)
         self.M = M
         small = M.shape[0] <= MATVEC_DENSE_MAX
         self.Md = M.toarray() if small else None
@@ -72,8 +75,9 @@ class MassSplit:
         self.massive = np.flatnonzero(~without_mass)
         Mmm = M[np.ix_(self.massive, self.massive)]
         self.diagonal = not np.any(Mmm - np.diag(np.diag(Mmm)))
+        self.mass_diagonal = None
         if self.diagonal:
-            d = np.diag(Mmm).copy()
+            d = self.mass_diagonal = np.diag(Mmm).copy()
             self.solve = lambda b: b / d
         else:
             solver = LinearSolver(Mmm.shape[0], nm)

@@ -46,8 +46,6 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
-
 import numpy as np
 
 from dispersion.errors import ConvergenceError, InputError, check_positive, check_positive_int
@@ -56,18 +54,18 @@ from dispersion.contact.contact_problem import ContactProblem
 from dispersion.contact.linear_solver import LinearSolver
 from dispersion.contact.mass_split import MassSplit
 from dispersion.contact.newmark_scheme import Newmark
+from dispersion.contact.run_batch import RunBatch
 from dispersion.splines.matrix_kind import dense, is_sparse
 from dispersion.contact.semismooth_newton import Tangent, newton
 
-if TYPE_CHECKING:
-    pass
-
-__all__ = ["History", "State", "critical_step", "consistent_state", "integrate", "step"]
+__all__ = ["History", "State", "critical_step", "consistent_state", "integrate",
+           "integrate_many", "step"]
 
 @dataclass
 class State:
     """Displacement, velocity, internal and contact accelerations, contact forces ``lam`` at
-    ``t``; ``iterations`` = Newton solves of the step, ``mu`` = raw multipliers (warm start)."""
+    ``t``; ``iterations`` = Newton solves of the step, ``mu`` = raw multipliers (warm start),
+    ``energy`` = the strain energy at ``u`` if the step already has it."""
 
     t: float
     u: np.ndarray
@@ -77,6 +75,8 @@ class State:
     lam: np.ndarray
     iterations: int = 0
     mu: np.ndarray | None = None
+    #: Strain energy at ``u`` where the step evaluated it with the force (None: not yet).
+    energy: float | None = None
 
 
 @dataclass
@@ -98,6 +98,8 @@ class History:
     states: list = field(default_factory=list)
     lam: list = field(default_factory=list)
     initial_energy_change: float = 0.0
+    #: Why the run stopped early (Newton failed, a non-finite state), else None.
+    error: str | None = None
 
     @property
     def total(self) -> np.ndarray:
@@ -129,10 +131,127 @@ class _Linear:
             A = c1 * split.M + K
         solver = LinearSolver(prob.n, nm)
         self.solve = solver.factor(solver.matrix(A))
+        # a small dense system is solved as a product with its inverse: K runs stepped
+        # together then take one batched product (LinearSolver.factor's dense route)
+        self.inverse = getattr(self.solve, "inverse", None)
         G = split.G
         self.W = self.solve(dense(split.G).T) if G.shape[0] else np.zeros((prob.n, 0))
-        self.S = G @ self.W
+        if self.W.ndim == 1:
+            self.W = self.W[:, None]
+        self.S = np.asarray(G @ self.W)
         self.K = K
+
+
+class _Linears(list):
+    """The factorizations of K linear runs, with what a batched step takes from them
+    stacked once (inverses, constraint responses, one-constraint Schur complements)."""
+
+    def __init__(self, linears):
+        super().__init__(linears)
+        inv = [lin.inverse for lin in linears]
+        self.inverse = None if any(x is None for x in inv) else np.stack(inv)
+        self.W = np.stack([lin.W for lin in linears])
+        self.S1 = (np.array([lin.S[0, 0] for lin in linears])
+                   if linears and linears[0].S.shape == (1, 1) else None)
+
+    def subset(self, keep) -> _Linears:
+        return _Linears([self[k] for k in keep])
+
+
+def _solve_linear(batch: RunBatch, linears: _Linears, nm: Newmark, ut, rows):
+    """One step of K linear problems: the factorized step matrices and the contact LCPs."""
+    f_ext = batch.f_ext if rows is None else np.where(rows, batch.f_ext, 0.0)
+    rhs = batch.c1[:, None] * batch.mass(ut) + f_ext
+    if linears.inverse is not None:
+        U0 = np.matmul(linears.inverse, rhs[:, :, None])[:, :, 0]
+    else:
+        U0 = np.stack([lin.solve(b) for lin, b in zip(linears, rhs)])
+    mu = np.zeros((batch.K, batch.nc))
+    if batch.nc:
+        q = batch.gap(U0)
+        if linears.S1 is not None:  # one contact point: the complementarity in closed form
+            mu[:, 0] = np.maximum(0.0, -q[:, 0] / linears.S1)
+        else:
+            mu = np.stack([solve_lcp(lin.S, qk, nm.max_iter) for lin, qk in zip(linears, q)])
+    U = U0 + np.matmul(linears.W, mu[:, :, None])[:, :, 0]
+    f = batch.force(U)[0] if nm.explicit else None
+    return U, mu, np.ones(batch.K, dtype=int), f, None, {}
+
+
+def _a_int(batch: RunBatch, f: np.ndarray) -> np.ndarray:
+    """Internal accelerations ``M^-1 (f_ext - f)`` on the massive DOFs (0 elsewhere)."""
+    a = np.zeros_like(f)
+    a[:, batch.massive] = batch.mass_solve((batch.f_ext - f)[:, batch.massive])
+    return a
+
+
+def _contact_acceleration(batch: RunBatch, mu: np.ndarray, m) -> np.ndarray:
+    """``M_mm^-1 (G^T mu)_m`` of every run, zero (not solved for) where a run has no
+    contact force."""
+    y = np.zeros((batch.K, batch.n if isinstance(m, slice) else len(m)))
+    touching = mu.any(axis=1)
+    if touching.any():
+        on = np.flatnonzero(touching)
+        force = batch.contact_force(mu)[:, m]
+        if batch.mass_diagonal is not None:
+            y[on] = force[on] / batch.mass_diagonal[on]
+        else:
+            y[on] = np.stack([batch.splits[k].solve(force[k]) for k in on])
+    return y
+
+
+def _step(batch: RunBatch, s: dict, linears, tangents) -> tuple[dict, dict]:
+    """Advance the K runs' state arrays ``s`` (``t``, ``u``, ``v``, ``a_int``, ``a_c``,
+    ``mu``) by their steps; return the new arrays and ``{run: message}`` of failed runs."""
+    nm = batch.nm
+    beta, gamma = nm.beta, nm.gamma
+    u, v = s["u"], s["v"]
+    explicit = nm.explicit
+    dt = batch.dt[:, None]
+    c1 = batch.c1[:, None]
+    a_pred = s["a_int"] if nm.scheme == "kane" else s["a_int"] + s["a_c"]
+    ut = u + dt * v + 0.5 * dt**2 * (1 - 2 * beta) * a_pred
+    vt = v + dt * (1 - gamma) * a_pred
+    rows = batch.rows if explicit else None  # rows with an implicit internal force
+    if linears is not None:
+        U, mu, it, f, W, failed = _solve_linear(batch, linears, nm, ut, rows)
+    else:
+        # start from the second-order Taylor guess of the internal motion
+        guess = u + dt * v + 0.5 * dt**2 * s["a_int"]
+        U, mu, it, f, W, failed = newton(batch, tangents, u, s["mu"], s["t"], ut, rows, guess)
+    m, z = batch.massive, batch.massless
+    lam_scale = np.where(batch.only_massless, 1.0, 1.0 if explicit else 2 * beta)
+    if explicit:
+        a_int = _a_int(batch, f)
+        a_c = np.zeros_like(U)
+        a_c[:, m] = (c1 * (U - ut))[:, m]
+        v_new = np.zeros_like(U)
+        v_new[:, m] = vt[:, m] + dt * gamma * a_int[:, m] + dt * a_c[:, m]
+    elif not len(z):  # every DOF has mass: whole arrays, no index copies
+        a_tot = c1 * (U - ut)
+        if nm.scheme == "kane":
+            y = _contact_acceleration(batch, mu, slice(None))
+            a_int, a_c = a_tot - y, 2 * beta * y
+        else:
+            a_int, a_c = a_tot, np.zeros_like(U)
+            lam_scale = np.ones(batch.nc)
+        v_new = vt + dt * gamma * a_int + dt * a_c
+    else:
+        a_tot = (c1 * (U - ut))[:, m]
+        a_int, a_c = np.zeros_like(U), np.zeros_like(U)
+        if nm.scheme == "kane":
+            y = _contact_acceleration(batch, mu, m)
+            a_int[:, m], a_c[:, m] = a_tot - y, 2 * beta * y
+        else:
+            a_int[:, m] = a_tot
+            lam_scale = np.ones(batch.nc)
+        v_new = np.zeros_like(U)
+        v_new[:, m] = vt[:, m] + dt * gamma * a_int[:, m] + dt * a_c[:, m]
+    if len(z):
+        v_new[:, z] = (U[:, z] - u[:, z]) / dt
+    new = {"t": s["t"] + batch.dt, "u": U, "v": v_new, "a_int": a_int, "a_c": a_c,
+           "lam": lam_scale * mu, "mu": mu, "iterations": it, "energy": W}
+    return new, failed
 
 
 def step(prob: ContactProblem, nm: Newmark, state: State, dt: float, split=None,
@@ -140,58 +259,27 @@ def step(prob: ContactProblem, nm: Newmark, state: State, dt: float, split=None,
     """Advance ``state`` by ``dt``; raises :class:`ConvergenceError` if Newton fails.
 
     ``split``, ``linear`` and ``tangent`` carry what does not change between steps (built
-    on first use when omitted).
+    on first use when omitted). One run of the batched step of :func:`integrate_many`.
     """
     split = split or MassSplit(prob, nm)
-    beta, gamma = nm.beta, nm.gamma
-    u, v = state.u, state.v
-    explicit = nm.explicit
-    c1 = 2.0 / dt**2 if explicit else 1.0 / (beta * dt**2)
-    a_pred = state.a_int if nm.scheme == "kane" else state.a_int + state.a_c
-    ut = u + dt * v + 0.5 * dt**2 * (1 - 2 * beta) * a_pred
-    vt = v + dt * (1 - gamma) * a_pred
-    f_ext = split.f_ext
-    rows = split.rows if explicit else None  # rows with an implicit internal force
-    G = split.G
+    batch = RunBatch([prob], [split], nm, [dt])
     if prob.K is not None:
-        linear = linear or _Linear(prob, split, nm, c1)
-        M = split.Md if split.Md is not None else split.M
-        rhs = c1 * (M @ ut) + (f_ext if rows is None else np.where(rows, f_ext, 0.0))
-        U0 = linear.solve(rhs)
-        mu = np.zeros(G.shape[0])
-        if G.shape[0]:
-            Gm = split.Gd if split.Gd is not None else G
-            mu = solve_lcp(linear.S, prob.g0 + Gm @ U0, nm.max_iter)
-        U = U0 + linear.W @ mu
-        it = 1
-        f = prob.internal(U)[0] if explicit else None
-    else:
-        # start from the second-order Taylor guess of the internal motion
-        guess = u + dt * v + 0.5 * dt**2 * state.a_int
-        U, mu, it, f = newton(prob, nm, split, state, ut, c1, rows, tangent=tangent,
-                               guess=guess)
-    m, z = split.massive, split.massless
-    n = prob.n
-    a_int = np.zeros(n)
-    a_c = np.zeros(n)
-    v_new = np.zeros(n)
-    lam_scale = np.where(split.only_massless, 1.0, 1.0 if explicit else 2 * beta)
-    if explicit:
-        a_int = split.a_int(f)
-        a_c[m] = c1 * (U - ut)[m]
-        v_new[m] = vt[m] + dt * gamma * a_int[m] + dt * a_c[m]
-    else:
-        a_tot = c1 * (U - ut)[m]
-        if nm.scheme == "kane":
-            GT = split.Gd.T if split.Gd is not None else G.T
-            y = split.solve((GT @ mu)[m]) if mu.any() else np.zeros(len(m))
-            a_int[m], a_c[m] = a_tot - y, 2 * beta * y
-        else:
-            a_int[m] = a_tot
-            lam_scale = np.ones(G.shape[0])
-        v_new[m] = vt[m] + dt * gamma * a_int[m] + dt * a_c[m]
-    v_new[z] = (U[z] - u[z]) / dt
-    return State(state.t + dt, U, v_new, a_int, a_c, lam_scale * mu, it, mu)
+        linear = linear or _Linear(prob, split, nm, float(batch.c1[0]))
+    s = {"t": np.array([state.t]), "u": state.u[None], "v": state.v[None],
+         "a_int": state.a_int[None], "a_c": state.a_c[None],
+         "mu": (state.mu if state.mu is not None else np.zeros(batch.nc))[None]}
+    new, failed = _step(batch, s, None if linear is None else _Linears([linear]),
+                        None if linear is not None else [tangent or Tangent()])
+    if failed:
+        raise ConvergenceError(failed[0])
+    return _state(new, 0)
+
+
+def _state(s: dict, k: int) -> State:
+    W = s.get("energy")
+    return State(float(s["t"][k]), s["u"][k], s["v"][k], s["a_int"][k], s["a_c"][k],
+                 s["lam"][k], int(s["iterations"][k]), s["mu"][k],
+                 None if W is None else float(W[k]))
 
 
 def critical_step(prob: ContactProblem, u: np.ndarray | None = None) -> float:
@@ -235,28 +323,44 @@ def consistent_state(prob: ContactProblem, u0: np.ndarray, nm: Newmark | None = 
     u0 = np.asarray(u0, float)
     if len(split.massless) == 0:
         return u0.copy(), np.zeros(prob.G.shape[0])
-    s = State(0.0, u0, np.zeros(prob.n), np.zeros(prob.n), np.zeros(prob.n),
-              np.zeros(prob.G.shape[0]))
-    fixed = ~split.rows
-    U, mu, _, _ = newton(prob, nm, split, s, u0, 0.0, split.rows, fixed)
-    return U, mu
+    batch = RunBatch([prob], [split], nm, [1.0])
+    batch.c1 = np.zeros(1)  # no inertia: the massless rows' equilibrium alone
+    U, mu, _, _, _, failed = newton(batch, [Tangent()], u0[None], np.zeros((1, batch.nc)),
+                                    np.zeros(1), u0[None], split.rows, u0[None],
+                                    fixed=~split.rows)
+    if failed:
+        raise ConvergenceError(failed[0])
+    return U[0], mu[0]
 
 
-def _record(hist: History, prob: ContactProblem, split: MassSplit, s: State, keep_states: bool):
-    hist.t.append(s.t)
-    hist.contact_force.append(float(s.lam.sum()))
-    hist.lam.append(s.lam)
-    M = split.Md if split.Md is not None else split.M
-    mv = M @ s.v
-    hist.kinetic.append(0.5 * float(s.v @ mv))
-    hist.strain.append(float(prob.energy(s.u)))
-    hist.potential.append(-float(split.f_ext @ s.u))
-    hist.momentum.append(mv.sum(keepdims=True) if prob.directions is None else prob.directions @ mv)
-    g = prob.g0 + (split.Gd if split.Gd is not None else split.G) @ s.u
-    hist.gap_min.append(float(g.min()) if len(g) else np.inf)
-    hist.iterations.append(s.iterations)
-    if keep_states:
-        hist.states.append(s)
+def _record(hists: list, batch: RunBatch, s: dict, keep_states: bool) -> None:
+    """Append the K runs' step to their histories (the energies, momenta and gaps of all
+    runs computed together)."""
+    U, V, lam = s["u"], s["v"], s["lam"]
+    mv = batch.mass(V)
+    kinetic = 0.5 * np.add.reduce(V * mv, axis=1)
+    strain = s.get("energy")
+    if strain is None:
+        strain = batch.strain_energy(None if batch.forces is None else batch.force(U)[1], U)
+    potential = -np.add.reduce(batch.f_ext * U, axis=1)
+    if batch.directions is None:
+        momentum = mv.sum(axis=1, keepdims=True)
+    else:
+        momentum = np.matmul(batch.directions, mv[:, :, None])[:, :, 0]
+    gap_min = batch.gap(U).min(axis=1) if batch.nc else np.full(batch.K, np.inf)
+    force = lam.sum(axis=1)
+    for k, hist in enumerate(hists):
+        hist.t.append(float(s["t"][k]))
+        hist.contact_force.append(float(force[k]))
+        hist.lam.append(lam[k])
+        hist.kinetic.append(float(kinetic[k]))
+        hist.strain.append(float(strain[k]))
+        hist.potential.append(float(potential[k]))
+        hist.momentum.append(momentum[k])
+        hist.gap_min.append(float(gap_min[k]))
+        hist.iterations.append(int(s["iterations"][k]))
+        if keep_states:
+            hist.states.append(_state(s, k))
 
 
 def integrate(prob: ContactProblem, u0: np.ndarray, v0: np.ndarray, dt: float, n_steps: int,
@@ -268,61 +372,148 @@ def integrate(prob: ContactProblem, u0: np.ndarray, v0: np.ndarray, dt: float, n
     ``consistent`` (default) first puts the massless DOFs in equilibrium with contact
     (:func:`consistent_state`); ``History.initial_energy_change`` reports what that changed.
     An initial gap below ``-penetration_tol * max(1, |g0|)`` is refused, as is an explicit
-    step above :func:`critical_step`. ``progress(k)`` is called after each step.
+    step above :func:`critical_step`. ``progress(k)`` is called after each step. Raises
+    :class:`~dispersion.errors.ConvergenceError` where Newton fails or the state becomes
+    non-finite. The run is :func:`integrate_many` with one run.
     """
-    # overflow and invalid values surface as ConvergenceError (a non-finite state, a singular
+    hist = integrate_many([prob], [u0], [v0], [dt], [n_steps], newmark, progress,
+                          keep_states, consistent, penetration_tol)[0]
+    if hist.error is not None:
+        raise ConvergenceError(hist.error)
+    return hist
+
+
+def integrate_many(probs: list[ContactProblem], u0s, v0s, dts, n_steps, newmark=None,
+                   progress: Callable | None = None, keep_states: bool = False,
+                   consistent: bool = True, penetration_tol: float = 1e-12) -> list[History]:
+    """Run K problems together, run k ``n_steps[k]`` steps of ``dts[k]`` from
+    ``(u0s[k], v0s[k])``: one :class:`History` per run, as :func:`integrate` gives it.
+
+    The problems need the same DOF layout (:class:`~.run_batch.RunBatch`); each run is
+    stepped as it would be alone, its states stacked with the others' so that every array
+    operation serves all runs (a small problem's step is dominated by the fixed cost of
+    each operation). A run that fails (Newton, a non-finite state) stops with its
+    ``History.error`` set; the others go on; a run that has taken its steps leaves the
+    batch. ``progress(1)`` is called after each step of the batch. Bad input (shapes,
+    steps, a penetrating start, an explicit step above the limit) raises
+    :class:`~dispersion.errors.InputError` naming the run.
+    """
+    # overflow and invalid values surface as failures (a non-finite state, a singular
     # matrix), not as numpy warnings printed before the one-line error
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-        return _integrate(prob, u0, v0, dt, n_steps, newmark, progress, keep_states,
-                          consistent, penetration_tol)
+        return _integrate_many(list(probs), u0s, v0s, dts, n_steps, newmark, progress,
+                               keep_states, consistent, penetration_tol)
 
 
-def _integrate(prob, u0, v0, dt, n_steps, newmark, progress, keep_states, consistent,
-               penetration_tol) -> History:
-    nm = newmark or Newmark()
-    check_positive("dt", dt)
+def _check_run(prob, u0, v0, dt, n_steps, nm, split, penetration_tol, name):
+    check_positive(f"dt{name}", dt)
     if not (float(dt) ** 2 > 0 and 1.0 / float(dt) ** 2 < np.inf):  # matrices ~ 1 / dt^2
-        raise InputError(f"dt must be >= 1e-150 (1/dt^2 overflows), got {dt!r}")
-    check_positive_int("n_steps", n_steps)
+        raise InputError(f"dt{name} must be >= 1e-150 (1/dt^2 overflows), got {dt!r}")
+    check_positive_int(f"n_steps{name}", n_steps)
     u0 = np.asarray(u0, float)
     v0 = np.asarray(v0, float)
     if u0.shape != (prob.n,) or v0.shape != (prob.n,):
-        raise InputError(f"u0 and v0 must have shape ({prob.n},), got {u0.shape}, {v0.shape}")
+        raise InputError(f"u0 and v0{name} must have shape ({prob.n},), got {u0.shape}, "
+                         f"{v0.shape}")
     if not (np.all(np.isfinite(u0)) and np.all(np.isfinite(v0))):
-        raise InputError("u0 and v0 must be finite")
-    split = MassSplit(prob, nm)
+        raise InputError(f"u0 and v0{name} must be finite")
     g = prob.g0 + split.G @ u0
     tol = penetration_tol * max(1.0, float(np.abs(prob.g0).max()) if len(g) else 1.0)
     if len(g) and g.min() < -tol:
-        raise InputError(f"u0 penetrates the obstacle (min gap {g.min():.3g}); the initial "
-                         "gap must be >= 0")
+        raise InputError(f"u0{name} penetrates the obstacle (min gap {g.min():.3g}); the "
+                         "initial gap must be >= 0")
     if nm.explicit:
         dt_crit = critical_step(prob, u0)
         if dt > dt_crit:
-            raise InputError(f"dt must be <= the explicit stability limit {dt_crit:.6g} "
-                             f"(2 / omega_max), got {dt:g}")
-    hist = History()
-    mu0 = np.zeros(prob.G.shape[0])
-    if consistent and len(split.massless):
-        E_given = (0.5 * float(v0 @ (split.M @ v0)) + float(prob.energy(u0))
-                   - float(split.f_ext @ u0))
-        u0, mu0 = consistent_state(prob, u0, nm, split)
-        E_new = (0.5 * float(v0 @ (split.M @ v0)) + float(prob.energy(u0))
-                 - float(split.f_ext @ u0))
-        hist.initial_energy_change = E_new - E_given
-    f0 = prob.internal(u0)[0]
-    a0 = split.a_int(f0)
-    s = State(0.0, u0, v0, a0, np.zeros(prob.n), mu0.copy(), 0, mu0)
-    _record(hist, prob, split, s, keep_states)
-    linear, tangent = None, Tangent()
-    if prob.K is not None:
-        linear = _Linear(prob, split, nm, 2.0 / dt**2 if nm.explicit else 1 / (nm.beta * dt**2))
-    for _ in range(n_steps):
-        s = step(prob, nm, s, dt, split, linear, tangent)
-        if not (np.isfinite(s.u).all() and np.isfinite(s.v).all()):
-            raise ConvergenceError(f"the state became non-finite at t = {s.t:.6g}; the "
-                                   "scene's scale (speeds, sizes, dt) is beyond double precision")
-        _record(hist, prob, split, s, keep_states)
+            raise InputError(f"dt{name} must be <= the explicit stability limit "
+                             f"{dt_crit:.6g} (2 / omega_max), got {dt:g}")
+    return u0, v0
+
+
+def _integrate_many(probs, u0s, v0s, dts, n_steps, newmark, progress, keep_states,
+                    consistent, penetration_tol) -> list[History]:
+    nm = newmark or Newmark()
+    K = len(probs)
+    if not K or not len(u0s) == len(v0s) == len(dts) == len(n_steps) == K:
+        raise InputError(f"probs, u0s, v0s, dts and n_steps must be K >= 1 runs each, got "
+                         f"{K}, {len(u0s)}, {len(v0s)}, {len(dts)}, {len(n_steps)}")
+    splits = [MassSplit(p, nm) for p in probs]
+    hists = [History() for _ in probs]
+    starts = []
+    for k, (prob, split) in enumerate(zip(probs, splits)):
+        name = "" if K == 1 else f" (run {k})"
+        u0, v0 = _check_run(prob, u0s[k], v0s[k], dts[k], n_steps[k], nm, split,
+                            penetration_tol, name)
+        mu0 = np.zeros(prob.G.shape[0])
+        if consistent and len(split.massless):
+            E_given = (0.5 * float(v0 @ (split.M @ v0)) + float(prob.energy(u0))
+                       - float(split.f_ext @ u0))
+            try:
+                u0, mu0 = consistent_state(prob, u0, nm, split)
+            except ConvergenceError as exc:
+                hists[k].error = str(exc)
+            E_new = (0.5 * float(v0 @ (split.M @ v0)) + float(prob.energy(u0))
+                     - float(split.f_ext @ u0))
+            hists[k].initial_energy_change = E_new - E_given
+        starts.append((u0, v0, mu0))
+    batch = RunBatch(probs, splits, nm, [float(d) for d in dts])
+    U0 = np.stack([x[0] for x in starts])
+    f0, strains0 = batch.force(U0)
+    W0 = batch.strain_energy(strains0, U0)
+    s = {"t": np.zeros(K), "u": U0, "v": np.stack([x[1] for x in starts]),
+         "a_int": _a_int(batch, f0), "a_c": np.zeros_like(U0),
+         "mu": np.stack([x[2] for x in starts]), "lam": np.stack([x[2] for x in starts]),
+         "iterations": np.zeros(K, dtype=int), "energy": W0}
+    _record(hists, batch, s, keep_states)
+    runs = np.flatnonzero([h.error is None for h in hists])  # the runs of the batch
+    left = np.asarray(n_steps)
+    linear = probs[0].K is not None
+    linears = (_Linears([_Linear(p, sp_, nm, float(c))
+                         for p, sp_, c in zip(probs, splits, batch.c1)]) if linear else None)
+    tangents = None if linear else [Tangent() for _ in probs]
+    if not len(runs):
+        return hists
+    if len(runs) < K:
+        batch, s, linears, tangents = _keep(batch, s, linears, tangents, runs)
+    taken = 0
+    while len(runs):
+        s, failed = _step(batch, s, linears, tangents)
+        taken += 1
+        bad = dict(failed)
+        finite = np.isfinite(s["u"]).all(axis=1) & np.isfinite(s["v"]).all(axis=1)
+        for i in np.flatnonzero(~finite):
+            bad.setdefault(int(i), f"the state became non-finite at t = {s['t'][i]:.6g}; the "
+                                   "scene's scale (speeds, sizes, dt) is beyond double "
+                                   "precision")
+        ok = np.array([i not in bad for i in range(len(runs))])
+        for i, message in bad.items():
+            hists[runs[i]].error = message
+        if bad:
+            if ok.any():
+                good = np.flatnonzero(ok)
+                _record([hists[r] for r in runs[good]], batch.subset(good), _rows(s, good),
+                        keep_states)
+        else:
+            _record([hists[r] for r in runs], batch, s, keep_states)
         if progress is not None:
             progress(1)
-    return hist
+        still = ok & (left[runs] > taken)
+        if not still.any():
+            break
+        if not still.all():
+            keep = np.flatnonzero(still)
+            batch, s, linears, tangents = _keep(batch, s, linears, tangents, keep)
+            runs = runs[keep]
+    return hists
+
+
+def _rows(s: dict, keep: np.ndarray) -> dict:
+    return {k: (None if v is None else v[keep]) for k, v in s.items()}
+
+
+def _keep(batch, s, linears, tangents, keep):
+    """The batch, state, factorizations and tangents of the runs ``keep`` only."""
+    keep = np.asarray(keep, dtype=int)
+    return (batch.subset(keep), _rows(s, keep),
+            None if linears is None else linears.subset(keep),
+            None if tangents is None else [tangents[k] for k in keep])

@@ -2,7 +2,7 @@
 
 A 2D problem is a NURBS patch (knots, control points, weights: :class:`~.nurbs.RingPatch`
 holds any such patch), a St.Venant-Kirchhoff material (plane stress or plane strain), a
-density, a mass rule of :mod:`dispersion.symbolic.mass_rule`, the patch side that may
+density, a mass rule of :mod:`dispersion.mass_rules.mass_rule`, the patch side that may
 touch a rigid plane and the plane itself, and the sides held fixed. :func:`patch_problem`
 turns it into a :class:`~.contact_problem.ContactProblem` on the free DOFs. The gap of the plane
 :math:`\\mathbf n \\cdot (\\mathbf x - \\mathbf p) \\ge 0` is imposed at the Greville abscissae
@@ -29,6 +29,7 @@ from dispersion.splines.bspline import open_knot_vector
 from dispersion.errors import InputError, check_positive, check_positive_int
 from dispersion.mass_rules.mass_rule import get_rule
 from dispersion.contact.assembly import discretize, internal_force, patch_mass, strain_energy
+from dispersion.contact.elastic_forces import ElasticForces
 from dispersion.contact.material import StVenantKirchhoff
 from dispersion.contact.contact_problem import ContactProblem
 from dispersion.contact.newmark_scheme import DENSE_MAX
@@ -139,13 +140,15 @@ def restrict(prob: ContactProblem, free: np.ndarray) -> ContactProblem:
         return f[free], K
 
     force = None if prob.force is None else (lambda u: prob.force(full(u))[free])
+
     M = sp.csr_matrix(prob.M)[free][:, free]
     G = sp.csr_matrix(prob.G)[:, free]
     f_ext = None if prob.f_ext is None else np.asarray(prob.f_ext)[free]
     directions = None if prob.directions is None else np.asarray(prob.directions)[:, free]
     K = None if prob.K is None else sp.csr_matrix(prob.K)[free][:, free]
     return ContactProblem(M, internal, G, prob.g0, lambda u: prob.energy(full(u)), f_ext,
-                          directions, K, force)
+                          directions, K, force,
+                          None if prob.forces is None else prob.forces.restrict(free))
 
 
 def patch_problem(patch: RingPatch, material: StVenantKirchhoff, rho: float,
@@ -163,7 +166,7 @@ def patch_problem(patch: RingPatch, material: StVenantKirchhoff, rho: float,
     rho : float
         Density (kg/m^3); unit thickness.
     mass : str
-        A rule of :mod:`dispersion.symbolic.mass_rule` (name or object); the singular ones redistribute the
+        A rule of :mod:`dispersion.mass_rules.mass_rule` (name or object); the singular ones redistribute the
         functions of ``contact_side`` inward with weight ``gamma_s`` (paper eqs 1-4).
     contact_side : str
         One of :data:`SIDES`: the side that may touch the obstacle.
@@ -206,6 +209,7 @@ def patch_problem(patch: RingPatch, material: StVenantKirchhoff, rho: float,
     dense = n <= DENSE_MAX
     prob = ContactProblem(M2, lambda u: internal_force(disc, material, u, dense=dense), G, g0,
                           lambda u: strain_energy(disc, material, u), None, directions,
-                          force=lambda u: internal_force(disc, material, u, tangent=False))
+                          force=lambda u: internal_force(disc, material, u, tangent=False),
+                          forces=ElasticForces.of(disc, material))
     free = np.flatnonzero(~fixed)
     return PatchProblem(restrict(prob, free), patch, free, contact_side, s, disc)

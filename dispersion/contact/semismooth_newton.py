@@ -5,7 +5,7 @@ The step equation :math:`c_1 \\mathbf M (\\mathbf U - \\tilde{\\mathbf U}) + \\m
 with :math:`\\min(\\boldsymbol\\mu, c \\mathbf g) = 0` (:func:`newton`); the factorized step
 matrix is carried between iterations and steps by :class:`Tangent` (a modified Newton
 method). Used by :mod:`dispersion.contact.newmark` for problems without a constant stiffness
-and for the consistent initial state.
+and for the consistent initial state, for K runs at once (:mod:`.run_batch`).
 
 References
 ----------
@@ -16,11 +16,21 @@ from __future__ import annotations
 
 import numpy as np
 
-from dispersion.errors import ConvergenceError
 from dispersion.contact.linear_solver import LinearSolver
 from dispersion.splines.matrix_kind import dense
 
 __all__ = ["Tangent", "newton"]
+
+
+def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Row-wise dot products of ``(K, n)`` arrays (ufunc calls: no Python-level wrappers on
+    a path taken a few times per step)."""
+    return np.add.reduce(a * b, axis=-1)
+
+
+def _every(a: np.ndarray):
+    """``a.all(axis=-1)`` as one ufunc call."""
+    return np.logical_and.reduce(a, axis=-1)
 
 
 class Tangent:
@@ -67,75 +77,129 @@ class Tangent:
         self.fresh = True
 
 
-def newton(prob, nm, split, state, ut, c1, rows, fixed=None, tangent=None, guess=None):
-    """Semismooth Newton for ``c1 M (U - ut) + P (f(U) - f_ext) - G^T mu = 0``, complementarity.
+def newton(batch, tangents, u, mu0, t, ut, rows, guess, fixed=None):
+    """Semismooth Newton for ``c1 M (U - ut) + P (f(U) - f_ext) - G^T mu = 0`` with
+    complementarity, for the K runs of ``batch`` (a :class:`~.run_batch.RunBatch`) at once.
 
-    ``rows`` (bool) restricts the internal force to those rows (explicit scheme); ``fixed``
-    (bool) holds DOFs at ``state.u`` (consistent initial state). ``tangent`` (a
-    :class:`Tangent`) carries the factorized matrix between steps; it is refreshed at the
-    current iterate whenever an iteration fails to reduce the residual tenfold. Returns
-    ``(U, mu, iterations, f(U))``.
+    ``u``, ``ut``, ``guess``: ``(K, n)`` (the last state, the predictor, the start);
+    ``mu0``: ``(K, nc)`` (warm start); ``t``: ``(K,)`` (for messages). ``rows`` (bool)
+    restricts the internal force to those rows (explicit scheme); ``fixed`` (bool) holds
+    DOFs at ``u`` (consistent initial state). ``tangents`` (one :class:`Tangent` per run)
+    carry the factorized matrices between steps; a run's is refreshed at its current
+    iterate whenever an iteration fails to reduce its residual tenfold. Each run iterates
+    as it would alone (its own line search, active set, tangent and stop); a run that has
+    converged is held while the others finish. Returns ``(U, mu, iterations, f(U), W,
+    failed)``: W the strain energies at U where the problems give them with the force
+    (else None), ``failed`` ``{run: message}`` for the runs that did not converge.
     """
-    tangent = tangent if tangent is not None else Tangent()
-    tangent.fresh = False
-    M = split.Md if split.Md is not None else split.M
-    G = split.Gd if split.Gd is not None else split.G
-    GT = G.T
-    f_ext = split.f_ext
-    U = state.u.copy() if guess is None else guess.copy()
-    mu = state.mu.copy() if state.mu is not None else np.zeros(G.shape[0])  # warm start
+    nm = batch.nm
+    K = batch.K
+    c1 = batch.c1[:, None]
+    U = guess.copy()
+    mu = mu0.copy()
     mask = None if rows is None else rows.astype(float)
     keep = None if fixed is None else (~fixed).astype(float)
-    if tangent.solve is None or not nm.reuse_tangent:
-        tangent.refresh(prob, nm, split, U, c1, mask, keep)
+    for k, tg in enumerate(tangents):
+        tg.fresh = False
+        if tg.solve is None or not nm.reuse_tangent:
+            tg.refresh(batch.probs[k], nm, batch.splits[k], U[k], batch.c1[k], mask, keep)
 
     def residual(U, mu):
-        f = prob.force(U) if prob.force is not None else prob.internal(U)[0]
-        inertia = c1 * (M @ (U - ut))
-        fr = f - f_ext if mask is None else mask * (f - f_ext)
-        r = inertia + fr - GT @ mu
+        f, W = batch.force(U)  # W: the strains, for the energy of the accepted iterate
+        fr = f if batch.no_ext else f - batch.f_ext
+        if mask is not None:
+            fr = mask * fr
+        r = c1 * batch.mass(U - ut) + fr - batch.contact_force(mu)
         if keep is not None:
             r = keep * r
-        return f, inertia, r, prob.g0 + G @ U
+        return f, W, r, batch.gap(U)
 
-    f, inertia, r, g = residual(U, mu)
+    def merit_of(r, mu, g):
+        cg = np.minimum(mu, c * g)
+        return np.hypot(np.sqrt(_dot(r, r)), np.sqrt(_dot(cg, cg)))
+
+    f, W, r, g = residual(U, mu)
     # the scale of the step's forces, independent of the starting guess
-    scale = max(np.linalg.norm(c1 * (M @ (state.u - ut))), np.linalg.norm(f),
-                np.linalg.norm(f_ext), 1e-300)
-    c = tangent.c_ncp
-    merit = np.hypot(np.linalg.norm(r), np.linalg.norm(np.minimum(mu, c * g)))
+    du = c1 * batch.mass(u - ut)
+    scale = np.maximum.reduce([np.sqrt(_dot(x, x)) for x in (du, f, batch.f_ext)]
+                              + [np.full(K, 1e-300)])
+    c = np.array([tg.c_ncp for tg in tangents])[:, None]
+    merit = merit_of(r, mu, g)
+    its = np.zeros(K, dtype=int)
+    done = np.zeros(K, dtype=bool)
+    failed: dict[int, str] = {}
+    Gs = [s.Gd if s.Gd is not None else s.G for s in batch.splits]
     for it in range(1, nm.max_iter + 1):
         act = (mu - c * g) > 0
-        d0 = tangent.solve(-(r + GT @ mu))
-        mu_new = np.zeros_like(mu)
-        if act.any():
-            try:
-                mu_new[act] = np.linalg.solve(tangent.S[np.ix_(act, act)],
-                                              -g[act] - G[act] @ d0)
-            except np.linalg.LinAlgError:
-                # numpy >= 2.4 raises where older ones returned non-finite values
-                raise ConvergenceError(
-                    f"singular Newton matrix at t = {state.t:.6g}") from None
-        dU = d0 + tangent.W[:, act] @ mu_new[act]
-        if not (np.all(np.isfinite(dU)) and np.all(np.isfinite(mu_new))):
-            raise ConvergenceError(f"singular Newton matrix at t = {state.t:.6g}")
-        # backtracking on the total residual: full steps near the solution, damped far away
-        alpha = 1.0
-        while True:
-            mu_t = mu + alpha * (mu_new - mu)
-            trial = residual(U + alpha * dU, mu_t)
-            m_trial = np.hypot(np.linalg.norm(trial[2]),
-                               np.linalg.norm(np.minimum(mu_t, c * trial[3])))
-            if m_trial <= (1 - 1e-4 * alpha) * merit or alpha <= 1 / 32:
-                break
-            alpha /= 2
-        U, mu = U + alpha * dU, mu_t
-        f, inertia, r, g = trial
-        if m_trial <= nm.tol * scale:
-            return U, mu, it, f
-        if not nm.reuse_tangent or (m_trial > 0.1 * merit and not tangent.fresh):
-            tangent.refresh(prob, nm, split, U, c1, mask, keep)
-        merit = m_trial
-    raise ConvergenceError(
-        f"Newton did not reach tol = {nm.tol:g} in {nm.max_iter} iterations at "
-        f"t = {state.t:.6g}; residual {np.linalg.norm(r):.3e}")
+        rhs = -(r + batch.contact_force(mu))
+        dU = np.zeros_like(U)
+        mu_new = mu.copy()  # a held run keeps its multipliers
+        for k in range(K):
+            if done[k]:
+                continue
+            tg = tangents[k]
+            d0 = tg.solve(rhs[k])
+            a = act[k]
+            mu_new[k] = 0.0
+            if a.any():
+                try:
+                    mu_new[k, a] = np.linalg.solve(tg.S[np.ix_(a, a)], -g[k, a] - Gs[k][a] @ d0)
+                except np.linalg.LinAlgError:
+                    # numpy >= 2.4 raises where older ones returned non-finite values
+                    mu_new[k] = np.nan
+                dU[k] = d0 + tg.W[:, a] @ mu_new[k, a]
+            else:
+                dU[k] = d0
+        finite = _every(np.isfinite(dU)) & _every(np.isfinite(mu_new))
+        for k in ([] if _every(finite) else np.flatnonzero(~finite)):
+            failed[k] = f"singular Newton matrix at t = {t[k]:.6g}"
+            done[k] = True
+            dU[k] = 0.0
+            mu_new[k] = mu[k]
+        # backtracking on the total residual of each run: full steps near the solution,
+        # damped far away. A held run's trial is its current state (dU = 0, mu_new = mu)
+        mu_t, U_t = mu + (mu_new - mu), U + dU  # alpha = 1
+        trial = residual(U_t, mu_t)
+        m_t = merit_of(trial[2], mu_t, trial[3])
+        ok = done | (m_t <= (1 - 1e-4) * merit)
+        if _every(ok):  # every run takes the full step: the common case
+            U, mu, m_acc = U_t, mu_t, m_t
+            f, W, r, g = trial
+        else:
+            alpha = np.ones(K)
+            pending = ~done
+            acc = [U.copy(), mu.copy(), f.copy(), r.copy(), g.copy(), merit.copy(),
+                   None if W is None else tuple(x.copy() for x in W)]
+            while True:
+                ok = pending & ((m_t <= (1 - 1e-4 * alpha) * merit) | (alpha <= 1 / 32))
+                for a_acc, a_t in zip(acc[:6], (U_t, mu_t, trial[0], trial[2], trial[3], m_t)):
+                    a_acc[ok] = a_t[ok]
+                if acc[6] is not None:
+                    for a_acc, a_t in zip(acc[6], trial[1]):
+                        a_acc[ok] = a_t[ok]
+                pending &= ~ok
+                if not np.logical_or.reduce(pending):
+                    break
+                alpha[pending] /= 2
+                mu_t = mu + alpha[:, None] * (mu_new - mu)
+                U_t = U + alpha[:, None] * dU
+                trial = residual(U_t, mu_t)
+                m_t = merit_of(trial[2], mu_t, trial[3])
+            U, mu, f, r, g, m_acc, W = acc
+        live = ~done
+        conv = live & (m_acc <= nm.tol * scale)
+        its[conv] = it
+        done |= conv
+        if _every(done):
+            return U, mu, its, f, batch.strain_energy(W, U) if W is not None else None, failed
+        for k in range(K):
+            if done[k]:
+                continue
+            tg = tangents[k]
+            if not nm.reuse_tangent or (m_acc[k] > 0.1 * merit[k] and not tg.fresh):
+                tg.refresh(batch.probs[k], nm, batch.splits[k], U[k], batch.c1[k], mask, keep)
+        merit = np.where(done, merit, m_acc)
+    for k in np.flatnonzero(~done):
+        failed[k] = (f"Newton did not reach tol = {nm.tol:g} in {nm.max_iter} iterations at "
+                     f"t = {t[k]:.6g}; residual {np.linalg.norm(r[k]):.3e}")
+    return U, mu, its, f, batch.strain_energy(W, U) if W is not None else None, failed

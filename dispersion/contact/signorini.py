@@ -38,15 +38,17 @@ from fractions import Fraction
 
 import numpy as np
 
-from dispersion.errors import InputError, check_memory, check_positive, check_positive_int
+from dispersion.errors import (ConvergenceError, InputError, check_memory, check_positive,
+                               check_positive_int)
 from dispersion.contact.bar import Bar, assemble_bar, check_steps
 from dispersion.contact.energy_balance import energy_balance
-from dispersion.contact.newmark import integrate
+from dispersion.contact.newmark import integrate_many
 from dispersion.contact.newmark_scheme import newmark_for
 from dispersion.rendering import Rendered
 
 __all__ = ["ExactSignorini", "SignoriniResult", "exact_solution", "signorini_1d",
            "MAX_T_EXACT", "MAX_SECONDS", "SIGNORINI_SPREAD_RULE", "SPREAD_FIELDS", "gap_ulps",
+           "signorini_runs",
            "work_seconds"]
 
 #: How the spread of a Signorini row is measured, stated before any figure. The lumped and
@@ -313,6 +315,16 @@ def signorini_1d(p: int = 1, n_elements: int = 20, mass: str = "singular",
     much a run's figures move with round-off (:data:`SIGNORINI_SPREAD_RULE`); the exact
     solution it is compared with keeps the wall at 0.
     """
+    return signorini_runs(p, n_elements, mass, scheme, dt, t_end, consistent, (gap,))[0]
+
+
+def signorini_runs(p: int = 1, n_elements: int = 20, mass: str = "singular",
+                   scheme: str = "kane", dt: float = 0.002, t_end: float = 12.0,
+                   consistent: bool = True, gaps=(0.0,)) -> list[SignoriniResult]:
+    """:func:`signorini_1d` at each wall offset of ``gaps``, the runs stepped together
+    (:func:`~dispersion.contact.newmark.integrate_many`: the same bar, K gaps, one array
+    operation per step for all of them); each result's ``seconds`` is the wall time of the
+    whole batch divided by its runs."""
     check_positive_int("n_elements", n_elements)
     check_positive_int("p", p)
     check_positive("dt", dt)
@@ -324,23 +336,38 @@ def signorini_1d(p: int = 1, n_elements: int = 20, mass: str = "singular",
     if not t_end <= MAX_T_EXACT:
         raise InputError(f"t_end must be <= {MAX_T_EXACT:g} (the exact solution it is "
                          f"compared with), got {t_end:g}")
+    gaps = tuple(gaps)
+    if not gaps:
+        raise InputError("gaps must name at least one wall offset")
     # every state is kept (u, v, a_int, a_c) and the array of all u: 5 floats per DOF
-    check_memory(f"n_elements = {n_elements} over t_end / dt = {round(steps)} steps",
-                 (round(steps) + 1) * (40 * (n_elements + p) + _BYTES_PER_STEP))
-    seconds = work_seconds(p, n_elements, round(steps))
+    check_memory(f"n_elements = {n_elements} over t_end / dt = {round(steps)} steps"
+                 + (f", {len(gaps)} runs" if len(gaps) > 1 else ""),
+                 len(gaps) * (round(steps) + 1) * (40 * (n_elements + p) + _BYTES_PER_STEP))
+    seconds = len(gaps) * work_seconds(p, n_elements, round(steps))
     if seconds > MAX_SECONDS:
         raise InputError(f"p = {p}, n_elements = {n_elements} over t_end / dt = {round(steps)} "
                          f"steps would take about {seconds / 60:.0f} min, more than the bound "
                          f"of {MAX_SECONDS / 60:.0f} min (fewer elements, a lower p or fewer "
                          "steps)")
-    model = assemble_bar(Bar(n_elements, p, 1.0, 1.0, 1.0, mass, clamped=("right",),
-                          contact="left", gap=gap))
-    prob = model.problem
-    u_init = model.coefficients(lambda x: 0.5 * (1 - x))
+    models = [assemble_bar(Bar(n_elements, p, 1.0, 1.0, 1.0, mass, clamped=("right",),
+                               contact="left", gap=gap)) for gap in gaps]
+    u_init = models[0].coefficients(lambda x: 0.5 * (1 - x))
     t0 = time.perf_counter()
-    hist = integrate(prob, u_init, np.zeros(prob.n), dt, round(steps), newmark_for(scheme),
-                     keep_states=True, consistent=consistent)
-    seconds = time.perf_counter() - t0
+    hists = integrate_many([m.problem for m in models], [u_init] * len(gaps),
+                           [np.zeros(models[0].problem.n)] * len(gaps), [dt] * len(gaps),
+                           [round(steps)] * len(gaps), newmark_for(scheme), keep_states=True,
+                           consistent=consistent)
+    for hist in hists:
+        if hist.error is not None:
+            raise ConvergenceError(hist.error)
+    seconds = (time.perf_counter() - t0) / len(gaps)
+    return [_signorini_result(p, n_elements, mass, scheme, dt, t_end, consistent, model, hist,
+                              seconds) for model, hist in zip(models, hists)]
+
+
+def _signorini_result(p, n_elements, mass, scheme, dt, t_end, consistent, model, hist,
+                      seconds) -> SignoriniResult:
+    """The errors of one run against the exact solution."""
     arr = hist.arrays()
     # t_k = k dt, each the float nearest the exact product with dt taken by its decimal
     # (the integrator's running sum drifts: t[1500] was 2.999999999999891 at dt = 0.002, so

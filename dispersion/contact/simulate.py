@@ -21,11 +21,11 @@ from dataclasses import asdict, dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from dispersion.errors import InputError
+from dispersion.errors import ConvergenceError, InputError
 from dispersion.contact.energy_balance import energy_balance
 from dispersion.contact.material import StVenantKirchhoff
 from dispersion.contact.contact_problem import ContactProblem
-from dispersion.contact.newmark import integrate
+from dispersion.contact.newmark import integrate, integrate_many
 from dispersion.contact.newmark_scheme import CONTACT_SCHEMES, newmark_for
 from dispersion.rendering import Rendered
 from dispersion.contact.nurbs import RingPatch, quarter_ring
@@ -33,7 +33,7 @@ from dispersion.contact.problem import Plane, patch_problem
 from dispersion.contact.scenario import Scenario
 
 __all__ = ["CONTACT_SCHEMES", "RingResult", "Scenario", "newmark_for", "ring_patch", "ring_problem",
-           "simulate_ring"]
+           "simulate_ring", "simulate_rings"]
 
 _SAMPLES_PER_ELEMENT = 8
 
@@ -190,22 +190,75 @@ def _check_representable(sc: Scenario, prob: ContactProblem) -> None:
             "sizes and material nearer 1")
 
 
-def _simulate(sc, mass, scheme, progress, tol, solver, contact_threshold, perturbation, seed,
-              consistent, reuse_tangent) -> RingResult:
+def _check_controls(contact_threshold, perturbation) -> None:
     if not (np.isfinite(contact_threshold) and 0 < contact_threshold < 1):
         raise InputError(f"contact_threshold must lie in (0, 1), got {contact_threshold!r}")
     if not (np.isfinite(perturbation) and perturbation >= 0):
         raise InputError(f"perturbation must be a finite number >= 0, got {perturbation!r}")
+
+
+def _start(sc: Scenario, mass: str, perturbation: float, seed: int):
+    """The run's problem, patch and initial velocity (the ring falling at ``v0``, every DOF
+    perturbed by ``perturbation`` relative, normal from ``seed``)."""
     prob, patch = ring_problem(sc, mass)
     _check_representable(sc, prob)
-    n = prob.n
-    v0 = np.zeros(n)
+    v0 = np.zeros(prob.n)
     v0[1::2] = -sc.v0
     if perturbation:
-        v0 = v0 + perturbation * sc.v0 * np.random.default_rng(seed).standard_normal(n)
-    hist = integrate(prob, np.zeros(n), v0, sc.dt, sc.n_steps,
-                     newmark_for(scheme, tol=tol, solver=solver, reuse_tangent=reuse_tangent), progress, keep_states=True,
-                     consistent=consistent)
+        v0 = v0 + perturbation * sc.v0 * np.random.default_rng(seed).standard_normal(prob.n)
+    return prob, patch, v0
+
+
+def _simulate(sc, mass, scheme, progress, tol, solver, contact_threshold, perturbation, seed,
+              consistent, reuse_tangent) -> RingResult:
+    _check_controls(contact_threshold, perturbation)
+    prob, patch, v0 = _start(sc, mass, perturbation, seed)
+    hist = integrate(prob, np.zeros(prob.n), v0, sc.dt, sc.n_steps,
+                     newmark_for(scheme, tol=tol, solver=solver, reuse_tangent=reuse_tangent),
+                     progress, keep_states=True, consistent=consistent)
+    return _result(sc, mass, scheme, prob, patch, hist, contact_threshold, perturbation, seed)
+
+
+def simulate_rings(runs, scheme: str = "kane", *, tol: float = 1e-8,
+                   contact_threshold: float = 1e-9, consistent: bool = True) -> list:
+    """Several ring runs at once: ``runs`` are ``(scenario, mass, perturbation, seed)``;
+    returns, in order, each run's :class:`RingResult` or the
+    :class:`~dispersion.errors.ConvergenceError` it ended with.
+
+    Runs with the same mesh and mass rule step together
+    (:func:`~dispersion.contact.newmark.integrate_many`), each as it would alone: one
+    evaluation of their forces and one set of array operations per Newton iteration for
+    all of them, which is what a small mesh's step costs (the ring study's 150 runs).
+    """
+    runs = list(runs)
+    _check_controls(contact_threshold, 0.0)
+    for sc, _, perturbation, _ in runs:
+        sc.check_work()
+        _check_controls(contact_threshold, perturbation)
+    groups: dict = {}
+    for i, (sc, mass, _, _) in enumerate(runs):
+        groups.setdefault((sc.n_xi_elements, sc.n_eta_elements, mass), []).append(i)
+    out: list = [None] * len(runs)
+    nm = newmark_for(scheme, tol=tol)
+    for members in groups.values():
+        starts = [_start(runs[i][0], runs[i][1], runs[i][2], runs[i][3]) for i in members]
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+            hists = integrate_many([p for p, _, _ in starts], [np.zeros(p.n) for p, _, _ in starts],
+                                   [v0 for _, _, v0 in starts], [runs[i][0].dt for i in members],
+                                   [runs[i][0].n_steps for i in members], nm, keep_states=True,
+                                   consistent=consistent)
+            for i, (prob, patch, _), hist in zip(members, starts, hists):
+                sc, mass, perturbation, seed = runs[i]
+                out[i] = (ConvergenceError(hist.error) if hist.error is not None else
+                          _result(sc, mass, scheme, prob, patch, hist, contact_threshold,
+                                  perturbation, seed))
+    return out
+
+
+def _result(sc, mass, scheme, prob, patch, hist, contact_threshold, perturbation,
+            seed) -> RingResult:
+    """The run's time histories and summary from its integrated history."""
+    n = prob.n
     arr = hist.arrays()
     xi = np.linspace(0, 1, _SAMPLES_PER_ELEMENT * sc.n_xi_elements + 1)
     idx, R = patch.boundary_basis(xi)

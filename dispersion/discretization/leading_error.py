@@ -16,7 +16,7 @@ from __future__ import annotations
 import math
 from fractions import Fraction
 
-__all__ = ["bar_leading_term", "plate_leading_terms", "square_patch"]
+__all__ = ["bar_leading_term", "bar_leading_exact", "plate_leading_terms", "plate_leading_exact", "square_patch"]
 
 
 def _cos_series(coeffs, K: int) -> list[Fraction]:
@@ -33,8 +33,15 @@ def _rational(v):
 
 
 def bar_leading_term(rule, p: int, order: int) -> tuple[int | None, str]:
-    """Leading term of :math:`\\omega_h^2/\\theta^2 - 1` by exact power series in
-    :math:`\\theta^2` (the symbol d / m with d from the stiffness, m from the mass rows)."""
+    """:func:`bar_leading_exact` with the coefficient as text ('' where there is none)."""
+    k, c = bar_leading_exact(rule, p, order)
+    return k, "" if c is None else str(c)
+
+
+def bar_leading_exact(rule, p: int, order: int) -> tuple:
+    """Leading term ``(k, c)`` of :math:`\\omega_h^2/\\theta^2 - 1 = c\\,\\theta^k + ...` by
+    exact power series in :math:`\\theta^2` (the symbol d / m with d from the stiffness, m
+    from the mass rows); c is an exact rational, ``(None, None)`` if no term up to ``order``."""
     from dispersion.mass_rules.mass_rule import x_mass_coefficients
     from dispersion.discretization.bar_dispersion import bar_stiffness_coefficients
 
@@ -47,8 +54,8 @@ def bar_leading_term(rule, p: int, order: int) -> tuple[int | None, str]:
         q = acoustic_series(get_rule(rule).name, p, K + 1)
         for k in range(1, K + 1):
             if q[k] != 0:
-                return 2 * k, str(q[k])
-        return None, ""
+                return 2 * k, q[k]
+        return None, None
     d = _cos_series(bar_stiffness_coefficients(rule, p).items(), K + 1)
     m = _cos_series(x_mass_coefficients(rule, p), K + 1)
     # d = d_1 t + d_2 t^2 + ... (d_0 = 0); q = (d / t) / m
@@ -57,14 +64,23 @@ def bar_leading_term(rule, p: int, order: int) -> tuple[int | None, str]:
     for k in range(K + 1):
         q.append((num[k] - sum((q[j] * m[k - j] for j in range(k)), Fraction(0))) / m[0])
     if q[0] != 1:
-        return 0, str(q[0] - 1)
+        return 0, q[0] - 1
     for k in range(1, K + 1):
         if q[k] != 0:
-            return 2 * k, str(q[k])
-    return None, ""
+            return 2 * k, q[k]
+    return None, None
 
 
 def plate_leading_terms(rule, p: int, order: int) -> dict[str, tuple[int | None, str]]:
+    """:func:`plate_leading_exact` with the coefficients as text."""
+    return {k: (power, "" if c is None else str(c))
+            for k, (power, c) in plate_leading_exact(rule, p, order).items()}
+
+
+def plate_leading_exact(rule, p: int, order: int) -> dict[str, tuple]:
+    """``{"plate S0": (k, c), "plate A0": (k, c)}``: the lowest power of kappa at which the
+    power-balance series of the square-element patch differs from the exact series, and the
+    difference there (a sympy expression in nu); ``(None, None)`` if none up to ``order``."""
     import sympy
 
     from dispersion.reader import as_sympy
@@ -79,13 +95,11 @@ def plate_leading_terms(rule, p: int, order: int) -> dict[str, tuple[int | None,
             diff = sympy.factor(sympy.cancel(as_sympy("coefficient", disc.get(k, 0))
                                              - as_sympy("coefficient", ex.get(k, 0))))
             if diff != 0:
-                out[f"plate {branch}"] = (k, str(diff))
+                out[f"plate {branch}"] = (k, diff)
                 break
         else:
-            out[f"plate {branch}"] = (None, "")
+            out[f"plate {branch}"] = (None, None)
     return out
-
-
 
 
 def square_patch(rule, p: int):

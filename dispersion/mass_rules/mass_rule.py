@@ -49,6 +49,7 @@ CMAME 195 (2006) 5257-5296 (lumped IGA masses). M. Abramowitz, I. Stegun, 25.4.3
 """
 from __future__ import annotations
 
+import re
 import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -70,6 +71,8 @@ if TYPE_CHECKING:
 # so that the command line names the rules, and answers a mistyped one, before any of them.
 
 __all__ = [
+    "FAMILY_NAMES",
+    "family_rule",
     "MassSpace",
     "MassRule",
     "RULES",
@@ -304,8 +307,37 @@ RULE_NAMES = tuple(RULES)
 BLOCH_RULE_NAMES = tuple(name for name, rule in RULES.items() if rule.basis == "bspline")
 
 
+#: The family names :func:`family_rule` reads, as error messages show them.
+FAMILY_NAMES = "dual-lumped-q<q> (q = 0..8)"
+#: ``dual-lumped-q<q>``: one digit, the whole string (no signs, spaces or leading zeros).
+_DUAL = re.compile(r"dual-lumped-q([0-8])")
+
+
+def family_rule(name) -> MassRule | None:
+    """The member of a rule family a name denotes (``dual-lumped-q<q>``, q = 0..8: the
+    approximate dual of reproduction degree q, row-sum lumped), else None; one object per
+    name. The name is matched whole by a regular expression (at most one digit): text never
+    reaches anything but that pattern.
+
+    >>> family_rule("dual-lumped-q1").name, family_rule("dual-lumped-q01")
+    ('dual-lumped-q1', None)
+    """
+    m = _DUAL.fullmatch(name) if isinstance(name, str) and len(name) <= 16 else None
+    return _dual_member(int(m.group(1))) if m else None
+
+
+@lru_cache(maxsize=None)
+def _dual_member(q: int) -> MassRule:
+    from dispersion.mass_rules.lumping_rules import approximate_dual_entry
+
+    return literature_rule(f"dual-lumped-q{q}", dict(approximate_dual_entry(q),
+                                                     x_rule="dual-lumped"))
+
+
 def get_rule(mass) -> MassRule:
-    """The :class:`MassRule` for a registered name or a rule object.
+    """The :class:`MassRule` for a registered name, a family member's name
+    (:func:`dispersion.symbolic.rule_families.family_rule`: ``dual-lumped-q1``) or a rule
+    object.
 
     >>> get_rule("hrz").states.diagonal
     True
@@ -314,11 +346,14 @@ def get_rule(mass) -> MassRule:
         return mass
     if isinstance(mass, str) and mass in RULES:
         return RULES[mass]
+    member = family_rule(mass)  # a member of a rule family by name: dual-lumped-q1
+    if member is not None:
+        return member
     from dispersion.errors import did_you_mean
 
     hint = did_you_mean(mass, RULE_NAMES) if isinstance(mass, str) else ""
-    raise InputError(f"mass must be one of {', '.join(RULE_NAMES)} or a MassRule; got "
-                     f"{mass!r}{hint}")
+    raise InputError(f"mass must be one of {', '.join(RULE_NAMES)}, {FAMILY_NAMES} or a "
+                     f"MassRule; got {mass!r}{hint}")
 
 
 def gram_space(kv, R=None) -> MassSpace:

@@ -8,6 +8,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from dispersion.contact.newmark_scheme import SCHEME_TEXT
+from dispersion.contact.roundoff_spread import RING_FLOORS, SIGNORINI_FLOOR
 from dispersion.contact.signorini import SIGNORINI_SPREAD_RULE, SPREAD_FIELDS
 from dispersion.contact.study import measure
 from dispersion.io import save_figure
@@ -22,11 +23,12 @@ _CHAOTIC = ("contact histories are chaotic: a round-off perturbation changes the
 def _spread_rules(mass: str) -> tuple:
     band = {"lo": f"spread.{mass}.energy_min", "hi": f"spread.{mass}.energy_max"}
     events = {"lo": f"spread.{mass}.events_min", "hi": f"spread.{mass}.events_max"}
+    e, n = RING_FLOORS["energy_change_percent"], RING_FLOORS["contact_events"]
     return (
-        within(f"pair.{mass}.summary.energy_change_percent", **band, widen=1.0, abs=1e-6),
-        within(f"spread.{mass}.energy_m*", **band, widen=1.0, abs=1e-6),
-        within(f"pair.{mass}.summary.contact_events", **events, widen=1.0, abs=1),
-        within(f"spread.{mass}.events_m*", **events, widen=1.0, abs=1),
+        within(f"pair.{mass}.summary.energy_change_percent", **band, widen=1.0, abs=e),
+        within(f"spread.{mass}.energy_m*", **band, widen=1.0, abs=e),
+        within(f"pair.{mass}.summary.contact_events", **events, widen=1.0, abs=n),
+        within(f"spread.{mass}.events_m*", **events, widen=1.0, abs=n),
     )
 
 
@@ -57,9 +59,9 @@ TOLERANCES = (
     # each error of a 1D Signorini row and its new spread lie in the reference row's spread
     # over the round-off perturbations (SIGNORINI_SPREAD_RULE), widened by its width, at
     # least 1e-6 (rows whose runs all agree: compared to 1e-6)
-    *(within(f"signorini[].{name}", **band, widen=1.0, abs=1e-6)
+    *(within(f"signorini[].{name}", **band, widen=1.0, abs=SIGNORINI_FLOOR)
       for name, band in _signorini_bands()),
-    *(within(f"signorini[].spread.{name}.m*", **band, widen=1.0, abs=1e-6)
+    *(within(f"signorini[].spread.{name}.m*", **band, widen=1.0, abs=SIGNORINI_FLOOR)
       for name, band in _signorini_bands()),
     unjudged("signorini[].energy_flag", "a sentence quoting the energy growth, which is "
              "judged as a spread (energy_growth_percent)"),
@@ -89,12 +91,12 @@ def _err(r: dict, name: str, spec: str = ".3f") -> str:
     return _f(r[name], spec)
 
 
-def _runs_text(rows: list) -> str:
+def _runs_text(rows: list, count_rule: str = "") -> str:
     runs = sorted({r["spread"]["runs"] for r in rows if r.get("spread")})
     if not runs:
         return ""
-    return (" " + SIGNORINI_SPREAD_RULE + " Runs per row: "
-            + ", ".join(str(n) for n in runs) + ".")
+    return (" " + SIGNORINI_SPREAD_RULE + (" " + count_rule if count_rule else "")
+            + " Runs per row: " + ", ".join(str(n) for n in runs) + ".")
 
 
 def _rate_text(fit: dict) -> str:
@@ -267,9 +269,11 @@ def render(data: dict, out: Path) -> str:
         (f"Paper: lumped {data['paper']['lumped']} %, singular {data['paper']['singular']} %. "
          "Spread: the same run repeated with the initial velocity perturbed by "
          f"{data['spread']['lumped']['perturbation']:g} (relative, random per DOF); the lumped "
-         "mass chatters (many short contacts), so its figures move between runs. Penetration: "
-         "the constraint holds at the Greville points of the outer surface (first column, "
-         "round-off); the boundary between them is sampled at 8 points per element."),
+         "mass chatters (many short contacts), so its figures move between runs. "
+         + (data["spread_rule"] + " " if data.get("spread_rule") else "")
+         + "Penetration: the constraint holds at the Greville points of the outer surface "
+         "(first column, round-off); the boundary between them is sampled at 8 points per "
+         "element."),
         *_robust_text(data),
         "",
         "### The energy figures over the grid (size and landing angle)",
@@ -333,10 +337,11 @@ def render(data: dict, out: Path) -> str:
          "own row (no best-of). Energy drift: largest change of the total energy after t = 0 "
          "(% of 1/8); initial state: energy the consistent initial state changed (massless "
          "DOF in equilibrium, % of 1/8); errors: relative L2-in-time errors at x = 0 against "
-         "the exact solution; energy balance: flagged UNSTABLE when the total energy grows "
+         "the exact solution; s: wall time of the row's runs, stepped together, per run; "
+         "energy balance: flagged UNSTABLE when the total energy grows "
          "beyond the stated bound or the scheme is known to be unstable with that mass "
          "(`dispersion.contact.energy_balance`), and such a row is not a result."
-         + _runs_text(data["signorini"])),
+         + _runs_text(data["signorini"], data.get("spread_rule", ""))),
         "",
         "| p | mass | scheme | energy drift (%) | initial state (%) | u(0) | v(0) "
         "| contact stress | s | energy balance |",

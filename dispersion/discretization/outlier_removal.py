@@ -22,15 +22,16 @@ option of :class:`~dispersion.discretization.finite_patch.FinitePatch` (``remova
 
     .. math::
 
-        \\tilde K = K + \\eta \\sum_k \\pi^2 h^{2k-1} c^2 \\, \\mathbf N^{(k)} \\mathbf N^{(k)T},
-        \\qquad
+        \\tilde K = K + \\eta \\sum_k (\\omega_\\ell h)^2 h^{2k-1} c^2 \\,
+        \\mathbf N^{(k)} \\mathbf N^{(k)T}, \\qquad
         \\tilde M = M + \\eta \\sum_k h^{2k+1} \\rho \\, \\mathbf N^{(k)} \\mathbf N^{(k)T},
 
-    at each end, :math:`\\eta` = ``removal_parameter`` (default 1). The weights
-    :math:`h^{2k \\mp 1}` are ours, chosen so each term has the order of its form on a
-    boundary function (the body of the paper was not accessible here); the pair places a
-    penalized boundary mode at :math:`\\omega h / c = \\pi`, the top of the consistent
-    lattice; :math:`\\eta \\to \\infty` gives ``constraints``.
+    at each end, :math:`\\eta` = ``removal_parameter`` (default 1), :math:`\\omega_\\ell` the
+    lattice's largest frequency of the same rule. The weights are ours (the body of the
+    paper was not accessible here): :math:`h^{2k \\mp 1}` give each term the order of its
+    form on a boundary function, and the pair's ratio places a penalized boundary mode at the
+    top of the lattice (:math:`\\omega_\\ell h/c = \\pi` within 0.7 % for the consistent mass,
+    p >= 2); :math:`\\eta \\to \\infty` gives ``constraints``.
 ``perturbation``
     the mass of the p boundary elements at each end perturbed by their p-th derivatives,
     :math:`\\tilde M = M + \\alpha h^{2p} \\sum_{e \\in \\partial} \\int_e \\mathbf N^{(p)}
@@ -39,10 +40,13 @@ option of :class:`~dispersion.discretization.finite_patch.FinitePatch` (``remova
     estimated by the pragmatic iteration of Nguyen, Hiemstra, Stoter and Schillinger
     (CMAME 392 (2022) 114671, arXiv:2111.06501, abstract: a variational approach based on
     perturbed eigenvalue analysis, perturbation parameters estimated iteratively so that the
-    outlier frequencies are reduced): the Rayleigh quotient of the top mode,
-    :math:`\\alpha \\leftarrow (x^T K x / \\omega_\\ell^2 - x^T M x) / x^T B x`, until the
-    largest frequency is within 0.1 % of the lattice's :math:`\\omega_\\ell` (at most 8
-    rounds). The form of the perturbation is our reading of that abstract.
+    outlier frequencies are reduced): with x the top mode, :math:`\\alpha` grows by
+    :math:`(x^T K x / \\omega_\\ell^2 - x^T M x) / x^T B x` (the Rayleigh quotient of x brought
+    to the lattice's :math:`\\omega_\\ell`) until the largest frequency is within 0.1 % of
+    :math:`\\omega_\\ell`, the top mode is no longer a boundary mode (under half its kinetic
+    energy on the p functions at each end), :math:`\\alpha` would pass
+    :data:`PERTURBATION_MAX`, or 8 rounds. The form of the perturbation is our reading of that
+    abstract.
 
 The singular mass (the paper's rules, ``mass="singular-lumped"``) is measured beside them:
 it is a mass rule, not a removal option.
@@ -79,7 +83,7 @@ import scipy.sparse as sp
 from dispersion.errors import InputError
 
 __all__ = ["REMOVALS", "SOURCES", "check_removal", "apply_removal", "end_derivatives",
-           "PERTURBATION_ROUNDS", "PERTURBATION_TOL"]
+           "PERTURBATION_ROUNDS", "PERTURBATION_TOL", "PERTURBATION_MAX"]
 
 #: The removal methods, by name, and the source each follows.
 SOURCES = {
@@ -94,6 +98,9 @@ REMOVALS = tuple(SOURCES)
 #: on the largest frequency over the lattice's).
 PERTURBATION_ROUNDS = 8
 PERTURBATION_TOL = 1e-3
+#: Largest perturbation parameter: the perturbation's share of a boundary function's mass is
+#: then about 100 times its own (a larger alpha clamps the ends, and the low modes with them).
+PERTURBATION_MAX = 100.0
 
 
 def check_removal(patch) -> None:
@@ -218,7 +225,10 @@ def _moduli(patch) -> tuple[float, float]:
 
 def _point_terms(pen, eta_k, eta_m):
     """Sum of the penalty terms (stiffness, mass) at the ends, on the pencil rows."""
+    from dispersion.discretization.lattice_reference import lattice_omega_max
+
     patch = pen.patch
+    top2 = (lattice_omega_max(patch) * patch.element_length) ** 2  # (omega_l h)^2
     basis = pen.matrices.basis_x
     h = patch.element_length
     n = pen.size
@@ -243,7 +253,7 @@ def _point_terms(pen, eta_k, eta_m):
                             ra, rb = rows[a, s], rows[b, t]
                             if ra < 0 or rb < 0:
                                 continue
-                            Kp[ra, rb] += eta_k * math.pi**2 * h ** (2 * k - 1) * stiff * \
+                            Kp[ra, rb] += eta_k * top2 * h ** (2 * k - 1) * stiff * \
                                 w * outer[a, b]
                             Mp[ra, rb] += eta_m * h ** (2 * k + 1) * w * outer[a, b]
     return Kp.tocsr(), Mp.tocsr()
@@ -297,6 +307,20 @@ def _boundary_elements(pen) -> sp.csr_matrix:
     return B.tocsr()
 
 
+def _boundary_share(pen, x: np.ndarray) -> float:
+    """The share of a mode's kinetic energy x^T M x on the DOFs of the end elements' functions."""
+    patch = pen.patch
+    p, nx = patch.p, patch.n_x
+    per, d = _point_layout(patch)
+    near = np.r_[np.arange(p), np.arange(nx - p, nx)]
+    dofs = (d * (near[:, None] * per + np.arange(per)[None, :])[:, :, None]
+            + np.arange(d)).ravel()
+    mask = np.isin(pen.dofs, dofs)
+    Mx = pen.M @ x
+    total = float(x @ Mx)
+    return float(x[mask] @ Mx[mask]) / total if total > 0 else 0.0
+
+
 def _perturbation(pen):
     from dispersion.discretization.lattice_reference import lattice_omega_max
     from dispersion.discretization.mesh_spectrum import top_modes
@@ -304,17 +328,25 @@ def _perturbation(pen):
     target = lattice_omega_max(pen.patch)
     B = _boundary_elements(pen)
     alpha = 0.0
-    rounds = 0
+    rounds, why = 0, "the largest frequency reached the lattice's"
     for rounds in range(1, PERTURBATION_ROUNDS + 1):
         trial = replace(pen, M=(pen.M + alpha * B).tocsr())
         w, x = top_modes(trial, 1)
         if w[-1] <= target * (1 + PERTURBATION_TOL):
             break
         x = x[:, -1]
-        k, m, b = float(x @ (pen.K @ x)), float(x @ (pen.M @ x)), float(x @ (B @ x))
-        if b <= 0:
+        if _boundary_share(trial, x) < 0.5:
+            why = "the top mode is not a boundary mode"
             break
-        alpha = max(alpha, (k / target**2 - m) / b)
+        k, m, b = float(x @ (pen.K @ x)), float(x @ (pen.M @ x)), float(x @ (B @ x))
+        step = (k / target**2 - m) / b if b > 0 else math.inf
+        if not step <= PERTURBATION_MAX - alpha:
+            alpha, why = PERTURBATION_MAX, (f"alpha capped at {PERTURBATION_MAX:g} (the top "
+                                            "boundary mode barely feels the perturbation)")
+            break
+        alpha = max(alpha, alpha + step)
+    else:
+        why = f"{PERTURBATION_ROUNDS} rounds"
     return replace(pen, M=(pen.M + alpha * B).tocsr(),
                    removal_note=f"boundary-element mass perturbation, alpha = {alpha:.6g} "
-                                f"({rounds} rounds)")
+                                f"({rounds} rounds: {why})")

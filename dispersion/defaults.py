@@ -26,7 +26,7 @@ from __future__ import annotations
 from fractions import Fraction
 
 __all__ = ["P", "N", "PATCH_MODELS", "MODEL", "R", "MASS", "CONTACT", "GAMMA_S", "GAMMA_S_FLOAT", "NU",  # noqa: F822
-           "NU_FLOAT", "FIGURE2_R", "CONTACT_SETS",
+           "NU_FLOAT", "FIGURE2_R", "CONTACT_SETS", "MESH_ENDS",
            "REPORT_OUT", "REPORT_REFERENCE", "MAX_JOBS_PER_CPU", "P_MAX", "N_MAX",
            "R_RANGE"]  # GAMMA_S, NU, FIGURE2_R: module __getattr__
 
@@ -51,6 +51,9 @@ REPORT_REFERENCE = "reports"
 MAX_JOBS_PER_CPU = 4
 #: Contact sets of a singular mass through the thickness (:mod:`dispersion.symbolic.mass`).
 CONTACT_SETS = ("top", "bottom", "both")
+#: The ends of a finite patch (:mod:`dispersion.discretization.finite_patch`), here so that
+#: the command line names them without importing numerics.
+MESH_ENDS = ("free", "fixed", "sliding", "periodic")
 
 # Limits of the plate patch (:mod:`dispersion.symbolic.plate` checks them; stated here so
 # that the command line states its ranges without importing sympy).

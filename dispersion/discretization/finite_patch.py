@@ -51,13 +51,14 @@ from fractions import Fraction
 
 import numpy as np
 
+from dispersion.defaults import MESH_ENDS
 from dispersion.errors import InputError, check_choice, check_int_in_range, check_real_in_range
 
 __all__ = ["MODELS", "ENDS", "KNOT_LAYOUTS", "MAX_MESH_DOFS", "P_MAX_MESH", "FinitePatch",
            "finite_bar", "finite_strip", "mapped_strip"]
 
 MODELS = ("bar", "strip")
-ENDS = ("free", "fixed", "sliding", "periodic")
+ENDS = MESH_ENDS
 KNOT_LAYOUTS = ("uniform", "graded", "perturbed")
 #: Highest degree of a finite patch. Rule: the float basis (Bernstein extraction from
 #: Cox-de Boor samples) keeps its digits: the Bernstein matrix at p + 1 Chebyshev points has

@@ -9,8 +9,18 @@ in seconds and its ratio to the consistent mass's. The setting (model, sizes, ma
 stated once, in the header, with every symbol defined.
 
 >>> t = critical_steps(["consistent", "lumped"], 1, model="bar", wave_speed=1.0)
->>> [(r["mass"], r["omega_max h / c"], round(r["ratio to consistent"], 6)) for r in t.rows()]
+>>> [(r["mass"], r["lattice omega_max h / c"], round(r["ratio to consistent"], 6)) for r in t.rows()]
 [('consistent', 3.4641016151377544, 1.0), ('lumped', 2.0, 1.732051)]
+
+These are the periodic lattice's (an infinite or periodic mesh). With ``elements`` a finite
+mesh of that many elements and ``ends`` (open knot vectors) is measured beside it
+(:func:`dispersion.discretization.mesh_step.mesh_omega_max`): its largest frequency and a
+*proven* upper bound; the step a finite mesh may use is the mesh's:
+
+>>> m = critical_steps(["lumped"], 2, model="bar", wave_speed=1.0, elements=60, ends="free")
+>>> row = m.rows()[0]
+>>> round(row["mesh omega_max h / c"], 4), row["mesh dt_crit [s]"] < row["lattice dt_crit [s]"]
+(2.32, True)
 
 References
 ----------
@@ -37,11 +47,21 @@ class CriticalSteps(Rendered):
     certify: bool = False
     contact: str | None = None
     gamma_s: object = None
+    #: The finite mesh measured beside each lattice row
+    #: (:class:`~dispersion.discretization.mesh_step.MeshOmegaMax` or the reason it is not),
+    #: and its patch's words; empty without ``elements``.
+    meshes: tuple = ()
+    mesh_setting: str | None = None
+
+    def _mesh_failures(self) -> tuple[str, ...]:
+        return tuple(f"mass {s.mass}: mesh: {m}" for s, m in zip(self.steps, self.meshes)
+                     if isinstance(m, str))
 
     @property
     def failures(self) -> tuple[str, ...]:
         """Every step's failures (a proof that did not close), named by its rule."""
-        return tuple(f"mass {s.mass}: {why}" for s in self.steps for why in s.failures)
+        return tuple(f"mass {s.mass}: {why}" for s in self.steps for why in s.failures) \
+            + self._mesh_failures()
 
     @property
     def _unit(self) -> str:
@@ -51,6 +71,8 @@ class CriticalSteps(Rendered):
         s = self.steps[0]
         where = (f"periodic 1D bar, p = {s.p}" if self.model == "bar" else
                  f"Bloch plate patch, p = {s.p}, n = {s.n}")
+        if self.meshes:
+            where += f"; and its finite mesh ({self.mesh_setting})"
         return (f"Critical time step of central differences: {where}, h = {s.h:g} m, "
                 f"{'c = ' + format(s.wave_speed, 'g') + ' m/s' if s.material is None else s.material}")
 
@@ -59,8 +81,9 @@ class CriticalSteps(Rendered):
         if self.model == "bar":
             lines = [f"model: the periodic 1D bar of degree p = {s.p}, element length "
                      f"h = {s.h:g} m, wave speed c = {s.wave_speed:g} m/s",
-                     "omega_max h / c: the largest discrete frequency over the Brillouin "
-                     "zone theta in [0, pi] (theta = k h), dimensionless"]
+                     "lattice omega_max h / c: the periodic lattice's largest discrete "
+                     "frequency over the Brillouin zone theta in [0, pi] (theta = k h), "
+                     "dimensionless"]
         else:
             H = (s.n - s.p) * s.h / 2
             lines = [f"model: the Bloch plate patch in plane strain, degree p = {s.p}, n = {s.n} "
@@ -68,25 +91,41 @@ class CriticalSteps(Rendered):
                      f"h = {s.h:g} m",
                      f"H: half the plate thickness, H = (n - p) h / 2 = {H:g} m; aspect ratio "
                      f"r = b/H = {s.r}",
-                     "omega_max H / c_T: the largest discrete frequency over the Brillouin "
-                     "zone theta in [0, pi] (theta = k b, b the element length along the "
-                     "plate), dimensionless; c_T the shear wave speed"]
+                     "lattice omega_max H / c_T: the periodic lattice's largest discrete "
+                     "frequency over the Brillouin zone theta in [0, pi] (theta = k b, b the "
+                     "element length along the plate), dimensionless; c_T the shear wave "
+                     "speed"]
         if self.contact is not None:
             lines.append(f"singular rules: contact set {self.contact}, gamma_s = "
                          f"{self.gamma_s} (the share sent to the second neighbour)")
         if self.material is not None and s.material is not None:
             lines.append(f"material: {self.material.describe()}")
-        lines.append("dt_crit = 2 / omega_max in s: the largest stable step of central "
-                     "differences; ratio: dt_crit over the consistent mass's")
+        lines.append("lattice dt_crit = 2 / omega_max in s: the largest stable step of central "
+                     "differences on the periodic lattice (an infinite or periodic mesh); "
+                     "ratio: dt_crit over the consistent mass's")
+        if self.meshes:
+            lines.append(f"mesh: {self.mesh_setting}; mesh omega_max: its largest frequency "
+                         "(Lanczos, then bisection on the inertia: a Rayleigh quotient, a "
+                         "lower bound); proven bound: an upper bound proven by a verified "
+                         "Cholesky factorization of sigma M - K (Rump 2006)")
+            lines.append("mesh dt_crit = 2 / (proven bound) in s: the step this mesh may use "
+                         "(stable, proven); a finite mesh must not use the lattice's dt_crit, "
+                         "which its boundary outliers can exceed")
+        else:
+            lines.append("a finite mesh has boundary outliers and may need a smaller step: "
+                         "--elements N gives that mesh's own proven step")
         lines.append("theta: the phase where omega_max lies; found: how (exact: a closed form; "
                      "numeric: the largest over a grid of phases, refined)")
         return lines
 
     def columns(self) -> tuple[str, ...]:
-        cols = ("mass", self._unit, "exact value", "theta", "found", "dt_crit [s]",
-                "ratio to consistent")
+        cols = ("mass", f"lattice {self._unit}", "exact value", "theta", "found",
+                "lattice dt_crit [s]", "ratio to consistent")
         if self.certify:
-            cols += (f"{self._unit} proven bound", "proven stable dt [s]")
+            cols += (f"lattice {self._unit} proven bound", "lattice proven stable dt [s]")
+        if self.meshes:
+            cols += (f"mesh {self._unit}", f"mesh {self._unit} proven bound",
+                     "mesh dt_crit [s]", "mesh / lattice dt")
         return cols
 
     def text_columns(self) -> tuple[str, ...]:
@@ -94,14 +133,22 @@ class CriticalSteps(Rendered):
 
     def rows(self) -> list[dict]:
         out = []
-        for s in self.steps:
-            row = {"mass": s.mass, self._unit: s.omega_max,
+        for i, s in enumerate(self.steps):
+            row = {"mass": s.mass, f"lattice {self._unit}": s.omega_max,
                    "exact value": None if s.omega_max_exact is None else str(s.omega_max_exact),
-                   "theta": s.theta, "found": s.method, "dt_crit [s]": s.dt,
+                   "theta": s.theta, "found": s.method, "lattice dt_crit [s]": s.dt,
                    "ratio to consistent": s.ratio}
             if self.certify:
-                row.update({f"{self._unit} proven bound": s.omega_certified,
-                            "proven stable dt [s]": s.dt_certified})
+                row.update({f"lattice {self._unit} proven bound": s.omega_certified,
+                            "lattice proven stable dt [s]": s.dt_certified})
+            if self.meshes:
+                m = self.meshes[i]
+                ok = not isinstance(m, str) and m.omega_proven is not None
+                dt = s.dt * s.omega_max / m.omega_proven if ok else None
+                row.update({f"mesh {self._unit}": None if isinstance(m, str) else m.omega,
+                            f"mesh {self._unit} proven bound": m.omega_proven if ok else None,
+                            "mesh dt_crit [s]": dt,
+                            "mesh / lattice dt": dt / s.dt if ok else None})
             out.append(row)
         return out
 
@@ -121,9 +168,12 @@ def default_rules(model: str) -> tuple[str, ...]:
 
 def critical_steps(masses=None, p: int = 2, *, model: str = "plate", material="steel",
                    h: float = 1.0, n: int | None = None, wave_speed: float | None = None,
-                   contact: str = "top", gamma_s=None, certify: bool = False) -> CriticalSteps:
+                   contact: str = "top", gamma_s=None, certify: bool = False,
+                   elements: int | None = None, ends="free") -> CriticalSteps:
     """Critical steps of ``masses`` (names or rules; default :func:`default_rules`) on one
-    setting; the parameters are those of :func:`dispersion.waves.timestep.critical_step`."""
+    setting; the parameters are those of :func:`dispersion.waves.timestep.critical_step`.
+    ``elements``: also the finite mesh of that many elements with ``ends`` (free, fixed,
+    sliding or periodic, or a pair), its largest frequency and proven step."""
     from dispersion.errors import InputError
     from dispersion.waves.materials import MATERIALS, Material
     from dispersion.waves.timestep import critical_step
@@ -144,8 +194,49 @@ def critical_steps(masses=None, p: int = 2, *, model: str = "plate", material="s
                                 wave_speed=wave_speed, contact=contact, certify=certify,
                                 gamma_s=_exact(gamma_s)) for rule in rules)
     singular = model == "plate" and any(get_rule(r).redistributes for r in rules)
+    meshes, setting = (), None
+    if elements is not None:
+        meshes, setting = _meshes(rules, steps, model, elements, ends, contact,
+                                  _exact(gamma_s))
     return CriticalSteps(steps, model, material, bool(certify),
-                         contact if singular else None, gamma_s if singular else None)
+                         contact if singular else None, gamma_s if singular else None,
+                         meshes, setting)
+
+
+def _meshes(rules, steps, model, elements, ends, contact, gamma_s) -> tuple[tuple, str]:
+    """The finite mesh beside each lattice row: its largest frequency bracketed, or why not."""
+    from dispersion.discretization.finite_patch import finite_bar, finite_strip
+    from dispersion.discretization.mesh_step import mesh_omega_max
+    from dispersion.errors import ConvergenceError, InputError, check_int_in_range
+
+    elements = check_int_in_range("elements", elements, 1, 10**6)
+    first = steps[0]
+    out, label = [], None
+    for rule, s in zip(rules, steps):
+        try:
+            if model == "bar":
+                patch = finite_bar(s.p, elements, ends=ends, mass=rule, length=float(elements),
+                                   gamma_s=float(gamma_s))
+            else:
+                patch = finite_strip(s.p, elements, n=s.n, ends=ends, mass=rule, nu=float(s.nu),
+                                     length=elements * float(s.r), contact=contact,
+                                     gamma_s=float(gamma_s))
+        except InputError as exc:
+            if rule == rules[0]:
+                raise  # a setting no rule can take (the ends, the size): the caller's error
+            out.append(f"not built ({exc})")
+            continue
+        try:
+            out.append(mesh_omega_max(patch))
+        except (InputError, ConvergenceError) as exc:
+            out.append(f"not measured ({exc})")
+        label = label or patch
+    what = "bar" if model == "bar" else (f"plate strip (plane strain, {first.n} control points "
+                                         "through the thickness, square elements)")
+    words = "" if label is None else (
+        f"the finite {what} of {elements} elements, "
+        f"{'periodic' if label.periodic else '-'.join(label.ends)} ends, open knot vectors")
+    return tuple(out), words
 
 
 def _exact(value):

@@ -210,7 +210,7 @@ def _exact_graded(rule, patch, inverse: bool) -> sp.csr_matrix:
     return sp.csr_matrix(np.array(A.tolist(), dtype=float))
 
 
-def _mass_x(patch, basis, G, mass_kind: str):
+def _mass_x(patch, basis, G, mass_kind: str, exact_x: bool = False):
     """``(M_x, S_x)``: the mass along x, or its banded inverse (the other None)."""
     from dispersion.discretization import direction_mass as dm
 
@@ -222,15 +222,22 @@ def _mass_x(patch, basis, G, mass_kind: str):
     inverse = mass_kind == "banded"
     if patch.periodic:
         A = dm.periodic_x_mass(x_rule, p, N, h, inverse=inverse)
+    elif x_rule.name in dm.FLOAT_RULES and not inverse and not (
+            exact_x and patch.knots == "uniform") and _registered(x_rule):
+        A = dm.float_x_mass(x_rule, basis)
     elif patch.knots == "uniform":
         A = dm.x_mass(x_rule, p, N, h, inverse=inverse)
-    elif x_rule.name in dm.FLOAT_RULES and not inverse:
-        A = dm.float_x_mass(x_rule, basis)
     else:
         A = _exact_graded(x_rule, patch, inverse)
     if rule.redistributes and patch.model == "bar":
         A = _bar_singular(patch, A)
     return (None, A) if inverse else (A, None)
+
+
+def _registered(rule) -> bool:
+    from dispersion.symbolic.mass_rule import RULES
+
+    return RULES.get(rule.name) is rule
 
 
 def _bar_singular(patch, M: sp.csr_matrix) -> sp.csr_matrix:
@@ -286,10 +293,15 @@ def _massless(M: sp.csr_matrix) -> np.ndarray:
     return np.flatnonzero(rowmax <= 1e-14 * rowmax.max())
 
 
-def assemble(patch) -> FiniteMatrices:
+def assemble(patch, *, exact_x: bool = False) -> FiniteMatrices:
     """Assemble the stiffness and mass of the :class:`FinitePatch` ``patch`` (no boundary
     condition applied: :func:`dispersion.discretization.mesh_pencil.mesh_pencil` removes the
-    DOFs of fixed ends)."""
+    DOFs of fixed ends).
+
+    The local rules (:data:`~dispersion.discretization.direction_mass.FLOAT_RULES`) are
+    built in floats (their matrices to a few units of rounding); ``exact_x`` builds them on
+    uniform knots from the exact rule instead, each entry rounded once (seconds of sympy a
+    rule and degree: the simulation's strip keeps the bits it always had)."""
     rule = patch.rule
     check_rule(rule)
     if patch.model == "strip" and rule.x_rule != rule.name:
@@ -305,7 +317,7 @@ def assemble(patch) -> FiniteMatrices:
         raise InputError(f"mass rule {rule.name!r}: no banded inverse with a contact set")
     basis_x = x_basis(patch)
     G = _grams(basis_x)
-    Mx, Sx = _mass_x(patch, basis_x, G, mass_kind)
+    Mx, Sx = _mass_x(patch, basis_x, G, mass_kind, exact_x)
     if patch.model == "bar":
         K = G["11"].tocsr()
         K.sum_duplicates()

@@ -1,8 +1,8 @@
 """The periodic lattice beside a finite patch: the largest frequency of the same rule and cell.
 
 The finite patch's outliers are measured against the lattice of its own cell: the periodic
-bar of the same degree and rule (:func:`dispersion.waves.timestep.bar_omega_max`, exact, per
-element length h) or the Bloch plate patch of the strip's thickness mesh, rule and aspect
+bar of the same degree and rule (its closed form :math:`\\omega h / c = \\sqrt{d/m}` maximized
+over the phase in floats, per element length h) or the Bloch plate patch of the strip's thickness mesh, rule and aspect
 ratio r = b/H (:func:`dispersion.waves.timestep.patch_omega_max`). A singular rule's lattice
 is its x-direction rule's along the bar (the periodic bar has no contact boundary).
 
@@ -43,9 +43,33 @@ def lattice_omega_max(patch) -> float:
 
 @lru_cache(maxsize=256)
 def _bar(rule: str, p: int) -> float:
-    from dispersion.waves.timestep import bar_omega_max
+    """max over theta of the periodic bar's omega h / c: a grid of 4097 phases, an interior
+    maximum refined to 1e-13 in theta (bounded Brent); C0 Lagrange rules: their p branches
+    (:func:`dispersion.waves.timestep.bar_omega_max`). Floats: the exact maximum
+    (:func:`~dispersion.waves.timestep.bar_omega_max`, sympy) takes a second or two a rule."""
+    import math
 
-    return float(bar_omega_max(rule, p)[0])
+    import numpy as np
+
+    from dispersion.symbolic.mass_rule import get_rule
+    from dispersion.waves.bar_dispersion import bar_frequency
+
+    if get_rule(rule).basis == "lagrange":
+        from dispersion.waves.timestep import bar_omega_max
+
+        return float(bar_omega_max(rule, p)[0])
+    theta = np.linspace(0.0, math.pi, 4097)
+    w = bar_frequency(p, rule, theta)
+    i = int(np.argmax(w))
+    best = float(w[i])
+    if 0 < i < theta.size - 1:
+        from scipy.optimize import minimize_scalar
+
+        r = minimize_scalar(lambda t: -float(bar_frequency(p, rule, t)),
+                            bounds=(theta[i - 1], theta[i + 1]), method="bounded",
+                            options={"xatol": 1e-13})
+        best = max(best, -float(r.fun))
+    return best
 
 
 @lru_cache(maxsize=256)

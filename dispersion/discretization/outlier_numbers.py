@@ -23,7 +23,7 @@ For a finite patch and the lattice of its cell (:mod:`.lattice_reference`, large
 >>> from dispersion.discretization.finite_patch import finite_bar
 >>> o = outliers(finite_bar(2, 60, ends="free", mass="lumped", length=60.0))
 >>> o.count, round(o.ratio, 4), [round(float(v), 10) for v in o.limit]
-(2, 1.8943, [2.3200304964])
+(2, 1.8943, [2.320030496])
 
 References
 ----------

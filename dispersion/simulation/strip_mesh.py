@@ -122,7 +122,7 @@ def strip_mesh(plan) -> StripMesh:
 
     s = plan.strip
     patch = strip_patch(plan)
-    m = assemble(patch)
+    m = assemble(patch, exact_x=True)  # the exact rule rounded once, as always
     n = plan.n
     comp = 0 if s.kind == "S" else 1
     load_dofs = 2 * np.arange(n) + comp  # the column x = 0: i_x = 0

@@ -87,7 +87,7 @@ def test_open_lumped_p1_bar_has_its_closed_form(ends, first):
 
 
 @pytest.mark.parametrize("mass", ["consistent", "lumped", "hrz", "nodal-lobatto",
-                                  "nodal-greville"])
+                                  "nodal-greville", "sms"])
 @pytest.mark.parametrize("knots", [("graded", 4.0), ("perturbed", 0.6)])
 def test_graded_float_masses_equal_the_exact_rule(mass, knots):
     from dispersion.discretization.direction_mass import float_x_mass

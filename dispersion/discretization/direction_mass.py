@@ -43,8 +43,9 @@ from dispersion.errors import InputError
 __all__ = ["x_mass", "periodic_x_mass", "float_x_mass", "grams", "FLOAT_RULES",
            "MAX_EXACT_ELEMENTS"]
 
-#: The rules built in floats on any knots: each is local to an element or to a point set.
-FLOAT_RULES = ("consistent", "lumped", "hrz", "nodal-lobatto", "nodal-greville")
+#: The rules built in floats on any knots: each is local to an element or to a point set
+#: (sms: the row-sum lumped mass plus beta h^2 int N'N'^T, h the largest element).
+FLOAT_RULES = ("consistent", "lumped", "hrz", "nodal-lobatto", "nodal-greville", "sms")
 #: Most elements of a graded mesh on which a rule outside :data:`FLOAT_RULES` is built
 #: exactly (sympy). Rule: about a second; measured, the customized mass on 60 elements
 #: of p = 2 takes 0.9 s and grows like N^3 (a dense inverse).
@@ -93,7 +94,12 @@ def _exact_x_mass(rule, p: int, m: int, inverse: bool = False) -> tuple:
         from sympy.polys.matrices import DomainMatrix
 
         A = DomainMatrix.from_Matrix(sympy.Matrix(A)).to_field().inv().to_Matrix()
-    return tuple(tuple(Fraction(str(v)) for v in row) for row in A.tolist())
+    rows = A.tolist()
+    if not all(sympy.sympify(v).is_Rational for row in rows for v in row):
+        raise InputError(f"mass rule {rule.name!r}: its matrix on {m} elements of degree {p} "
+                         "is not in rational numbers, so the mesh cannot extend it exactly")
+    return tuple(tuple(Fraction(int(v.p), int(v.q)) for v in map(sympy.sympify, row))
+                 for row in rows)
 
 
 def _extend(A: tuple, n: int):
@@ -208,9 +214,18 @@ def float_x_mass(rule, basis, *, elements: np.ndarray | None = None) -> sp.csr_m
     name = rule.name
     p = basis.kv.p
     n = basis.kv.n
-    if name in ("consistent", "lumped"):
-        M = grams(basis)["00"]
-        return M if name == "consistent" else sp.diags(np.asarray(M.sum(axis=1)).ravel()).tocsr()
+    if name in ("consistent", "lumped", "sms"):
+        G = grams(basis)
+        M = G["00"]
+        if name == "consistent":
+            return M
+        lumped = sp.diags(np.asarray(M.sum(axis=1)).ravel()).tocsr()
+        if name == "lumped":
+            return lumped
+        from dispersion.symbolic.mass_scaling import SMS_BETA
+
+        h = float(np.max(basis.spans[:, 1] - basis.spans[:, 0]))
+        return (lumped + float(SMS_BETA) * h**2 * G["11"]).tocsr()
     if name == "hrz":
         g, w = np.polynomial.legendre.leggauss(p + 1)
         a, b = basis.spans[:, :1], basis.spans[:, 1:]

@@ -114,12 +114,13 @@ def _refined(patch, factor: int):
                    removal=None, removal_parameter=None, h=None)
 
 
-def normalized_spectrum(patch) -> NormalizedSpectrum:
-    """omega_h^n / omega^n of ``patch`` against n/N (module docstring)."""
+def normalized_spectrum(patch, spectrum=None) -> NormalizedSpectrum:
+    """omega_h^n / omega^n of ``patch`` against n/N (module docstring); ``spectrum``: its
+    :class:`~dispersion.discretization.mesh_spectrum.MeshSpectrum` if already computed."""
     from dispersion.discretization.mesh_pencil import mesh_pencil
     from dispersion.discretization.mesh_spectrum import all_frequencies
 
-    omega = all_frequencies(mesh_pencil(patch)).omega
+    omega = (all_frequencies(mesh_pencil(patch)) if spectrum is None else spectrum).omega
     moving = omega[omega > RIGID * omega[-1]]
     N = omega.size
     fraction = (np.arange(N - moving.size, N) + 1) / N

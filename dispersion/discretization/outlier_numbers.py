@@ -6,9 +6,10 @@ For a finite patch and the lattice of its cell (:mod:`.lattice_reference`, large
 * ``count``: the frequencies of the mesh above :math:`\\omega_\\ell (1 + 10^{-9})`;
 * ``ratio``: :math:`\\omega_{max}(\\text{mesh}) / \\omega_\\ell` (the lattice's step over the
   mesh's);
-* where the top mode lives: the share of its kinetic energy :math:`x^T M x` on the functions
-  of the p elements at each end (``boundary_share``) and the distance of its largest
-  coefficient from the nearest end, in elements (``peak``);
+* where the top mode lives: the share of its kinetic energy, :math:`\sum_i m_i x_i^2` with
+  :math:`m_i` the row sums of M (a lumped energy: every share lies in [0, 1]), on the p
+  functions at each end (``boundary_share``), and the distance of its largest coefficient
+  from the nearest end, in control points (``peak``);
 * ``limit``: the outliers as :math:`N \\to \\infty` (the bar). Far from the ends the rows of
   :math:`K - \\lambda M` are the lattice's Toeplitz rows :math:`\\sum_L (k_L - \\lambda m_L)
   x_{i+L} = 0` (bandwidth w), whose decaying solutions are :math:`x_j = \\sum_k c_k z_k^j`,
@@ -42,7 +43,7 @@ from dispersion.errors import ConvergenceError
 __all__ = ["Outliers", "outliers", "boundary_limit", "LIMIT_DIGITS", "ABOVE"]
 
 #: Working digits of the limit's refinement.
-LIMIT_DIGITS = 30
+LIMIT_DIGITS = 20
 #: A mesh frequency counts as an outlier above omega_l (1 + ABOVE).
 ABOVE = 1e-9
 
@@ -82,21 +83,27 @@ def _top_mode_layout(pen, x: np.ndarray) -> tuple[float, int]:
     peak = min(i, nx - 1 - i)
     if M is None:
         return float("nan"), peak
-    energy = (full.reshape(-1, d) * (M @ full.reshape(-1, d))).sum(axis=1).reshape(nx, per).sum(1)
+    weight = np.asarray(M.sum(axis=1)).ravel()  # the row sums: a lumped kinetic energy
+    energy = (weight[:, None] * full.reshape(-1, d) ** 2).sum(axis=1).reshape(nx, per).sum(1)
     p = patch.p
     near = np.r_[np.arange(p), np.arange(nx - p, nx)]
     total = energy.sum()
     return float(energy[near].sum() / total) if total > 0 else float("nan"), peak
 
 
-def outliers(patch, *, limit: bool = True) -> Outliers:
-    """The outlier numbers of ``patch`` (every frequency: moderate N)."""
+def outliers(patch, *, limit: bool = True, spectrum=None) -> Outliers:
+    """The outlier numbers of ``patch`` (every frequency: moderate N); ``spectrum``: its
+    :class:`~dispersion.discretization.mesh_spectrum.MeshSpectrum` with vectors, if already
+    computed."""
     from dispersion.discretization.lattice_reference import lattice_omega_max
     from dispersion.discretization.mesh_pencil import mesh_pencil
     from dispersion.discretization.mesh_spectrum import all_frequencies
 
-    pen = mesh_pencil(patch)
-    s = all_frequencies(pen, vectors=True)
+    if spectrum is None:
+        pen = mesh_pencil(patch)
+        s = all_frequencies(pen, vectors=True)
+    else:
+        s, pen = spectrum, spectrum.pencil
     lat = lattice_omega_max(patch)
     above = s.omega[s.omega > lat * (1 + ABOVE)]
     share, peak = _top_mode_layout(pen, s.vectors[:, -1])

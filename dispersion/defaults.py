@@ -49,9 +49,9 @@ REPORT_REFERENCE = "reports"
 #: room for workers that wait on I/O. :func:`dispersion.sweep.parallel_map` starts at most one
 #: per usable CPU: its calls are CPU-bound sweeps.
 MAX_JOBS_PER_CPU = 4
-#: Contact sets of a singular mass through the thickness (:mod:`dispersion.symbolic.mass`).
+#: Contact sets of a singular mass through the thickness (:mod:`dispersion.mass_rules.mass`).
 CONTACT_SETS = ("top", "bottom", "both")
-#: The ends of a finite patch (:mod:`dispersion.discretization.finite_patch`), here so that
+#: The ends of a finite patch (:mod:`dispersion.discretization.finite_mesh.finite_patch`), here so that
 #: the command line names them without importing numerics.
 MESH_ENDS = ("free", "fixed", "sliding", "periodic")
 

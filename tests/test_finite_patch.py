@@ -15,11 +15,11 @@ import pytest
 import scipy.sparse as sp
 import sympy
 
-from dispersion.discretization.finite_assembly import assemble
-from dispersion.discretization.finite_patch import (FinitePatch, finite_bar, finite_strip,
+from dispersion.discretization.finite_mesh.finite_assembly import assemble
+from dispersion.discretization.finite_mesh.finite_patch import (FinitePatch, finite_bar, finite_strip,
                                                     mapped_strip)
-from dispersion.discretization.mesh_pencil import mesh_pencil
-from dispersion.discretization.mesh_spectrum import all_frequencies
+from dispersion.discretization.finite_mesh.mesh_pencil import mesh_pencil
+from dispersion.discretization.finite_mesh.mesh_spectrum import all_frequencies
 from dispersion.errors import InputError
 
 
@@ -52,7 +52,7 @@ def test_the_patch_is_a_value():
 def test_periodic_bar_is_the_lattice(mass, p):
     # the periodic bar's closed form (omega h)^2 = d(theta) / m(theta), exact in sympy, at
     # the N phases of the N-cell ring
-    from dispersion.waves.timestep import bar_omega_squared
+    from dispersion.time_stepping.timestep import bar_omega_squared
 
     N = 2 * p + 5
     s = all_frequencies(mesh_pencil(finite_bar(p, N, ends="periodic", mass=mass, length=N)))
@@ -65,7 +65,7 @@ def test_periodic_bar_is_the_lattice(mass, p):
                                   "dual-lumped"])
 def test_periodic_strip_is_the_bloch_patch(mass):
     from dispersion.symbolic.plate import numeric_pencil, plate_patch
-    from dispersion.waves.pencil_frequencies import pencil_frequencies
+    from dispersion.discretization.pencil_frequencies import pencil_frequencies
 
     p, n, N = 2, 4, 7
     pat = finite_strip(p, N, n=n, ends="periodic", mass=mass, length=N * 0.5, nu=0.3)
@@ -90,10 +90,10 @@ def test_open_lumped_p1_bar_has_its_closed_form(ends, first):
                                   "nodal-greville", "sms"])
 @pytest.mark.parametrize("knots", [("graded", 4.0), ("perturbed", 0.6)])
 def test_graded_float_masses_equal_the_exact_rule(mass, knots):
-    from dispersion.discretization.direction_mass import float_x_mass
-    from dispersion.discretization.finite_assembly import x_basis
-    from dispersion.symbolic.bspline import KnotVector
-    from dispersion.symbolic.mass_rule import gram_space, mass_matrix
+    from dispersion.discretization.finite_mesh.direction_mass import float_x_mass
+    from dispersion.discretization.finite_mesh.finite_assembly import x_basis
+    from dispersion.splines.bspline import KnotVector
+    from dispersion.mass_rules.mass_rule import gram_space, mass_matrix
 
     pat = finite_bar(3, 9, mass=mass, knots=knots[0], knot_parameter=knots[1], length=2.0)
     A = float_x_mass(mass, x_basis(pat)).toarray()

@@ -23,11 +23,11 @@ from hypothesis import example, given
 from hypothesis import strategies as st
 from promise_search import FAST, FAST_FEW, SLOW, record
 
-from dispersion.discretization.finite_patch import finite_bar, finite_strip
-from dispersion.discretization.mesh_pencil import mesh_pencil
-from dispersion.discretization.mesh_spectrum import all_frequencies
-from dispersion.discretization.mesh_step import mesh_omega_max
-from dispersion.discretization.positive_definite import proves_positive_definite
+from dispersion.discretization.finite_mesh.finite_patch import finite_bar, finite_strip
+from dispersion.discretization.finite_mesh.mesh_pencil import mesh_pencil
+from dispersion.discretization.finite_mesh.mesh_spectrum import all_frequencies
+from dispersion.time_stepping.mesh_step import mesh_omega_max
+from dispersion.time_stepping.positive_definite import proves_positive_definite
 
 DPS = 50
 BAR_RULES = ("consistent", "lumped", "hrz", "nodal-greville", "nodal-lobatto", "sms")
@@ -51,9 +51,9 @@ def _exact_bar(p, n, mass, ends) -> tuple:
     """The exact stiffness and mass of the bar (unit elements), mpmath, ends applied."""
     import sympy
 
-    from dispersion.symbolic.bspline import open_knot_vector
-    from dispersion.symbolic.derivative_gram import derivative_gram
-    from dispersion.symbolic.mass_rule import gram_space, mass_matrix
+    from dispersion.splines.bspline import open_knot_vector
+    from dispersion.splines.derivative_gram import derivative_gram
+    from dispersion.mass_rules.mass_rule import gram_space, mass_matrix
 
     kv = open_knot_vector(p, n, 0, n)
     K = sympy.Matrix(derivative_gram(kv))
@@ -208,7 +208,7 @@ def test_verified_cholesky_never_proves_an_indefinite_matrix_slow(n, margin, see
 
 
 def _sliding_case(p, nu):
-    from dispersion.discretization.normalized_spectrum import _sliding_exact
+    from dispersion.discretization.finite_mesh.normalized_spectrum import _sliding_exact
 
     errors = []
     for f in (2, 4):

@@ -24,9 +24,9 @@ model is the bar of degree ``p`` and rule ``mass``, here on a finite mesh)::
   without over with (needs ``removal``);
 * ``outliers``: how many frequencies lie above the lattice's largest (a whole number).
 
-The derivation is :func:`dispersion.discretization.mesh_step.mesh_omega_max` (the proven
+The derivation is :func:`dispersion.time_stepping.mesh_step.mesh_omega_max` (the proven
 upper bound is the value compared: the step a user would take) and, for ``outliers``,
-:func:`dispersion.discretization.outlier_numbers.outliers`.
+:func:`dispersion.discretization.finite_mesh.outlier_numbers.outliers`.
 """
 from __future__ import annotations
 
@@ -52,7 +52,7 @@ def mesh_claim(entry: dict, common: dict, fail) -> Claim:
     """A ``mesh_step`` claim (``common``: the fields every kind has, the model checked)."""
     from dispersion.claims.bar_model import BarModel
     from dispersion.defaults import MESH_ENDS
-    from dispersion.discretization.outlier_removal import REMOVALS
+    from dispersion.discretization.finite_mesh.outlier_removal import REMOVALS
 
     model = common["model"]
     if not isinstance(model, BarModel):
@@ -84,7 +84,7 @@ def mesh_claim(entry: dict, common: dict, fail) -> Claim:
         fail("rtol", f"must be a number in (0, 1), got {rtol!r}")
     if quantity == "outliers" and "rtol" in entry:
         fail("rtol", "a count of outliers is compared exactly")
-    from dispersion.discretization.finite_patch import finite_bar
+    from dispersion.discretization.finite_mesh.finite_patch import finite_bar
     from dispersion.errors import InputError
 
     try:  # the claim is about this mesh: the model the reports name
@@ -101,19 +101,19 @@ def mesh_claim(entry: dict, common: dict, fail) -> Claim:
 
 def task(claim) -> tuple:
     """The derivation a claim needs, hashable (shared between equal claims): the mesh (the
-    claim's model, a :class:`~dispersion.discretization.finite_patch.FinitePatch` with h = 1)
+    claim's model, a :class:`~dispersion.discretization.finite_mesh.finite_patch.FinitePatch` with h = 1)
     and whether its outliers are counted."""
     return ("mesh_step", claim.model, dict(claim.printed)["quantity"] == "outliers")
 
 
 def run(t: tuple) -> dict:
     """``{"omega_max", "plain", "lattice", "outliers"}`` of the mesh (h = 1, c = 1)."""
-    from dispersion.discretization.lattice_reference import lattice_omega_max
-    from dispersion.discretization.mesh_step import mesh_omega_max
+    from dispersion.discretization.finite_mesh.lattice_reference import lattice_omega_max
+    from dispersion.time_stepping.mesh_step import mesh_omega_max
 
     _, patch, count = t
     if count:  # every frequency, counted against the lattice's
-        from dispersion.discretization.outlier_numbers import outliers
+        from dispersion.discretization.finite_mesh.outlier_numbers import outliers
 
         return {"outliers": outliers(patch, limit=False).count}
     out = {"omega_max": mesh_omega_max(patch).omega_proven,

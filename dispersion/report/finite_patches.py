@@ -195,7 +195,7 @@ def render(data: dict, out: Path) -> str:
         "factorization of sigma M - K (Rump 2006); the lattice's step holds for a periodic "
         "(or unbounded) mesh only.\n\n"
         + _issue_table(data) + "\n\n"
-        f"![normalized spectra](finite_patches_spectra.png)\n\n" + _outlier_tables(data)
+        "![normalized spectra](finite_patches_spectra.png)\n\n" + _outlier_tables(data)
         + "\n\n### Removing the outliers\n\nThree published methods "
           "(`removal=` of the finite patch; constraints: Hiemstra et al. 2021, Manni et al. "
           "2022; penalty: Deng and Calo 2021, weights ours; perturbation: after Nguyen et al. "

@@ -1,5 +1,5 @@
-"""Moved: the C0 Lagrange space is the finite patch's
-(:mod:`dispersion.discretization.lagrange_space`); this path keeps working."""
-from dispersion.discretization.lagrange_space import NodalSpace1D
+"""Moved: the C0 Lagrange space is a basis of the splines wing
+(:mod:`dispersion.splines.lagrange_space`); this path keeps working."""
+from dispersion.splines.lagrange_space import NodalSpace1D
 
 __all__ = ["NodalSpace1D"]

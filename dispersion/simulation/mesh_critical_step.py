@@ -5,19 +5,19 @@ Central differences are stable for :math:`\\omega_{max} \\Delta t \\le 2` with
 (massless DOFs condensed, :math:`\\hat K = K_{rr} - K_{rm} K_{mm}^{-1} K_{mr}`, as the loop
 solves them). The strip is a finite patch (:func:`~dispersion.simulation.strip_mesh.strip_patch`)
 and its largest frequency is the patch's
-(:func:`dispersion.discretization.mesh_step.mesh_omega_max`): a Lanczos estimate, then a
+(:func:`dispersion.time_stepping.mesh_step.mesh_omega_max`): a Lanczos estimate, then a
 *proven* upper bound by a verified Cholesky factorization of :math:`\\sigma M - K` (Rump
 2006), the two narrowed by bisection on the inertia. The step the simulation takes is
 ``courant`` times :math:`2/\\omega_{max}`, with :math:`\\omega_{max}` the proven bound
 rounded *up* to six significant digits (the stable side, and the same step on every machine
 unless the maximum sits on a rounding boundary).
 
-The toolkit's lattice step (:func:`dispersion.waves.timestep.patch_omega_max`) is that of the
+The toolkit's lattice step (:func:`dispersion.time_stepping.timestep.patch_omega_max`) is that of the
 periodic Bloch patch with the strip's thickness mesh, aspect ratio and rule: for p = 1 the
 two agree (the strip's maximum approaches the periodic one), for p >= 2 the open mesh's
 boundary functions raise :math:`\\omega_{max}` above it (the "outliers" of Cottrell et al.
 2006), so the mesh's own step is the smaller. Both are reported; the tests check the value
-against the toolkit's dense :func:`dispersion.waves.timestep.matrix_critical_step` on a small
+against the toolkit's dense :func:`dispersion.time_stepping.timestep.matrix_critical_step` on a small
 strip.
 
 >>> from dispersion.simulation.strip import Strip, plan_strip
@@ -44,7 +44,7 @@ from dispersion.errors import ConvergenceError
 
 __all__ = ["MeshCriticalStep", "mesh_critical_step", "LANCZOS_TOL", "round_up"]
 
-#: Relative residual of the Lanczos estimate (:data:`dispersion.discretization.mesh_step.ESTIMATE_TOL`).
+#: Relative residual of the Lanczos estimate (:data:`dispersion.time_stepping.mesh_step.ESTIMATE_TOL`).
 #: The Ritz value is a Rayleigh quotient, below the maximum; the proven bound and the
 #: bisection on the inertia then narrow the bracket to 1e-9, whatever the residual.
 LANCZOS_TOL = 1e-8
@@ -56,7 +56,7 @@ class MeshCriticalStep:
     ``omega_max`` (the proven bound rounded up to 6 digits), ``dt_crit = 2 / omega_max``;
     ``omega_bloch`` and ``dt_bloch`` the toolkit's periodic patch (None if not asked);
     ``iterations``: Lanczos operator applications; ``seconds``; ``omega_proven`` the proven
-    upper bound itself (:func:`dispersion.discretization.mesh_step.mesh_omega_max`)."""
+    upper bound itself (:func:`dispersion.time_stepping.mesh_step.mesh_omega_max`)."""
 
     omega_lanczos: float
     omega_max: float
@@ -97,12 +97,12 @@ def mesh_critical_step(mesh, op=None, *, bloch: bool = False, tol: float = LANCZ
     op : MassOperator
         Kept for the callers; the finite patch's pencil carries the same mass.
     bloch : bool
-        Also the toolkit's periodic-patch value (:func:`dispersion.waves.timestep.patch_omega_max`).
+        Also the toolkit's periodic-patch value (:func:`dispersion.time_stepping.timestep.patch_omega_max`).
     tol : float
         Relative residual of the Lanczos estimate (the bracket is then narrowed to 1e-9).
     """
-    from dispersion.discretization.mesh_pencil import mesh_pencil
-    from dispersion.discretization.mesh_step import mesh_omega_max
+    from dispersion.discretization.finite_mesh.mesh_pencil import mesh_pencil
+    from dispersion.time_stepping.mesh_step import mesh_omega_max
 
     t0 = time.perf_counter()
     pen = mesh_pencil(mesh.patch, mesh.matrices)
@@ -127,7 +127,7 @@ def bloch_step(plan) -> tuple[float, float]:
     import sympy
 
     from dispersion.symbolic.plate import plate_patch
-    from dispersion.waves.timestep import patch_omega_max
+    from dispersion.time_stepping.timestep import patch_omega_max
 
     s = plan.strip
     patch = plate_patch(s.p, plan.n, "bloch", sympy.Rational(plan.r.numerator, plan.r.denominator),

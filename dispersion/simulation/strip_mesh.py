@@ -41,9 +41,9 @@ or u_y (A0) on the mid-plane y = 0.
 >>> round(float(mesh.mass.sum()), 9) == round(2 * mesh.plan.length, 9)   # rho * area
 True
 
-The strip is a :class:`~dispersion.discretization.finite_patch.FinitePatch` (free ends) and
+The strip is a :class:`~dispersion.discretization.finite_mesh.finite_patch.FinitePatch` (free ends) and
 its matrices are the finite patch's one assembly
-(:func:`~dispersion.discretization.finite_assembly.assemble`); this module adds what the
+(:func:`~dispersion.discretization.finite_mesh.finite_assembly.assemble`); this module adds what the
 simulation needs beside them: the load and the stations.
 
 References
@@ -59,9 +59,9 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from dispersion.discretization.direction_mass import grams as spline_grams
-from dispersion.discretization.direction_mass import x_mass
-from dispersion.discretization.finite_assembly import (BASES, KNOWN_STATES, check_rule,
+from dispersion.discretization.finite_mesh.direction_mass import grams as spline_grams
+from dispersion.discretization.finite_mesh.direction_mass import x_mass
+from dispersion.discretization.finite_mesh.finite_assembly import (BASES, KNOWN_STATES, check_rule,
                                                        explicit_step)
 
 __all__ = ["StripMesh", "strip_mesh", "strip_patch", "spline_grams", "x_mass", "check_rule",
@@ -108,7 +108,7 @@ class StripMesh:
 def strip_patch(plan):
     """The finite patch of ``plan`` (:func:`dispersion.simulation.strip.plan_strip`): the
     strip with free ends, its x-mesh and thickness mesh, rule, contact set and nu."""
-    from dispersion.discretization.finite_patch import FinitePatch
+    from dispersion.discretization.finite_mesh.finite_patch import FinitePatch
 
     s = plan.strip
     return FinitePatch("strip", s.p, plan.n_elements_x, "free", s.mass, length=plan.length,
@@ -118,7 +118,7 @@ def strip_patch(plan):
 
 def strip_mesh(plan) -> StripMesh:
     """Assemble the strip of ``plan`` (:func:`dispersion.simulation.strip.plan_strip`)."""
-    from dispersion.discretization.finite_assembly import assemble
+    from dispersion.discretization.finite_mesh.finite_assembly import assemble
 
     s = plan.strip
     patch = strip_patch(plan)

@@ -7,7 +7,7 @@ discretization wing (:mod:`dispersion.discretization`):
   consistent and row-sum lumped, on the periodic lattice and on the open mesh of
   :data:`TABLE_ELEMENTS` elements with free and with fixed ends (the proven bound), and the
   N -> infinity limit of each mesh's outliers (the boundary block,
-  :func:`~dispersion.discretization.outlier_numbers.boundary_limit`);
+  :func:`~dispersion.discretization.finite_mesh.outlier_numbers.boundary_limit`);
 * ``bar``: for p = 1..4, every rule of the registry the bar builds (the singular rules at the
   free ends, their contact boundary) and free and fixed ends, on :data:`SPECTRUM_ELEMENTS`
   elements: the normalized spectrum :math:`\\omega_h^n / \\omega^n` against n/N (the closed
@@ -70,22 +70,22 @@ class FinitePatchesStudy:
 
 def bar_rules() -> tuple[str, ...]:
     """Every registered rule, read from the registry (the bar builds them, or says why not)."""
-    from dispersion.symbolic.mass_rule import RULE_NAMES
+    from dispersion.mass_rules.mass_rule import RULE_NAMES
 
     return RULE_NAMES
 
 
 def _patch(p, ends, mass, n, **kw):
-    from dispersion.discretization.finite_patch import finite_bar
+    from dispersion.discretization.finite_mesh.finite_patch import finite_bar
 
     return finite_bar(p, n, ends=ends, mass=mass, length=float(n), **kw)
 
 
 def _table(degrees, failures) -> list[dict]:
-    from dispersion.discretization.lattice_reference import lattice_omega_max
-    from dispersion.discretization.mesh_pencil import mesh_pencil
-    from dispersion.discretization.mesh_step import mesh_omega_max
-    from dispersion.discretization.outlier_numbers import boundary_limit
+    from dispersion.discretization.finite_mesh.lattice_reference import lattice_omega_max
+    from dispersion.discretization.finite_mesh.mesh_pencil import mesh_pencil
+    from dispersion.time_stepping.mesh_step import mesh_omega_max
+    from dispersion.discretization.finite_mesh.outlier_numbers import boundary_limit
 
     rows = []
     for p in degrees:
@@ -99,7 +99,7 @@ def _table(degrees, failures) -> list[dict]:
                 row[ends] = w.omega_proven
                 row[f"{ends}_estimate"] = w.omega
                 pen = mesh_pencil(patch)
-                from dispersion.discretization.mesh_spectrum import all_frequencies
+                from dispersion.discretization.finite_mesh.mesh_spectrum import all_frequencies
 
                 s = all_frequencies(pen).omega
                 above = s[s > lat * (1 + 1e-9)]
@@ -115,10 +115,10 @@ def _table(degrees, failures) -> list[dict]:
 
 
 def _bar(degrees, failures) -> list[dict]:
-    from dispersion.discretization.mesh_pencil import mesh_pencil
-    from dispersion.discretization.mesh_spectrum import all_frequencies
-    from dispersion.discretization.normalized_spectrum import normalized_spectrum
-    from dispersion.discretization.outlier_numbers import outliers
+    from dispersion.discretization.finite_mesh.mesh_pencil import mesh_pencil
+    from dispersion.discretization.finite_mesh.mesh_spectrum import all_frequencies
+    from dispersion.discretization.finite_mesh.normalized_spectrum import normalized_spectrum
+    from dispersion.discretization.finite_mesh.outlier_numbers import outliers
     from dispersion.errors import DispersionError
 
     rows = []
@@ -142,7 +142,7 @@ def _bar(degrees, failures) -> list[dict]:
 
 
 def _low_error(omega: np.ndarray, patch) -> float:
-    from dispersion.discretization.normalized_spectrum import RIGID, continuum_frequencies
+    from dispersion.discretization.finite_mesh.normalized_spectrum import RIGID, continuum_frequencies
 
     moving = omega[omega > RIGID * omega[-1]][:LOW_MODES]
     exact, _ = continuum_frequencies(patch, moving.size)
@@ -150,11 +150,11 @@ def _low_error(omega: np.ndarray, patch) -> float:
 
 
 def _removal(degrees, failures):
-    from dispersion.discretization.mesh_pencil import mesh_pencil
-    from dispersion.discretization.mesh_spectrum import all_frequencies
-    from dispersion.discretization.mesh_step import mesh_omega_max
-    from dispersion.discretization.normalized_spectrum import normalized_spectrum
-    from dispersion.discretization.outlier_removal import REMOVALS
+    from dispersion.discretization.finite_mesh.mesh_pencil import mesh_pencil
+    from dispersion.discretization.finite_mesh.mesh_spectrum import all_frequencies
+    from dispersion.time_stepping.mesh_step import mesh_omega_max
+    from dispersion.discretization.finite_mesh.normalized_spectrum import normalized_spectrum
+    from dispersion.discretization.finite_mesh.outlier_removal import REMOVALS
     from dispersion.errors import DispersionError
 
     rows, spectra = [], []
@@ -187,7 +187,7 @@ def _removal(degrees, failures):
                     if plain is not None:
                         row["gain"] = plain["omega_max"] / w.omega_proven
                         row["plain_low_error"] = plain["low_error"]
-                    from dispersion.discretization.lattice_reference import lattice_omega_max
+                    from dispersion.discretization.finite_mesh.lattice_reference import lattice_omega_max
 
                     lat = lattice_omega_max(patch)
                     row["count"] = int(np.sum(s.omega > lat * (1 + 1e-9)))
@@ -201,10 +201,10 @@ def _removal(degrees, failures):
 
 
 def _strip(degrees, quick, failures):
-    from dispersion.discretization.finite_patch import finite_strip
-    from dispersion.discretization.lattice_reference import lattice_omega_max
-    from dispersion.discretization.mesh_step import mesh_omega_max
-    from dispersion.discretization.normalized_spectrum import normalized_spectrum
+    from dispersion.discretization.finite_mesh.finite_patch import finite_strip
+    from dispersion.discretization.finite_mesh.lattice_reference import lattice_omega_max
+    from dispersion.time_stepping.mesh_step import mesh_omega_max
+    from dispersion.discretization.finite_mesh.normalized_spectrum import normalized_spectrum
     from dispersion.errors import DispersionError
 
     rows, spectra = [], []
@@ -241,8 +241,8 @@ def _ring(quick, failures):
     from dispersion.contact.newmark import critical_step
     from dispersion.contact.scenario import Scenario
     from dispersion.contact.simulate import ring_problem
-    from dispersion.discretization.finite_patch import mapped_strip
-    from dispersion.discretization.mesh_step import mesh_omega_max
+    from dispersion.discretization.finite_mesh.finite_patch import mapped_strip
+    from dispersion.time_stepping.mesh_step import mesh_omega_max
     from dispersion.errors import DispersionError
 
     sc = Scenario()
@@ -265,8 +265,8 @@ def _ring(quick, failures):
 
 
 def _shapes():
-    from dispersion.discretization.mesh_pencil import mesh_pencil
-    from dispersion.discretization.mesh_spectrum import all_frequencies
+    from dispersion.discretization.finite_mesh.mesh_pencil import mesh_pencil
+    from dispersion.discretization.finite_mesh.mesh_spectrum import all_frequencies
 
     out = []
     for mass in ("consistent", "lumped"):

@@ -155,3 +155,14 @@ def test_mapped_patch_refuses_rules_it_does_not_build():
 
     with pytest.raises(InputError, match="mapped"):
         assemble(mapped_strip(quarter_ring(0.9, 1.0, 4, 2), mass="nodal-greville"))
+
+
+def test_customized_mass_keeps_its_galerkin_rows_at_a_fixed_end():
+    # Hiemstra et al. 2025: a Dirichlet DOF removed from the Galerkin form keeps M_rr of the
+    # customized mass M = S^-1; the pencil carries its banded inverse, the Schur complement
+    from dispersion.discretization.finite_mesh.finite_assembly import assemble
+
+    patch = finite_bar(3, 12, ends="fixed", mass="dual-lumped", length=12.0)
+    pen = mesh_pencil(patch)
+    M = np.linalg.inv(assemble(patch).mass_inverse.toarray())[1:-1, 1:-1]
+    assert np.allclose(np.linalg.inv(M), pen.S.toarray(), rtol=1e-10, atol=1e-10)

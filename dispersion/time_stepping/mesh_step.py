@@ -50,18 +50,20 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from dispersion.time_stepping.positive_definite import UNIT_ROUNDOFF, proves_positive_definite
+from dispersion.time_stepping.positive_definite import UNIT_ROUNDOFF
 from dispersion.errors import ConvergenceError
 
-__all__ = ["MeshOmegaMax", "mesh_omega_max", "BISECTION_RTOL", "ESTIMATE_TOL", "T_REACH",
+__all__ = ["MeshOmegaMax", "mesh_omega_max", "BISECTION_RTOL", "ESTIMATE_TOL", "T_REACH", "T_BLOCK",
            "BISECTION_FLOPS", "proof_pencil"]
 
 #: Width of the final bracket, relative (the verified shift of 1e5 DOFs is about 6e-11).
 BISECTION_RTOL = 1e-9
 #: Residual of the Lanczos estimate (relative).
 ESTIMATE_TOL = 1e-8
-#: Elements along x over which the condensation matrix T of the strip's massless DOFs is kept.
+#: Elements along x over which the condensation matrix T of the strip's massless DOFs is kept,
+#: and the x-columns solved for at once.
 T_REACH = 6
+T_BLOCK = 64
 #: A band Cholesky dearer than this (n b^2 flops) is done only for the proof, not bisected.
 BISECTION_FLOPS = 2e8
 
@@ -151,25 +153,33 @@ def _columns(pen, rows: np.ndarray) -> np.ndarray:
 
 def _condensation(pen, Kmm, Kmr, m, r) -> sp.csr_matrix:
     """T (massless x massive): column j of T is -K_mm^-1 K_mr e_j with the massless DOFs
-    outside T_REACH x-columns of j held at 0 (any T bounds the condensed pencil from above;
-    this one is the exact minimizer up to the decay of K_mm^-1 over T_REACH elements)."""
+    outside a window around j's x-column held at 0 (any T bounds the condensed pencil from
+    above; this one is the exact minimizer up to the decay of K_mm^-1 over T_REACH elements).
+    The massive columns go in blocks of :data:`T_BLOCK` x-columns, one dense solve a block on
+    the massless DOFs within T_REACH of it."""
     import scipy.linalg as sla
 
     if pen.Z is not None:
         raise ValueError("a subspace pencil has no massless DOFs (removal refuses them)")
     cm, cr = _columns(pen, m), _columns(pen, r)
-    Kmm, Kmr = Kmm.tocsr(), Kmr.tocsc()
+    Kmm, Kmr = Kmm.tocsc(), Kmr.tocsc()
+    order_m = np.argsort(cm, kind="stable")
     rows, cols, vals = [], [], []
-    for c in np.unique(cr):
-        js = np.flatnonzero(cr == c)
+    lo_col, hi_col = int(cr.min()), int(cr.max())
+    for c0 in range(lo_col, hi_col + 1, T_BLOCK):
+        js = np.flatnonzero((cr >= c0) & (cr < c0 + T_BLOCK))
+        if js.size == 0:
+            continue
         block = Kmr[:, js]
         if block.nnz == 0:
             continue
-        w = np.flatnonzero(np.abs(cm - c) <= T_REACH)
+        lo = np.searchsorted(cm[order_m], c0 - T_REACH, side="left")
+        hi = np.searchsorted(cm[order_m], c0 + T_BLOCK - 1 + T_REACH, side="right")
+        w = np.sort(order_m[lo:hi])
         A = Kmm[w][:, w].toarray()
         B = block[w].toarray()
         X = sla.solve(A, B, assume_a="pos")
-        nz = X != 0
+        nz = (X != 0) & (np.abs(cm[w][:, None] - cr[js][None, :]) <= T_REACH)
         ii, jj = np.nonzero(nz)
         rows.append(w[ii])
         cols.append(js[jj])
@@ -180,26 +190,46 @@ def _condensation(pen, Kmm, Kmr, m, r) -> sp.csr_matrix:
                          shape=(m.size, r.size))
 
 
-def _verified(Kp, Mp, Ek, sigma: float):
-    """The certificate of sigma Mp - Kp, forming errors included."""
-    A = (sigma * Mp - Kp).tocsr()
-    E = 2 * UNIT_ROUNDOFF * (sigma * _abs(Mp) + _abs(Kp))
-    if Ek is not None:
-        E = E + Ek
-    return proves_positive_definite(A, _rowsum(E) * (1 + 1e-10)), A
+class _Proof:
+    """The proof pencil in band storage, built once: ``certify(sigma)`` factors
+    sigma Mp - Kp with the rounding of forming it (and of Kp itself: ``Ek``) in the shift."""
+
+    def __init__(self, Kp, Mp, Ek):
+        from dispersion.time_stepping.positive_definite import band_storage
+
+        _, bw = band_storage((abs(Kp) + abs(Mp)).tocsr())
+        self.ab_K, _ = band_storage(Kp, bw)
+        self.ab_M, _ = band_storage(Mp, bw)
+        self.rs_K, self.rs_M = _rowsum(_abs(Kp)), _rowsum(_abs(Mp))
+        self.rs_E = None if Ek is None else _rowsum(Ek)
+        self.bandwidth = bw
+
+    def certify(self, sigma: float):
+        from dispersion.time_stepping.positive_definite import proves_band
+
+        ab = sigma * self.ab_M - self.ab_K
+        E = 2 * UNIT_ROUNDOFF * (sigma * self.rs_M + self.rs_K)
+        if self.rs_E is not None:
+            E = E + self.rs_E
+        return proves_band(ab, E * (1 + 1e-10)), ab
 
 
-def _failure_vector(cert, A) -> np.ndarray:
+def _failure_vector(cert, ab: np.ndarray) -> np.ndarray:
     """A vector with x^T A x <= 0 (exact arithmetic) from a factorization that broke at row
-    k: x = [-A_(k-1)^-1 a_k; 1; 0]."""
+    k: x = [-A_(k-1)^-1 a_k; 1; 0] (A in lower band storage ``ab``)."""
     from scipy.linalg import lapack
 
     k = cert.failed_at
-    x = np.zeros(A.shape[0])
+    n = ab.shape[1]
+    x = np.zeros(n)
     x[k] = 1.0
     if k > 0:
         s = cert.scale
-        b = (s[:k] * A[:k, [k]].toarray().ravel()) * s[k]  # the scaled column above row k
+        bw = ab.shape[0] - 1
+        col = np.zeros(k)  # A[i, k] for i < k: ab[k - i, i]
+        i = np.arange(max(0, k - bw), k)
+        col[i] = ab[k - i, i]
+        b = (s[:k] * col) * s[k]  # the scaled column above row k
         y, info = lapack.dpbtrs(np.ascontiguousarray(cert.factor[:, :k]), b, lower=1)
         if info != 0 or not np.all(np.isfinite(y)):
             return x
@@ -207,11 +237,10 @@ def _failure_vector(cert, A) -> np.ndarray:
     return x
 
 
-def _rayleigh(pen, x_rows: np.ndarray) -> float:
-    """The Rayleigh quotient of the condensed pencil at a vector of its massive rows."""
-    from dispersion.discretization.finite_mesh.mesh_spectrum import condensed_operator
-
-    Kh, M, _, _ = condensed_operator(pen)
+def _rayleigh(condensed, x_rows: np.ndarray) -> float:
+    """The Rayleigh quotient of the condensed pencil ``(Khat, M_rr, ...)`` at a vector of its
+    massive rows."""
+    Kh, M = condensed[0], condensed[1]
     return float(x_rows @ (Kh @ x_rows)) / float(x_rows @ (M @ x_rows))
 
 
@@ -229,12 +258,13 @@ def mesh_omega_max(patch_or_pencil, *, rtol: float = BISECTION_RTOL,
     applications = sum(count)
     lower = float(w[-1]) ** 2
     Kp, Mp, Ek = proof_pencil(pen)
+    proof = _Proof(Kp, Mp, Ek)
     factorizations = 0
     upper = None
     eps = 1e-9
     while eps < 1.0:
         sigma = lower * (1 + eps)
-        cert, A = _verified(Kp, Mp, Ek, sigma)
+        cert, A = proof.certify(sigma)
         factorizations += 1
         if cert.proven:
             upper = sigma
@@ -247,19 +277,25 @@ def mesh_omega_max(patch_or_pencil, *, rtol: float = BISECTION_RTOL,
                             "Lanczos estimate (the bound is not known to be false)",
                             applications)
     n = Mp.shape[0]
-    bw = int(cert.bandwidth)
+    bw = int(proof.bandwidth)
     lo_bis = lower
+    condensed = None
     if n * (bw + 1) ** 2 <= BISECTION_FLOPS:
         while (upper - lo_bis) > rtol * upper:
             sigma = 0.5 * (lo_bis + upper)
-            cert, A = _verified(Kp, Mp, Ek, sigma)
+            cert, A = proof.certify(sigma)
             factorizations += 1
             if cert.proven:
                 upper = sigma
                 continue
             lo_bis = sigma
             x = _failure_vector(cert, A)
-            q = _rayleigh_of(pen, Kp, Mp, x)
+            if pen.massless.size and condensed is None:
+                from dispersion.discretization.finite_mesh.mesh_spectrum import (
+                    condensed_operator)
+
+                condensed = condensed_operator(pen)  # factored once for every quotient
+            q = _rayleigh_of(pen, Kp, Mp, x, condensed)
             if q is not None and lower < q <= upper:
                 lower = q
                 lo_bis = max(lo_bis, q)
@@ -272,7 +308,7 @@ def mesh_omega_max(patch_or_pencil, *, rtol: float = BISECTION_RTOL,
                         time.perf_counter() - t0, method, None, applications)
 
 
-def _rayleigh_of(pen, Kp, Mp, x) -> float | None:
+def _rayleigh_of(pen, Kp, Mp, x, condensed=None) -> float | None:
     """The Rayleigh quotient, on the true (condensed) pencil, of the proof pencil's vector x:
     a valid lower bound of the largest eigenvalue."""
     if not np.any(x):
@@ -280,5 +316,5 @@ def _rayleigh_of(pen, Kp, Mp, x) -> float | None:
     if pen.M is None:  # congruent form: the pencil vector is S x
         return float(x @ (Kp @ x)) / float(x @ (Mp @ x))
     if pen.massless.size:
-        return _rayleigh(pen, x)
+        return _rayleigh(condensed, x)
     return float(x @ (pen.K @ x)) / float(x @ (pen.M @ x))

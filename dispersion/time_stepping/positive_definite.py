@@ -41,7 +41,8 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-__all__ = ["UNIT_ROUNDOFF", "PDCertificate", "proves_positive_definite", "band_storage"]
+__all__ = ["UNIT_ROUNDOFF", "PDCertificate", "proves_positive_definite", "proves_band",
+           "band_storage"]
 
 UNIT_ROUNDOFF = 2.0 ** -53
 _ETA = 2.0 ** -1074
@@ -64,13 +65,15 @@ class PDCertificate:
 
 def band_storage(A: sp.spmatrix, bw: int | None = None) -> tuple[np.ndarray, int]:
     """Lower band storage ``ab[i - j, j] = A[i, j]`` (LAPACK's ``lower=1``) and the bandwidth."""
+    A = sp.csr_matrix(A)
+    A.sum_duplicates()  # one entry a position: the band is filled by assignment
     A = A.tocoo()
     low = A.row >= A.col
     r, c, v = A.row[low], A.col[low], A.data[low]
     if bw is None:
         bw = int(np.max(r - c, initial=0))
     ab = np.zeros((bw + 1, A.shape[0]))
-    np.add.at(ab, (r - c, c), v)
+    ab[r - c, c] = v
     return ab, bw
 
 
@@ -79,20 +82,27 @@ def proves_positive_definite(A: sp.spmatrix, error_rowsum: np.ndarray | None = N
     """Prove ``A + Delta`` positive definite for every symmetric Delta whose entries are
     bounded by a matrix with row sums ``error_rowsum`` (module docstring); ``A`` symmetric
     (its lower triangle is read)."""
+    ab, bw = band_storage(A)
+    return proves_band(ab, error_rowsum)
+
+
+def proves_band(ab: np.ndarray, error_rowsum: np.ndarray | None = None) -> PDCertificate:
+    """:func:`proves_positive_definite` of a matrix in lower band storage ``ab``."""
     from scipy.linalg import lapack
 
-    A = sp.csr_matrix(A)
-    n = A.shape[0]
-    d = A.diagonal()
+    bw = ab.shape[0] - 1
+    n = ab.shape[1]
+    d = ab[0]
     empty = np.zeros((1, n))
     if n == 0 or n >= _RUMP_N_MAX or not np.all(d > 0) or not np.all(np.isfinite(d)):
         return PDCertificate(False, math.nan, int(np.argmin(d > 0)) if n else None, empty,
-                             np.ones(n), 0)
+                             np.ones(n), bw)
     # van der Sluis: powers of two, so D A D is exact (no underflow at these sizes)
     scale = np.exp2(-np.ceil(0.5 * np.log2(d)))
-    As = (sp.diags(scale) @ A @ sp.diags(scale)).tocsr()
-    ab, bw = band_storage(As)
-    ds = ab[0].copy()
+    shifted = ab * scale[None, :]
+    for k in range(bw + 1):  # row i = j + k of column j: times scale_i
+        shifted[k, : n - k] *= scale[k:]
+    ds = shifted[0].copy()
     t = np.minimum(np.arange(n), bw)
     rump = float(np.sum((t + 3) * UNIT_ROUNDOFF * ds)) * (1 + 1e-10)
     delta = 0.0
@@ -101,7 +111,6 @@ def proves_positive_definite(A: sp.spmatrix, error_rowsum: np.ndarray | None = N
         delta = float(np.max(scale * np.asarray(error_rowsum, float)) * np.max(scale)) \
             * (1 + 1e-10)
     c = rump + delta + 6 * n * (n + float(ds.max())) * _ETA
-    shifted = ab.copy()
     shifted[0] = np.nextafter(ds - c, -np.inf)  # rounded down: below the exact a_ii - c
     factor, info = lapack.dpbtrf(shifted, lower=1)
     if info < 0:

@@ -133,12 +133,14 @@ def x_basis(patch):
     return SplineBasis1D.from_float_knots(_Knots(p, tuple(patch.float_knots()), N + p))
 
 
-def _grams(basis) -> dict:
+def _grams(basis, exact_x: bool, keys) -> dict:
+    """The x-Gram matrices: the Lagrange space's own; B-splines summed element by element
+    (``exact_x``: point by point, the order of summation the simulation's strip always had)."""
     if hasattr(basis, "grams"):
         return basis.grams()
-    from dispersion.discretization.finite_mesh.direction_mass import grams
+    from dispersion.discretization.finite_mesh.direction_mass import element_grams, grams
 
-    return grams(basis)
+    return grams(basis) if exact_x else element_grams(basis, keys)
 
 
 def _x_rule(patch):
@@ -193,7 +195,7 @@ def _mass_x(patch, basis, G, mass_kind: str, exact_x: bool = False):
         A = dm.periodic_x_mass(x_rule, p, N, h, inverse=inverse)
     elif x_rule.name in dm.FLOAT_RULES and not inverse and not (
             exact_x and patch.knots == "uniform") and _registered(x_rule):
-        A = dm.float_x_mass(x_rule, basis)
+        A = dm.float_x_mass(x_rule, basis, G=G if "11" in G and "00" in G else None)
     elif patch.knots == "uniform":
         A = dm.x_mass(x_rule, p, N, h, inverse=inverse)
     else:
@@ -285,7 +287,8 @@ def assemble(patch, *, exact_x: bool = False) -> FiniteMatrices:
     if rule.redistributes and patch.model == "bar" and mass_kind == "banded":
         raise InputError(f"mass rule {rule.name!r}: no banded inverse with a contact set")
     basis_x = x_basis(patch)
-    G = _grams(basis_x)
+    G = _grams(basis_x, exact_x, ("00", "11") if patch.model == "bar" else
+               ("00", "01", "10", "11"))
     Mx, Sx = _mass_x(patch, basis_x, G, mass_kind, exact_x)
     if patch.model == "bar":
         K = G["11"].tocsr()

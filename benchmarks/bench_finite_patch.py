@@ -17,7 +17,8 @@ In the same run:
   previous tree exported by ``git archive`` into a temporary folder and run in a subprocess.
 
 Each time is the best of ``--repeat`` runs; the machine's load average is recorded beside
-them (a speed measured on a loaded machine is not a result: run it on a quiet one).
+them, and the BLAS threads (a speed measured on a loaded machine is not a result: run it on
+a quiet one, or with ``OPENBLAS_NUM_THREADS=1`` there).
 
 Run:  python benchmarks/bench_finite_patch.py [--quick] [--out DIR]
 
@@ -159,7 +160,10 @@ def previous(commit: str, cases, repeat: int) -> dict:
 
 def markdown(result: dict) -> str:
     lines = ["# Benchmark: the finite patch", "",
-             f"Load average when run: {result['load']}; best of {result['repeat']}.", "",
+             f"Load average when run: {result['load']}; best of {result['repeat']}; "
+             f"OPENBLAS_NUM_THREADS={result['blas_threads']} (on a loaded machine threaded "
+             "OpenBLAS waits: a band Cholesky of 500 DOFs took 50 times longer with its "
+             "threads, measured).", "",
              "## The largest frequency of about 1e5 DOFs", "",
              "| patch | DOFs | assembly [s] | omega_max, proven [s] | estimate | proven bound | "
              "factorizations |", "|---|---|---|---|---|---|---|"]
@@ -201,6 +205,7 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
     commit = _previous_commit(args.previous)
     result = {"load": [round(x, 2) for x in os.getloadavg()], "repeat": args.repeat,
+              "blas_threads": os.environ.get("OPENBLAS_NUM_THREADS", "unset"),
               "scale": scale(QUICK_SCALE if args.quick else SCALE, args.repeat),
               "spectrum": spectrum(QUICK_SPECTRUM if args.quick else SPECTRUM, args.repeat),
               "previous_commit": commit,

@@ -118,12 +118,11 @@ def _exact_x_mass(rule, p: int, m: int, inverse: bool = False) -> tuple:
         from sympy.polys.matrices import DomainMatrix
 
         A = DomainMatrix.from_Matrix(sympy.Matrix(A)).to_field().inv().to_Matrix()
-    rows = A.tolist()
-    if not all(sympy.sympify(v).is_Rational for row in rows for v in row):
+    rows = sympy.Matrix(A).tolist()  # sympy numbers (never text)
+    if not all(isinstance(v, sympy.Rational) for row in rows for v in row):
         raise InputError(f"mass rule {rule.name!r}: its matrix on {m} elements of degree {p} "
                          "is not in rational numbers, so the mesh cannot extend it exactly")
-    return tuple(tuple(Fraction(int(v.p), int(v.q)) for v in map(sympy.sympify, row))
-                 for row in rows)
+    return tuple(tuple(Fraction(int(v.p), int(v.q)) for v in row) for row in rows)
 
 
 def _extend(A: tuple, n: int):

@@ -97,6 +97,22 @@ _MODULES = {
     "wave_simulation": "studies.wave_simulation",
     # the plate's material (issue 28 item 6)
     "elastic_law": "materials.elastic_law",
+    # the finite mesh (issue 35)
+    "finite_mesh": "discretization.finite_mesh",
+    "finite_patch": "discretization.finite_mesh.finite_patch",
+    "finite_matrices": "discretization.finite_mesh.finite_matrices",
+    "finite_assembly": "discretization.finite_mesh.finite_assembly",
+    "mapped_assembly": "discretization.finite_mesh.mapped_assembly",
+    "direction_mass": "discretization.finite_mesh.direction_mass",
+    "mesh_pencil": "discretization.finite_mesh.mesh_pencil",
+    "mesh_spectrum": "discretization.finite_mesh.mesh_spectrum",
+    "normalized_spectrum": "discretization.finite_mesh.normalized_spectrum",
+    "lattice_reference": "discretization.finite_mesh.lattice_reference",
+    "outlier_numbers": "discretization.finite_mesh.outlier_numbers",
+    "outlier_removal": "discretization.finite_mesh.outlier_removal",
+    "mesh_step": "time_stepping.mesh_step", "positive_definite": "time_stepping.positive_definite",
+    "lagrange_space": "splines.lagrange_space", "mesh_claims": "claims.mesh_claims",
+    "finite_patches": "studies.finite_patches",
 }
 _SUBMODULES = tuple(_MODULES)
 

@@ -33,6 +33,8 @@ __all__ = ["MOVED", "install", "package_getattr"]
 
 #: Old dotted module path -> its new path(s) (two where the functions went to two wings).
 MOVED: dict[str, tuple[str, ...]] = {
+    # the ring's NURBS geometry, shared by the contact wing and the finite mesh
+    "dispersion.contact.nurbs": ("dispersion.splines.nurbs",),
     # dispersion/waves/: the exact plate, the lattice, time stepping, the answers, materials
     "dispersion.waves.rayleigh_lamb": ("dispersion.continuum.rayleigh_lamb",),
     "dispersion.waves.numeric_frequency": ("dispersion.continuum.numeric_frequency",),

@@ -26,7 +26,7 @@ from __future__ import annotations
 from fractions import Fraction
 
 __all__ = ["P", "N", "PATCH_MODELS", "MODEL", "R", "MASS", "CONTACT", "GAMMA_S", "GAMMA_S_FLOAT", "NU",  # noqa: F822
-           "NU_FLOAT", "FIGURE2_R", "CONTACT_SETS",
+           "NU_FLOAT", "FIGURE2_R", "CONTACT_SETS", "MESH_ENDS",
            "REPORT_OUT", "REPORT_REFERENCE", "MAX_JOBS_PER_CPU", "P_MAX", "N_MAX",
            "R_RANGE"]  # GAMMA_S, NU, FIGURE2_R: module __getattr__
 
@@ -49,8 +49,11 @@ REPORT_REFERENCE = "reports"
 #: room for workers that wait on I/O. :func:`dispersion.sweep.parallel_map` starts at most one
 #: per usable CPU: its calls are CPU-bound sweeps.
 MAX_JOBS_PER_CPU = 4
-#: Contact sets of a singular mass through the thickness (:mod:`dispersion.symbolic.mass`).
+#: Contact sets of a singular mass through the thickness (:mod:`dispersion.mass_rules.mass`).
 CONTACT_SETS = ("top", "bottom", "both")
+#: The ends of a finite patch (:mod:`dispersion.discretization.finite_mesh.finite_patch`), here so that
+#: the command line names them without importing numerics.
+MESH_ENDS = ("free", "fixed", "sliding", "periodic")
 
 # Limits of the plate patch (:mod:`dispersion.symbolic.plate` checks them; stated here so
 # that the command line states its ranges without importing sympy).

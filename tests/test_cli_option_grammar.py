@@ -81,6 +81,7 @@ VALUES = {
         "--model": ["bar"], "--h": ["2"], "--material": ["aluminium"], "--cl": ["6000"],
         "--ct": ["3000"], "--c": ["1000"], "--contact": ["bottom"], "--gamma-s": ["0"],
         "--certify": [], "--format": ["json"], "--csv": ["out.csv"], "--json": ["out.json"],
+        "--elements": ["12"], "--ends": ["fixed"],
     },
     "ring": {
         "--mass": ["lumped"], "--scheme": ["standard"], "--level": ["1"],

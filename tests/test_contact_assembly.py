@@ -12,7 +12,7 @@ from dispersion.contact.assembly import (
     strain_energy,
 )
 from dispersion.contact.material import StVenantKirchhoff
-from dispersion.contact.nurbs import quarter_ring
+from dispersion.splines.nurbs import quarter_ring
 from dispersion.errors import InputError
 
 

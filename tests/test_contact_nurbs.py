@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from dispersion.contact.assembly import discretize
-from dispersion.contact.nurbs import quarter_ring
+from dispersion.splines.nurbs import quarter_ring
 from dispersion.errors import InputError
 
 

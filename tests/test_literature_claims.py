@@ -132,12 +132,29 @@ def _mutants(entry: dict) -> list[tuple[str, dict]]:
     if "omega_max" in entry:
         out.append(("omega_max", dict(entry, omega_max=f"({entry['omega_max']})"
                                                        "*(1 + 1/1000000)")))
+    if entry.get("kind") == "mesh_step":
+        out.append(("value", _mesh_mutant(entry)))
     if entry.get("kind") == "order_range":
         ref = next(entry[k] for k in ("same_leading_term_as", "at_least_order_of")
                    if k in entry)
         wrong = ref if entry.get("expect") == "differs" else "lumped"
         out.append(("mass", dict(entry, mass=wrong)))
     return out
+
+
+def _mesh_mutant(entry: dict) -> dict:
+    """A finite mesh's claim with its value moved: a count by one, a number by three times its
+    tolerance; one recorded to differ gets the derived value itself (which would make it hold)."""
+    from fractions import Fraction
+
+    (claim,) = parse_claims(_toml(entry))
+    if entry.get("expect") == "differs":
+        (result,) = verify_claims([claim], jobs=1).results
+        got = result.derived.split(" = ", 1)[1]
+        return dict(entry, value=int(got) if entry["quantity"] == "outliers" else got)
+    if entry["quantity"] == "outliers":
+        return dict(entry, value=int(entry["value"]) + 1)
+    return dict(entry, value=f"({entry['value']})*(1 + 3*{Fraction(claim.rtol).limit_denominator()})")
 
 
 def _mutation(bar: bool) -> None:

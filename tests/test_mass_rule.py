@@ -196,7 +196,7 @@ def test_ring_patch_takes_hrz_and_refuses_nodal_with_the_reason():
     # HRZ from the ring's own (rational, 2D) element matrices: diagonal, positive, and the
     # translational mass rho * area = rho * pi (R^2 - r^2) / 4 of the quarter ring kept
     from dispersion.contact.assembly import discretize, patch_mass
-    from dispersion.contact.nurbs import quarter_ring
+    from dispersion.splines.nurbs import quarter_ring
 
     disc = discretize(quarter_ring(1.0, 2.0, 2, 1))
     M = patch_mass(disc, 3.0, "hrz").toarray()

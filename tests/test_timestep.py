@@ -153,7 +153,7 @@ def test_cli_timestep_prints_step_and_ratio(capsys):
     out = capsys.readouterr().out
     cs = critical_step("hrz", 2, material="steel", h=1.0)
     row = next(csv.DictReader(ln for ln in out.splitlines() if not ln.startswith("#")))
-    assert (row["mass"], float(row["dt_crit [s]"]), float(row["ratio to consistent"])) == \
+    assert (row["mass"], float(row["lattice dt_crit [s]"]), float(row["ratio to consistent"])) == \
         ("hrz", cs.dt, cs.ratio)
     # the setting once, every symbol defined (issue 28: no repeated preamble, h and H defined)
     assert out.count("# model:") == 1 and "# H: half the plate thickness" in out
@@ -346,6 +346,6 @@ def test_a_proof_that_does_not_close_is_a_failure_in_words(capsys):
                      "--format", "json"]) == 0
         result = json.loads(capsys.readouterr().out)
         assert any("did not close" in f for f in result["failures"])
-        assert result["rows"][0]["omega_max H / c_T proven bound"] is None
+        assert result["rows"][0]["lattice omega_max H / c_T proven bound"] is None
     finally:
         ts.certified_omega_max = old

@@ -145,7 +145,7 @@ def test_the_stiffness_is_the_contact_wings_galerkin_stiffness():
     B-spline rectangle: an independent assembly of the same bilinear form."""
     from dispersion.contact.assembly import discretize, internal_force
     from dispersion.contact.material import StVenantKirchhoff
-    from dispersion.contact.nurbs import RingPatch
+    from dispersion.splines.nurbs import RingPatch
     from dispersion.splines.bspline import open_knot_vector
 
     mesh = _tiny(p=2, mass="lumped")

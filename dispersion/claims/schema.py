@@ -19,7 +19,7 @@ import re
 import sympy
 
 from dispersion.budget import check_claim
-from dispersion.claims import explicit, orders, reader
+from dispersion.claims import explicit, mesh_claims, orders, reader
 from dispersion.claims.claim import Claim
 from dispersion.claims.claim_model import PATCH_KEYS, check_patch, claim_model
 from dispersion.claims.claims_file import Lines, paper_claims_path, read_text, read_toml
@@ -35,13 +35,13 @@ __all__ = ["KINDS", "KAPPA", "KIND_FIELDS", "CLAIM_KEYS", "TOP_KEYS", "MAX_VALUE
            # where they are read, here for the readers of this module's documentation
            "EXACT", "Claim", "paper_claims_path"]
 
-KINDS = ("series", "error_order", "value", *explicit.KINDS, *orders.KINDS)
+KINDS = ("series", "error_order", "value", *explicit.KINDS, *orders.KINDS, *mesh_claims.KINDS)
 KAPPA = sympy.Symbol("kappa")
 #: The keys that belong to one kind of claim only (a claim of another kind refuses them).
 KIND_FIELDS = {"series": ("syntax", "coefficients", "series", "nu", "rtol"),
                "error_order": ("error_order", "bound"),
                "value": ("kappa", "nu", "omega", "rtol"),
-               **explicit.KIND_FIELDS, **orders.KIND_FIELDS}
+               **explicit.KIND_FIELDS, **orders.KIND_FIELDS, **mesh_claims.KIND_FIELDS}
 _KIND_KEYS = {key for keys in KIND_FIELDS.values() for key in keys}
 CLAIM_KEYS = {"name", "source", "note", "kind", "branch", "model", *PATCH_KEYS, "expect",
               *_KIND_KEYS}
@@ -118,7 +118,7 @@ def _claim(entry: dict, own: dict, i: int, lines: Lines) -> Claim:
     kind = entry.get("kind", "series")
     if kind not in KINDS:
         fail("kind", f"must be one of {', '.join(KINDS)}, got {shown(kind)}")
-    dynamic = kind in explicit.KINDS or kind in orders.KINDS
+    dynamic = kind in explicit.KINDS or kind in orders.KINDS or kind in mesh_claims.KINDS
     branch = entry.get("branch")
     if dynamic:  # checked with the model (the bar has one branch)
         branch = str(entry.get("branch", "-"))[:20]
@@ -289,4 +289,5 @@ def _series_claim(entry: dict, common: dict, fail) -> Claim:
 KIND_PARSERS = {"series": _series_claim, "error_order": _error_order_claim,
                 "value": _value_claim, "critical_step": explicit.step_claim,
                 "fully_discrete_series": explicit.series_claim,
-                "order_range": orders.order_claim, "leading_term": orders.leading_claim}
+                "order_range": orders.order_claim, "leading_term": orders.leading_claim,
+                "mesh_step": mesh_claims.mesh_claim}

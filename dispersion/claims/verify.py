@@ -15,7 +15,7 @@ from typing import Callable
 
 import sympy
 
-from dispersion.claims import explicit, orders
+from dispersion.claims import explicit, mesh_claims, orders
 from dispersion.claims.claim import Claim
 from dispersion.claims.claim_model import ClaimModel
 from dispersion.claims.claims_file import paper_claims_path
@@ -167,6 +167,8 @@ def _run_task(task: tuple):
         return explicit.run(task)
     if task[0] in orders.KINDS:
         return orders.run(task)
+    if task[0] in mesh_claims.KINDS:
+        return mesh_claims.run(task)
     if task[0] == "series":
         return _series(*task[1:])
     if task[0] == "value":
@@ -369,6 +371,8 @@ KIND_RULES = {
     "fully_discrete_series": KindRule(_explicit_tasks, _explicit_verdict),
     **{kind: KindRule(lambda c: [orders.task(c)],
                       lambda c, d: verdict(c, *orders.verdict(c, d))) for kind in orders.KINDS},
+    "mesh_step": KindRule(lambda c: [mesh_claims.task(c)],
+                          lambda c, d: verdict(c, *mesh_claims.verdict(c, d))),
 }
 
 

@@ -1,6 +1,7 @@
-"""``dispersion timestep``: :func:`dispersion.waves.critical_steps.critical_steps` on the
+"""``dispersion timestep``: :func:`dispersion.answers.critical_steps.critical_steps` on the
 command line: the critical step of central differences of mass rules and its ratio to the
-consistent mass's."""
+consistent mass's, on the periodic lattice and (``--elements N --ends ...``) on a finite
+mesh, whose proven step is the one that mesh may use."""
 from __future__ import annotations
 
 import sys
@@ -13,6 +14,12 @@ def _rules():
     from dispersion.mass_rules.mass_rule import RULE_NAMES
 
     return RULE_NAMES
+
+
+def _ends():
+    from dispersion.defaults import MESH_ENDS
+
+    return MESH_ENDS
 
 
 def _models():
@@ -62,6 +69,12 @@ def register(sub) -> None:
     p.add_argument("--gamma-s", type=rational("--gamma-s", 0, 1),
                    help="plate, singular rules: share of a contact shape function sent to "
                         "the second neighbour, in [0, 1] (default: 1/2)")
+    p.add_argument("--elements", type=integer("--elements", 1, 10**6), metavar="N",
+                   help="also the finite mesh of N elements (open knot vectors): its largest "
+                        "frequency and a proven stable step, in [1, 1000000]")
+    p.add_argument("--ends", type=choice("--ends", _ends), metavar="ENDS",
+                   help=lazy_help("with --elements: both ends {names} (default: free; "
+                                  "sliding: the plate strip's u_x = 0)", _ends))
     p.add_argument("--certify", action="store_true",
                    help="plate: also prove an upper bound on omega_max within 0.1 %% by "
                         "interval arithmetic (a proven stable step)")
@@ -87,6 +100,7 @@ RULES = [
     ("--certify", _plate, "to --model plate (the bar's maximum is exact)"),
     ("--contact", _singular, "to the singular rules of --model plate"),
     ("--gamma-s", _singular, "to the singular rules of --model plate"),
+    ("--ends", lambda a: a.elements is not None, "with --elements (a finite mesh)"),
 ]
 
 
@@ -101,7 +115,8 @@ def run(args) -> int:
     table = critical_steps(masses_from_args(args), 2 if args.p is None else args.p, model=args.model or "plate",
                            material=material, h=1.0 if args.h is None else args.h, n=args.n,
                            wave_speed=args.c, contact=args.contact or "top",
-                           gamma_s=args.gamma_s, certify=args.certify)
+                           gamma_s=args.gamma_s, certify=args.certify,
+                           elements=args.elements, ends=args.ends or "free")
     for name, why in table.skipped:  # a default rule without a step here: one line each
         print(f"skipped: mass {name}: {why}", file=sys.stderr)
     warn_failures(table, args)

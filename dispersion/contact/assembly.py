@@ -15,7 +15,7 @@ Full :math:`(p+1) \\times (p+1)` Gauss quadrature per element, any degree. With 
 Degrees of freedom are interleaved: ``2 * point + k`` for component ``k`` (0 = x, 1 = y).
 Matrices are ``scipy.sparse`` CSR. Unit out-of-plane thickness.
 
->>> from dispersion.contact.nurbs import quarter_ring
+>>> from dispersion.splines.nurbs import quarter_ring
 >>> from dispersion.contact.material import StVenantKirchhoff
 >>> disc = discretize(quarter_ring(1.0, 2.0, 2, 1))
 >>> bool(abs(disc.wdet.sum() - np.pi * 3 / 4) < 1e-6)  # area (R^2 - r^2) pi / 4
@@ -41,7 +41,7 @@ from dispersion.errors import InputError
 from dispersion.mass_rules.mass_rule import mass_variant
 from dispersion.contact.elastic_forces import ElasticForces
 from dispersion.contact.material import StVenantKirchhoff
-from dispersion.contact.nurbs import RingPatch, SplineBasis1D
+from dispersion.splines.nurbs import RingPatch, SplineBasis1D
 from dispersion.contact.redistribution import float_redistribution
 
 __all__ = [

@@ -21,7 +21,7 @@ sums each row exactly as the single product does).
 
 >>> from dispersion.contact.assembly import discretize
 >>> from dispersion.contact.material import StVenantKirchhoff
->>> from dispersion.contact.nurbs import quarter_ring
+>>> from dispersion.splines.nurbs import quarter_ring
 >>> op = ElasticForces.of(discretize(quarter_ring(1.0, 2.0, 2, 1)), StVenantKirchhoff(1.0, 0.3))
 >>> two = ElasticForces.stack([op, op])
 >>> u = np.linspace(0, 1e-3, op.n)

@@ -9,7 +9,7 @@ turns it into a :class:`~.contact_problem.ContactProblem` on the free DOFs. The 
 of the contact side, where :math:`\\mathbf x(\\xi) = \\sum_a R_a(\\xi) (\\mathbf X_a +
 \\mathbf u_a)` is linear in the control-point displacements.
 
->>> from dispersion.contact.nurbs import quarter_ring
+>>> from dispersion.splines.nurbs import quarter_ring
 >>> from dispersion.contact.material import StVenantKirchhoff
 >>> ring = quarter_ring(0.9, 1.0, 4, 2, np.pi, (0.0, 1.05))
 >>> model = patch_problem(ring, StVenantKirchhoff(1.0, 0.3), 1.0, "singular", "eta1",
@@ -33,7 +33,7 @@ from dispersion.contact.elastic_forces import ElasticForces
 from dispersion.contact.material import StVenantKirchhoff
 from dispersion.contact.contact_problem import ContactProblem
 from dispersion.contact.newmark_scheme import DENSE_MAX
-from dispersion.contact.nurbs import RingPatch, SplineBasis1D
+from dispersion.splines.nurbs import RingPatch, SplineBasis1D
 
 __all__ = ["SIDES", "Plane", "PatchProblem", "patch_problem", "rectangle_patch", "restrict",
            "side_basis", "side_points"]

@@ -28,7 +28,7 @@ from dispersion.contact.contact_problem import ContactProblem
 from dispersion.contact.newmark import integrate, integrate_many
 from dispersion.contact.newmark_scheme import CONTACT_SCHEMES, newmark_for
 from dispersion.rendering import Rendered
-from dispersion.contact.nurbs import RingPatch, quarter_ring
+from dispersion.splines.nurbs import RingPatch, quarter_ring
 from dispersion.contact.problem import Plane, patch_problem
 from dispersion.contact.scenario import Scenario
 

@@ -36,7 +36,7 @@ __all__ = ["SECTIONS", "DEFAULT_SECTIONS", "OPT_IN_SECTIONS", "section_module"]
 
 #: Report sections in the order they run (module names in :mod:`dispersion.report`).
 SECTIONS = ("coefficients", "branches", "ring", "series_speed", "studies", "peers",
-            "cost_accuracy", "lumping", "wave_simulation")
+            "cost_accuracy", "lumping", "finite_patches", "wave_simulation")
 #: Sections measured only when named (``--sections``): a sweep beyond the paper that takes
 #: minutes (wave_simulation: a few hundred simulations; the seconds each section took are in
 #: the timing table of its index page), which the main job does not ask of every user. Their

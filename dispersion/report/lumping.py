@@ -61,7 +61,9 @@ def render(data: dict, out: Path) -> str:
         f"patch ({data['plate_n']} control points through the thickness, r = b/H = "
         f"{data['plate_r']}; power-balance series to {data['series_order']} against the exact "
         "Rayleigh-Lamb series, exact in nu). A power in bold is lower than the consistent "
-        "mass's at the same p: the rule loses the order. Rules that keep the order of the "
+        "mass's at the same p: the rule loses the order. These are the periodic lattice's "
+        "orders and modelled steps; a finite mesh's boundary rows add outliers and lower its "
+        "step (section finite_patches). Rules that keep the order of the "
         f"consistent mass everywhere: {', '.join(keeps)}.\n\n"
         + "\n\n".join(parts) + "\n\n" + "\n".join(info) + "\n\n" + claims + failures
         + "Every coefficient: [lumping.md](lumping.md). Data: `lumping.json`. Regenerate: "

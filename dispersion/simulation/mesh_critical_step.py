@@ -1,38 +1,38 @@
-"""The critical step of the assembled strip: its largest frequency by Lanczos, beside the toolkit's.
+"""The critical step of the assembled strip: the finite patch's proven step, beside the lattice's.
 
 Central differences are stable for :math:`\\omega_{max} \\Delta t \\le 2` with
 :math:`\\omega_{max}^2` the largest eigenvalue of :math:`\\hat K x = \\omega^2 M_{rr} x`
 (massless DOFs condensed, :math:`\\hat K = K_{rr} - K_{rm} K_{mm}^{-1} K_{mr}`, as the loop
-solves them). It is found by the implicitly restarted Lanczos method (ARPACK through
-``scipy.sparse.linalg.eigsh``, largest algebraic, fixed start vector): on
-:math:`D^{-1/2} \\hat K D^{-1/2}` for a diagonal mass, else in ARPACK's generalized mode with
-the mass operator's factors. The Ritz value is a Rayleigh quotient, so it lies below the
-true maximum by at most the residual ``tol`` relative; the step the simulation takes is
-``courant`` times :math:`2/\\omega_{max}`, with :math:`\\omega_{max}` rounded *up* to six
-significant digits (the stable side, and the same step on every machine unless the maximum
-sits on a rounding boundary).
+solves them). The strip is a finite patch (:func:`~dispersion.simulation.strip_mesh.strip_patch`)
+and its largest frequency is the patch's
+(:func:`dispersion.time_stepping.mesh_step.mesh_omega_max`): a Lanczos estimate, then a
+*proven* upper bound by a verified Cholesky factorization of :math:`\\sigma M - K` (Rump
+2006), the two narrowed by bisection on the inertia. The step the simulation takes is
+``courant`` times :math:`2/\\omega_{max}`, with :math:`\\omega_{max}` the proven bound
+rounded *up* to six significant digits (the stable side, and the same step on every machine
+unless the maximum sits on a rounding boundary).
 
-The toolkit's step (:func:`dispersion.waves.timestep.patch_omega_max`) is that of the
+The toolkit's lattice step (:func:`dispersion.time_stepping.timestep.patch_omega_max`) is that of the
 periodic Bloch patch with the strip's thickness mesh, aspect ratio and rule: for p = 1 the
 two agree (the strip's maximum approaches the periodic one), for p >= 2 the open mesh's
 boundary functions raise :math:`\\omega_{max}` above it (the "outliers" of Cottrell et al.
-2006), so the mesh's own step is the smaller. Both are reported; the tests check the Lanczos
-value against the toolkit's dense :func:`dispersion.waves.timestep.matrix_critical_step` on a
-small strip.
+2006), so the mesh's own step is the smaller. Both are reported; the tests check the value
+against the toolkit's dense :func:`dispersion.time_stepping.timestep.matrix_critical_step` on a small
+strip.
 
 >>> from dispersion.simulation.strip import Strip, plan_strip
 >>> from dispersion.simulation.strip_mesh import strip_mesh
 >>> from dispersion.simulation.mass_operator import mass_operator
 >>> mesh = strip_mesh(plan_strip(Strip(p=1, travel=1, stations=2, elements_per_wavelength=3)))
 >>> step = mesh_critical_step(mesh, mass_operator(mesh))
->>> 0 < step.dt_crit <= 2 / step.omega_lanczos
+>>> 0 < step.dt_crit <= 2 / step.omega_proven <= 2 / step.omega_lanczos
 True
 
 References
 ----------
-R. B. Lehoucq, D. C. Sorensen, C. Yang, *ARPACK Users' Guide*, SIAM 1998 (implicitly
-restarted Lanczos, generalized mode 2). J. A. Cottrell, A. Reali, Y. Bazilevs, T. J. R.
-Hughes, CMAME 195 (2006) 5257-5296 (outlier frequencies of open meshes).
+S. M. Rump, BIT 46 (2006) 433-452. R. B. Lehoucq, D. C. Sorensen, C. Yang, *ARPACK Users'
+Guide*, SIAM 1998. J. A. Cottrell, A. Reali, Y. Bazilevs, T. J. R. Hughes, CMAME 195 (2006)
+5257-5296 (outlier frequencies of open meshes).
 """
 from __future__ import annotations
 
@@ -40,26 +40,25 @@ import math
 import time
 from dataclasses import dataclass
 
-import numpy as np
-
 from dispersion.errors import ConvergenceError
 
 __all__ = ["MeshCriticalStep", "mesh_critical_step", "LANCZOS_TOL", "round_up"]
 
-#: Relative residual of the Lanczos Ritz pair. The Ritz value is a Rayleigh quotient, below the
-#: maximum; on the strips of the study it lies within 1e-7 of it (checked against the dense
-#: solution in the tests), and the top of the spectrum is so clustered (relative gaps of 1e-6
-#: for p = 1) that a tighter residual costs thousands of iterations for no change in the step.
-LANCZOS_TOL = 1e-6
+#: Relative residual of the Lanczos estimate (:data:`dispersion.time_stepping.mesh_step.ESTIMATE_TOL`).
+#: The Ritz value is a Rayleigh quotient, below the maximum; the proven bound and the
+#: bisection on the inertia then narrow the bracket to 1e-9, whatever the residual.
+LANCZOS_TOL = 1e-8
 
 
 @dataclass(frozen=True)
 class MeshCriticalStep:
-    """``omega_lanczos`` (the Ritz value's root), ``omega_max`` (rounded up to 6 digits),
-    ``dt_crit = 2 / omega_max``; ``omega_bloch`` and ``dt_bloch`` the toolkit's periodic
-    patch (None if not asked); ``iterations``: Lanczos operator applications; ``seconds``:
-    the Lanczos estimate (what a run pays for its step); ``bloch_seconds``: the toolkit's
-    Bloch-patch step beside it (a comparison, not needed to run)."""
+    """``omega_lanczos`` (the estimate: the best Rayleigh quotient, a lower bound),
+    ``omega_max`` (the proven bound rounded up to 6 digits), ``dt_crit = 2 / omega_max``;
+    ``omega_bloch`` and ``dt_bloch`` the toolkit's periodic patch (None if not asked);
+    ``iterations``: Lanczos operator applications; ``seconds``: the proven largest frequency
+    (what a run pays for its step); ``bloch_seconds``: the toolkit's Bloch-patch step beside
+    it (a comparison, not needed to run); ``omega_proven`` the proven upper bound itself
+    (:func:`dispersion.time_stepping.mesh_step.mesh_omega_max`)."""
 
     omega_lanczos: float
     omega_max: float
@@ -71,6 +70,8 @@ class MeshCriticalStep:
     #: Why the toolkit has no Bloch-patch step for this rule (None: it has one, or not asked).
     bloch_failure: str | None = None
     bloch_seconds: float = 0.0
+    #: The proven upper bound on the largest frequency (unrounded).
+    omega_proven: float | None = None
 
     @property
     def ratio_to_bloch(self) -> float | None:
@@ -89,86 +90,29 @@ def round_up(x: float, digits: int = 6) -> float:
     return up if up >= x else float(f"{math.ceil(x / 10.0**e) + 1}e{e}")
 
 
-def _operator(mesh, op):
-    """(A, M, Minv) of the pencil on the massive DOFs, counting applications of A."""
-    import scipy.sparse as sp
-    import scipy.sparse.linalg as spla
-
-    r_dofs = (2 * op.massive[:, None] + np.arange(2)).ravel()
-    m_dofs = (2 * op.massless[:, None] + np.arange(2)).ravel()
-    K = mesh.K
-    count = [0]
-    if m_dofs.size:
-        Krr = K[r_dofs][:, r_dofs].tocsr()
-        Krm = K[r_dofs][:, m_dofs].tocsr()
-        Kmm = spla.splu(K[m_dofs][:, m_dofs].tocsc())
-
-        def kmul(x):
-            return Krr @ x - Krm @ Kmm.solve(Krm.T @ x)
-    else:
-        def kmul(x):
-            return K @ x
-    n = r_dofs.size
-    if op.kind in ("banded", "dense"):  # M^-1 K, similar to a symmetric matrix: real spectrum
-        def step(x):
-            count[0] += 1
-            return op.solve(kmul(np.ravel(x)).reshape(-1, 2)).ravel()
-
-        return spla.LinearOperator((n, n), matvec=step, dtype=float), "nonsymmetric", None, count
-    if op.kind == "diagonal":
-        s = 1.0 / np.sqrt(np.repeat(op.diagonal, 2))
-
-        def scaled(x):
-            count[0] += 1
-            return s * kmul(s * np.ravel(x))
-
-        return spla.LinearOperator((n, n), matvec=scaled, dtype=float), None, None, count
-    M = sp.kron(mesh.mass[op.massive][:, op.massive], sp.identity(2), format="csr")
-
-    def counted(x):
-        count[0] += 1
-        return kmul(np.ravel(x))
-
-    Minv = spla.LinearOperator((n, n), matvec=lambda b: op.solve(np.reshape(b, (-1, 2))).ravel(),
-                               dtype=float)
-    return spla.LinearOperator((n, n), matvec=counted, dtype=float), M, Minv, count
-
-
-def mesh_critical_step(mesh, op, *, bloch: bool = False, tol: float = LANCZOS_TOL
+def mesh_critical_step(mesh, op=None, *, bloch: bool = False, tol: float = LANCZOS_TOL
                        ) -> MeshCriticalStep:
-    """Largest frequency of the assembled strip by Lanczos (and the Bloch patch's if ``bloch``).
+    """Largest frequency of the assembled strip, proven (and the Bloch patch's if ``bloch``).
 
     Parameters
     ----------
     mesh : StripMesh
     op : MassOperator
+        Kept for the callers; the finite patch's pencil carries the same mass.
     bloch : bool
-        Also the toolkit's periodic-patch value (:func:`dispersion.waves.timestep.patch_omega_max`).
+        Also the toolkit's periodic-patch value (:func:`dispersion.time_stepping.timestep.patch_omega_max`).
     tol : float
-        Relative residual of the Lanczos Ritz pair.
+        Relative residual of the Lanczos estimate (the bracket is then narrowed to 1e-9).
     """
-    import scipy.sparse.linalg as spla
+    from dispersion.discretization.finite_mesh.mesh_pencil import mesh_pencil
+    from dispersion.time_stepping.mesh_step import mesh_omega_max
 
     t0 = time.perf_counter()
-    A, M, Minv, count = _operator(mesh, op)
-    v0 = np.random.default_rng(0).standard_normal(A.shape[0])
-    try:
-        if isinstance(M, str):  # the product of the banded inverse mass with K: Arnoldi
-            vals = spla.eigs(A, k=1, which="LR", tol=tol, v0=v0,
-                             ncv=min(A.shape[0] - 1, 60), maxiter=5000,
-                             return_eigenvectors=False).real
-        else:
-            vals = spla.eigsh(A, k=1, M=M, Minv=Minv, which="LA", tol=tol, v0=v0,
-                              ncv=min(A.shape[0] - 1, 60), maxiter=5000,
-                              return_eigenvectors=False)
-    except spla.ArpackNoConvergence as exc:
-        raise ConvergenceError(f"Lanczos did not converge on the strip's largest frequency "
-                               f"({exc})") from None
-    w2 = float(vals[-1])
-    if not w2 > 0:
-        raise ConvergenceError(f"the strip's largest eigenvalue is {w2}, not positive")
-    omega = math.sqrt(w2)
-    omega_max = round_up(omega)
+    pen = mesh_pencil(mesh.patch, mesh.matrices)
+    w = mesh_omega_max(pen, tol=tol)
+    if w.omega_proven is None:
+        raise ConvergenceError(f"the strip's largest frequency was not proven: {w.failure}")
+    omega_max = round_up(w.omega_proven)
     seconds = time.perf_counter() - t0
     t0 = time.perf_counter()
     omega_b = dt_b = why = None
@@ -179,8 +123,8 @@ def mesh_critical_step(mesh, op, *, bloch: bool = False, tol: float = LANCZOS_TO
             omega_b, dt_b = bloch_step(mesh.plan)
         except InputError as exc:  # a rule the Bloch plate patch does not model
             why = exc.reason  # the fact, without advice the strip cannot follow
-    return MeshCriticalStep(omega, omega_max, 2.0 / omega_max, omega_b, dt_b, count[0],
-                            seconds, why, time.perf_counter() - t0)
+    return MeshCriticalStep(w.omega, omega_max, 2.0 / omega_max, omega_b, dt_b, w.applications,
+                            seconds, why, time.perf_counter() - t0, w.omega_proven)
 
 
 def bloch_step(plan) -> tuple[float, float]:

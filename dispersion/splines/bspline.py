@@ -352,8 +352,19 @@ class SplineBasis1D:
         n_elements = check_positive_int("number of elements", n_elements, maximum=MAX_ELEMENTS)
         if not b > a:
             raise InputError(f"interval must have b > a, got [{a}, {b}]")
-        kv = UniformKnots(p, n_elements, float(a), float(b))
-        knots = np.asarray(kv.knots)
+        return cls.from_float_knots(UniformKnots(p, n_elements, float(a), float(b)))
+
+    @classmethod
+    def from_float_knots(cls, kv) -> SplineBasis1D:
+        """The basis of an open knot vector in floats (``kv``: ``p``, ``n`` and ``knots``,
+        e.g. :class:`UniformKnots`, or graded knots): every span non-empty, each end knot
+        repeated p + 1 times; the same sampling as :meth:`uniform`, any knots."""
+        p = kv.p
+        knots = np.asarray(kv.knots, dtype=float)
+        n_elements = knots.size - 2 * p - 1
+        if n_elements < 1 or np.any(np.diff(knots[p:knots.size - p]) <= 0):
+            raise InputError("knots must be open with p + 1 equal end knots and increasing "
+                             "inner knots")
         e = np.arange(n_elements)
         spans = np.column_stack([knots[p + e], knots[p + e + 1]])
         u = 0.5 - 0.5 * np.cos((2 * np.arange(p + 1) + 1) * np.pi / (2 * p + 2))

@@ -33,8 +33,10 @@ from dispersion.errors import InputError, as_real, check_positive
 __all__ = [
     "ALUMINIUM",
     "MATERIALS",
+    "PLIES",
     "Material",
     "material",
+    "ply",
     "material_from_moduli",
     "user_material",
 ]
@@ -172,6 +174,8 @@ MATERIALS: dict[str, Material] = {
     "titanium": _row("titanium", 6070.0, 3125.0, 4500.0, "Titanium"),
     "glass": _row("glass", 5640.0, 3280.0, 2320.0, "Glass, pyrex"),
     "pmma": _row("pmma", 2680.0, 1100.0, 1180.0, "Lucite"),
+    "nickel": _row("nickel", 6040.0, 3000.0, 8900.0, "Nickel"),
+    "magnesium": _row("magnesium", 5770.0, 3050.0, 1740.0, "Magnesium, annealed"),
 }
 
 
@@ -181,7 +185,7 @@ def material(name: str) -> Material:
     >>> material("unobtainium")
     Traceback (most recent call last):
     ...
-    dispersion.errors.InputError: material must be one of aluminium, aluminium-rolled, brass, copper, glass, pmma, stainless-steel, steel, titanium; got 'unobtainium'
+    dispersion.errors.InputError: material must be one of aluminium, aluminium-rolled, brass, copper, glass, magnesium, nickel, pmma, stainless-steel, steel, titanium; got 'unobtainium'
     """
     key = str(name).strip().lower().replace("_", "-").replace(" ", "-")
     key = {"aluminum": "aluminium", "stainless": "stainless-steel", "plexiglass": "pmma",
@@ -189,3 +193,40 @@ def material(name: str) -> Material:
     if key not in MATERIALS:
         raise InputError(f"material must be one of {', '.join(sorted(MATERIALS))}; got {name!r}")
     return MATERIALS[key]
+
+
+def _plies() -> dict:
+    """The fibre-composite plies (transversely isotropic, fibres along axis 1), built on
+    first use (the isotropic table needs no numpy)."""
+    from dispersion.materials.solid import Solid
+    from dispersion.materials.stiffness import voigt
+
+    def ti(c11, c12, c22, c23, c55):   # GPa; C13 = C12, C33 = C22, C44 = (C22 - C23)/2
+        C = [[c11, c12, c12, 0, 0, 0], [c12, c22, c23, 0, 0, 0], [c12, c23, c22, 0, 0, 0],
+             [0, 0, 0, (c22 - c23) / 2, 0, 0], [0, 0, 0, 0, c55, 0], [0, 0, 0, 0, 0, c55]]
+        return voigt([[v * 1e9 for v in row] for row in C], "transversely isotropic")
+
+    return {
+        "T800/913": Solid(ti(154.0, 3.7, 9.5, 5.2, 4.2), 1550.0, "T800/913",
+                          "A. M. A. Huber, M. G. R. Sause, JASA 144 (2018) 3236, "
+                          "doi:10.1121/1.5082299 (CFRP ply, stiffness matrix as printed)"),
+    }
+
+
+#: Unidirectional fibre-composite plies by name (:func:`ply`); filled on first use.
+PLIES: dict = {}
+
+
+def ply(name: str):
+    """The ply ``name`` of :data:`PLIES` (a :class:`~dispersion.materials.solid.Solid`),
+    else an InputError listing them.
+
+    >>> ply("t800/913").rho
+    1550.0
+    """
+    if not PLIES:
+        PLIES.update(_plies())
+    key = {k.lower(): k for k in PLIES}.get(str(name).strip().lower())
+    if key is None:
+        raise InputError(f"ply must be one of {', '.join(sorted(PLIES))}; got {name!r}")
+    return PLIES[key]

@@ -1,0 +1,333 @@
+"""Every propagating mode of a layered plate at given frequencies: found by SAFE, polished on
+the exact relation, counted and certified.
+
+At each :math:`\\Omega` and for each :class:`~dispersion.continuum.dynamic_stiffness.ModeClass`:
+
+1. **Candidates.** The B-spline SAFE pencil (:mod:`dispersion.continuum.safe`) gives every
+   wavenumber at once; those near the positive real axis are candidates.
+2. **Counted walk.** The exact count :math:`N(\\kappa, \\Omega)` (the class's modes below
+   :math:`\\Omega` at :math:`\\kappa`, :func:`~dispersion.continuum.dynamic_stiffness.count_and_det`)
+   is taken at :math:`\\kappa \\to 0`, on both sides of each candidate, between candidates and
+   at a :math:`\\kappa_{hi}` where it is 0. Between two test points whose counts differ by one
+   lies a root (the determinant changes sign); where they differ by more the interval is
+   halved, counted again and so on, so a root SAFE missed is found by the count. Each root
+   is closed by the Illinois method on :math:`\\det K` and named by the counts on its sides:
+   the branch that leaves (count falls, forward wave) or joins (count rises, backward wave)
+   the branches below :math:`\\Omega` -- S_j, A_j, SH_n as for one isotropic layer.
+3. **Certified.** Each root's :math:`\\det K` is evaluated in ball arithmetic
+   (:func:`~dispersion.continuum.dynamic_stiffness.det_ball`) at :math:`\\kappa(1 \\pm \\delta)`,
+   :math:`\\delta` = :data:`ROOT_RTOL` / 4: opposite certain signs prove a root within
+   :data:`ROOT_RTOL` relative (else the bracket is bisected with certain signs, or the root
+   is listed in ``failures``). The group velocity
+   :math:`c_g = d\\Omega/d\\kappa = -\\bar v^T K_\\kappa v / \\bar v^T K_\\Omega v` (v the null
+   vector of K) must have the sign the counts say, else the root is a failure.
+
+Test points with equal counts are taken to enclose no root: a pair of roots between two of
+them (a branch touching :math:`\\Omega` at a zero-group-velocity point) is seen only if a test
+point lies between the pair -- the real part of every SAFE eigenvalue with
+:math:`|\\mathrm{Im}\\,\\kappa| < 0.05 |\\kappa|` is one, so a pair SAFE resolves, even as a
+complex pair, is found.
+
+>>> from dispersion.continuum.layered_plate import layered_plate
+>>> from dispersion.waves.materials import material
+>>> r = layered_modes(layered_plate([(material("steel"), 1.0)]), [1.0])
+>>> [(lab, round(float(k), 10)) for lab, k in zip(r.label, r.kappa)]
+[('S0', 0.5997640215), ('A0', 1.322211012), ('SH0', 1.0)]
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from dispersion.continuum.dynamic_stiffness import (ModeClass, assemble, count_and_det,
+                                                    det_ball, mode_classes, sublayers)
+from dispersion.continuum.safe import elements_per_layer, safe_pencil, wavenumbers
+from dispersion.errors import InputError
+
+__all__ = ["LayeredRoots", "layered_modes", "ROOT_RTOL", "OMEGA_RANGE", "KAPPA_LIMIT"]
+
+#: Relative accuracy every root is certified to (or listed in ``failures``).
+ROOT_RTOL = 1e-12
+#: Dimensionless frequencies accepted (omega h / c_ref). Rule: the isotropic calculator's
+#: range (:data:`dispersion.waves.frequency.FREQUENCY_OMEGA_MIN`, ``_MAX``).
+OMEGA_RANGE = (2e-3, 30.0)
+#: Largest kappa_hi tried before a class is listed as a failure.
+KAPPA_LIMIT = 1000.0
+#: Depth of the halving of an interval whose counts differ by more than one.
+MAX_HALVINGS = 45
+
+
+@dataclass(frozen=True)
+class LayeredRoots:
+    """Propagating modes at each requested :math:`\\Omega` (units of
+    :class:`~dispersion.continuum.layered_plate.ScaledStack`).
+
+    One entry per root: ``index`` (into ``omega``), ``label``, ``family`` (S, A, SH, L, M),
+    ``kappa`` and ``group`` (:math:`c_g / c_{ref}`). ``cutoffs`` maps each label with a
+    cut-off at or below ``max(omega)`` to its Omega at kappa = 0; ``failures`` holds
+    ``(Omega, class, reason)`` wherever a root or a count was not certified; ``classes`` the
+    names of the classes solved.
+    """
+
+    plate: object
+    omega: np.ndarray
+    index: np.ndarray
+    label: tuple
+    family: tuple
+    kappa: np.ndarray
+    group: np.ndarray
+    cutoffs: dict
+    failures: tuple
+    classes: tuple
+    at_cutoff: tuple = ()
+
+    @property
+    def phase(self) -> np.ndarray:
+        return self.omega[self.index] / self.kappa
+
+
+def _close(stack, cls, elements, kappa_or_none, omega, a, b):
+    """Roots of det K on the brackets ``[a, b]`` (arrays with a sign change each) by the
+    Illinois method, all at once: in kappa at one ``omega`` (``kappa_or_none`` None), or in
+    Omega at one kappa (``omega`` None, ``a, b`` frequencies). Returns (roots, still open)."""
+    from dispersion.waves.illinois import illinois
+
+    def evaluate(x, idx=None):
+        if omega is not None:
+            return count_and_det(stack, cls, elements, x, omega)
+        return count_and_det(stack, cls, elements, np.full(x.size, kappa_or_none), x)
+
+    _, la, sa = evaluate(a)
+    _, lb, sb = evaluate(b)
+    ref = np.maximum(la, lb)
+    ref = np.where(np.isfinite(ref), ref, 0.0)
+
+    def f(idx, x):
+        if omega is not None:
+            _, ld, sg = count_and_det(stack, cls, elements, x, omega)
+        else:
+            _, ld, sg = count_and_det(stack, cls, elements, np.full(x.size, kappa_or_none), x)
+        return sg * np.exp(np.clip(ld - ref[idx], -600, 600))
+
+    fa = sa * np.exp(np.clip(la - ref, -600, 600))
+    fb = sb * np.exp(np.clip(lb - ref, -600, 600))
+    roots, _, _, still = illinois(f, a.copy(), b.copy(), fa, fb, 1e-16)
+    return roots, still
+
+
+def _certify(stack, cls, elements, omega, k):
+    """``(kappa, ok)``: the root certified by certain opposite signs of det K (balls) at
+    kappa (1 +- delta); else a certain bracket around it halved with certain signs."""
+    delta = ROOT_RTOL / 4
+
+    def sign(x):
+        d = det_ball(stack, cls, elements, x, omega).real
+        if d > 0:
+            return 1
+        if d < 0:
+            return -1
+        return 0
+
+    lo, hi = sign(k * (1 - delta)), sign(k * (1 + delta))
+    if lo * hi < 0:
+        return k, True
+    for w in (1e-11, 1e-9, 1e-7):
+        a, b = k * (1 - w), k * (1 + w)
+        sa, sb = sign(a), sign(b)
+        if sa * sb < 0:
+            for _ in range(60):
+                if b - a <= 2 * delta * abs(a):
+                    return 0.5 * (a + b), True
+                m = 0.5 * (a + b)
+                sm = sign(m)
+                if sm == 0:
+                    return k, False
+                if sm == sa:
+                    a = m
+                else:
+                    b = m
+            return k, False
+    return k, False
+
+
+def _group(stack, cls, elements, omega, k):
+    K, Kk, Kw = assemble(stack, cls, elements, k, omega, derivatives=True)
+    lam, vec = np.linalg.eigh((K + K.conj().T) / 2)
+    v = vec[:, np.argmin(np.abs(lam))]
+    num = np.real(np.conj(v) @ Kk @ v)
+    den = np.real(np.conj(v) @ Kw @ v)
+    return -num / den
+
+
+def _class_roots(stack, cls: ModeClass, omega: float):
+    """Roots, labels, group velocities and failures of one class at one Omega."""
+    failures = []
+    # SAFE candidates (discretised for the largest wavenumber they may have)
+    k_guess = 2.0 * omega + 2.0
+    for _ in range(8):
+        pencil = safe_pencil(stack, cls, elements_per_layer(stack, cls, omega, k_guess))
+        kap = wavenumbers(pencil, omega)
+        kap = kap[np.isfinite(kap)]
+        near = kap[(kap.real > 0) & (np.abs(kap.imag) < 0.05 * np.abs(kap))]
+        top = float(np.max(near.real, initial=0.0))
+        if top < 0.8 * k_guess:
+            break
+        k_guess = 1.5 * top + 1.0
+    cand = np.sort(near.real)
+    exact_real = np.sort(kap[(kap.real > 0) & (np.abs(kap.imag) <= 1e-6 * np.abs(kap))].real)
+    k_hi = 1.2 * max(float(cand.max(initial=0.0)), omega) + 0.5
+    elements = None
+    for _ in range(20):
+        elements = sublayers(stack, cls, omega, k_hi)
+        n_hi = count_and_det(stack, cls, elements, np.array([k_hi]), omega)[0][0]
+        if n_hi == 0:
+            break
+        k_hi *= 1.5
+        if k_hi > KAPPA_LIMIT:
+            failures.append((omega, cls.name, f"no kappa_hi <= {KAPPA_LIMIT:g} with every "
+                             "branch above Omega"))
+            return [], [], [], failures, elements
+    # test points: near zero, around and between candidates, the near-real parts, kappa_hi
+    k_lo = 1e-9 * max(omega, 1.0)
+    pts = [k_lo, k_hi]
+    for c in exact_real:
+        pts += [c * (1 - 1e-7), c * (1 + 1e-7)]
+    pts += list(cand)
+    pts = np.unique(np.clip(np.array(pts), k_lo, k_hi))
+    mids = 0.5 * (pts[1:] + pts[:-1])
+    pts = np.unique(np.concatenate([pts, mids]))
+    N, _, _ = count_and_det(stack, cls, elements, pts, omega)
+    simple = []   # (a, b, count at a, count at b): one root each
+    todo = [(pts[i], pts[i + 1], int(N[i]), int(N[i + 1]), 0)
+            for i in range(pts.size - 1) if N[i] != N[i + 1]]
+    while todo:
+        a, b, na, nb, depth = todo.pop()
+        if abs(na - nb) == 1:
+            simple.append((a, b, na, nb))
+            continue
+        if depth >= MAX_HALVINGS:
+            failures.append((omega, cls.name, f"{abs(na - nb)} roots closer than round-off "
+                             f"near kappa={a:.6g}"))
+            continue
+        m = 0.5 * (a + b)
+        nm = int(count_and_det(stack, cls, elements, np.array([m]), omega)[0][0])
+        for lo, hi, n1, n2 in ((a, m, na, nm), (m, b, nm, nb)):
+            if n1 != n2:
+                todo.append((lo, hi, n1, n2, depth + 1))
+    roots, labels, groups = [], [], []
+    if not simple:
+        return roots, labels, groups, failures, elements
+    simple.sort()
+    found, still = _close(stack, cls, elements, None, omega, np.array([x[0] for x in simple]),
+                          np.array([x[1] for x in simple]))
+    for (a, b, na, nb), k, open_ in zip(simple, found, still):
+        k = float(k)
+        if open_:
+            failures.append((omega, cls.name, f"root refinement did not converge near "
+                             f"kappa={k:.6g}"))
+        kc, ok = _certify(stack, cls, elements, omega, k)
+        if not ok:
+            failures.append((omega, cls.name, f"root near kappa={k:.6g} not certified "
+                             f"to {ROOT_RTOL:.0e} relative"))
+        g = _group(stack, cls, elements, omega, kc)
+        if not (np.isfinite(g) and np.sign(g) == np.sign(na - nb)):
+            failures.append((omega, cls.name, f"group velocity at kappa={kc:.6g} "
+                             f"({g:.3g}) disagrees with the count ({na} -> {nb})"))
+        roots.append(kc)
+        labels.append(cls.label(min(na, nb)))
+        groups.append(g)
+    return roots, labels, groups, failures, elements
+
+
+def _cutoffs(stack, cls: ModeClass, omega_top: float):
+    """``[(label, Omega)]`` of the class's branches at kappa = 0 up to ``omega_top`` and
+    the first above it: the count N(0, Omega), monotone in Omega, between SAFE seeds; each
+    cut-off closed on det K."""
+    from dispersion.continuum.safe import frequencies
+
+    pencil = safe_pencil(stack, cls, elements_per_layer(stack, cls, 1.5 * omega_top + 2, 1.0))
+    seeds = frequencies(pencil, 0.0)
+    seeds = seeds[seeds > 1e-6 * omega_top]
+    above = seeds[seeds > omega_top]
+    top = float(above[0]) * 1.05 if above.size else 1.5 * omega_top + 2
+    seeds = seeds[seeds < top]
+    elements = sublayers(stack, cls, top, 1.0)
+    # the rigid translations the class allows are its branches with cut-off 0 (a count
+    # at kappa = 0 and a tiny Omega is round-off: the static stiffness is singular there)
+    zero = len([d for d in cls.dofs if not (cls.half and d in cls.mid_fixed)])
+    out = [(cls.label(j), 0.0) for j in range(zero)]
+    if not seeds.size:
+        return out
+    grid = np.unique(np.concatenate([[seeds[0] / 2], seeds * (1 - 1e-7),
+                                     seeds * (1 + 1e-7), [top]]))
+    counts = count_and_det(stack, cls, elements, np.zeros(grid.size), grid)[0]
+    if counts[0] != zero:
+        return out + [(f"{cls.name}?", float("nan"))]
+    jump = np.flatnonzero(np.diff(counts) == 1)
+    if jump.size:
+        w, _ = _close(stack, cls, elements, 0.0, None, grid[jump], grid[jump + 1])
+        out += [(cls.label(int(counts[i])), float(x)) for i, x in zip(jump, w)]
+    return out
+
+
+def layered_modes(plate, omega, *, families=None) -> LayeredRoots:
+    """Every propagating mode of ``plate`` (a
+    :class:`~dispersion.continuum.layered_plate.LayeredPlate`, undamped) at each
+    dimensionless frequency in ``omega`` (:math:`\\Omega = \\omega h / c_{ref}`, see
+    :meth:`~dispersion.continuum.layered_plate.LayeredPlate.scaled`), each root certified or
+    listed in ``failures``. ``families``: a subset of the plate's families (S, A, SH, L, M) to
+    solve (default: all).
+    """
+    if not plate.lossless:
+        raise InputError("layered_modes: the plate is damped; its wavenumbers are complex "
+                         "(use the damped solver)")
+    try:
+        omega = np.atleast_1d(np.asarray(omega, dtype=float))
+    except (TypeError, ValueError):
+        raise InputError("Omega must be a number or a list of numbers") from None
+    if omega.ndim != 1 or omega.size == 0 or not np.all(np.isfinite(omega)):
+        raise InputError("Omega must be a non-empty 1-d list of finite numbers")
+    lo, hi = OMEGA_RANGE
+    bad = (omega < lo) | (omega > hi)
+    if np.any(bad):
+        raise InputError(f"Omega = omega h / c_ref must lie in [{lo:g}, {hi:g}], got "
+                         f"{omega[bad][0]!r}")
+    stack = plate.scaled()
+    classes = mode_classes(plate)
+    if families is not None:
+        known = sorted({c.family for c in classes})
+        unknown = [f for f in families if f not in known]
+        if unknown or not families:
+            raise InputError(f"families must be a non-empty subset of {', '.join(known)} for "
+                             f"this plate; got {', '.join(map(str, families)) or 'none'}")
+        classes = tuple(c for c in classes if c.family in families)
+    rows, failures = [], []
+    for i, w in enumerate(omega):
+        for cls in classes:
+            roots, labels, groups, fails, _ = _class_roots(stack, cls, float(w))
+            failures += fails
+            rows += [(i, lab, cls.family, k, g) for k, lab, g in zip(roots, labels, groups)]
+    order = {c.name: n for n, c in enumerate(classes)}
+    fam_order = {"S": 0, "A": 1, "L": 0, "M": 0, "SH": 2}
+
+    def number(label):
+        digits = label.lstrip("SAHLM")
+        return int(digits) if digits.isdigit() else 10**9
+
+    rows.sort(key=lambda r: (r[0], number(r[1]), fam_order.get(r[2], 3), r[3]))
+    del order
+    cutoffs = {}
+    top = float(omega.max())
+    for family in dict.fromkeys(c.family for c in classes):
+        # every cut-off up to the top frequency, and the family's next one
+        found = sorted((w, lab) for c in classes if c.family == family
+                       for lab, w in _cutoffs(stack, c, top))
+        above = [lab for w, lab in found if w > top][:1]
+        cutoffs.update({lab: w for w, lab in found if w <= top or lab in above})
+    return LayeredRoots(plate, omega, np.array([r[0] for r in rows], dtype=int),
+                        tuple(r[1] for r in rows), tuple(r[2] for r in rows),
+                        np.array([r[3] for r in rows]), np.array([r[4] for r in rows]),
+                        cutoffs, tuple(dict.fromkeys(failures)),
+                        tuple(c.name for c in classes))

@@ -12,7 +12,7 @@ gives solids by :func:`as_solid`; the plies of fibre composites are solids of th
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -31,6 +31,10 @@ class Solid:
     rho: float
     name: str = "custom"
     source: str = "user input"
+    #: The isotropic :class:`~dispersion.waves.materials.Material` this solid was made from
+    #: (None otherwise): a plate of one such layer is solved by the Rayleigh-Lamb
+    #: calculator from the very same numbers.
+    origin: object = field(default=None, compare=False, repr=False)
 
     def __post_init__(self):
         if not isinstance(self.stiffness, Stiffness):
@@ -52,7 +56,22 @@ class Solid:
 
     def rotated(self, degrees: float) -> Solid:
         """The solid turned about the normal (:meth:`Stiffness.rotated`)."""
-        return Solid(self.stiffness.rotated(degrees), self.rho, self.name, self.source)
+        return Solid(self.stiffness.rotated(degrees), self.rho, self.name, self.source,
+                     self.origin if self.stiffness.is_isotropic() else None)
+
+    def isotropic_material(self):
+        """The isotropic :class:`~dispersion.waves.materials.Material` of an undamped
+        isotropic solid (the one it was made from, else one from its speeds); None for
+        every other solid."""
+        if self.origin is not None:
+            return self.origin
+        if not (self.stiffness.lossless and self.stiffness.is_isotropic()):
+            return None
+        from dispersion.waves.materials import Material
+
+        lam, mu = self.stiffness.lame()
+        return Material(math.sqrt((lam + 2 * mu) / self.rho), math.sqrt(mu / self.rho),
+                        self.rho, self.name, self.source)
 
     def with_loss(self, eta: float) -> Solid:
         """The solid with hysteretic damping (:meth:`Stiffness.with_loss`)."""
@@ -82,6 +101,6 @@ def as_solid(value) -> Solid:
             raise InputError(f"material {value.name} has no density: a layer needs one "
                              "(give rho)")
         return Solid(from_speeds(value.c_L, value.c_T, value.rho), value.rho, value.name,
-                     value.source)
+                     value.source, value)
     raise InputError(f"a layer's material must be a Solid or a Material, got "
                      f"{type(value).__name__}")

@@ -1,0 +1,1 @@
+"""The answers of commands: results in a practitioner's units that render themselves."""

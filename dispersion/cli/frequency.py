@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 
+from dispersion.cli import layup
 from dispersion.cli.options import material_from_args, real
 from dispersion.errors import InputError
 
@@ -44,24 +45,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--fd", metavar="FD",
                    help="frequency-thickness products f d in MHz mm (lists and grids as for "
                         "--frequency)")
-    p.add_argument("--layup", metavar="LAYUP",
-                   help="a layered or anisotropic plate instead of a material: a TOML file "
-                        "(FILE.toml: [[layer]] material, thickness, angle; [[interface]] "
-                        "springs), layers material:thickness_mm[:angle],... bottom up (e.g. "
-                        "steel:0.71,aluminium:0.29), or a layup such as [0/90]s with --ply "
-                        "and --ply-thickness")
-    p.add_argument("--ply", metavar="NAME",
-                   help="with a layup string such as [0/90]s: the ply (T800/913, or a table "
-                        "material)")
-    p.add_argument("--ply-thickness", type=real("--ply-thickness", 0, lo_open=True),
-                   metavar="MM", help="with --ply: the thickness of one ply in mm")
-    p.add_argument("--angle", type=real("--angle", -360, 360),
-                   help="with --layup: direction of the waves in degrees from the plate's 0 "
-                        "deg axis, in [-360, 360] (default: 0)")
-    p.add_argument("--modes", metavar="FAMILIES",
-                   help="mode families to solve, comma separated: S, A, SH (symmetric plates; "
-                        "with --layup also L for the Lamb modes of an unsymmetric stack, M "
-                        "for coupled ones) (default: all)")
+    layup.add_arguments(p)
     p.add_argument("--mode-shape", metavar="MODE",
                    help="with one frequency: displacements and stresses through the thickness "
                         "of MODE (S0, a1, SH0, ...) instead of the mode table")
@@ -72,7 +56,7 @@ def requested(args) -> bool:
 
 
 def _layup(a) -> bool:
-    return getattr(a, "layup", None) is not None
+    return layup.requested(a)
 
 
 def _material_given(a) -> bool:
@@ -91,58 +75,13 @@ RULES = [
      "with a material (--material, --cl/--ct or --youngs-modulus/--nu/--rho)"),
     ("--layup", lambda a: requested(a) and not _material_given(a),
      "with --frequency or --fd, instead of a material"),
-    ("--ply", _layup, "with --layup"),
-    ("--ply-thickness", _layup, "with --layup"),
-    ("--angle", _layup, "with --layup"),
     ("--modes", requested, "with --frequency or --fd"),
+    *layup.RULES,
     ("--rho", lambda a: a.cl is not None or a.ct is not None or a.youngs_modulus is not None,
      "to a user material (--cl/--ct, or --youngs-modulus/--nu)"),
     ("--nu", lambda a: a.youngs_modulus is not None or not _material_given(a),
      "without a material (a material fixes nu from c_L and c_T), or with --youngs-modulus"),
 ]
-
-
-def _families(args):
-    if args.modes is None:
-        return None
-    names = [w.strip().upper() for w in args.modes.split(",") if w.strip()]
-    allowed = ("S", "A", "SH", "L", "M")
-    bad = [w for w in names if w not in allowed]
-    if bad or not names:
-        raise InputError(f"--modes must be a comma-separated list of {', '.join(allowed)}, got "
-                         f"{args.modes[:40]!r}")
-    return tuple(dict.fromkeys(names))
-
-
-def _run_layup(args) -> int:
-    from dispersion.answers.layered_mode_table import layered_lamb_modes
-    from dispersion.cli.options import frequencies
-    from dispersion.cli.outputs import check_outputs, warn_failures, write_outputs
-    from dispersion.continuum.layup_file import plate_from_string, read_layup
-    from dispersion.plotting.lamb import figure_mode_table
-
-    direction = 0.0 if args.angle is None else args.angle
-    if args.layup.strip().lower().endswith(".toml"):
-        if args.ply is not None or args.ply_thickness is not None:
-            raise InputError("--ply and --ply-thickness go with a layup string, not a file")
-        plate = read_layup(args.layup)
-        if args.angle is not None:
-            plate = plate.turned(direction)
-    else:
-        plate = plate_from_string(args.layup, ply=args.ply, ply_thickness_mm=args.ply_thickness,
-                                  direction=direction)
-    check_outputs(args, "branches")
-    families = _families(args)
-    if args.fd is not None:
-        table = layered_lamb_modes(plate, fd_mhz_mm=frequencies(args.fd, "--fd", units=None),
-                                   families=families)
-    else:
-        table = layered_lamb_modes(plate, frequency_khz=frequencies(args.frequency,
-                                                                    "--frequency"),
-                                   families=families)
-    warn_failures(table, args)
-    write_outputs(args, table, figure_mode_table)
-    return 0
 
 
 def run(args) -> int:
@@ -151,13 +90,13 @@ def run(args) -> int:
     from dispersion.cli.outputs import check_outputs, write_outputs
 
     if _layup(args):
-        return _run_layup(args)
+        return layup.run(args)
     material = material_from_args(args)
     if material is None or args.thickness is None:
         raise InputError("--frequency/--fd need a material (--material, --cl/--ct or "
                          "--youngs-modulus/--nu/--rho) and --thickness (d in mm)")
     check_outputs(args, "branches")
-    kinds = {} if args.modes is None else {"kinds": _families(args)}
+    kinds = {} if args.modes is None else {"kinds": layup.families(args)}
     if args.fd is not None:
         table = lamb_modes(material, args.thickness, fd_mhz_mm=frequencies(args.fd, "--fd",
                                                                             units=None), **kinds)

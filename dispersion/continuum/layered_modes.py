@@ -32,11 +32,10 @@ complex pair, is found.
 >>> from dispersion.waves.materials import material
 >>> r = layered_modes(layered_plate([(material("steel"), 1.0)]), [1.0])
 >>> [(lab, round(float(k), 10)) for lab, k in zip(r.label, r.kappa)]
-[('S0', 0.5997640215), ('A0', 1.322211012), ('SH0', 1.0)]
+[('S0', 0.6023346704), ('A0', 1.3582234981), ('SH0', 1.0)]
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -243,32 +242,54 @@ def _class_roots(stack, cls: ModeClass, omega: float):
 
 def _cutoffs(stack, cls: ModeClass, omega_top: float):
     """``[(label, Omega)]`` of the class's branches at kappa = 0 up to ``omega_top`` and
-    the first above it: the count N(0, Omega), monotone in Omega, between SAFE seeds; each
-    cut-off closed on det K."""
-    from dispersion.continuum.safe import frequencies
-
-    pencil = safe_pencil(stack, cls, elements_per_layer(stack, cls, 1.5 * omega_top + 2, 1.0))
-    seeds = frequencies(pencil, 0.0)
-    seeds = seeds[seeds > 1e-6 * omega_top]
-    above = seeds[seeds > omega_top]
-    top = float(above[0]) * 1.05 if above.size else 1.5 * omega_top + 2
-    seeds = seeds[seeds < top]
-    elements = sublayers(stack, cls, top, 1.0)
-    # the rigid translations the class allows are its branches with cut-off 0 (a count
-    # at kappa = 0 and a tiny Omega is round-off: the static stiffness is singular there)
+    the first above it. At fixed kappa the count N(0, Omega) never decreases in Omega
+    (Wittrick-Williams), so an interval whose ends have equal counts holds no cut-off:
+    intervals are halved until each end pair differs by one, then closed on det K."""
     zero = len([d for d in cls.dofs if not (cls.half and d in cls.mid_fixed)])
     out = [(cls.label(j), 0.0) for j in range(zero)]
-    if not seeds.size:
-        return out
-    grid = np.unique(np.concatenate([[seeds[0] / 2], seeds * (1 - 1e-7),
-                                     seeds * (1 + 1e-7), [top]]))
+    top = omega_top
+    for _ in range(30):   # the first cut-off above omega_top is below top
+        elements = sublayers(stack, cls, top, 1.0)
+        n_top = int(count_and_det(stack, cls, elements, np.zeros(1), np.array([top]))[0][0])
+        n_req = int(count_and_det(stack, cls, elements, np.zeros(1),
+                                  np.array([omega_top]))[0][0])
+        if n_top > n_req:
+            break
+        top = 1.25 * top + 0.5
+    # the rigid translations are the branches with cut-off 0; the count at a tiny Omega is
+    # round-off (the static stiffness is singular at kappa = 0), so the grid starts above
+    grid = np.linspace(0, top, 33)[1:]
     counts = count_and_det(stack, cls, elements, np.zeros(grid.size), grid)[0]
-    if counts[0] != zero:
-        return out + [(f"{cls.name}?", float("nan"))]
-    jump = np.flatnonzero(np.diff(counts) == 1)
-    if jump.size:
-        w, _ = _close(stack, cls, elements, 0.0, None, grid[jump], grid[jump + 1])
-        out += [(cls.label(int(counts[i])), float(x)) for i, x in zip(jump, w)]
+    lo = np.concatenate([[0.0], grid[:-1]])
+    c_lo = np.concatenate([[zero], counts[:-1]])
+    simple_a, simple_b, simple_n = [], [], []
+    todo = [(a, b, na, nb) for a, b, na, nb in zip(lo, grid, c_lo, counts) if nb > na]
+    for _ in range(60):
+        if not todo:
+            break
+        split = [t for t in todo if t[3] - t[2] > 1 or t[0] == 0.0]
+        for a, b, na, nb in todo:
+            if not (nb - na > 1 or a == 0.0):
+                simple_a.append(a)
+                simple_b.append(b)
+                simple_n.append(na)
+        if not split:
+            todo = []
+            break
+        mids = np.array([0.5 * (t[0] + t[1]) for t in split])
+        cm = count_and_det(stack, cls, elements, np.zeros(mids.size), mids)[0]
+        todo = []
+        for (a, b, na, nb), m, n in zip(split, mids, cm):
+            if n > na:
+                todo.append((a, m, na, int(n)))
+            if nb > n:
+                todo.append((m, b, int(n), nb))
+    if todo:
+        out += [(f"{cls.name}?", float("nan"))]
+    if simple_a:
+        w, _ = _close(stack, cls, elements, 0.0, None, np.array(simple_a), np.array(simple_b))
+        found = sorted(zip(w, simple_n))
+        out += [(cls.label(int(n)), float(x)) for x, n in found]
     return out
 
 

@@ -112,7 +112,7 @@ def plate_from_data(data: dict, where: str = "layup"):
         plate = laminate(data["layup"], solid_by_name(data["ply"], f"{where}: ply"),
                          _number(data["ply_thickness"], f"{where}: ply_thickness"),
                          direction=direction, damping=damping)
-        faces = ()
+        faces = data.get("interface", [])
     else:
         rows = data.get("layer")
         if not isinstance(rows, list) or not rows:

@@ -19,7 +19,7 @@ import numpy as np
 from dispersion.errors import InputError, check_positive
 from dispersion.materials.stiffness import Stiffness, from_speeds
 
-__all__ = ["Solid", "as_solid"]
+__all__ = ["Solid", "as_solid", "isotropic_solid"]
 
 
 @dataclass(frozen=True)
@@ -59,20 +59,6 @@ class Solid:
         return Solid(self.stiffness.rotated(degrees), self.rho, self.name, self.source,
                      self.origin if self.stiffness.is_isotropic() else None)
 
-    def isotropic_material(self):
-        """The isotropic :class:`~dispersion.waves.materials.Material` of an undamped
-        isotropic solid (the one it was made from, else one from its speeds); None for
-        every other solid."""
-        if self.origin is not None:
-            return self.origin
-        if not (self.stiffness.lossless and self.stiffness.is_isotropic()):
-            return None
-        from dispersion.waves.materials import Material
-
-        lam, mu = self.stiffness.lame()
-        return Material(math.sqrt((lam + 2 * mu) / self.rho), math.sqrt(mu / self.rho),
-                        self.rho, self.name, self.source)
-
     def with_loss(self, eta: float) -> Solid:
         """The solid with hysteretic damping (:meth:`Stiffness.with_loss`)."""
         if eta == 0:
@@ -91,16 +77,17 @@ class Solid:
 
 def as_solid(value) -> Solid:
     """A :class:`Solid` as it is, or an isotropic
-    :class:`~dispersion.waves.materials.Material` with a density turned into one."""
+    :class:`~dispersion.waves.materials.Material` with a density turned into one (its
+    :meth:`~dispersion.waves.materials.Material.solid`)."""
     if isinstance(value, Solid):
         return value
-    from dispersion.waves.materials import Material
-
-    if isinstance(value, Material):
-        if value.rho is None:
-            raise InputError(f"material {value.name} has no density: a layer needs one "
-                             "(give rho)")
-        return Solid(from_speeds(value.c_L, value.c_T, value.rho), value.rho, value.name,
-                     value.source, value)
+    if callable(getattr(value, "solid", None)):
+        return value.solid()
     raise InputError(f"a layer's material must be a Solid or a Material, got "
                      f"{type(value).__name__}")
+
+
+def isotropic_solid(c_L: float, c_T: float, rho: float, name: str, source: str,
+                    origin=None) -> Solid:
+    """The solid of an isotropic material given by its bulk speeds and density."""
+    return Solid(from_speeds(c_L, c_T, rho), rho, name, source, origin)

@@ -96,6 +96,16 @@ class Material:
         return {"name": self.name, "c_L [m/s]": self.c_L, "c_T [m/s]": self.c_T,
                 "rho [kg/m^3]": self.rho, "nu": self.nu, "source": self.source}
 
+    def solid(self):
+        """This material as a layer's :class:`~dispersion.materials.solid.Solid` (it needs a
+        density); the solid remembers this material (``origin``)."""
+        from dispersion.materials.solid import isotropic_solid
+
+        if self.rho is None:
+            raise InputError(f"material {self.name} has no density: a layer needs one "
+                             "(give rho)")
+        return isotropic_solid(self.c_L, self.c_T, self.rho, self.name, self.source, self)
+
 
 def material_from_moduli(E: float, nu: float, rho: float, name: str | None = None) -> Material:
     """Material from Young's modulus E (Pa), Poisson's ratio and density (kg/m^3).

@@ -11,7 +11,7 @@ import mpmath
 import pytest
 from hypothesis import example, given
 from hypothesis import strategies as st
-from mp_layered import roots_at_frequency
+from mp_layered import group_velocity, roots_at_frequency
 from promise_search import SLOW, record
 
 from dispersion.continuum.layered_modes import layered_modes
@@ -64,12 +64,16 @@ def _haskell_case(names, thick, springs, W, samples):
     w = W * sc.c_ref / sc.h_m
     k_max = (1.3 * max(ours.kappa) + 0.5) / sc.h_m
     for fam in ("L", "SH"):
-        mine = sorted(k for k, f in zip(ours.kappa, ours.family) if f == fam)
-        ref = [float(x * sc.h_m) for x in roots_at_frequency(layers, mp_springs, w, k_max, fam,
-                                                              samples)]
+        mine = sorted((k, g) for k, g, f in zip(ours.kappa, ours.group, ours.family) if f == fam)
+        ref = roots_at_frequency(layers, mp_springs, w, k_max, fam, samples)
         assert len(mine) == len(ref), (fam, mine, ref)
-        err = max((abs(a / b - 1) for a, b in zip(mine, ref)), default=0.0)
+        err = max((abs(a / float(b * sc.h_m) - 1) for (a, _), b in zip(mine, ref)), default=0.0)
         record("layered-haskell", err, ROOT_BOUND, names=",".join(names), omega=W, family=fam)
+        # c_g relative to c_ref where it is below it (absolute in units of c_ref)
+        gerr = max((abs(g - float(group_velocity(layers, mp_springs, b, w, fam)) / sc.c_ref)
+                    / max(1.0, abs(g)) for (_, g), b in zip(mine, ref)), default=0.0)
+        record("layered-haskell-group", gerr, GROUP_BOUND, names=",".join(names), omega=W,
+               family=fam)
 
 
 def test_bilayer_against_a_40_digit_transfer_matrix():

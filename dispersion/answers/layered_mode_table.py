@@ -69,8 +69,7 @@ class LayeredModeTable(Rendered):
         return float(Omega) * c / (2 * math.pi * h) / 1e3
 
     def title(self) -> str:
-        n = len(self.plate.layers)
-        return (f"{n} layer{'s' if n > 1 else ''}, d = {self.thickness_mm:g} mm"
+        return (f"{self.plate.label()}, d = {self.thickness_mm:g} mm"
                 + (f", waves at {self.plate.direction:g} deg" if self.plate.direction else ""))
 
     def header_lines(self) -> list[str]:

@@ -217,6 +217,21 @@ class LayeredPlate:
         turn = f", waves at {self.direction:g} deg" if self.direction else ""
         return f"{' / '.join(parts)} (d = {self.total_thickness_mm:g} mm{turn})"
 
+    def label(self) -> str:
+        """A short name: ``T800/913 [0/90/0] (0.125/0.25/0.125 mm)`` for plies of one solid,
+        ``0.71 mm steel / 0.29 mm aluminium`` otherwise.
+
+        >>> from dispersion.waves.materials import ply
+        >>> laminate("[0/90]s", ply("T800/913"), 0.125).label()
+        'T800/913 [0/90/0] (0.125/0.25/0.125 mm)'
+        """
+        names = {layer.solid.name for layer in self.layers}
+        if len(names) == 1 and len(self.layers) > 1:
+            angles = "/".join(f"{layer.angle:g}" for layer in self.layers)
+            thick = "/".join(f"{layer.thickness_mm:g}" for layer in self.layers)
+            return f"{names.pop()} [{angles}] ({thick} mm)"
+        return " / ".join(layer.describe() for layer in self.layers)
+
     def header_lines(self) -> list[str]:
         lines = [f"layer {i + 1} (from the bottom): {layer.describe()}; {layer.solid.describe()}"
                  f"; source: {layer.solid.source}" for i, layer in enumerate(self.layers)]

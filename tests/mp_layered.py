@@ -126,3 +126,106 @@ def group_velocity(layers, springs, k, w, family: str):
         ratio = -Fk / Fw
         assert abs(mpmath.im(ratio)) <= 1e-20 * abs(ratio)   # the phase of F is constant
         return mpmath.re(ratio)
+
+
+# ---------------------------------------------------------------- anisotropic layers
+
+#: Voigt index of each pair of tensor indices (0-based), written out here.
+_VOIGT = {(0, 0): 0, (1, 1): 1, (2, 2): 2, (1, 2): 3, (2, 1): 3, (0, 2): 4, (2, 0): 4,
+          (0, 1): 5, (1, 0): 5}
+
+
+def _stroh_partial_waves(C, rho, k, w, t):
+    """Transfer matrix of (u, sigma_i3) across an anisotropic layer by partial waves: the
+    eigenvalues lambda = i k_3 and eigenvectors of the first-order system (Nayfeh 1995,
+    sec. 4.2), P = V diag(exp(lambda t)) V^-1, in ball arithmetic (python-flint, 160 bits;
+    its eigen-solver, not the package's exponential)."""
+    import flint
+
+    I = flint.acb(0, 1)
+
+    def c(i, a, j, b):
+        return flint.acb(float(C[_VOIGT[i, a]][_VOIGT[j, b]]))
+
+    Qxx = flint.acb_mat([[c(i, 0, j, 0) for j in range(3)] for i in range(3)])
+    Qxz = flint.acb_mat([[c(i, 0, j, 2) for j in range(3)] for i in range(3)])
+    Qzz = flint.acb_mat([[c(i, 2, j, 2) for j in range(3)] for i in range(3)])
+    Zi = Qzz.inv()
+    Qzx = Qxz.transpose()
+    TL = -(I * k) * (Zi * Qzx)
+    BL = k * k * (Qxx - Qxz * Zi * Qzx) - rho * w * w * flint.acb_mat(
+        [[1 if i == j else 0 for j in range(3)] for i in range(3)])
+    BR = -(I * k) * (Qxz * Zi)
+    A = flint.acb_mat(6, 6)
+    for i in range(3):
+        for j in range(3):
+            A[i, j], A[i, j + 3] = TL[i, j], Zi[i, j]
+            A[i + 3, j], A[i + 3, j + 3] = BL[i, j], BR[i, j]
+    try:
+        lam, V = A.eig(right=True)
+    except ValueError:   # eigenvalues too close to isolate: mpmath's eigen-solver at 45 digits
+        with mpmath.workdps(45):
+            M = mpmath.matrix([[mpmath.mpc(A[i, j].real.mid().str(50, radius=False),
+                                           A[i, j].imag.mid().str(50, radius=False))
+                                for j in range(6)] for i in range(6)])
+            E, ER = mpmath.eig(M)
+            tt = mpmath.mpf(t.real.mid().str(50, radius=False))
+            P = ER * mpmath.diag([mpmath.exp(x * tt) for x in E]) * mpmath.inverse(ER)
+            return flint.acb_mat([[flint.acb(mpmath.nstr(mpmath.re(P[i, j]), 45),
+                                             mpmath.nstr(mpmath.im(P[i, j]), 45))
+                                   for j in range(6)] for i in range(6)])
+    D = flint.acb_mat([[(lam[i] * t).exp() if i == j else 0 for j in range(6)]
+                       for i in range(6)])
+    return V * D * V.inv()
+
+
+def anisotropic_function(layers, k, w):
+    """The free plate's determinant at k (1/m), w (rad/s): ``layers`` rows ``(C, rho, t)``
+    bottom up, C the 6x6 Voigt stiffness (Pa) in the wave's frame; det of the
+    traction-from-displacement block of the product of the partial-wave transfer matrices
+    (an mpmath number, the midpoint of its ball)."""
+    import flint
+
+    old = flint.ctx.prec
+    flint.ctx.prec = 160
+    try:
+        # in units of the first layer (its C55 and density) and of half the thickness, so
+        # the eigen-solver sees numbers of order one (the roots do not change)
+        mu0, rho0 = float(layers[0][0][4][4]), float(layers[0][1])
+        h0 = sum(float(t) for _, _, t in layers) / 2
+        with mpmath.workdps(DPS):
+            kb = flint.acb(mpmath.nstr(mpmath.mpf(k) * h0, 45))
+            wb = flint.acb(mpmath.nstr(mpmath.mpf(w) * h0 * mpmath.sqrt(rho0 / mpmath.mpf(mu0)),
+                                       45))
+        T = flint.acb_mat([[1 if i == j else 0 for j in range(6)] for i in range(6)])
+        for C, rho, t in layers:
+            Cs = [[float(x) / mu0 for x in row] for row in C]
+            T = _stroh_partial_waves(Cs, flint.acb(float(rho) / rho0), kb, wb,
+                                     flint.acb(float(t) / h0)) * T
+        F = flint.acb_mat([[T[3 + i, j] for j in range(3)] for i in range(3)]).det()
+        with mpmath.workdps(DPS):
+            return mpmath.mpc(mpmath.mpf(F.real.mid().str(45, radius=False)),
+                              mpmath.mpf(F.imag.mid().str(45, radius=False)))
+    finally:
+        flint.ctx.prec = old
+
+
+def anisotropic_roots(layers, w, k_max, samples: int):
+    """Real roots k in (0, k_max] of :func:`anisotropic_function` (every family at once)."""
+    with mpmath.workdps(DPS):
+        ks = [mpmath.mpf(k_max) * (j + 1) / samples for j in range(samples)]
+        vals = [anisotropic_function(layers, k, w) for k in ks]
+        big = max(vals, key=abs)
+        phase = mpmath.exp(-mpmath.mpc(0, 1) * mpmath.arg(big))
+        real = [mpmath.re(v * phase) for v in vals]
+        out = []
+        for (a, fa), (b, fb) in zip(zip(ks, real), zip(ks[1:], real[1:])):
+            if fa * fb < 0:
+                def f(x):
+                    return mpmath.re(anisotropic_function(layers, x, w) * phase)
+
+                root = mpmath.findroot(f, (a, b), solver="anderson", maxsteps=200,
+                                       tol=mpmath.mpf(10) ** (-DPS + 4), verify=False)
+                assert a <= root <= b, "the root left its bracket"
+                out.append(root)
+        return out

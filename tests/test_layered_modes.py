@@ -11,7 +11,7 @@ import mpmath
 import pytest
 from hypothesis import example, given
 from hypothesis import strategies as st
-from mp_layered import group_velocity, roots_at_frequency
+from mp_layered import anisotropic_roots, group_velocity, roots_at_frequency
 from promise_search import SLOW, record
 
 from dispersion.continuum.layered_modes import layered_modes
@@ -184,3 +184,31 @@ def test_modes_come_in_the_classes_of_the_plate():
     assert [c.name for c in mode_classes(bi)] == ["L", "SH"]
     r = layered_modes(bi, [0.5], families=("SH",))
     assert r.label == ("SH0",) and r.family == ("SH",)
+
+
+def _laminate_case(layup, direction, W, samples):
+    plate = laminate(layup, ply("T800/913"), 0.125, direction=direction)
+    ours = layered_modes(plate, [W])
+    assert not ours.failures, ours.failures
+    sc = plate.scaled()
+    layers = [(C.matrix, layer.solid.rho, layer.thickness_mm * 1e-3)
+              for C, layer in zip(plate.wave_frame_stiffness(), plate.layers)]
+    ref = anisotropic_roots(layers, W * sc.c_ref / sc.h_m, (1.3 * max(ours.kappa) + 0.5)
+                            / sc.h_m, samples)
+    mine = sorted(ours.kappa)   # every family at once: the reference does not split them
+    assert len(mine) == len(ref), (mine, [float(x * sc.h_m) for x in ref])
+    err = max(abs(a / float(b * sc.h_m) - 1) for a, b in zip(mine, ref))
+    record("layered-laminate", err, ROOT_BOUND, layup=layup, direction=direction, omega=W)
+
+
+@pytest.mark.slow
+@SLOW
+@given(layup=st.sampled_from(["[0/90]s", "[0/45/-45/90]", "[0/90]"]),
+       direction=st.floats(0, 90), W=st.floats(0.05, 6.0))
+@example(layup="[0/90]s", direction=0.0, W=2.0)
+@example(layup="[0/90]s", direction=45.0, W=6.0)
+def test_laminate_against_partial_waves_in_ball_arithmetic_slow(layup, direction, W):
+    # an independent route: eigenvalues and eigenvectors of each layer's first-order system
+    # (python-flint's eigen-solver at 160 bits), the product of the transfer matrices, the
+    # 3x3 determinant of the free faces, scanned and closed at 40 digits
+    _laminate_case(layup, direction, W, 400)

@@ -229,11 +229,13 @@ def __getattr__(name: str):
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
-def layup(text, *, ply=None, ply_thickness_mm=None, direction: float = 0.0):
+def layup(text, *, ply=None, ply_thickness_mm=None, direction: float = 0.0,
+          damping: float = 0.0):
     """A layered plate (:class:`~dispersion.continuum.layered_plate.LayeredPlate`) from a TOML
     layup file (a path ending in ``.toml``, read as untrusted data), from layers
     ``material:thickness_mm[:angle],...`` bottom up, or from a layup such as ``[0/90]s`` with
-    a ``ply`` and its thickness (:mod:`dispersion.continuum.layup_file`).
+    a ``ply`` and its thickness (:mod:`dispersion.continuum.layup_file`); ``damping`` a loss
+    factor given to every layer.
 
     >>> [l.angle for l in layup("[0/90]s", ply="T800/913", ply_thickness_mm=0.125).layers]
     [0.0, 90.0, 0.0]
@@ -245,9 +247,15 @@ def layup(text, *, ply=None, ply_thickness_mm=None, direction: float = 0.0):
             raise InputError("ply and ply_thickness_mm go with a layup string such as [0/90]s, "
                              "not with a layup file")
         plate = read_layup(text)
+        if damping:
+            from dispersion.continuum.layered_plate import Layer, LayeredPlate
+
+            plate = LayeredPlate(tuple(Layer(layer.solid.with_loss(damping), layer.thickness_mm,
+                                             layer.angle) for layer in plate.layers),
+                                 plate.interfaces, plate.direction)
         return plate if not direction else plate.turned(direction)
     return plate_from_string(text, ply=ply, ply_thickness_mm=ply_thickness_mm,
-                             direction=direction)
+                             direction=direction, damping=damping)
 
 
 def layered_lamb_modes(plate, *, frequency_khz=None, fd_mhz_mm=None, families=None):

@@ -66,11 +66,12 @@ def dispersion_function(layers, springs, k, w, family: str):
     ``None`` or ``(K_N, K_T)`` (N/m^3); family ``"L"`` (Lamb) or ``"SH"``. Real up to a
     constant phase (the caller fixes it)."""
     with mpmath.workdps(DPS):
-        k, w = mpmath.mpf(k), mpmath.mpf(w)
+        k, w = mpmath.mpmathify(k), mpmath.mpmathify(w)
         n = 4 if family == "L" else 2
         T = mpmath.eye(n)
         for i, (cL, cT, rho, t) in enumerate(layers):
-            cL, cT, rho, t = (mpmath.mpf(x) for x in (cL, cT, rho, t))
+            # speeds may be complex (a damped layer: c sqrt(1 - i eta))
+            cL, cT, rho, t = (mpmath.mpmathify(x) for x in (cL, cT, rho, t))
             mu = rho * cT**2
             M = _layer_lamb(k, w, cL, cT, mu, t) if family == "L" else _layer_sh(k, w, cT, mu, t)
             T = M * T
@@ -229,3 +230,17 @@ def anisotropic_roots(layers, w, k_max, samples: int):
                 assert a <= root <= b, "the root left its bracket"
                 out.append(root)
         return out
+
+
+def damped_root(layers_of_eta, springs, w, k0, family: str, eta: float, steps: int = 8):
+    """The root continued from the undamped root ``k0`` as the loss factor grows from 0 to
+    ``eta`` in ``steps`` (``layers_of_eta(e)`` gives the layer rows at loss factor e; complex
+    secant at 40 digits at each step): the damped mode named after the undamped one."""
+    with mpmath.workdps(DPS):
+        k = mpmath.mpmathify(k0)
+        for j in range(1, steps + 1):
+            layers = layers_of_eta(eta * j / steps)
+            k = mpmath.findroot(lambda x: dispersion_function(layers, springs, x, w, family),
+                                k, solver="secant", tol=mpmath.mpf(10) ** (-2 * DPS + 10),
+                                maxsteps=100, verify=False)
+        return k

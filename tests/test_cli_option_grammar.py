@@ -70,7 +70,7 @@ VALUES = {
         "--rho": ["2000"], "--youngs-modulus": ["70"], "--thickness": ["2"],
         "--frequency": ["300"], "--fd": ["0.9"], "--mode-shape": ["S0"],
         "--layup": ["steel:1,copper:2"], "--ply": ["T800/913"], "--ply-thickness": ["0.125"],
-        "--angle": ["30"], "--modes": ["S"],
+        "--angle": ["30"], "--modes": ["S"], "--damping": ["0.01"],
         "--format": ["json"], "--csv": ["out.csv"], "--json": ["out.json"],
         "--figure": ["out.png"], "--progress": [],
     },

@@ -39,6 +39,10 @@ __all__ = ["COLUMNS", "LayeredModeTable", "layered_lamb_modes"]
 #: Columns of :meth:`LayeredModeTable.rows` with their units (CSV headings).
 COLUMNS = ("f [kHz]", "fd [MHz mm]", "mode", "family", "k [rad/mm]", "c_p [m/s]",
            "c_g [m/s]", "wavelength [mm]", "kappa = kh", "Omega = omega h / c_ref")
+#: ... of a damped plate: the attenuation instead of the group velocity (not computed yet).
+DAMPED_COLUMNS = ("f [kHz]", "fd [MHz mm]", "mode", "family", "k [rad/mm]",
+                  "attenuation [dB/m]", "c_p [m/s]", "wavelength [mm]", "kappa = kh",
+                  "Im kappa", "Omega = omega h / c_ref")
 
 
 @dataclass(frozen=True, repr=False)
@@ -49,6 +53,11 @@ class LayeredModeTable(Rendered):
     plate: object
     frequency_khz: np.ndarray
     roots: LayeredRoots
+
+    @property
+    def damped(self) -> bool:
+        """True for a damped plate (complex wavenumbers)."""
+        return not self.plate.lossless
 
     @property
     def thickness_mm(self) -> float:
@@ -81,15 +90,23 @@ class LayeredModeTable(Rendered):
             f"frequency: {span}",
             f"kappa = k h, Omega = omega h / c_ref (h = {h * 1e3:g} mm, half the thickness; "
             f"c_ref = {c:.10g} m/s, the bottom layer's shear speed sqrt((C44 + C55) / 2 rho))",
-            f"mode classes: {', '.join(self.roots.classes)}; every root certified to 1e-12 "
-            "relative (ball arithmetic) and counted (Wittrick-Williams), else a failure"]
+            (f"mode classes: {', '.join(self.roots.classes)}; every root certified to 1e-12 "
+             "relative (ball arithmetic) and counted (Wittrick-Williams), else a failure"
+             if not self.damped else
+             f"mode classes: {', '.join(self.roots.classes)}; damped: each complex root "
+             "followed from the undamped plate's (its name) and certified to 1e-10 relative "
+             "by the argument principle in ball arithmetic, else a failure; attenuation "
+             "20 log10(e) Im k")]
         lines += [f"cut-off {lab}: {f_c:.10g} kHz" for lab, f_c in self.cutoffs_khz().items()]
         return lines
 
     def columns(self) -> tuple[str, ...]:
-        return COLUMNS
+        return DAMPED_COLUMNS if self.damped else COLUMNS
 
     def text_columns(self) -> tuple[str, ...]:
+        if self.damped:
+            return ("f [kHz]", "mode", "k [rad/mm]", "attenuation [dB/m]", "c_p [m/s]",
+                    "wavelength [mm]")
         return ("f [kHz]", "mode", "k [rad/mm]", "c_p [m/s]", "c_g [m/s]", "wavelength [mm]")
 
     def json_extra(self) -> dict:
@@ -107,6 +124,20 @@ class LayeredModeTable(Rendered):
         h_mm = h * 1e3
         f = self.frequency_khz[r.index]
         out = []
+        if self.damped:
+            from dispersion.continuum.damped_modes import DB_PER_NEPER
+
+            for i in range(r.kappa.size):
+                kap = complex(r.kappa[i])
+                k = kap.real / h_mm
+                out.append({
+                    "f [kHz]": float(f[i]), "fd [MHz mm]": float(f[i]) * self.thickness_mm * 1e-3,
+                    "mode": r.label[i], "family": r.family[i], "k [rad/mm]": k,
+                    "attenuation [dB/m]": DB_PER_NEPER * kap.imag / h,
+                    "c_p [m/s]": float(r.omega[r.index[i]]) / kap.real * c,
+                    "wavelength [mm]": 2 * math.pi / k, "kappa = kh": kap.real,
+                    "Im kappa": kap.imag, "Omega = omega h / c_ref": float(r.omega[r.index[i]])})
+            return out
         for i in range(r.kappa.size):
             k = float(r.kappa[i]) / h_mm
             out.append({
@@ -135,7 +166,7 @@ class LayeredModeTable(Rendered):
             d = out.setdefault(row["mode"], {"f": [], "fd": [], "c_p": [], "c_g": [], "k": []})
             for key, col in (("f", "f [kHz]"), ("fd", "fd [MHz mm]"), ("c_p", "c_p [m/s]"),
                              ("c_g", "c_g [m/s]"), ("k", "k [rad/mm]")):
-                d[key].append(row[col])
+                d[key].append(row.get(col, math.nan))   # damped: no c_g (nan, not drawn)
         curves = {}
         for lab, d in out.items():
             order = np.argsort(d["k"])
@@ -176,7 +207,7 @@ def layered_lamb_modes(plate, *, frequency_khz=None, fd_mhz_mm=None, families=No
         raise InputError(f"plate must be a LayeredPlate, got {type(plate).__name__}")
     if (frequency_khz is None) == (fd_mhz_mm is None):
         raise InputError("give exactly one of frequency_khz (kHz) and fd_mhz_mm (MHz mm)")
-    if plate.isotropic_single():
+    if plate.isotropic_single():   # undamped: isotropic_single() is False for a damped layer
         from dispersion.waves.mode_table import lamb_modes
 
         kinds = ("S", "A", "SH") if families is None else tuple(families)
@@ -197,6 +228,10 @@ def layered_lamb_modes(plate, *, frequency_khz=None, fd_mhz_mm=None, families=No
         raise InputError(f"{name} must lie in [{lo_f:.4g}, {hi_f:.4g}] {unit} for this plate "
                          f"(d = {plate.total_thickness_mm:g} mm), got "
                          f"{float(f_khz[bad][0]) * scale:.6g} {unit}")
+    if not plate.lossless:
+        from dispersion.continuum.damped_modes import damped_modes
+
+        return LayeredModeTable(plate, f_khz, damped_modes(plate, omega, families=families))
     from dispersion.continuum.layered_modes import layered_modes
 
     return LayeredModeTable(plate, f_khz, layered_modes(plate, omega, families=families))

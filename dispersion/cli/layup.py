@@ -30,6 +30,10 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--angle", type=real("--angle", -360, 360),
                    help="with --layup: direction of the waves in degrees from the plate's 0 "
                         "deg axis, in [-360, 360] (default: 0)")
+    p.add_argument("--damping", type=real("--damping", 0, 1, hi_open=True), metavar="ETA",
+                   help="with --layup: hysteretic loss factor eta of every layer, moduli "
+                        "C (1 - i eta), in [0, 1): complex wavenumbers and the attenuation in "
+                        "dB/m (default: 0)")
     p.add_argument("--modes", metavar="FAMILIES",
                    help="mode families to solve, comma separated: S, A, SH (symmetric plates; "
                         "with --layup also L for the Lamb modes of an unsymmetric stack, M "
@@ -45,6 +49,7 @@ RULES = [
     ("--ply", requested, "with --layup"),
     ("--ply-thickness", requested, "with --layup"),
     ("--angle", requested, "with --layup"),
+    ("--damping", requested, "with --layup"),
 ]
 
 
@@ -67,7 +72,8 @@ def run(args) -> int:
     from dispersion.plotting.lamb import figure_mode_table
 
     plate = layup(args.layup, ply=args.ply, ply_thickness_mm=args.ply_thickness,
-                  direction=0.0 if args.angle is None else args.angle)
+                  direction=0.0 if args.angle is None else args.angle,
+                  damping=0.0 if args.damping is None else args.damping)
     check_outputs(args, "branches")
     if args.fd is not None:
         freq = {"fd_mhz_mm": frequencies(args.fd, "--fd", units=None)}

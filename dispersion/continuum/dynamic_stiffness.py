@@ -439,13 +439,17 @@ def _acb_expm_stiffness(stack, element: Element, kappa, omega, prec: int):
     Puu, Put, Ptu, Ptt = block(0, 0), block(0, 3), block(3, 0), block(3, 3)
     X = Put.inv()
     XP = X * Puu
-    return XP, -X, Ptu - Ptt * XP, Ptt * X
+    return XP, -X, Ptu - Ptt * XP, Ptt * X, Put.det()
 
 
-def det_ball(stack, cls: ModeClass, elements, kappa: float, omega: float, prec: int = 160):
+def det_ball(stack, cls: ModeClass, elements, kappa, omega: float, prec: int = 160,
+             entire: bool = False):
     """:math:`\\det K(\\kappa, \\Omega)` of the class, enclosed in ball arithmetic
-    (python-flint ``acb``, ``prec`` bits): the float data of the plate, kappa and Omega taken
-    as exact binary numbers. Returns the ``acb`` ball (real for an undamped plate)."""
+    (python-flint ``acb``, ``prec`` bits): the float data of the plate, kappa (real or
+    complex) and Omega taken as exact binary numbers. Returns the ``acb`` ball (real for an
+    undamped plate at a real kappa). ``entire``: times :math:`\\det P_{ut}` of every
+    sublayer, which clears the poles of K, so the product is an entire function of kappa
+    (its zeros in a disc are counted by the argument principle)."""
     import flint
 
     old = flint.ctx.prec
@@ -462,7 +466,7 @@ def det_ball(stack, cls: ModeClass, elements, kappa: float, omega: float, prec: 
                     ks = stack.springs[e.interface] * e.scale
                     D = flint.acb_mat([[flint.acb(float(ks[i])) if i == j else 0
                                         for j in range(3)] for i in range(3)])
-                    cache[e] = (D, -D, -D, D)
+                    cache[e] = (D, -D, -D, D, flint.acb(1))
                 else:
                     cache[e] = _acb_expm_stiffness(stack, e, kap, float(omega), prec)
             return cache[e]
@@ -476,7 +480,9 @@ def det_ball(stack, cls: ModeClass, elements, kappa: float, omega: float, prec: 
         S = None
         rows = first
         for e, _ in chain:
-            K00, K01, K10, K11 = stiff(e)
+            K00, K01, K10, K11, dput = stiff(e)
+            if entire:
+                det *= dput
             if not rows:   # the first node has no unknowns
                 S = sub(K11, dofs, dofs)
                 rows = dofs

@@ -57,7 +57,7 @@ _MODULES = {
     "claim": "claims.claim", "claim_model": "claims.claim_model",
     "claim_fields": "claims.claim_fields", "claims_file": "claims.claims_file",
     "exact_model": "claims.exact_model", "bar_model": "claims.bar_model",
-    "peers": "studies.peers", "spline_mass": "symbolic.spline_mass",
+    "peers": "studies.peers", "layered_peers": "studies.layered_peers", "spline_mass": "symbolic.spline_mass",
     "extended_pencil": "waves.extended_pencil", "pencil_polynomial": "waves.pencil_polynomial",
     "asymptotic_fit": "studies.asymptotic_fit",
     "materials": "waves.materials", "frequency": "waves.frequency", "sh": "waves.sh",

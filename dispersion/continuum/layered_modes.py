@@ -119,36 +119,11 @@ def _close(stack, cls, elements, kappa_or_none, omega, a, b):
 def _certify(stack, cls, elements, omega, k):
     """``(kappa, ok)``: the root certified by certain opposite signs of det K (balls) at
     kappa (1 +- delta); else a certain bracket around it halved with certain signs."""
-    delta = ROOT_RTOL / 4
-
     def sign(x):
         d = det_ball(stack, cls, elements, x, omega).real
-        if d > 0:
-            return 1
-        if d < 0:
-            return -1
-        return 0
+        return 1 if d > 0 else -1 if d < 0 else 0
 
-    lo, hi = sign(k * (1 - delta)), sign(k * (1 + delta))
-    if lo * hi < 0:
-        return k, True
-    for w in (1e-11, 1e-9, 1e-7):
-        a, b = k * (1 - w), k * (1 + w)
-        sa, sb = sign(a), sign(b)
-        if sa * sb < 0:
-            for _ in range(60):
-                if b - a <= 2 * delta * abs(a):
-                    return 0.5 * (a + b), True
-                m = 0.5 * (a + b)
-                sm = sign(m)
-                if sm == 0:
-                    return k, False
-                if sm == sa:
-                    a = m
-                else:
-                    b = m
-            return k, False
-    return k, False
+    return _bracketed(sign, k)
 
 
 def _group(stack, cls, elements, omega, k):
@@ -242,24 +217,41 @@ def _class_roots(stack, cls: ModeClass, omega: float):
 
 def _cutoffs(stack, cls: ModeClass, omega_top: float):
     """``[(label, Omega)]`` of the class's branches at kappa = 0 up to ``omega_top`` and
-    the first above it. At fixed kappa the count N(0, Omega) never decreases in Omega
-    (Wittrick-Williams), so an interval whose ends have equal counts holds no cut-off:
-    intervals are halved until each end pair differs by one, then closed on det K."""
-    zero = len([d for d in cls.dofs if not (cls.half and d in cls.mid_fixed)])
-    out = [(cls.label(j), 0.0) for j in range(zero)]
+    the first above it (:func:`branches_at_kappa` at kappa = 0)."""
+    return [(lab, w) for lab, w, _ in branches_at_kappa(stack, cls, 0.0, omega_top, True)]
+
+
+def branches_at_kappa(stack, cls: ModeClass, kappa: float, omega_top: float,
+                      next_above: bool = False):
+    """``[(label, Omega, certified)]`` of every branch of the class at ``kappa`` with
+    :math:`\\Omega \\le` omega_top (and the first above it with ``next_above``).
+
+    At fixed kappa the count N(kappa, Omega) never decreases in Omega (Wittrick-Williams),
+    so an interval whose ends have equal counts holds no branch: the intervals of a grid are
+    halved until the counts at their ends differ by one, each such interval is closed on
+    det K, and each root is certified by certain opposite signs of det K (balls) at
+    Omega (1 +- ROOT_RTOL / 4). Every branch below omega_top is found: the count at
+    omega_top says how many there are. At kappa = 0 the rigid translations the class allows
+    are its branches at Omega = 0 (a count there is round-off: the static stiffness is
+    singular).
+    """
+    zero = (len([d for d in cls.dofs if not (cls.half and d in cls.mid_fixed)])
+            if kappa == 0 else 0)
+    out = [(cls.label(j), 0.0, True) for j in range(zero)]
+    kap = np.array([float(kappa)])
     top = omega_top
-    for _ in range(30):   # the first cut-off above omega_top is below top
-        elements = sublayers(stack, cls, top, 1.0)
-        n_top = int(count_and_det(stack, cls, elements, np.zeros(1), np.array([top]))[0][0])
-        n_req = int(count_and_det(stack, cls, elements, np.zeros(1),
-                                  np.array([omega_top]))[0][0])
+    elements = sublayers(stack, cls, top, max(abs(kappa), 1.0))
+    for _ in range(30 if next_above else 0):   # the first branch above omega_top is below top
+        n_top = int(count_and_det(stack, cls, elements, kap, np.array([top]))[0][0])
+        n_req = int(count_and_det(stack, cls, elements, kap, np.array([omega_top]))[0][0])
         if n_top > n_req:
             break
         top = 1.25 * top + 0.5
+        elements = sublayers(stack, cls, top, max(abs(kappa), 1.0))
     # the rigid translations are the branches with cut-off 0; the count at a tiny Omega is
     # round-off (the static stiffness is singular at kappa = 0), so the grid starts above
     grid = np.linspace(0, top, 33)[1:]
-    counts = count_and_det(stack, cls, elements, np.zeros(grid.size), grid)[0]
+    counts = count_and_det(stack, cls, elements, np.full(grid.size, float(kappa)), grid)[0]
     lo = np.concatenate([[0.0], grid[:-1]])
     c_lo = np.concatenate([[zero], counts[:-1]])
     simple_a, simple_b, simple_n = [], [], []
@@ -277,7 +269,7 @@ def _cutoffs(stack, cls: ModeClass, omega_top: float):
             todo = []
             break
         mids = np.array([0.5 * (t[0] + t[1]) for t in split])
-        cm = count_and_det(stack, cls, elements, np.zeros(mids.size), mids)[0]
+        cm = count_and_det(stack, cls, elements, np.full(mids.size, float(kappa)), mids)[0]
         todo = []
         for (a, b, na, nb), m, n in zip(split, mids, cm):
             if n > na:
@@ -285,12 +277,49 @@ def _cutoffs(stack, cls: ModeClass, omega_top: float):
             if nb > n:
                 todo.append((m, b, int(n), nb))
     if todo:
-        out += [(f"{cls.name}?", float("nan"))]
+        out += [(f"{cls.name}?", float("nan"), False)]
     if simple_a:
-        w, _ = _close(stack, cls, elements, 0.0, None, np.array(simple_a), np.array(simple_b))
-        found = sorted(zip(w, simple_n))
-        out += [(cls.label(int(n)), float(x)) for x, n in found]
+        w, _ = _close(stack, cls, elements, float(kappa), None, np.array(simple_a),
+                      np.array(simple_b))
+        for x, n in sorted(zip(w, simple_n)):
+            ok = True
+            if kappa != 0:
+                x, ok = _certify_in_omega(stack, cls, elements, float(kappa), float(x))
+            out.append((cls.label(int(n)), float(x), ok))
     return out
+
+
+def _certify_in_omega(stack, cls, elements, kappa, w):
+    """Certain opposite signs of det K (balls) at Omega (1 +- ROOT_RTOL / 4), else a certain
+    bracket around the root halved with certain signs (:func:`_bracketed`)."""
+    def sign(x):
+        d = det_ball(stack, cls, elements, kappa, x).real
+        return 1 if d > 0 else -1 if d < 0 else 0
+
+    return _bracketed(sign, w)
+
+
+def _bracketed(sign, x):
+    """``(root, ok)``: ``x`` certified by certain opposite signs at x (1 +- ROOT_RTOL / 4),
+    else the first bracket x (1 +- w), w = 1e-11, 1e-9, 1e-7, with certain opposite signs,
+    halved with certain signs down to that width."""
+    delta = ROOT_RTOL / 4
+    if sign(x * (1 - delta)) * sign(x * (1 + delta)) < 0:
+        return x, True
+    for w in (1e-11, 1e-9, 1e-7):
+        a, b = x * (1 - w), x * (1 + w)
+        sa = sign(a)
+        if sa * sign(b) < 0:
+            for _ in range(60):
+                if b - a <= 2 * delta * abs(a):
+                    return 0.5 * (a + b), True
+                m = 0.5 * (a + b)
+                sm = sign(m)
+                if sm == 0:
+                    return x, False
+                a, b = (m, b) if sm == sa else (a, m)
+            return x, False
+    return x, False
 
 
 def layered_modes(plate, omega, *, families=None) -> LayeredRoots:

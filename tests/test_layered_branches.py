@@ -16,10 +16,10 @@ from dispersion.waves.materials import material, ply
 
 def test_one_isotropic_layer_has_the_tracer_branches_and_sh_in_closed_form():
     m = material("steel")
-    ks = [0.05, 1.0, 3.0]
-    ours = layered_branches(layered_plate([(m, 1.0)]), ks, 6.0)
+    ks = [0.05, 2.0]
+    ours = layered_branches(layered_plate([(m, 1.0)]), ks, 4.0)
     assert not ours.failures
-    ref = {(r["kappa"], r["branch"]): r["Omega"] for r in trace_branches(m.nu, ks, 6.0).rows()}
+    ref = {(r["kappa"], r["branch"]): r["Omega"] for r in trace_branches(m.nu, ks, 4.0).rows()}
     lamb = {(k, lab): w for k, lab, w in zip(ours.kappa, ours.label, ours.omega)
             if not lab.startswith("SH")}
     assert set(lamb) == set(ref)

@@ -34,12 +34,12 @@ import scipy.linalg
 from scipy.optimize import brentq
 
 from dispersion.studies.branch_study import discrete_speed
-from dispersion.waves.discrete_branches import discrete_branches
+from dispersion.discretization.discrete_branches import discrete_branches
 from dispersion.symbolic.plate import numeric_pencil, plate_patch
-from dispersion.waves.numeric_frequency import numeric_frequency_function
-from dispersion.waves.exact_branches import mpmath_error, trace_branches, tracer_accuracy
-from dispersion.waves.units import ALUMINIUM, physical_branches
-from dispersion.waves.velocities import exact_velocities
+from dispersion.continuum.numeric_frequency import numeric_frequency_function
+from dispersion.continuum.exact_branches import mpmath_error, trace_branches, tracer_accuracy
+from dispersion.answers.units import ALUMINIUM, physical_branches
+from dispersion.continuum.velocities import exact_velocities
 
 NU = 0.3
 
@@ -96,7 +96,7 @@ import numpy as np
 sys.path.insert(0, sys.argv[1])
 spec = json.loads(sys.stdin.read())
 try:
-    from dispersion.waves.discrete_branches import discrete_branches
+    from dispersion.discretization.discrete_branches import discrete_branches
     from dispersion.symbolic.plate import plate_patch
 except ImportError:
     from dispersion.branches import discrete_branches
@@ -167,7 +167,7 @@ def _reference(patch, kappa: float) -> np.ndarray:
     """Sorted Omega at 60 digits (ball arithmetic on the matrices, not on the polynomial);
     at kappa = 0 (double zero eigenvalue, which ball eigen-solvers cannot isolate) the exact
     characteristic polynomial of the condensed rational pencil, roots isolated by flint."""
-    from dispersion.waves.extended_pencil import extended_frequencies
+    from dispersion.discretization.extended_pencil import extended_frequencies
 
     if kappa > 0:
         return np.sort(extended_frequencies(patch, NU, kappa, dps=60))
@@ -235,7 +235,7 @@ def discrete_race(quick: bool = False) -> dict:
     """
     import platform
 
-    from dispersion.waves.discrete_branches import ROUTES, discrete_branches
+    from dispersion.discretization.discrete_branches import ROUTES, discrete_branches
 
     n_fast = 20_000 if quick else 100_000
     sizes = {"this code": n_fast, "previous release": n_fast,
@@ -317,7 +317,7 @@ def discrete_race(quick: bool = False) -> dict:
 
 
 def _threads() -> int:
-    from dispersion.waves import discrete_branches as db
+    from dispersion.discretization import discrete_branches as db
 
     return min(db.THREADS, os.cpu_count() or 1)
 

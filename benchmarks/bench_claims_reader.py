@@ -17,7 +17,7 @@ import time
 from dispersion.claims import describe_difference, reader
 from dispersion.claims.schema import readable
 from dispersion.symbolic.power_balance import discrete_series
-from dispersion.waves.exact_series import exact_series
+from dispersion.continuum.exact_series import exact_series
 
 N60 = "9" * 59 + "7"
 N20 = "98765432109876543211"

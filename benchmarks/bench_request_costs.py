@@ -66,7 +66,7 @@ def _fit(xs, ts, log_x: bool) -> tuple[float, float]:
 
 def bar(timeout: float, quick: bool) -> None:
     from dispersion.budget import BAR_P_MAX
-    from dispersion.symbolic.mass_rule import RULE_NAMES, get_rule
+    from dispersion.mass_rules.mass_rule import RULE_NAMES, get_rule
 
     rules = [r for r in RULE_NAMES if not get_rule(r).redistributes
              and not get_rule(r).states.zero_rows and get_rule(r).basis == "bspline"]
@@ -75,7 +75,7 @@ def bar(timeout: float, quick: bool) -> None:
     for rule in rules:
         points = []
         for p in degrees:
-            got = _measure("from dispersion.waves.timestep import critical_step",
+            got = _measure("from dispersion.time_stepping.timestep import critical_step",
                            f"critical_step({rule!r}, {p}, model='bar', wave_speed=1.0)", timeout)
             print(f"bar  {rule:16s} p = {p:2d}: "
                   + (f"{got['cpu']:7.2f} s" if got else f"timed out (> {timeout:g} s)"))
@@ -106,7 +106,7 @@ def terms(timeout: float, quick: bool) -> None:
 
     points = []
     for m in (32, 64, 128, 256) if quick else (32, 64, 128, 256, 512):
-        got = _measure("from dispersion.waves.fully_discrete import fully_discrete_series",
+        got = _measure("from dispersion.time_stepping.fully_discrete import fully_discrete_series",
                        f"fully_discrete_series({{2: 1}}, {2 * m})", timeout)
         print(f"terms m = {m:4d}: " + (f"{got['cpu']:7.2f} s" if got else "timed out"))
         if got is None:
@@ -135,7 +135,7 @@ def phases(timeout: float, quick: bool) -> None:
     for p, n in ((2, 3), (4, 24)):
         base = None
         for count in (65, 1000) if quick else (65, 1000, 10000):
-            got = _measure("from dispersion.waves.timestep import critical_time_step\n"
+            got = _measure("from dispersion.time_stepping.timestep import critical_time_step\n"
                            "from dispersion.symbolic.plate import plate_patch\n"
                            f"patch = plate_patch({p}, {n}, 'bloch', 2, 'singular')",
                            f"critical_time_step(patch, 0.3, n_theta={count})", timeout)
@@ -157,10 +157,10 @@ _REQUESTS = {  # issue 27 item 8: each must be refused, naming its bound, in und
     "timestep --model bar --p 24 --mass hrz": [*_CLI, "timestep", "--model", "bar", "--p",
                                                "24", "--mass", "hrz"],
     "fully_discrete_series({2: 1}, 10**6)": [
-        "-c", "from dispersion.waves.fully_discrete import fully_discrete_series as f\n"
+        "-c", "from dispersion.time_stepping.fully_discrete import fully_discrete_series as f\n"
               "f({2: 1}, 10**6)"],
     "critical_time_step(..., n_theta=10**9)": [
-        "-c", "from dispersion.waves.timestep import critical_time_step as c\n"
+        "-c", "from dispersion.time_stepping.timestep import critical_time_step as c\n"
               "from dispersion.symbolic.plate import plate_patch\n"
               "c(plate_patch(mass='singular'), 0.3, n_theta=10**9)"],
     "parallel_map(abs, [1, -2], jobs=10**6)": [

@@ -16,7 +16,7 @@ import sys
 import time
 from pathlib import Path
 
-from dispersion.waves.exact_series import exact_series
+from dispersion.continuum.exact_series import exact_series
 from dispersion.results import save
 from dispersion.studies.series_race import measure
 

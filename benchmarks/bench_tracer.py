@@ -34,7 +34,7 @@ CHILD = r"""
 import json, resource, sys, time, tracemalloc
 import numpy as np
 import dispersion
-from dispersion.waves.exact_branches import trace_branches
+from dispersion.continuum.exact_branches import trace_branches
 kappa = np.linspace(0.0, 10.0, {count})
 trace_branches({nu}, kappa[:3], {omega_max})            # warm-up: imports, caches
 t0 = time.perf_counter()
@@ -66,7 +66,7 @@ def run(path: Path, count: int, omega_max: float) -> dict:
 def mpmath_error(omega: dict, kappa: np.ndarray, count: int, seed: int = 0) -> float:
     import mpmath
 
-    from dispersion.waves.rayleigh_lamb import frequency_function
+    from dispersion.continuum.rayleigh_lamb import frequency_function
 
     pts = [(lab, i) for lab, w in omega.items() for i, x in enumerate(w)
            if x is not None and kappa[i] > 0]

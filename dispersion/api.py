@@ -53,7 +53,7 @@ def patch(*args, **fields) -> PatchModel:
     >>> pt = patch(mass="singular", gamma_s=0)
     >>> pt.plate.massless, pt.spec == Patch(mass="singular", gamma_s=0)
     ((2, 5), True)
-    >>> from dispersion.symbolic.elastic_law import Orthotropic
+    >>> from dispersion.materials.elastic_law import Orthotropic
     >>> patch(law=Orthotropic(3, 2, 1, 1)).series("S0", 2)     # (C11 - C12^2/C22)/C66
     {2: 5/2}
     """
@@ -79,7 +79,7 @@ def series(branch: str = "S0", order: int = 8, *, exact: bool = False, nu=None,
         if patch_kwargs:
             raise InputError(f"patch parameters {sorted(patch_kwargs)} do not apply with "
                              "exact=True (the exact Rayleigh-Lamb series)")
-        from dispersion.waves.exact_series import exact_series
+        from dispersion.continuum.exact_series import exact_series
 
         return exact_series(branch, order, nu=nu)
     return patch(**patch_kwargs).series(branch, order, nu)
@@ -90,7 +90,7 @@ def exact_branches(kappa, nu=defaults.NU_FLOAT, omega_max: float = 8.0, **kwargs
     (:func:`dispersion.waves.exact_branches.trace_branches`); ``nu`` may be an isotropic
     :class:`~dispersion.symbolic.elastic_law.ElasticLaw` (other laws have no closed form:
     refused)."""
-    from dispersion.waves.exact_branches import trace_branches
+    from dispersion.continuum.exact_branches import trace_branches
 
     if hasattr(nu, "poisson_ratio"):  # an ElasticLaw
         nu = nu.poisson_ratio("exact Rayleigh-Lamb branches")
@@ -100,7 +100,7 @@ def exact_branches(kappa, nu=defaults.NU_FLOAT, omega_max: float = 8.0, **kwargs
 def material(name: str):
     """A material of the table (:data:`dispersion.waves.materials.MATERIALS`, with sources);
     user materials: :func:`dispersion.waves.materials.user_material`."""
-    from dispersion.waves.materials import material as _material
+    from dispersion.materials.materials import material as _material
 
     return _material(name)
 
@@ -114,7 +114,7 @@ def lamb_modes(material, thickness_mm: float, *, frequency_khz=None, fd_mhz_mm=N
     >>> [(r["mode"], round(r["c_p [m/s]"]), round(r["c_g [m/s]"])) for r in t.rows()]
     [('S0', 5415, 5374), ('A0', 2023, 3059), ('SH0', 3235, 3235)]
     """
-    from dispersion.waves.mode_table import lamb_modes as _lamb_modes
+    from dispersion.answers.mode_table import lamb_modes as _lamb_modes
 
     if isinstance(material, str):
         material = globals()["material"](material)
@@ -132,7 +132,7 @@ def branch_table(**request):
     >>> t.title()
     'Rayleigh-Lamb branches, nu = 0.3, 3 kappa in [0, 1], Omega <= 2'
     """
-    from dispersion.waves.branch_table import branch_table as _branch_table
+    from dispersion.answers.branch_table import branch_table as _branch_table
 
     return _branch_table(**request)
 
@@ -140,7 +140,7 @@ def branch_table(**request):
 def mode_shapes(table, mode: str, points: int = 41):
     """Displacements and stresses through the thickness of ``mode`` of a one-frequency
     :func:`lamb_modes` table (:func:`dispersion.waves.mode_shape_table.mode_shapes`)."""
-    from dispersion.waves.mode_shape_table import mode_shapes as _mode_shapes
+    from dispersion.answers.mode_shape_table import mode_shapes as _mode_shapes
 
     return _mode_shapes(table, mode, points)
 
@@ -148,14 +148,14 @@ def mode_shapes(table, mode: str, points: int = 41):
 def series_table(branches=("S0", "A0"), order: int = 8, **request):
     """``dispersion series`` as a function (:func:`dispersion.waves.series_table.series_table`:
     a :class:`~dispersion.waves.series_table.SeriesTable` that prints itself)."""
-    from dispersion.waves.series_table import series_table as _series_table
+    from dispersion.answers.series_table import series_table as _series_table
 
     return _series_table(branches, order, **request)
 
 
 def critical_steps(masses=None, p: int = 2, **request):
     """``dispersion timestep`` as a function (:func:`dispersion.waves.critical_steps.critical_steps`)."""
-    from dispersion.waves.critical_steps import critical_steps as _critical_steps
+    from dispersion.answers.critical_steps import critical_steps as _critical_steps
 
     return _critical_steps(masses, p, **request)
 
@@ -231,16 +231,16 @@ def __getattr__(name: str):
 
 def layup(text, *, ply=None, ply_thickness_mm=None, direction: float = 0.0,
           damping: float = 0.0):
-    """A layered plate (:class:`~dispersion.continuum.layered_plate.LayeredPlate`) from a TOML
+    """A layered plate (:class:`~dispersion.continuum.layered.layered_plate.LayeredPlate`) from a TOML
     layup file (a path ending in ``.toml``, read as untrusted data), from layers
     ``material:thickness_mm[:angle],...`` bottom up, or from a layup such as ``[0/90]s`` with
-    a ``ply`` and its thickness (:mod:`dispersion.continuum.layup_file`); ``damping`` a loss
+    a ``ply`` and its thickness (:mod:`dispersion.continuum.layered.layup_file`); ``damping`` a loss
     factor given to every layer.
 
     >>> [l.angle for l in layup("[0/90]s", ply="T800/913", ply_thickness_mm=0.125).layers]
     [0.0, 90.0, 0.0]
     """
-    from dispersion.continuum.layup_file import plate_from_string, read_layup
+    from dispersion.continuum.layered.layup_file import plate_from_string, read_layup
 
     if str(text).strip().lower().endswith(".toml"):
         if ply is not None or ply_thickness_mm is not None:
@@ -248,7 +248,7 @@ def layup(text, *, ply=None, ply_thickness_mm=None, direction: float = 0.0,
                              "not with a layup file")
         plate = read_layup(text)
         if damping:
-            from dispersion.continuum.layered_plate import Layer, LayeredPlate
+            from dispersion.continuum.layered.layered_plate import Layer, LayeredPlate
 
             plate = LayeredPlate(tuple(Layer(layer.solid.with_loss(damping), layer.thickness_mm,
                                              layer.angle) for layer in plate.layers),

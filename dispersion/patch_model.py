@@ -134,8 +134,8 @@ class PatchModel:
         """
         import numpy as np
 
-        from dispersion.waves.branch_table import MAX_COUNT, check_discrete_work
-        from dispersion.waves.discrete_branches import discrete_branches
+        from dispersion.answers.branch_table import MAX_COUNT, check_discrete_work
+        from dispersion.discretization.discrete_branches import discrete_branches
 
         if self.spec.symbolic_r:
             raise InputError(f"r must be a number > 0 for numeric branches, got the symbol "

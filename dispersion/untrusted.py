@@ -28,10 +28,11 @@ import os
 import re
 import stat
 import unicodedata
+from fractions import Fraction
 
 from dispersion.errors import InputError
 
-__all__ = ["printable", "read_text", "load_toml", "nesting_depth"]
+__all__ = ["printable", "read_text", "load_toml", "nesting_depth", "read_fraction"]
 
 # CSI / OSC / other ESC sequences (ECMA-48): removed whole, so no fragment stays behind
 _ESCAPE = re.compile(r"\x1b(?:\[[0-?]*[ -/]*[@-~]|\][^\x07\x1b]*(?:\x07|\x1b\\)|[@-Z\\-_])")
@@ -152,3 +153,34 @@ def load_toml(text: str, file: str, what: str, max_depth: int) -> dict:
                          "levels deep")
     return data
 
+
+# a decimal such as 0.125, -1e-3 or .5; two of them with a slash make a fraction
+_DECIMAL = r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d{1,3})?"
+_FRACTION = re.compile(rf"({_DECIMAL})(?:/({_DECIMAL}))?")
+
+
+def read_fraction(text: str, what: str, max_chars: int = 60) -> Fraction:
+    """The number written in ``text`` as an exact fraction: a decimal (``0.125``, ``-1e-3``)
+    or a quotient of two (``1/8``), read by a regular expression (a whitelist: nothing else
+    is accepted, nothing is evaluated), at most ``max_chars`` characters, exponents of at
+    most three digits.
+
+    >>> read_fraction("1/8", "thickness")
+    Fraction(1, 8)
+    >>> read_fraction("2**99", "thickness")
+    Traceback (most recent call last):
+    ...
+    dispersion.errors.InputError: thickness must be a number such as 0.125 or 1/8, got '2**99'
+    """
+    text = str(text).strip()
+    match = _FRACTION.fullmatch(text) if len(text) <= max_chars else None
+    if match is None:
+        raise InputError(f"{what} must be a number such as 0.125 or 1/8, got "
+                         f"{printable(text, 40)!r}")
+    value = Fraction(match.group(1))
+    if match.group(2) is not None:
+        denominator = Fraction(match.group(2))
+        if denominator == 0:
+            raise InputError(f"{what}: division by zero in {printable(text, 40)!r}")
+        value /= denominator
+    return value

@@ -27,7 +27,7 @@ from scipy.linalg import eigh
 
 from dispersion.symbolic.plate import numeric_pencil, plate_patch
 from dispersion.symbolic.power_balance import NU, discrete_series
-from dispersion.waves.exact_series import exact_series
+from dispersion.continuum.exact_series import exact_series
 
 exact = exact_series("S0", 6)
 exact

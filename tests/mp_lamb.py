@@ -1,8 +1,8 @@
 """The Rayleigh-Lamb equation in mpmath arithmetic, the reference of the float forms (tests only).
 
-The defining equation :func:`dispersion.waves.rayleigh_lamb.frequency_function` with mpmath's
+The defining equation :func:`dispersion.continuum.rayleigh_lamb.frequency_function` with mpmath's
 own :math:`C(z) = \\cos\\sqrt z` and :math:`S(z) = \\operatorname{sinc}\\sqrt z`
-(:func:`~dispersion.waves.rayleigh_lamb.mpmath_frequency_function`); none of the float forms
+(:func:`~dispersion.continuum.rayleigh_lamb.mpmath_frequency_function`); none of the float forms
 (numeric, deflated, scaled) is used. Callers set the precision
 (``mpmath.workdps``).
 """
@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import mpmath
 
-from dispersion.waves.rayleigh_lamb import mpmath_frequency_function
+from dispersion.continuum.rayleigh_lamb import mpmath_frequency_function
 
 
 def mp_C(z):

@@ -4,7 +4,7 @@ K and M are assembled in mpmath from :func:`dispersion.symbolic.plate.stiffness_
 closed forms of the x-functions (x-exact: m = 1, s = kappa, d = kappa^2; Bloch: the cosine and
 sine sums of the Gram integrals), massless DOFs condensed by the Schur complement, and the
 eigenvalues found by ``mpmath.eigsy`` after a Cholesky reduction. Nothing of the
-characteristic-polynomial path of :mod:`dispersion.waves.pencil_polynomial` is used.
+characteristic-polynomial path of :mod:`dispersion.discretization.pencil_polynomial` is used.
 """
 from __future__ import annotations
 

@@ -33,7 +33,7 @@ def test_public_names_and_unknown_attribute():
     for name in dispersion.__all__:
         assert getattr(dispersion, name) is not None
     assert set(dispersion.__all__) <= set(dir(dispersion))
-    assert dispersion.symbolic.mass.CONTACT_SETS  # submodules load on access
+    assert dispersion.mass_rules.mass.CONTACT_SETS  # submodules load on access
     with pytest.raises(AttributeError, match="no attribute 'nothing'"):
         dispersion.nothing  # noqa: B018
 

@@ -1,4 +1,4 @@
-"""Approximate dual B-splines (dispersion.symbolic.approximate_dual): reproduction, symbol,
+"""Approximate dual B-splines (dispersion.mass_rules.approximate_dual): reproduction, symbol,
 Petrov-Galerkin = Galerkin with S^-1, Dirichlet treatment; every check against an independent
 computation (sympy integration of the basis polynomials, mpmath at 50 digits)."""
 from __future__ import annotations
@@ -12,15 +12,15 @@ from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from dispersion.errors import InputError
-from dispersion.symbolic import bspline
-from dispersion.symbolic.approximate_dual import (
+from dispersion.splines import bspline
+from dispersion.mass_rules.approximate_dual import (
     approximate_dual_matrix,
     customized_mass,
     dirichlet_dual,
     dual_symbol,
     monomial_coefficients,
 )
-from dispersion.symbolic.bspline import open_knot_vector
+from dispersion.splines.bspline import open_knot_vector
 
 x = sympy.Symbol("x")
 
@@ -143,7 +143,7 @@ def test_bar_symbol_matches_the_assembled_operator_every_degree(p, theta):
 def _check_bar_symbol(p, theta):
     # the bar's omega^2 from the Bloch symbols (bar_frequency: d * s / 1) against the
     # assembled open-mesh S K applied to a Bloch wave in the interior, at 50 digits
-    from dispersion.waves.bar_dispersion import bar_frequency
+    from dispersion.discretization.bar_dispersion import bar_frequency
 
     ne = 4 * p + 4  # the middle row of S K sees uniform knots only
     kv = open_knot_vector(p, ne, 0, ne)

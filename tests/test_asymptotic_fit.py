@@ -64,8 +64,8 @@ def test_error_series_agrees_with_the_numeric_branches():
     # kappa where the series' next unknown term is negligible (the series from the symbolic
     # determinant, the numbers from the float pencil and the root tracer)
     from dispersion.symbolic.plate import plate_patch
-    from dispersion.waves.exact_branches import exact_fundamental
-    from dispersion.waves.discrete_branches import fundamental_branches
+    from dispersion.continuum.exact_branches import exact_fundamental
+    from dispersion.discretization.discrete_branches import fundamental_branches
 
     series = A.relative_error_series("A0", NU, **SINGULAR_R2)
     assert min(series) == 2
@@ -98,7 +98,7 @@ def test_singular_a0_order_is_two_inside_its_window():
 def test_leading_power_of_the_error_matches_the_power_balance(mass, order):
     # the S0 relative error's leading power = (first power where Omega^2 series differ) - 2
     from dispersion.symbolic.power_balance import discrete_series, first_difference
-    from dispersion.waves.exact_series import exact_series
+    from dispersion.continuum.exact_series import exact_series
 
     kw = dict(SINGULAR_R2, mass=mass)
     d, e = discrete_series("S0", 8, **kw), exact_series("S0", 8)

@@ -35,13 +35,15 @@ import dispersion.cli
 from dispersion.errors import InputError
 
 # Import everything the commands load lazily, so a refusal is timed without import cost.
-from dispersion.waves import discrete_branches as _branches  # noqa: E402
+from dispersion.discretization import discrete_branches as _branches  # noqa: E402
 from dispersion import sweep
 from dispersion.claims import errata
-from dispersion.symbolic import bspline, mass, mass_rule, plate, power_balance
-from dispersion.waves import rayleigh_lamb
-from dispersion.waves import exact_series as exact_series_mod
-from dispersion.waves import exact_branches as exact_branches_mod
+from dispersion.splines import bspline
+from dispersion.mass_rules import mass, mass_rule
+from dispersion.symbolic import plate, power_balance
+from dispersion.continuum import rayleigh_lamb
+from dispersion.continuum import exact_series as exact_series_mod
+from dispersion.continuum import exact_branches as exact_branches_mod
 from dispersion import io as dio
 from dispersion.contact import bar, scenario, simulate
 
@@ -405,14 +407,14 @@ def _kappa(*values):
 
 
 def _lamb(**kw):
-    from dispersion.waves.materials import material
-    from dispersion.waves.mode_table import lamb_modes
+    from dispersion.materials.materials import material
+    from dispersion.answers.mode_table import lamb_modes
 
     return lamb_modes(material("aluminium"), kw.pop("d", 1.0), **kw)
 
 
 def _mixed_nu():
-    from dispersion.waves.units import ALUMINIUM, physical_branches
+    from dispersion.answers.units import ALUMINIUM, physical_branches
 
     ex = exact_branches_mod.trace_branches(0.3, [0.5], 2.0)
     return physical_branches(ex.kappa, ex.omega, None, ALUMINIUM, 3.0)
@@ -426,9 +428,9 @@ API_CASES = [
     Api("lamb_modes(d=0)", lambda: _lamb(frequency_khz=100.0, d=0.0), r"thickness"),
     Api("lamb_modes(many)", lambda: _lamb(frequency_khz=np.full(10**6, 6e3)), r"kappa samples"),
     Api("modes_at_frequency(nu=0.5)", lambda: __import__(
-        "dispersion.waves.frequency", fromlist=["x"]).modes_at_frequency(0.5, [1.0]), NU),
+        "dispersion.continuum.frequency", fromlist=["x"]).modes_at_frequency(0.5, [1.0]), NU),
     Api("user_material(c_L, c_T, nu)", lambda: __import__(
-        "dispersion.waves.materials", fromlist=["x"]).user_material(
+        "dispersion.materials.materials", fromlist=["x"]).user_material(
         c_L=6000.0, c_T=3000.0, nu=0.3), r"material inputs"),
     Api("physical_branches(nu 0.3, aluminium)", _mixed_nu, r"nu = 0\.3"),
     Api("plate_patch(r=10**400)", lambda: _patch(model="bloch", r=10**400), R),

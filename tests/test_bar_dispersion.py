@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from dispersion.waves.bar_dispersion import bar_dispersion, bar_frequency
+from dispersion.discretization.bar_dispersion import bar_dispersion, bar_frequency
 from dispersion.errors import InputError
 
 
@@ -66,8 +66,8 @@ def test_bad_input():
 def test_one_bar_rule_check_for_dispersion_and_time_step(mass):
     # one check (bar_dispersion.bar_rule) refuses a contact mass for the periodic bar in
     # both places that use it, with the same message
-    from dispersion.waves.bar_dispersion import bar_rule
-    from dispersion.waves.timestep import bar_omega_squared
+    from dispersion.discretization.bar_dispersion import bar_rule
+    from dispersion.time_stepping.timestep import bar_omega_squared
 
     with pytest.raises(InputError) as direct:
         bar_rule(mass)

@@ -7,7 +7,7 @@ import re
 import numpy as np
 import pytest
 
-from dispersion.waves.bar_dispersion import bar_dispersion
+from dispersion.discretization.bar_dispersion import bar_dispersion
 from dispersion.studies.branch_study import figure2_data, measure_branches
 from dispersion.symbolic.plate import plate_patch
 from dispersion.report.branches import render
@@ -119,7 +119,7 @@ def test_consistent_mass_errors_are_upper_bounds_per_wavelength():
 
 def test_tracer_accuracy_reference_is_checked_against_mpmath():
     # issue 14: the reference setting of the speed-accuracy chart is compared with mpmath
-    from dispersion.waves.exact_branches import tracer_accuracy
+    from dispersion.continuum.exact_branches import tracer_accuracy
 
     acc = tracer_accuracy(NU, np.linspace(0, 4, 30), omega_max=4.0,
                           settings=[(0.2, 1e-6), (0.2, 1e-12)], repeat=1, mpmath_points=5)

@@ -5,12 +5,12 @@ import numpy as np
 import pytest
 import scipy.linalg
 
-from dispersion.waves.discrete_branches import discrete_branches
-from dispersion.waves.discrete_error import fitted_order, predicted_error, relative_error
-from dispersion.waves.pencil_frequencies import pencil_frequencies
+from dispersion.discretization.discrete_branches import discrete_branches
+from dispersion.discretization.discrete_error import fitted_order, predicted_error, relative_error
+from dispersion.discretization.pencil_frequencies import pencil_frequencies
 from dispersion.errors import InputError
 from dispersion.symbolic.plate import numeric_pencil, plate_patch
-from dispersion.waves.exact_branches import trace_branches
+from dispersion.continuum.exact_branches import trace_branches
 
 NU = 0.3
 
@@ -221,7 +221,7 @@ def _check_discrete(mass, p, extra_n, r, nu, kappa_frac):
 def _discrete_domain(p_max, extra_max, examples):
     """Every mass rule, p = 1..p_max, n = p + 1 .. p + 1 + extra_max, r in {1/2, 2}, nu in
     (-1, 0.5), kappa over a whole period; ``examples`` (the ends, issue 26's case)."""
-    from dispersion.symbolic.mass_rule import BLOCH_RULE_NAMES as MASS_VARIANTS
+    from dispersion.mass_rules.mass_rule import BLOCH_RULE_NAMES as MASS_VARIANTS
 
     def decorate(fn):
         for ex in examples:

@@ -1,9 +1,9 @@
-"""Properties of dispersion.symbolic.bspline: partition of unity, positivity, continuity, Greville."""
+"""Properties of dispersion.splines.bspline: partition of unity, positivity, continuity, Greville."""
 import numpy as np
 import pytest
 import sympy
 
-from dispersion.symbolic import bspline
+from dispersion.splines import bspline
 from dispersion.errors import InputError
 
 x = sympy.Symbol("x")
@@ -73,7 +73,7 @@ def test_spline_basis_1d_matches_the_exact_extraction():
     import numpy as np
     import sympy
 
-    from dispersion.symbolic.bspline import SplineBasis1D, basis_polynomials, open_knot_vector
+    from dispersion.splines.bspline import SplineBasis1D, basis_polynomials, open_knot_vector
 
     kv = open_knot_vector(3, 4, -1, 1)
     basis = SplineBasis1D.from_knots(kv)

@@ -31,7 +31,7 @@ def test_series_work_counts_the_terms_of_the_full_expansions():
 
 @pytest.mark.parametrize("p", [budget.BAR_P_MAX + 1, 24])
 def test_the_bar_degree_is_refused_above_its_bound_before_work(monkeypatch, p, capsys):
-    import dispersion.waves.timestep as ts
+    import dispersion.time_stepping.timestep as ts
 
     monkeypatch.setattr(ts, "_coefficients", _never)
     for call in (lambda: ts.bar_omega_squared("hrz", p), lambda: ts.bar_omega_max("lumped", p),
@@ -43,13 +43,13 @@ def test_the_bar_degree_is_refused_above_its_bound_before_work(monkeypatch, p, c
 
 
 def test_the_bar_degree_at_its_bound_is_computed():
-    from dispersion.waves.timestep import bar_omega_squared
+    from dispersion.time_stepping.timestep import bar_omega_squared
 
     assert bar_omega_squared("nodal-lobatto", budget.BAR_P_MAX).has(sympy.Symbol("z"))
 
 
 def test_fully_discrete_series_bounds_both_of_its_costs(monkeypatch):
-    import dispersion.waves.fully_discrete as fd
+    import dispersion.time_stepping.fully_discrete as fd
 
     with pytest.raises(InputError, match="128"):
         fd.time_series(budget.TIME_TERMS_MAX + 1)
@@ -66,7 +66,7 @@ def test_fully_discrete_series_bounds_both_of_its_costs(monkeypatch):
 
 
 def test_fully_discrete_series_within_its_bounds_is_computed():
-    from dispersion.waves.fully_discrete import fully_discrete_series
+    from dispersion.time_stepping.fully_discrete import fully_discrete_series
 
     nu = sympy.Symbol("nu")
     # k = 4, m = 4: 69 products, the largest symbolic work within the bound
@@ -114,7 +114,7 @@ def test_claims_within_the_bounds_are_read(text):
 
 
 def test_phases_are_bounded_by_memory_before_the_pencil(monkeypatch):
-    import dispersion.waves.timestep as ts
+    import dispersion.time_stepping.timestep as ts
     from dispersion.symbolic.plate import plate_patch
 
     monkeypatch.setattr(ts, "float_pencil", _never)

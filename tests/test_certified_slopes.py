@@ -1,5 +1,5 @@
-"""Discrete group velocities (dispersion.waves.certified_slopes and the polynomial path of
-dispersion.waves.discrete_branches): certified to 1e-12 at the README's settings and over the
+"""Discrete group velocities (dispersion.discretization.certified_slopes and the polynomial path of
+dispersion.discretization.discrete_branches): certified to 1e-12 at the README's settings and over the
 domain of the promise, against an independent 80-digit reference (tests/mp_pencil.py)."""
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ from hypothesis import example, given
 from hypothesis import strategies as st
 
 from dispersion.symbolic.plate import mirror_bases, plate_patch
-from dispersion.waves.discrete_branches import GROUP_RTOL, discrete_branches
+from dispersion.discretization.discrete_branches import GROUP_RTOL, discrete_branches
 from mp_pencil import mp_frequencies
 from promise_search import FAST_FEW, SLOW, record
 
@@ -76,7 +76,7 @@ def _check_slopes(mass, r, nu, kappa_frac):
 def _slope_domain(fn, full=False):
     """Every mass rule, r in {1/2, 2} (the README's two figures), nu in (-1, 0.5), kappa over a
     whole period (0 and the zone edge as examples)."""
-    from dispersion.symbolic.mass_rule import BLOCH_RULE_NAMES as MASS_VARIANTS
+    from dispersion.mass_rules.mass_rule import BLOCH_RULE_NAMES as MASS_VARIANTS
 
     ends = [("consistent", 2, 0.3, 0.0), ("singular", 2, 0.3, 0.0601504 / math.pi),
             ("singular", 2, 0.3, 0.0), ("consistent", 2, 0.3, 0.0200501 / math.pi),
@@ -120,7 +120,7 @@ def test_failures_reach_json_and_csv(tmp_path, capsys, monkeypatch):
     import json
 
     from dispersion.cli import main
-    from dispersion.waves import discrete_branches as db
+    from dispersion.discretization import discrete_branches as db
 
     monkeypatch.setattr(db, "GROUP_RTOL", 1e-300)
     args = ["branches", "--mass", "consistent", "--count", "3", "--kappa-max", "0.5"]
@@ -137,7 +137,7 @@ def test_extended_precision_work_is_refused_up_front(monkeypatch):
     # the mass matrix's conditioning; here small kappa on the eigen-solver path), work beyond
     # the bound is refused after the first point, naming the count that fits (never hours)
     from dispersion.errors import InputError
-    from dispersion.waves import extended_pencil
+    from dispersion.discretization import extended_pencil
 
     monkeypatch.setattr(extended_pencil, "MAX_EXTENDED_SECONDS", 1e-3)
     patch = plate_patch(2, 14, "bloch", 2, "consistent")   # blocks of 14: the eigen-solver

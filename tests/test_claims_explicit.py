@@ -22,7 +22,7 @@ def test_example_file_verifies_from_the_cli(capsys):
 @pytest.mark.slow
 def test_a_false_step_claim_fails_and_a_plate_claim_holds():
     # the plate value: HRZ over consistent on the p = 2, n = 3, r = 2 patch is
-    # 7.4248.../2.4944... (dispersion.waves.timestep; the HRZ maximum 2 sqrt(14)/3 is exact)
+    # 7.4248.../2.4944... (dispersion.time_stepping.timestep; the HRZ maximum 2 sqrt(14)/3 is exact)
     claims = parse_claims('''
 [[claim]]
 name = "hrz plate"

@@ -25,8 +25,8 @@ from dispersion.budget import BAR_P_MAX
 from dispersion.claims import BarModel, ExactModel, parse_claims
 from dispersion.claims.claim_model import PATCH_KEYS
 from dispersion.errors import InputError
-from dispersion.symbolic.mass import CONTACT_SETS
-from dispersion.symbolic.mass_rule import RULE_NAMES, get_rule
+from dispersion.mass_rules.mass import CONTACT_SETS
+from dispersion.mass_rules.mass_rule import RULE_NAMES, get_rule
 from dispersion.symbolic.patch import Patch
 
 QUICK = settings(max_examples=25, deadline=None, derandomize=True,

@@ -90,7 +90,7 @@ def test_sizes_are_bounded_before_any_arithmetic(text, match):
 def test_a_series_is_bounded_coefficient_by_coefficient():
     # a long series is many small coefficients: eq (14) to kappa^32 (16 terms, denominators
     # up to (1 - nu)^31) reads whole, each coefficient within the limits on its own
-    from dispersion.waves.exact_series import exact_series
+    from dispersion.continuum.exact_series import exact_series
 
     derived = exact_series("S0", 32)
     text = " + ".join(f"({c})*kappa^{k}" for k, c in sorted(derived.items())) + " + O(kappa^34)"
@@ -290,7 +290,7 @@ def test_random_text_reads_to_whitelisted_nodes_long(text, syntax):
 
 def _check_described(tree):
     from dispersion.claims import describe_difference
-    from dispersion.waves.exact_series import exact_series
+    from dispersion.continuum.exact_series import exact_series
 
     try:
         printed = read(plain(tree))

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from dispersion.cli import main
-from dispersion.waves.exact_branches import trace_branches
+from dispersion.continuum.exact_branches import trace_branches
 
 
 def _rows(text: str) -> list[dict]:
@@ -122,7 +122,7 @@ def test_discrete_rows_have_group_velocity(tmp_path):
 def test_largest_discrete_patch_is_accepted(tmp_path, capsys):
     # the size limits are the patch's own (patch.check_size), the same as for the series;
     # the numeric work bound count * masses * n^3 is the branches' own
-    from dispersion.waves.branch_table import MAX_DISCRETE_WORK
+    from dispersion.answers.branch_table import MAX_DISCRETE_WORK
     from dispersion.symbolic.plate import N_MAX
 
     out = tmp_path / "o.csv"

@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 from dispersion.cli import main
-from dispersion.waves.materials import material
-from dispersion.waves.mode_table import lamb_modes
+from dispersion.materials.materials import material
+from dispersion.answers.mode_table import lamb_modes
 
 
 def _rows(text: str) -> list[dict]:
@@ -155,7 +155,7 @@ def test_csv_never_has_nan_or_inf_over_random_plates():
     @given(ct=st.floats(1000.0, 4000.0), ratio=st.floats(1.2, 3.0), d=st.floats(0.2, 10.0),
            fd=st.lists(st.floats(0.01, 8.0), min_size=1, max_size=4))
     def check(ct, ratio, d, fd):
-        from dispersion.waves.materials import user_material
+        from dispersion.materials.materials import user_material
 
         t = lamb_modes(user_material(c_L=ct * ratio, c_T=ct), d, fd_mhz_mm=fd)
         text = t.to_csv()

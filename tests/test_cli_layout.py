@@ -18,11 +18,11 @@ CLI = Path(__file__).resolve().parents[1] / "dispersion" / "cli"
 #: What the command line may import from the package, and why.
 ALLOWED = {
     # the command functions: typed inputs in, a result out
-    "dispersion.waves.branch_table": "branches on a kappa grid",
-    "dispersion.waves.mode_shape_table": "mode shapes of the calculator",
-    "dispersion.waves.series_table": "series",
+    "dispersion.answers.branch_table": "branches on a kappa grid",
+    "dispersion.answers.mode_shape_table": "mode shapes of the calculator",
+    "dispersion.answers.series_table": "series",
     "dispersion.claims.errata_sheet": "series --paper",
-    "dispersion.waves.critical_steps": "timestep",
+    "dispersion.answers.critical_steps": "timestep",
     "dispersion.api": "lamb_modes (the calculator)",
     "dispersion.contact.simulate": "simulate_ring",
     "dispersion.contact.signorini": "signorini_1d (impact)",
@@ -41,13 +41,13 @@ ALLOWED = {
     # the options: numbers, units, errors
     "dispersion.errors": "InputError", "dispersion.defaults": "defaults and limits",
     "dispersion.claims.reader": "read_number (the one number grammar)",
-    "dispersion.claims.limits": "MAX_JOBS", "dispersion.waves.unit_mixups": "hints",
+    "dispersion.claims.limits": "MAX_JOBS", "dispersion.materials.unit_mixups": "hints",
     # registries that name what an option may be, and the input values
-    "dispersion.symbolic.mass_rule": "RULE_NAMES, get_rule",
-    "dispersion.symbolic.mass_rule_file": "read_rule_file (an untrusted --mass-rule file)",
-    "dispersion.waves.time_integration": "NEWMARK_MEMBERS, CRITICAL_STEP_MODELS",
+    "dispersion.mass_rules.mass_rule": "RULE_NAMES, get_rule",
+    "dispersion.mass_rules.mass_rule_file": "read_rule_file (an untrusted --mass-rule file)",
+    "dispersion.time_stepping.time_integration": "NEWMARK_MEMBERS, CRITICAL_STEP_MODELS",
     "dispersion.contact.newmark_scheme": "CONTACT_SCHEMES",
-    "dispersion.waves.materials": "MATERIALS, material, user_material",
+    "dispersion.materials.materials": "MATERIALS, material, user_material",
     "dispersion.symbolic.patch": "Patch (the input value)",
     "dispersion.contact.scenario": "Scenario (the input value)",
     "dispersion.contact.energy_balance": "STABILITY_NOTE (help text)",
@@ -89,8 +89,8 @@ def test_largest_command_module_is_short():
 
 def test_planted_numerics_import_is_caught(tmp_path):
     bad = tmp_path / "bad.py"
-    bad.write_text("def run():\n    from dispersion.waves.exact_branches import trace_branches\n")
-    assert "dispersion.waves.exact_branches" in _imports(bad) - set(ALLOWED)
+    bad.write_text("def run():\n    from dispersion.continuum.exact_branches import trace_branches\n")
+    assert "dispersion.continuum.exact_branches" in _imports(bad) - set(ALLOWED)
 
 
 def test_notebook_03_needs_one_import():

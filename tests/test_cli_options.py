@@ -132,7 +132,7 @@ def test_timestep_and_branches_refuse_a_material_with_the_same_line(material, ca
 
 def test_timestep_and_branches_read_the_same_material():
     from dispersion.cli.options import material_from_args
-    from dispersion.waves.materials import user_material
+    from dispersion.materials.materials import user_material
 
     speeds = ["--cl", "6000", "--ct", "3000"]
     a = material_from_args(_parse("timestep", *speeds), default="steel")

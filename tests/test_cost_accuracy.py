@@ -43,7 +43,7 @@ def test_a_mass_that_needs_a_solve_is_not_counted_as_cheap_as_a_division():
     """The modelled cost counts the solve of a non-diagonal mass (it was free before issue 30):
     at every p the step of a rule that states a solve costs more work per DOF than a diagonal
     one's, and more than the same stiffness product alone."""
-    from dispersion.symbolic.mass_rule import get_rule
+    from dispersion.mass_rules.mass_rule import get_rule
 
     res = cost_accuracy((1, 2, 3, 4), ("consistent", "lumped"))
     by = {(pt.p, pt.mass): pt for pt in res.points}

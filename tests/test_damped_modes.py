@@ -1,4 +1,4 @@
-"""Damped layered plates (dispersion/continuum/damped_modes.py): complex wavenumbers and the
+"""Damped layered plates (dispersion/continuum/layered/damped_modes.py): complex wavenumbers and the
 attenuation, against closed forms and the 40-digit transfer matrix with complex moduli."""
 from __future__ import annotations
 
@@ -11,10 +11,10 @@ from hypothesis import strategies as st
 from mp_layered import damped_root, roots_at_frequency
 from promise_search import SLOW, record
 
-from dispersion.continuum.damped_modes import ROOT_RTOL, damped_modes, lossless_twin
-from dispersion.continuum.layered_modes import layered_modes
-from dispersion.continuum.layered_plate import layered_plate
-from dispersion.waves.materials import MATERIALS, material
+from dispersion.continuum.layered.damped_modes import ROOT_RTOL, damped_modes, lossless_twin
+from dispersion.continuum.layered.layered_modes import layered_modes
+from dispersion.continuum.layered.layered_plate import layered_plate
+from dispersion.materials.materials import MATERIALS, material
 
 
 def test_sh0_of_a_damped_plate_is_the_closed_form():

@@ -10,9 +10,9 @@ from dispersion.cli import main
 @pytest.fixture
 def counted(monkeypatch):
     import dispersion.studies.branch_study as study
-    import dispersion.waves.discrete_branches as disc
-    import dispersion.waves.exact_branches as exact
-    import dispersion.waves.velocities as vel
+    import dispersion.discretization.discrete_branches as disc
+    import dispersion.continuum.exact_branches as exact
+    import dispersion.continuum.velocities as vel
 
     calls = {"trace_branches": 0, "discrete_branches": 0, "exact_velocities": 0}
 

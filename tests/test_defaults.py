@@ -14,7 +14,7 @@ from dispersion import defaults
 
 
 def test_no_name_list_is_copied_into_defaults():
-    from dispersion.symbolic.mass import CONTACT_SETS
+    from dispersion.mass_rules.mass import CONTACT_SETS
 
     for copy in ("MASS_VARIANTS", "TIME_SCHEMES", "TIMESTEP_MODELS", "MODELS"):
         assert not hasattr(defaults, copy), copy
@@ -44,8 +44,8 @@ def test_plate_limits_are_the_patch_checks():
 
 
 def test_scheme_and_model_names_are_one_registry():
-    from dispersion.waves import fully_discrete, timestep
-    from dispersion.waves.time_integration import CRITICAL_STEP_MODELS, NEWMARK_MEMBERS
+    from dispersion.time_stepping import fully_discrete, timestep
+    from dispersion.time_stepping.time_integration import CRITICAL_STEP_MODELS, NEWMARK_MEMBERS
 
     for name, (beta, gamma) in NEWMARK_MEMBERS.items():
         scheme = fully_discrete.time_scheme(name)

@@ -1,5 +1,5 @@
 """The deflated function G = F / Omega^2 and the evanescent scaling, against the defining
-equation (dispersion.waves.rayleigh_lamb.frequency_function) evaluated by mpmath at 40 digits."""
+equation (dispersion.continuum.rayleigh_lamb.frequency_function) evaluated by mpmath at 40 digits."""
 from __future__ import annotations
 
 import math
@@ -9,13 +9,13 @@ import numpy as np
 import pytest
 from mp_lamb import mp_C, mp_F
 
-from dispersion.waves.deflated_frequency import (
+from dispersion.continuum.deflated_frequency import (
     deflated_frequency_function,
     deflated_with_noise,
     evanescent_frequency_function,
 )
-from dispersion.waves.numeric_frequency import numeric_frequency_function
-from dispersion.waves.rayleigh_lamb import speed_ratio_squared
+from dispersion.continuum.numeric_frequency import numeric_frequency_function
+from dispersion.continuum.rayleigh_lamb import speed_ratio_squared
 
 DPS = 40  # digits of the mpmath references
 

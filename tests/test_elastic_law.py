@@ -23,11 +23,11 @@ from mp_pencil import mp_frequencies
 
 from dispersion.errors import InputError
 from dispersion.patch_model import PatchModel
-from dispersion.symbolic.elastic_law import ElasticLaw, Isotropic, Orthotropic
+from dispersion.materials.elastic_law import ElasticLaw, Isotropic, Orthotropic
 from dispersion.symbolic.patch import Patch
 from dispersion.symbolic.plate import plate_patch
 from dispersion.symbolic.power_balance import discrete_series
-from dispersion.waves.discrete_branches import RTOL, discrete_branches
+from dispersion.discretization.discrete_branches import RTOL, discrete_branches
 
 #: Poisson's ratio over its whole open range (-1, 1/2), as three-digit decimals: what a float
 #: route reads is then the same rational (ends as explicit examples).

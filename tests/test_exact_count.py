@@ -26,8 +26,8 @@ from hypothesis import strategies as st
 
 from dispersion.cli import main
 from dispersion.errors import InputError
-from dispersion.waves.exact_branches import trace_branches
-from dispersion.waves.rayleigh_lamb import frequency_function
+from dispersion.continuum.exact_branches import trace_branches
+from dispersion.continuum.rayleigh_lamb import frequency_function
 
 
 def cheb(N):
@@ -187,7 +187,7 @@ def _small_kappa(log_kappa, nu, omega_max):
     # of the same closed form; a cut-off within 1e-4 of omega_max is skipped
     from hypothesis import assume
 
-    from dispersion.waves.rayleigh_lamb import cutoff_frequencies
+    from dispersion.continuum.rayleigh_lamb import cutoff_frequencies
 
     kappa = 10.0**log_kappa
     br = trace_branches(nu, [kappa], omega_max)

@@ -21,9 +21,9 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from dispersion.cli import main
-from dispersion.waves.exact_branches import series_switch, trace_branches
-from dispersion.waves.rayleigh_lamb import frequency_function
-from dispersion.waves.velocities import VELOCITY_ATOL, VELOCITY_RTOL, exact_velocities
+from dispersion.continuum.exact_branches import series_switch, trace_branches
+from dispersion.continuum.rayleigh_lamb import frequency_function
+from dispersion.continuum.velocities import VELOCITY_ATOL, VELOCITY_RTOL, exact_velocities
 
 ISSUE_KAPPA = [1e-8, 1e-6, 1.001e-3, 2e-3, 5e-3, 1e-2, 0.5, 5.0]
 
@@ -184,7 +184,7 @@ def _check_exact(nu, log_kappa, omega_max):
 def _exact_domain(fn, full=False):
     """nu in (-1, 0.5) and every material, kappa from 1e-8 to 300 (the tracer's limit; the
     ends as examples), every branch below omega_max <= 40."""
-    from dispersion.waves.materials import MATERIALS
+    from dispersion.materials.materials import MATERIALS
 
     ends = [(0.3, -8.0, 8.0), (0.3, math.log10(300.0), 300.0 * 0.95), (-0.999, 0.0, 40.0),
             (0.4999, 1.0, 40.0), (0.3, math.log10(40.0), 40.0)]

@@ -22,7 +22,7 @@ CHILD = textwrap.dedent("""
     def work_started(*args, **kwargs):
         raise RuntimeError("work started before the extras were checked")
 
-    import dispersion.waves.exact_branches as eb
+    import dispersion.continuum.exact_branches as eb
     import dispersion.contact.simulate as sim
     import dispersion.contact.signorini as sig
     eb.trace_branches = work_started

@@ -1,4 +1,4 @@
-"""Modes at a given frequency (``dispersion.waves.frequency``): roots, labels, counts.
+"""Modes at a given frequency (``dispersion.continuum.frequency``): roots, labels, counts.
 
 References are independent of the toolkit's formulas: the Rayleigh-Lamb equations are
 written here in their textbook form (Rose 2004, eqs 8.21-8.22, multiplied out) and solved
@@ -14,9 +14,9 @@ import numpy as np
 import pytest
 
 from dispersion.errors import InputError
-from dispersion.waves.frequency import FREQUENCY_OMEGA_MIN, modes_at_frequency
-from dispersion.waves.materials import material
-from dispersion.waves.mode_table import lamb_modes
+from dispersion.continuum.frequency import FREQUENCY_OMEGA_MIN, modes_at_frequency
+from dispersion.materials.materials import material
+from dispersion.answers.mode_table import lamb_modes
 
 #: Accuracy asked for by issue 20 (relative, kappa and velocities).
 RTOL = 1e-12
@@ -92,7 +92,7 @@ def test_issue_20_aluminium_s0_at_200_khz():
 
 
 def test_labels_follow_the_kappa_tracer():
-    from dispersion.waves.exact_branches import trace_branches
+    from dispersion.continuum.exact_branches import trace_branches
 
     nu = 0.3
     r = modes_at_frequency(nu, [2.8, 4.5], kinds=("S", "A"), zgv=False)
@@ -140,7 +140,7 @@ def test_low_frequencies_are_accurate(W):
 def test_completeness_against_the_kappa_tracer_aluminium_to_3_mhz():
     # one quantity two ways: roots at fixed frequency against crossings of the traced
     # branches Omega_j(kappa) with the level Omega on a fine kappa grid (away from ZGV pairs)
-    from dispersion.waves.exact_branches import trace_branches
+    from dispersion.continuum.exact_branches import trace_branches
 
     al = material("aluminium")
     nu = al.nu
@@ -219,7 +219,7 @@ def _mp_root_and_slope(kind, kappa, omega, nu):
 
 
 def _check_frequency(nu, omega):
-    from dispersion.waves.frequency import modes_at_frequency
+    from dispersion.continuum.frequency import modes_at_frequency
 
     res = modes_at_frequency(nu, [omega], kinds=("S", "A"), zgv=True)
     listed = {(w, kind) for w, kind, _ in res.failures}
@@ -238,8 +238,8 @@ def _check_frequency(nu, omega):
 def _frequency_domain(fn, full=False):
     """Every material of the table (by its nu) and user materials (nu in (-1, 0.5)), Omega
     from the calculator's floor to its ceiling; issue 26's cases as examples."""
-    from dispersion.waves.frequency import FREQUENCY_OMEGA_MAX, FREQUENCY_OMEGA_MIN
-    from dispersion.waves.materials import MATERIALS
+    from dispersion.continuum.frequency import FREQUENCY_OMEGA_MAX, FREQUENCY_OMEGA_MIN
+    from dispersion.materials.materials import MATERIALS
 
     def omega(material, f_khz, d_mm):
         m = MATERIALS[material]
@@ -288,7 +288,7 @@ def _mp_cutoff(family, n, nu):
 
 
 def _check_cutoff(nu, family, n, delta):
-    from dispersion.waves.frequency import FREQUENCY_OMEGA_MAX, modes_at_frequency
+    from dispersion.continuum.frequency import FREQUENCY_OMEGA_MAX, modes_at_frequency
 
     wc = _mp_cutoff(family, n, nu)
     omega = float(wc * (1 + mpmath.mpf(delta)))
@@ -324,7 +324,7 @@ def _check_cutoff(nu, family, n, delta):
 def _cutoff_domain(fn, full=False):
     """Every family's cut-offs below the ceiling, every nu (materials and user), relative
     distances from 0 (at) through a few ulp to 1e-3 on both sides; issue 26's cases."""
-    from dispersion.waves.materials import MATERIALS
+    from dispersion.materials.materials import MATERIALS
 
     nu_5900 = (1 - 2 * (3200 / 5900) ** 2) / (2 * (1 - (3200 / 5900) ** 2))
     nu_5640 = (1 - 2 * (3400 / 5640) ** 2) / (2 * (1 - (3400 / 5640) ** 2))

@@ -1,4 +1,4 @@
-"""Fully discrete dispersion (dispersion.waves.fully_discrete): closed forms and series."""
+"""Fully discrete dispersion (dispersion.time_stepping.fully_discrete): closed forms and series."""
 from __future__ import annotations
 
 import numpy as np
@@ -8,7 +8,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from dispersion.errors import InputError
-from dispersion.waves.fully_discrete import (
+from dispersion.time_stepping.fully_discrete import (
     fully_discrete_series,
     time_frequency,
     time_frequency_slope,
@@ -53,7 +53,7 @@ def test_time_series_matches_arcsin_expansion():
 def test_magic_time_step_p1_lumped_bar_is_exact():
     # p = 1 lumped bar, central differences at C = 1 (tau = h / c): omega = c k exactly, so
     # the fully discrete series in theta with tau = 1 is theta^2 with no error term
-    from dispersion.waves.timestep import bar_omega_squared
+    from dispersion.time_stepping.timestep import bar_omega_squared
 
     z, theta = sympy.Symbol("z"), sympy.Symbol("kappa")
     semi = sympy.series(bar_omega_squared("lumped", 1).subs(z, sympy.cos(theta)), theta, 0, 11)
@@ -69,9 +69,9 @@ def test_fully_discrete_error_tends_to_the_semi_discrete_one():
     # as the step goes to zero the time error vanishes like tau^2: at C = 0.01 the fully
     # discrete error differs from the semi-discrete one by ~1e-4 of the C = 1 difference
     from dispersion.symbolic.plate import plate_patch
-    from dispersion.waves.discrete_branches import fundamental_branches
-    from dispersion.waves.exact_branches import trace_branches
-    from dispersion.waves.fully_discrete import fully_discrete_error
+    from dispersion.discretization.discrete_branches import fundamental_branches
+    from dispersion.continuum.exact_branches import trace_branches
+    from dispersion.time_stepping.fully_discrete import fully_discrete_error
 
     patch, kappa = plate_patch(mass="lumped"), np.array([0.3])
     semi = fundamental_branches(patch, 0.3, kappa)
@@ -168,9 +168,9 @@ def _check_branches(mass, p, log_kappa, scheme_index, courant_frac):
     # semi-discrete frequencies of the pencil at 60+ digits (tests/mp_pencil.py), mapped
     # by the quadratic formula of the recurrence (_mp_time_frequency)
     from dispersion.symbolic.plate import plate_patch
-    from dispersion.waves.discrete_branches import discrete_branches
-    from dispersion.waves.fully_discrete import fully_discrete_branches
-    from dispersion.waves.timestep import patch_omega_max
+    from dispersion.discretization.discrete_branches import discrete_branches
+    from dispersion.time_stepping.fully_discrete import fully_discrete_branches
+    from dispersion.time_stepping.timestep import patch_omega_max
     from mp_pencil import mp_frequencies
 
     n = max(p + 1, 3)
@@ -204,7 +204,7 @@ def _branch_domain(fn, full=False):
             dict(mass="hrz", p=1, log_kappa=1.0, scheme_index=1, courant_frac=1.0)]
     for ex in ends if full else ends[:2]:
         fn = example(**ex)(fn)
-    from dispersion.symbolic.mass_rule import BLOCH_RULE_NAMES as MASS_VARIANTS
+    from dispersion.mass_rules.mass_rule import BLOCH_RULE_NAMES as MASS_VARIANTS
 
     return given(mass=st.sampled_from(MASS_VARIANTS), p=st.integers(1, 4),
                  log_kappa=st.floats(-40, 0.2), scheme_index=st.integers(0, len(_SCHEMES) - 1),

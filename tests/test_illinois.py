@@ -1,4 +1,4 @@
-"""The shared Illinois root finder (dispersion.waves.illinois)."""
+"""The shared Illinois root finder (dispersion.continuum.illinois)."""
 from __future__ import annotations
 
 import numpy as np
@@ -6,7 +6,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from dispersion.waves.illinois import illinois, scalar_root
+from dispersion.continuum.illinois import illinois, scalar_root
 
 
 SHAPES = {"line": lambda d: d, "cubic": lambda d: d * (1 + d * d),

@@ -1,4 +1,4 @@
-"""Every branch of a layered plate at given wavenumbers (dispersion/continuum/layered_branches.py):
+"""Every branch of a layered plate at given wavenumbers (dispersion/continuum/layered/layered_branches.py):
 the same as the Rayleigh-Lamb tracer for one layer (and SH in closed form); counted."""
 from __future__ import annotations
 
@@ -7,11 +7,11 @@ import math
 import numpy as np
 import pytest
 
-from dispersion.continuum.layered_branches import layered_branches
-from dispersion.continuum.layered_plate import laminate, layered_plate
+from dispersion.continuum.layered.layered_branches import layered_branches
+from dispersion.continuum.layered.layered_plate import laminate, layered_plate
 from dispersion.errors import InputError
-from dispersion.waves.exact_branches import trace_branches
-from dispersion.waves.materials import material, ply
+from dispersion.continuum.exact_branches import trace_branches
+from dispersion.materials.materials import material, ply
 
 
 def test_one_isotropic_layer_has_the_tracer_branches_and_sh_in_closed_form():

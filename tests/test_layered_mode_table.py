@@ -9,9 +9,9 @@ import pytest
 
 from dispersion.answers.layered_mode_table import layered_lamb_modes
 from dispersion.cli import main
-from dispersion.continuum.layered_plate import layered_plate
+from dispersion.continuum.layered.layered_plate import layered_plate
 from dispersion.errors import InputError
-from dispersion.waves.materials import material
+from dispersion.materials.materials import material
 
 
 def _rows(text: str) -> list[dict]:

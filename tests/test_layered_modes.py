@@ -1,4 +1,4 @@
-"""Every mode of a layered plate at a frequency (dispersion/continuum/layered_modes.py), against
+"""Every mode of a layered plate at a frequency (dispersion/continuum/layered/layered_modes.py), against
 references computed here and independently: the Rayleigh-Lamb calculator for one layer, the
 Thomson-Haskell transfer matrix at 40 digits (tests/mp_layered.py) for isotropic stacks, and
 closed forms of the literature for the [0/90]s laminate (classical lamination theory at low
@@ -14,10 +14,10 @@ from hypothesis import strategies as st
 from mp_layered import anisotropic_roots, group_velocity, roots_at_frequency
 from promise_search import SLOW, record
 
-from dispersion.continuum.layered_modes import layered_modes
-from dispersion.continuum.layered_plate import SpringInterface, laminate, layered_plate
-from dispersion.waves.frequency import modes_at_frequency
-from dispersion.waves.materials import MATERIALS, material, ply
+from dispersion.continuum.layered.layered_modes import layered_modes
+from dispersion.continuum.layered.layered_plate import SpringInterface, laminate, layered_plate
+from dispersion.continuum.frequency import modes_at_frequency
+from dispersion.materials.materials import MATERIALS, material, ply
 
 ROOT_BOUND = 1e-12   # the README's promise (relative)
 GROUP_BOUND = 1e-10  # c_g, relative to c_ref where below it
@@ -175,7 +175,7 @@ def test_laminate_cutoffs_are_the_closed_form_thickness_resonances(W):
 
 
 def test_modes_come_in_the_classes_of_the_plate():
-    from dispersion.continuum.dynamic_stiffness import mode_classes
+    from dispersion.continuum.layered.dynamic_stiffness import mode_classes
 
     lam = laminate("[0/90]s", ply("T800/913"), 0.125)
     assert [c.name for c in mode_classes(lam)] == ["S", "A", "SHS", "SHA"]

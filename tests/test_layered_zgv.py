@@ -1,12 +1,12 @@
-"""Zero-group-velocity points of layered plates (dispersion/continuum/layered_zgv.py)."""
+"""Zero-group-velocity points of layered plates (dispersion/continuum/layered/layered_zgv.py)."""
 from __future__ import annotations
 
 import pytest
 
-from dispersion.continuum.layered_plate import layered_plate
-from dispersion.continuum.layered_zgv import zgv_points
-from dispersion.waves.frequency import zgv_points_below
-from dispersion.waves.materials import material
+from dispersion.continuum.layered.layered_plate import layered_plate
+from dispersion.continuum.layered.layered_zgv import zgv_points
+from dispersion.continuum.frequency import zgv_points_below
+from dispersion.materials.materials import material
 
 
 @pytest.mark.slow

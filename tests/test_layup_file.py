@@ -1,15 +1,15 @@
-"""Layered plates from strangers' text (dispersion/continuum/layup_file.py and the layup
-strings of dispersion/continuum/layered_plate.py): whitelisted, bounded, never evaluated."""
+"""Layered plates from strangers' text (dispersion/continuum/layered/layup_file.py and the layup
+strings of dispersion/continuum/layered/layered_plate.py): whitelisted, bounded, never evaluated."""
 from __future__ import annotations
 
 import os
 
 import pytest
 
-from dispersion.continuum.layered_plate import laminate, parse_layup
-from dispersion.continuum.layup_file import plate_from_string, read_layup
+from dispersion.continuum.layered.layered_plate import laminate, parse_layup
+from dispersion.continuum.layered.layup_file import plate_from_string, read_layup
 from dispersion.errors import InputError
-from dispersion.waves.materials import ply
+from dispersion.materials.materials import ply
 
 
 def test_layup_strings_expand_as_written():

@@ -14,7 +14,7 @@ from mp_lamb import mp_F
 from mp_pencil import mp_frequencies
 
 from dispersion.symbolic.plate import plate_patch
-from dispersion.waves.leading_error import plate_leading_terms, square_patch
+from dispersion.discretization.leading_error import plate_leading_terms, square_patch
 
 #: Nu from near -1 to near 1/2 (the ends of its range as explicit examples).
 NU = st.fractions(sympy.Rational(-9, 10), sympy.Rational(12, 25), max_denominator=50)

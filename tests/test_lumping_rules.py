@@ -1,4 +1,4 @@
-"""The rules of the lumping literature (dispersion.symbolic.lumping_rules and its modules):
+"""The rules of the lumping literature (dispersion.mass_rules.lumping_rules and its modules):
 quadrature exactness, closed-form critical steps, spectra, stated costs, leading error terms
 (two routes), and the order_range / relative_to claims."""
 from __future__ import annotations
@@ -11,13 +11,13 @@ from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from dispersion.errors import InputError
-from dispersion.symbolic.bspline import open_knot_vector
-from dispersion.symbolic.interpolatory_spline import interpolatory_weights
-from dispersion.symbolic.lumping_rules import ENTRIES
-from dispersion.symbolic.rule_families import approximate_dual_rule, sms_rule
-from dispersion.symbolic.mass_rule import RULES, get_rule, x_mass_coefficients
-from dispersion.waves.leading_error import bar_leading_term
-from dispersion.waves.timestep import _z, bar_omega_max, bar_omega_squared
+from dispersion.splines.bspline import open_knot_vector
+from dispersion.splines.interpolatory_spline import interpolatory_weights
+from dispersion.mass_rules.lumping_rules import ENTRIES
+from dispersion.mass_rules.rule_families import approximate_dual_rule, sms_rule
+from dispersion.mass_rules.mass_rule import RULES, get_rule, x_mass_coefficients
+from dispersion.discretization.leading_error import bar_leading_term
+from dispersion.time_stepping.timestep import _z, bar_omega_max, bar_omega_squared
 
 NEW = tuple(ENTRIES)
 
@@ -150,8 +150,8 @@ def test_relative_step_claim():
 @pytest.mark.parametrize("p", [1, 2, 3, 4])
 def test_sem_acoustic_series_matches_the_bloch_pencil(mass, p):
     # exact series (condensation + reversion) against the p x p Bloch pencil's lowest root
-    from dispersion.symbolic.lagrange_sem import acoustic_series
-    from dispersion.waves.sem_bar import sem_bar_frequency
+    from dispersion.splines.lagrange_sem import acoustic_series
+    from dispersion.discretization.sem_bar import sem_bar_frequency
 
     theta = 0.4
     s = acoustic_series(mass, p, 2 * p + 8)
@@ -161,7 +161,7 @@ def test_sem_acoustic_series_matches_the_bloch_pencil(mass, p):
 
 def test_sem_p1_is_the_linear_element():
     # p = 1: C0 linear elements are the p = 1 B-splines; GLL lumping is row-sum lumping
-    from dispersion.waves.timestep import critical_step
+    from dispersion.time_stepping.timestep import critical_step
 
     for sem, bsp in (("sem-consistent", "consistent"), ("sem-lumped", "lumped")):
         assert bar_leading_term(sem, 1, 6) == bar_leading_term(bsp, 1, 6)

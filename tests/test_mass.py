@@ -5,8 +5,8 @@ import pytest
 import sympy
 
 from dispersion.errors import IndefiniteMassWarning, InputError
-from dispersion.symbolic.mass import contact_weights, redistribution_matrix
-from dispersion.symbolic.mass_rule import mass_variant
+from dispersion.mass_rules.mass import contact_weights, redistribution_matrix
+from dispersion.mass_rules.mass_rule import mass_variant
 from dispersion.symbolic.plate import thickness_matrices
 
 

@@ -1,4 +1,4 @@
-"""Mass rules (dispersion.symbolic.mass_rule): stated properties hold, refusals, user rules."""
+"""Mass rules (dispersion.mass_rules.mass_rule): stated properties hold, refusals, user rules."""
 from __future__ import annotations
 
 import warnings
@@ -10,10 +10,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from dispersion.errors import IndefiniteMassWarning, InputError
-from dispersion.symbolic.bspline import SplineBasis1D, open_knot_vector
-from dispersion.symbolic.mass import contact_weights, redistribution_matrix
-from dispersion.symbolic.mass_check import MassProperties, check_mass
-from dispersion.symbolic.mass_rule import (
+from dispersion.splines.bspline import SplineBasis1D, open_knot_vector
+from dispersion.mass_rules.mass import contact_weights, redistribution_matrix
+from dispersion.mass_rules.mass_check import MassProperties, check_mass
+from dispersion.mass_rules.mass_rule import (
     RULE_NAMES,
     RULES,
     TranslationalMassWarning,
@@ -22,9 +22,9 @@ from dispersion.symbolic.mass_rule import (
     user_rule,
     x_mass_coefficients,
 )
-from dispersion.symbolic.mass_rule_file import rule_from_toml
+from dispersion.mass_rules.mass_rule_file import rule_from_toml
 from dispersion.symbolic.plate import bloch_coefficients, plate_patch
-from dispersion.symbolic.spline_mass import lobatto_rule
+from dispersion.splines.spline_mass import lobatto_rule
 
 TOML_RULE = '''
 name = "far-quarter"
@@ -174,8 +174,8 @@ def test_series_leading_term_is_exact_for_rules_keeping_translational_mass(name)
 @pytest.mark.parametrize("name", ["hrz", "nodal-greville", "nodal-lobatto"])
 def test_periodic_bar_dispersion_takes_any_rule(name):
     # the float dispersion of the bar against the exact rational function of cos(theta)
-    from dispersion.waves.bar_dispersion import bar_frequency
-    from dispersion.waves.timestep import bar_omega_squared
+    from dispersion.discretization.bar_dispersion import bar_frequency
+    from dispersion.time_stepping.timestep import bar_omega_squared
 
     theta = np.linspace(0.1, np.pi, 7)
     f = sympy.lambdify(sympy.Symbol("z"), bar_omega_squared(name, 3), "numpy")
@@ -210,7 +210,7 @@ def test_large_float_masses_are_checked_sparse_like_small_ones():
     # the sparse inertia path (n > DENSE_CHECK_MAX) against the dense one on the same matrices
     import scipy.sparse as sp
 
-    from dispersion.symbolic import mass_check
+    from dispersion.mass_rules import mass_check
 
     n = mass_check.DENSE_CHECK_MAX + 1
     lap = sp.diags([np.full(n - 1, 1.0), np.full(n, 4.0), np.full(n - 1, 1.0)], [-1, 0, 1])

@@ -1,4 +1,4 @@
-"""Untrusted ``--mass-rule`` files (dispersion/symbolic/mass_rule_file.py, issue 27 item 7):
+"""Untrusted ``--mass-rule`` files (dispersion/mass_rules/mass_rule_file.py, issue 27 item 7):
 read as claims files are, every bad file refused in one line that names it.
 
 The corpus ``tests/data/mass_rule_corpus.txt`` (one case a line) and the file-level cases
@@ -19,7 +19,7 @@ import pytest
 
 from dispersion.cli import main
 from dispersion.errors import InputError
-from dispersion.symbolic.mass_rule_file import MAX_FILE_BYTES, read_rule_file, rule_from_toml
+from dispersion.mass_rules.mass_rule_file import MAX_FILE_BYTES, read_rule_file, rule_from_toml
 
 CORPUS = Path(__file__).parent / "data" / "mass_rule_corpus.txt"
 BASE = 'name = "corpus" ;; [weights] ;; "-1" = { "-2" = 0.5, "-3" = 0.5 }'

@@ -1,4 +1,4 @@
-"""Materials (``dispersion.waves.materials``) and the one source of nu (issue 20)."""
+"""Materials (``dispersion.materials.materials``) and the one source of nu (issue 20)."""
 from __future__ import annotations
 
 import itertools
@@ -10,9 +10,9 @@ from hypothesis import strategies as st
 
 import dispersion
 from dispersion.errors import InputError
-from dispersion.waves.materials import MATERIALS, USER_COMBINATIONS, user_material
-from dispersion.waves.units import ALUMINIUM, physical_branches
-from dispersion.waves.velocities import exact_velocities
+from dispersion.materials.materials import MATERIALS, USER_COMBINATIONS, user_material
+from dispersion.answers.units import ALUMINIUM, physical_branches
+from dispersion.continuum.velocities import exact_velocities
 
 NAMES = ("E", "nu", "rho", "c_L", "c_T")
 VALUES = {"E": 70e9, "nu": 0.33, "rho": 2700.0, "c_L": 6320.0, "c_T": 3130.0}
@@ -98,7 +98,7 @@ def test_names_resolve_case_and_aliases():
 
 
 def test_branches_keep_their_nu_through_pickling():
-    # parallel sweeps pickle results: the nu tag must survive (dispersion.waves.branch_set)
+    # parallel sweeps pickle results: the nu tag must survive (dispersion.continuum.branch_set)
     import pickle
 
     ex = dispersion.exact_branches([0.5, 1.0], nu=0.25, omega_max=2.0)

@@ -4,18 +4,17 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from dispersion.waves.mode_shapes import (
-    _profiles,
+from dispersion.continuum.mode_shapes import _profiles, exact_mode_shape
+from dispersion.discretization.discrete_mode_shapes import (
     discrete_mode_shape,
     discrete_modes,
-    exact_mode_shape,
     mac,
     pair_by_shape,
 )
 from dispersion.symbolic.plate import plate_patch
-from dispersion.waves.numeric_frequency import numeric_frequency_function
-from dispersion.waves.rayleigh_lamb import speed_ratio_squared
-from dispersion.waves.exact_branches import trace_branches
+from dispersion.continuum.numeric_frequency import numeric_frequency_function
+from dispersion.continuum.rayleigh_lamb import speed_ratio_squared
+from dispersion.continuum.exact_branches import trace_branches
 
 NU = 0.3
 

@@ -15,9 +15,9 @@ from dispersion.contact.bar import Bar, assemble_bar
 from dispersion.contact.newmark import integrate
 from dispersion.contact.newmark_scheme import newmark_for
 from dispersion.contact.redistribution import float_redistribution
-from dispersion.symbolic.bspline import SplineBasis1D, open_knot_vector
+from dispersion.splines.bspline import SplineBasis1D, open_knot_vector
 from dispersion.errors import InputError
-from dispersion.symbolic.mass import contact_weights, redistribution_matrix
+from dispersion.mass_rules.mass import contact_weights, redistribution_matrix
 
 
 @settings(max_examples=10, deadline=None)
@@ -80,7 +80,7 @@ def test_float_mass_rules_equal_the_exact_rules(p, n_el, mass, contact):
     import sympy
 
     from dispersion.contact.bar import NUMERIC_RULES
-    from dispersion.symbolic.mass_rule import gram_space, mass_matrix
+    from dispersion.mass_rules.mass_rule import gram_space, mass_matrix
 
     assert mass in NUMERIC_RULES
     model = assemble_bar(Bar(n_el, p, mass=mass, contact=contact))

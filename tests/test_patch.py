@@ -41,7 +41,7 @@ def test_discrete_series_derives_the_default_patch(monkeypatch):
 @pytest.mark.parametrize("argv", [["series"], ["series", "--branch", "A0", "--order", "6"]])
 def test_series_command_builds_the_default_patch(argv, capsys):
     from dispersion.cli import main
-    from dispersion.waves.series_table import series_table
+    from dispersion.answers.series_table import series_table
 
     assert series_table(("A0",), 4).patch == DEFAULT
     assert main([*argv, "--format", "csv"]) == 0
@@ -50,7 +50,7 @@ def test_series_command_builds_the_default_patch(argv, capsys):
 
 def test_branches_command_builds_the_default_patch(capsys):
     from dispersion.cli import main
-    from dispersion.waves.branch_table import branch_table
+    from dispersion.answers.branch_table import branch_table
 
     table = branch_table(masses=["consistent"], count=2, kappa_max=0.5, omega_max=1.0)
     assert table.base_patch == DEFAULT
@@ -146,4 +146,4 @@ def test_the_patch_value_imports_nothing_that_computes_with_it():
     imported = {node.module for node in ast.walk(ast.parse(inspect.getsource(module)))
                 if isinstance(node, ast.ImportFrom)}
     assert not imported & {"dispersion.symbolic.plate", "dispersion.symbolic.power_balance",
-                           "dispersion.waves.discrete_branches", "dispersion.patch_model"}
+                           "dispersion.discretization.discrete_branches", "dispersion.patch_model"}

@@ -12,12 +12,12 @@ import sympy
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from dispersion.symbolic.mass_rule import BLOCH_RULE_NAMES
+from dispersion.mass_rules.mass_rule import BLOCH_RULE_NAMES
 from dispersion.symbolic.plate import dynamic_stiffness, mirror_bases, plate_patch
-from dispersion.waves import discrete_branches as db
-from dispersion.waves import certified_roots as cr
-from dispersion.waves import extended_pencil
-from dispersion.waves import pencil_polynomial as pp
+from dispersion.discretization import discrete_branches as db
+from dispersion.discretization import certified_roots as cr
+from dispersion.discretization import extended_pencil
+from dispersion.discretization import pencil_polynomial as pp
 from mp_pencil import mp_frequencies, mp_group_velocity
 
 #: Every mass rule the toolkit has (the polynomial path must serve any of them).

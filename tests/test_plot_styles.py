@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from dispersion.plotting.styles import mass_style
-from dispersion.symbolic.mass_rule import RULE_NAMES, user_rule
+from dispersion.mass_rules.mass_rule import RULE_NAMES, user_rule
 
 
 def test_every_registered_rule_has_its_own_style():
@@ -19,7 +19,7 @@ def test_a_user_rule_gets_a_stable_style():
 
 def test_the_branch_figure_draws_every_rule_in_its_style():
     from dispersion.api import branch_table, figure
-    from dispersion.symbolic.mass_rule import BLOCH_RULE_NAMES
+    from dispersion.mass_rules.mass_rule import BLOCH_RULE_NAMES
 
     table = branch_table(masses=list(BLOCH_RULE_NAMES), count=6, kappa_max=1.0, omega_max=3.0)
     drawn = {(line.get_color(), line.get_marker()) for line in figure(table).axes[0].get_lines()

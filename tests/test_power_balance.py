@@ -7,7 +7,7 @@ from dispersion.errors import DispersionError, InputError
 from dispersion.symbolic.plate import P_MAX, dynamic_stiffness, plate_patch
 from dispersion.symbolic.power_balance import (MAX_ORDER, MAX_WORK, discrete_series,
                                                format_coefficient)
-from dispersion.waves.exact_series import exact_series, exact_series_raw
+from dispersion.continuum.exact_series import exact_series, exact_series_raw
 
 nu = sympy.Symbol("nu")
 SING = dict(mass="singular", contact="top", gamma_s=0)

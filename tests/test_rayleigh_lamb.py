@@ -10,11 +10,11 @@ import pytest
 from mp_lamb import mp_F
 
 from dispersion.errors import InputError
-from dispersion.waves.rayleigh_lamb import (
+from dispersion.continuum.rayleigh_lamb import (
     cutoff_frequencies,
     speed_ratio_squared,
 )
-from dispersion.waves.exact_branches import trace_branches
+from dispersion.continuum.exact_branches import trace_branches
 
 DPS = 40  # digits of the mpmath references, set locally with mpmath.workdps
 
@@ -81,7 +81,7 @@ def test_s0_series_small_kappa():
 
 
 def test_series_against_power_balance():
-    from dispersion.waves import exact_series as exact_series_mod
+    from dispersion.continuum import exact_series as exact_series_mod
 
     nu = 0.3
     kappa = np.array([0.005, 0.01])  # truncation after k^8: relative remainder ~ k^6
@@ -242,8 +242,8 @@ def test_large_kappa_roots_to_1e15():
 
 def test_omega_max_bounds_are_the_edges():
     # cutoff_frequencies accepts OMEGA_MAX itself (0.2 s) and refuses just past it
-    from dispersion.waves import rayleigh_lamb
-    from dispersion.waves import exact_branches as tracer
+    from dispersion.continuum import rayleigh_lamb
+    from dispersion.continuum import exact_branches as tracer
 
     top = rayleigh_lamb.OMEGA_MAX
     assert rayleigh_lamb.cutoff_frequencies("A", 0.3, top)[-1][0] <= top

@@ -39,7 +39,7 @@ def _all_result_types() -> set[type]:
 
 
 def _branch_table():
-    from dispersion.waves.branch_table import branch_table
+    from dispersion.answers.branch_table import branch_table
 
     t = branch_table(masses=["lumped"], kappa_max=1.0, count=3, omega_max=3.0,
                      material="aluminium", thickness_mm=1.0)
@@ -53,20 +53,20 @@ def _mode_table():
 
 
 def _mode_shapes():
-    from dispersion.waves.mode_shape_table import mode_shapes
+    from dispersion.answers.mode_shape_table import mode_shapes
 
     return mode_shapes(dispersion.lamb_modes("titanium", 2.0, frequency_khz=1000.0), "A1", 9)
 
 
 def _exact():
-    from dispersion.waves.exact_branches import trace_branches
+    from dispersion.continuum.exact_branches import trace_branches
 
     e = trace_branches(0.3, [0.0, 0.5, 1.0], 3.0)
     return dataclasses.replace(e, failures=[("S", 0.5, "a planted failure")])
 
 
 def _velocities():
-    from dispersion.waves.velocities import exact_velocities
+    from dispersion.continuum.velocities import exact_velocities
 
     v = exact_velocities(_exact())
     return dataclasses.replace(v, uncertain=(("A1", 1.0, "a planted failure"),))
@@ -77,7 +77,7 @@ def _discrete():
 
 
 def _series():
-    from dispersion.waves.series_table import series_table
+    from dispersion.answers.series_table import series_table
 
     return series_table(("S0", "A0"), 6, exact=True, nu="3/10")
 
@@ -89,13 +89,13 @@ def _errata():
 
 
 def _steps():
-    from dispersion.waves.critical_steps import critical_steps
+    from dispersion.answers.critical_steps import critical_steps
 
     return critical_steps(["consistent", "lumped"], 2, model="bar")
 
 
 def _step():
-    from dispersion.waves.timestep import critical_step
+    from dispersion.time_stepping.timestep import critical_step
 
     return critical_step("hrz", 1, model="bar", wave_speed=1.0)
 
@@ -210,9 +210,9 @@ def test_undefined_values_are_empty_never_nan(result):
 
 def test_front_door_and_commands_return_rendered_results():
     # every function a user calls for a result returns one that renders itself
-    from dispersion.waves.branch_table import branch_table
-    from dispersion.waves.critical_steps import critical_steps
-    from dispersion.waves.series_table import series_table
+    from dispersion.answers.branch_table import branch_table
+    from dispersion.answers.critical_steps import critical_steps
+    from dispersion.answers.series_table import series_table
 
     got = [dispersion.lamb_modes("steel", 1.0, frequency_khz=100),
            dispersion.exact_branches([0.5], 0.3, 2.0),

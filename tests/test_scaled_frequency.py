@@ -13,7 +13,7 @@ from hypothesis import strategies as st
 from mp_lamb import mp_C, mp_F, mp_S
 
 from dispersion.errors import InputError
-from dispersion.waves.scaled_frequency import (
+from dispersion.continuum.scaled_frequency import (
     bound_table,
     mindlin_bounds,
     removable_bound,
@@ -100,7 +100,7 @@ def test_one_sign_change_between_consecutive_bounds(kind, kappa, nu):
     assert np.all(r_above > e_above)
     on_bound = hi[keep][~(r_below < -e_below)]
     if on_bound.size:
-        from dispersion.waves.exact_branches import trace_branches
+        from dispersion.continuum.exact_branches import trace_branches
 
         br = trace_branches(nu, [kappa], float(on_bound.max()) * 1.01)
         roots = np.array([v[0] for k, v in br.omega.items() if k[0] == kind], dtype=float)

@@ -18,7 +18,7 @@ from hypothesis import strategies as st
 from dispersion.symbolic import series_kernel as _k
 from dispersion.symbolic.power_balance import format_coefficient
 from dispersion.symbolic.series_kernel import Series, branch_coefficients, context
-from dispersion.waves.exact_series import exact_series_raw
+from dispersion.continuum.exact_series import exact_series_raw
 
 CTX = context(("g",))
 W, G = CTX.gens()
@@ -160,7 +160,7 @@ def test_fmpq_poly_round_trip():
        st.fractions(min_value=-3, max_value=3, max_denominator=11).filter(lambda v: v != 1))
 def test_g_to_nu_equals_direct_substitution(coeffs, extra, nu):
     # p(g) (2 (1 - nu))^e at g = (1 - 2 nu) / (2 (1 - nu)), evaluated directly with Fractions
-    from dispersion.waves.exact_series import _g_to_nu
+    from dispersion.continuum.exact_series import _g_to_nu
 
     p = _poly_g(coeffs)
     e = len(coeffs) - 1 + extra

@@ -9,7 +9,7 @@ from hypothesis import strategies as st
 from dispersion.errors import InputError
 from dispersion.materials.stiffness import (isotropic, orthotropic, transversely_isotropic,
                                             voigt)
-from dispersion.waves.materials import ply
+from dispersion.materials.materials import ply
 
 _PLY = transversely_isotropic(E1=142e9, E2=10.3e9, G12=7.2e9, nu12=0.27, nu23=0.54)
 

@@ -8,10 +8,10 @@ import scipy.linalg
 from dispersion.errors import InputError
 from dispersion.symbolic.plate import numeric_pencil, plate_patch
 from dispersion.studies import paper_studies as studies
-from dispersion.waves.discrete_branches import fundamental_branches
-from dispersion.waves.pencil_frequencies import pencil_frequencies
-from dispersion.waves.timestep import critical_time_step
-from dispersion.waves.exact_branches import exact_fundamental
+from dispersion.discretization.discrete_branches import fundamental_branches
+from dispersion.discretization.pencil_frequencies import pencil_frequencies
+from dispersion.time_stepping.timestep import critical_time_step
+from dispersion.continuum.exact_branches import exact_fundamental
 
 NU = 0.3
 
@@ -190,11 +190,11 @@ def test_bar_case_singular_mass_is_insensitive_to_the_contact_modification():
 
 def test_exact_branch_against_an_independent_bracket_and_bisect():
     # Independent computation: the first sign change of the entire-function frequency
-    # equation (dispersion.waves.rayleigh_lamb.frequency_function, Rose 2004 ch. 8) on a fine
+    # equation (dispersion.continuum.rayleigh_lamb.frequency_function, Rose 2004 ch. 8) on a fine
     # Omega grid, closed by Brent's method.
     from scipy.optimize import brentq
 
-    from dispersion.waves.rayleigh_lamb import frequency_function
+    from dispersion.continuum.rayleigh_lamb import frequency_function
 
     def C(z):
         return np.cos(np.emath.sqrt(z)).real

@@ -1,4 +1,4 @@
-"""Critical time step (dispersion.waves.timestep): closed forms, two ways, and the contact solver."""
+"""Critical time step (dispersion.time_stepping.timestep): closed forms, two ways, and the contact solver."""
 from __future__ import annotations
 
 import csv
@@ -11,9 +11,9 @@ import sympy
 from dispersion.contact import newmark
 from dispersion.contact.bar import Bar, assemble_bar, simulate_bar
 from dispersion.errors import ConvergenceError, InputError
-from dispersion.symbolic.mass_rule import user_rule
+from dispersion.mass_rules.mass_rule import user_rule
 from dispersion.symbolic.plate import plate_patch
-from dispersion.waves.timestep import (
+from dispersion.time_stepping.timestep import (
     bar_omega_max,
     bar_omega_squared,
     critical_step,
@@ -81,7 +81,7 @@ def test_exact_bar_maximum_against_a_fine_grid(p, mass):
                                   pytest.param("singular-lumped", marks=SLOW)])
 def test_plate_maximum_two_ways(mass):
     from dispersion.symbolic.plate import numeric_pencil
-    from dispersion.waves.pencil_frequencies import pencil_frequencies
+    from dispersion.discretization.pencil_frequencies import pencil_frequencies
 
     patch = plate_patch(2, 3, "bloch", 2, mass, "top", sympy.Rational(1, 2))
     w, exact, theta, method = patch_omega_max(patch, 0.3)
@@ -126,10 +126,10 @@ def _bar_KM(mass, p):
 def test_user_rule_end_to_end():
     # a user callable: half consistent, half row-sum lumped (series, branches, step, contact)
     from dispersion.symbolic.power_balance import discrete_series
-    from dispersion.waves.discrete_branches import discrete_branches
+    from dispersion.discretization.discrete_branches import discrete_branches
 
     def half(space):
-        from dispersion.symbolic.mass import row_sum_lump
+        from dispersion.mass_rules.mass import row_sum_lump
 
         return (space.M + row_sum_lump(space.M)) / 2
 
@@ -189,7 +189,7 @@ def test_cli_user_rule_from_toml(tmp_path, capsys):
 def test_certified_bound_holds_and_a_false_bound_is_not_proven(mass):
     # the proof can fail: 0.5 % below the numeric maximum there is a larger frequency, so no
     # cover of the zone proves it; the proven bound itself lies in [w, w (1 + rtol)]
-    from dispersion.waves.timestep import certified_omega_max
+    from dispersion.time_stepping.timestep import certified_omega_max
 
     patch = plate_patch(2, 3, "bloch", 2, mass, "top", sympy.Rational(1, 2))
     w = patch_omega_max(patch, 0.3, exact=False)[0]
@@ -203,8 +203,8 @@ def test_one_critical_time_step_for_the_plate_patch():
     # independent check: 2 / the largest batched eigenvalue on a grid can only be larger or
     # equal (the grid misses the refined maximum), and a zone-end maximum agrees to rounding
     from dispersion.symbolic.plate import numeric_pencil
-    from dispersion.waves.pencil_frequencies import pencil_frequencies
-    from dispersion.waves.timestep import critical_time_step
+    from dispersion.discretization.pencil_frequencies import pencil_frequencies
+    from dispersion.time_stepping.timestep import critical_time_step
 
     patch = plate_patch(2, 3, "bloch", 2, "lumped")
     dt = critical_time_step(patch, 0.3, n_theta=33)
@@ -260,7 +260,7 @@ def _mp_omega_max(patch, nu, theta):
 
 
 def _check_step(mass, p, material):
-    from dispersion.waves.materials import MATERIALS
+    from dispersion.materials.materials import MATERIALS
 
     cs = critical_step(mass, p, material=material)   # never a traceback
     nu = MATERIALS[material].nu
@@ -280,8 +280,8 @@ def _check_step(mass, p, material):
 def _step_domain(p_max):
     """Every rule, p = 1..p_max, every material; the crash of issue 26 (p = 4, singular, which
     also failed with copper, brass, glass, pmma, aluminium-rolled) as examples."""
-    from dispersion.symbolic.mass_rule import BLOCH_RULE_NAMES as MASS_VARIANTS
-    from dispersion.waves.materials import MATERIALS
+    from dispersion.mass_rules.mass_rule import BLOCH_RULE_NAMES as MASS_VARIANTS
+    from dispersion.materials.materials import MATERIALS
 
     def decorate(fn):
         for ex in [("singular", 4, "steel")] + [("consistent", 3, "steel")] * (p_max > 3):
@@ -309,7 +309,7 @@ def test_critical_step_against_mpmath_slow(mass, p, material):
 def test_certify_proves_the_bound_that_holds(p, mass):
     # issue 26: p = 3 printed "max_cells ... (raise rtol or max_cells)", p = 8 "does not
     # hold" for a true bound; the bound must be proven (and lie above the 60-digit maximum)
-    from dispersion.waves.materials import MATERIALS
+    from dispersion.materials.materials import MATERIALS
 
     cs = critical_step(mass, p, material="steel", certify=True)
     assert cs.failures == () and cs.omega_certified is not None
@@ -324,7 +324,7 @@ def test_a_proof_that_does_not_close_is_a_failure_in_words(capsys):
     import json
 
     from dispersion.cli import main
-    from dispersion.waves import omega_max_bound
+    from dispersion.time_stepping import omega_max_bound
 
     patch = plate_patch(2, 3, "bloch", 2, "lumped")
     w = patch_omega_max(patch, 0.3)[0]
@@ -335,7 +335,7 @@ def test_a_proof_that_does_not_close_is_a_failure_in_words(capsys):
     def few(*args, **kw):
         return real(*args, **{**kw, "max_cells": 2})
 
-    import dispersion.waves.timestep as ts
+    import dispersion.time_stepping.timestep as ts
     old, ts.certified_omega_max = ts.certified_omega_max, few
     try:
         assert main(["timestep", "--p", "2", "--mass", "lumped", "--certify"]) == 0

@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 
 from dispersion.errors import InputError
-from dispersion.waves.exact_branches import trace_branches
-from dispersion.waves.units import (
+from dispersion.continuum.exact_branches import trace_branches
+from dispersion.answers.units import (
     ALUMINIUM,
     Material,
     fd_mhz_mm,
@@ -16,7 +16,7 @@ from dispersion.waves.units import (
     physical_branches,
     rayleigh_speed,
 )
-from dispersion.waves.velocities import exact_velocities
+from dispersion.continuum.velocities import exact_velocities
 
 AL = ALUMINIUM  # c_L = 6320, c_T = 3130 m/s (issue 10)
 

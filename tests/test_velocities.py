@@ -7,11 +7,11 @@ import mpmath
 import numpy as np
 import pytest
 
-from dispersion.waves.discrete_branches import discrete_branches
+from dispersion.discretization.discrete_branches import discrete_branches
 from dispersion.symbolic.plate import plate_patch
-from dispersion.waves.rayleigh_lamb import frequency_function, speed_ratio_squared
-from dispersion.waves.exact_branches import trace_branches
-from dispersion.waves.velocities import exact_velocities, phase_velocity, zgv_points
+from dispersion.continuum.rayleigh_lamb import frequency_function, speed_ratio_squared
+from dispersion.continuum.exact_branches import trace_branches
+from dispersion.continuum.velocities import exact_velocities, phase_velocity, zgv_points
 
 NU = 0.3
 PLATE = math.sqrt(2 / (1 - NU))  # plate speed / c_T: sqrt(E / (rho (1 - nu^2))) / c_T

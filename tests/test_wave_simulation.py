@@ -23,7 +23,7 @@ from dispersion.simulation.run_cost import RequestTooLarge, estimate_cost, check
 from dispersion.simulation.strip import Strip, plan_strip
 from dispersion.simulation.strip_mesh import check_rule, strip_mesh, x_mass
 from dispersion.simulation.tone_burst import ToneBurst
-from dispersion.symbolic.mass_rule import RULES
+from dispersion.mass_rules.mass_rule import RULES
 
 TINY = dict(travel=1, stations=2, elements_per_wavelength=3, kappa_c=1.0)
 
@@ -111,7 +111,7 @@ def test_lanczos_finds_the_toolkits_dense_critical_step_and_the_loop_obeys_it(ma
     condensed) to 1e-10; 0.98 of it runs under either load, 1.05 of it blows up under one of
     them (the top mode belongs to one symmetry class; a mirror-symmetric mass keeps the
     other class free of it)."""
-    from dispersion.waves.timestep import matrix_critical_step
+    from dispersion.time_stepping.timestep import matrix_critical_step
 
     kick = np.zeros(400)
     kick[0:3] = 1.0
@@ -145,7 +145,7 @@ def test_the_stiffness_is_the_contact_wings_galerkin_stiffness():
     from dispersion.contact.assembly import discretize, internal_force
     from dispersion.contact.material import StVenantKirchhoff
     from dispersion.contact.nurbs import RingPatch
-    from dispersion.symbolic.bspline import open_knot_vector
+    from dispersion.splines.bspline import open_knot_vector
 
     mesh = _tiny(p=2, mass="lumped")
     plan = mesh.plan
@@ -198,7 +198,7 @@ def test_requests_over_the_bounds_are_refused_before_any_work():
 def test_a_rule_the_strip_cannot_run_is_refused_with_its_reason():
     from types import SimpleNamespace
 
-    from dispersion.symbolic.mass_rule import user_rule
+    from dispersion.mass_rules.mass_rule import user_rule
 
     stated = SimpleNamespace(name="odd", states=SimpleNamespace(
         as_dict=lambda: {"symmetric": True, "diagonal": False, "dense_stiffness": True}))
@@ -227,8 +227,8 @@ def test_the_nodal_gll_space_has_the_spectra_of_the_c0_bernstein_space():
 
     from dispersion.simulation.lagrange_space import NodalSpace1D
     from dispersion.simulation.strip_mesh import spline_grams
-    from dispersion.symbolic.bspline import KnotVector, SplineBasis1D
-    from dispersion.symbolic.spline_mass import lobatto_matrix
+    from dispersion.splines.bspline import KnotVector, SplineBasis1D
+    from dispersion.splines.spline_mass import lobatto_matrix
 
     for p in (1, 2, 3, 4):
         ne = 3

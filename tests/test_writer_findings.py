@@ -278,7 +278,7 @@ def _never(*args, **kwargs):
 
 
 def test_8_timestep_bar_p24_is_refused_before_work(monkeypatch, capsys):
-    import dispersion.waves.timestep as ts
+    import dispersion.time_stepping.timestep as ts
 
     monkeypatch.setattr(ts, "_coefficients", _never)
     assert main(["timestep", "--model", "bar", "--p", "24", "--mass", "hrz"]) == 2
@@ -301,8 +301,8 @@ def test_8_claims_at_bar_p24_are_refused_before_work(tmp_path, monkeypatch, kind
 
 def test_8_api_requests_are_refused_before_work(monkeypatch):
     import dispersion.sweep as sweep
-    import dispersion.waves.fully_discrete as fd
-    import dispersion.waves.timestep as ts
+    import dispersion.time_stepping.fully_discrete as fd
+    import dispersion.time_stepping.timestep as ts
     from dispersion.symbolic.plate import plate_patch
 
     monkeypatch.setattr(fd, "time_series", _never)

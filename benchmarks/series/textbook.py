@@ -73,7 +73,7 @@ def textbook_orders(F: sympy.Expr, sigma: int, order: int) -> Iterator[tuple[int
 
 def textbook_rayleigh_lamb(branch: str) -> sympy.Expr:
     """The Rayleigh-Lamb function in plain sympy: ``cos(sqrt z)``, ``sin(sqrt z)/sqrt z``."""
-    from dispersion.waves.rayleigh_lamb import frequency_function
+    from dispersion.continuum.rayleigh_lamb import frequency_function
 
     def C(z):
         return sympy.cos(sympy.sqrt(z))

@@ -1,9 +1,9 @@
 """The practitioner's table of a layered or anisotropic plate: every mode at given frequencies.
 
-:func:`layered_lamb_modes` takes a :class:`~dispersion.continuum.layered_plate.LayeredPlate`
+:func:`layered_lamb_modes` takes a :class:`~dispersion.continuum.layered.layered_plate.LayeredPlate`
 and frequencies f (kHz) or frequency-thickness products fd (MHz mm, d the total thickness);
 it solves at :math:`\\Omega = \\omega h / c_{ref}`
-(:func:`dispersion.continuum.layered_modes.layered_modes`: every root found by SAFE,
+(:func:`dispersion.continuum.layered.layered_modes.layered_modes`: every root found by SAFE,
 polished on the exact relation, counted and certified) and returns a
 :class:`LayeredModeTable` with
 
@@ -13,11 +13,11 @@ polished on the exact relation, counted and certified) and returns a
     \\lambda = \\frac{2\\pi}{k}.
 
 A plate of one undamped isotropic layer is the Rayleigh-Lamb plate: it is answered by the
-isotropic calculator (:func:`dispersion.waves.mode_table.lamb_modes`) from the same numbers,
+isotropic calculator (:func:`dispersion.answers.mode_table.lamb_modes`) from the same numbers,
 so its table is today's, byte for byte.
 
->>> from dispersion.continuum.layered_plate import layered_plate
->>> from dispersion.waves.materials import material
+>>> from dispersion.continuum.layered.layered_plate import layered_plate
+>>> from dispersion.materials.materials import material
 >>> plate = layered_plate([(material("steel"), 0.71), (material("aluminium"), 0.29)])
 >>> t = layered_lamb_modes(plate, frequency_khz=[500.0])
 >>> [(r["mode"], round(r["c_p [m/s]"], 1)) for r in t.rows()]
@@ -30,7 +30,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from dispersion.continuum.layered_modes import OMEGA_RANGE, LayeredRoots
+from dispersion.continuum.layered.layered_modes import OMEGA_RANGE, LayeredRoots
 from dispersion.errors import InputError
 from dispersion.rendering import Rendered
 
@@ -125,7 +125,7 @@ class LayeredModeTable(Rendered):
         f = self.frequency_khz[r.index]
         out = []
         if self.damped:
-            from dispersion.continuum.damped_modes import DB_PER_NEPER
+            from dispersion.continuum.layered.damped_modes import DB_PER_NEPER
 
             for i in range(r.kappa.size):
                 kap = complex(r.kappa[i])
@@ -160,7 +160,7 @@ class LayeredModeTable(Rendered):
 
     def curves(self) -> dict[str, dict[str, np.ndarray]]:
         """Per mode, arrays ordered by k: ``f, fd, c_p, c_g, k`` (as
-        :meth:`dispersion.waves.mode_table.ModeTable.curves`)."""
+        :meth:`dispersion.answers.mode_table.ModeTable.curves`)."""
         out: dict[str, dict[str, list]] = {}
         for row in self.rows():
             d = out.setdefault(row["mode"], {"f": [], "fd": [], "c_p": [], "c_g": [], "k": []})
@@ -175,9 +175,9 @@ class LayeredModeTable(Rendered):
 
 
 def _isotropic_material(solid):
-    """The isotropic :class:`~dispersion.waves.materials.Material` of an undamped isotropic
+    """The isotropic :class:`~dispersion.materials.materials.Material` of an undamped isotropic
     solid: the one it was made from, else one from its speeds."""
-    from dispersion.waves.materials import Material
+    from dispersion.materials.materials import Material
 
     if solid.origin is not None:
         return solid.origin
@@ -199,16 +199,16 @@ def _frequencies(name, raw, thickness_mm, fd):
 def layered_lamb_modes(plate, *, frequency_khz=None, fd_mhz_mm=None, families=None):
     """Every propagating mode of ``plate`` at each frequency: a :class:`LayeredModeTable`
     (or, for one undamped isotropic layer, the isotropic calculator's
-    :class:`~dispersion.waves.mode_table.ModeTable`). Give exactly one of ``frequency_khz``
+    :class:`~dispersion.answers.mode_table.ModeTable`). Give exactly one of ``frequency_khz``
     and ``fd_mhz_mm``; ``families`` a subset of the plate's families (S, A, SH; L, SH; M)."""
-    from dispersion.continuum.layered_plate import LayeredPlate
+    from dispersion.continuum.layered.layered_plate import LayeredPlate
 
     if not isinstance(plate, LayeredPlate):
         raise InputError(f"plate must be a LayeredPlate, got {type(plate).__name__}")
     if (frequency_khz is None) == (fd_mhz_mm is None):
         raise InputError("give exactly one of frequency_khz (kHz) and fd_mhz_mm (MHz mm)")
     if plate.isotropic_single():   # undamped: isotropic_single() is False for a damped layer
-        from dispersion.waves.mode_table import lamb_modes
+        from dispersion.answers.mode_table import lamb_modes
 
         kinds = ("S", "A", "SH") if families is None else tuple(families)
         material = _isotropic_material(plate.layers[0].solid)
@@ -229,9 +229,9 @@ def layered_lamb_modes(plate, *, frequency_khz=None, fd_mhz_mm=None, families=No
                          f"(d = {plate.total_thickness_mm:g} mm), got "
                          f"{float(f_khz[bad][0]) * scale:.6g} {unit}")
     if not plate.lossless:
-        from dispersion.continuum.damped_modes import damped_modes
+        from dispersion.continuum.layered.damped_modes import damped_modes
 
         return LayeredModeTable(plate, f_khz, damped_modes(plate, omega, families=families))
-    from dispersion.continuum.layered_modes import layered_modes
+    from dispersion.continuum.layered.layered_modes import layered_modes
 
     return LayeredModeTable(plate, f_khz, layered_modes(plate, omega, families=families))

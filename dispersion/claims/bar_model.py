@@ -34,7 +34,7 @@ class BarModel:
 
     def __post_init__(self):
         from dispersion.errors import InputError
-        from dispersion.symbolic.mass_rule import get_rule
+        from dispersion.mass_rules.mass_rule import get_rule
         from dispersion.symbolic.plate import P_MAX
 
         object.__setattr__(self, "p", check_int_in_range("p", self.p, 1, P_MAX))

@@ -89,7 +89,7 @@ def check_patch(model: ClaimModel, entry: dict, fail) -> None:
     if not isinstance(model, Patch):
         return
     if model.weights is not None and model.singular:  # the weights' own rules, named as such
-        from dispersion.symbolic.mass import redistribution_matrix
+        from dispersion.mass_rules.mass import redistribution_matrix
 
         try:
             redistribution_matrix(model.n, model.weights_dict)

@@ -30,7 +30,7 @@ from dispersion.claims.exact_model import ExactModel
 from dispersion.claims.schema import load_claims
 from dispersion.claims.verify import ClaimResult, _same, _series, verify_claims
 from dispersion.errors import InputError
-from dispersion.waves.exact_series import exact_leading_balance
+from dispersion.continuum.exact_series import exact_leading_balance
 
 __all__ = ["MODELS_TRIED", "ErrataRow", "PaperErrata", "paper_claims", "errata_table",
            "format_table", "errata_document", "eq13_note", "paper_errata"]

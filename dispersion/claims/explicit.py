@@ -83,7 +83,7 @@ def step_claim(entry: dict, common: dict, fail) -> Claim:
     if not value.is_number or not value.is_positive:
         fail(key, f"must be a positive number, got {entry[key]!r}")
     ref = entry.get("relative_to", "consistent")
-    from dispersion.symbolic.mass_rule import RULES
+    from dispersion.mass_rules.mass_rule import RULES
 
     if not isinstance(ref, str) or ref not in RULES:
         fail("relative_to", f"must name a registered rule, got {ref!r}")
@@ -97,7 +97,7 @@ def step_claim(entry: dict, common: dict, fail) -> Claim:
 
 def series_claim(entry: dict, common: dict, fail) -> Claim:
     """A ``fully_discrete_series`` claim (``common`` as in :func:`step_claim`)."""
-    from dispersion.waves.time_integration import NEWMARK_MEMBERS
+    from dispersion.time_stepping.time_integration import NEWMARK_MEMBERS
 
     scheme = entry.get("scheme", "central")
     if scheme not in NEWMARK_MEMBERS:
@@ -138,7 +138,7 @@ def task(claim) -> tuple:
 
 def run(t: tuple):
     """Derive: ``(omega_max exact or float, ratio)`` or the series as ``{(i, j): coeff}``."""
-    from dispersion.waves import timestep
+    from dispersion.time_stepping import timestep
 
     model = t[1]
     if t[0] == "critical_step":
@@ -153,7 +153,7 @@ def run(t: tuple):
         w, exact, _, _ = timestep.patch_omega_max(plate_patch(model), t[2])
         ref = timestep.patch_omega_max(plate_patch(model.replace(mass=other)), t[2])[0]
         return (exact if exact is not None else w, ref / w)
-    from dispersion.waves.fully_discrete import fully_discrete_series, time_scheme
+    from dispersion.time_stepping.fully_discrete import fully_discrete_series, time_scheme
 
     _, _, branch, scheme, order, nu = t
     if isinstance(model, BarModel):

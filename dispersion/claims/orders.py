@@ -50,7 +50,7 @@ def prepare(entry: dict, fail) -> dict:
 
 def order_claim(entry: dict, common: dict, fail) -> Claim:
     """An ``order_range`` claim (``common``: the fields every kind has, the model checked)."""
-    from dispersion.symbolic.mass_rule import RULES
+    from dispersion.mass_rules.mass_rule import RULES
 
     model = common["model"]
     p = model.p
@@ -80,7 +80,7 @@ def task(claim) -> tuple:
 
 
 def _power(model: str, rule, p: int):
-    from dispersion.waves.leading_error import bar_leading_term, plate_leading_terms
+    from dispersion.discretization.leading_error import bar_leading_term, plate_leading_terms
 
     order = 2 * p + 4
     if model == "bar":

@@ -135,7 +135,7 @@ class Verification(Rendered):
 def _series(model: ClaimModel, branch: str, order: int) -> dict[int, sympy.Expr]:
     """Derived series of ``branch`` of ``model`` to kappa^order (cached per process)."""
     if isinstance(model, ExactModel):
-        from dispersion.waves.exact_series import exact_series
+        from dispersion.continuum.exact_series import exact_series
 
         return exact_series(branch, order)
     from dispersion.symbolic.power_balance import discrete_series
@@ -146,12 +146,12 @@ def _series(model: ClaimModel, branch: str, order: int) -> dict[int, sympy.Expr]
 def _omega(model: ClaimModel, branch: str, kappa: float, nu: float, guess: float) -> float:
     """Omega of ``branch`` at one kappa (NaN if it does not exist below 2 guess + 1)."""
     if isinstance(model, ExactModel):
-        from dispersion.waves.exact_branches import trace_branches
+        from dispersion.continuum.exact_branches import trace_branches
 
         br = trace_branches(nu, [kappa], 2 * guess + 1)
     else:
         from dispersion.symbolic.plate import plate_patch
-        from dispersion.waves.discrete_branches import discrete_branches
+        from dispersion.discretization.discrete_branches import discrete_branches
 
         br = discrete_branches(plate_patch(model), nu, [kappa])
     return float(br.omega[branch][0]) if branch in br.omega else float("nan")

@@ -16,19 +16,19 @@ from dispersion.defaults import CONTACT_SETS, N_MAX, P_MAX, PATCH_MODELS, R_RANG
 
 
 def _rules():
-    from dispersion.symbolic.mass_rule import RULE_NAMES
+    from dispersion.mass_rules.mass_rule import RULE_NAMES
 
     return RULE_NAMES
 
 
 def _schemes():
-    from dispersion.waves.time_integration import NEWMARK_MEMBERS
+    from dispersion.time_stepping.time_integration import NEWMARK_MEMBERS
 
     return tuple(NEWMARK_MEMBERS)
 
 
 def register(sub) -> None:
-    from dispersion.waves.branch_table import COUNT, KAPPA_MAX, MAX_COUNT, MAX_OMEGA, OMEGA_MAX
+    from dispersion.answers.branch_table import COUNT, KAPPA_MAX, MAX_COUNT, MAX_OMEGA, OMEGA_MAX
 
     p = sub.add_parser(
         "branches", help="dispersion branches: discrete patch and Rayleigh-Lamb",
@@ -91,8 +91,8 @@ def _discrete(a) -> bool:
 
 
 def _singular(a) -> bool:
-    from dispersion.symbolic.mass_rule import get_rule
-    from dispersion.waves.branch_table import DEFAULT_MASSES
+    from dispersion.mass_rules.mass_rule import get_rule
+    from dispersion.answers.branch_table import DEFAULT_MASSES
 
     names = a.mass or ([] if a.mass_rule else DEFAULT_MASSES)
     return bool(a.mass_rule) or any(get_rule(m).redistributes for m in names)
@@ -118,7 +118,7 @@ def run(args) -> int:
         return frequency.run(args)
     from dispersion.cli.options import material_from_args, masses_from_args
     from dispersion.plotting.branches import figure_branch_table
-    from dispersion.waves.branch_table import branch_table
+    from dispersion.answers.branch_table import branch_table
 
     material = material_from_args(args)
     check_outputs(args, "branches")

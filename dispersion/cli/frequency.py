@@ -15,7 +15,7 @@ from dispersion.errors import InputError
 
 
 def _materials():
-    from dispersion.waves.materials import MATERIALS
+    from dispersion.materials.materials import MATERIALS
 
     return sorted(MATERIALS)
 
@@ -105,7 +105,7 @@ def run(args) -> int:
                            frequency_khz=frequencies(args.frequency, "--frequency"), **kinds)
     if args.mode_shape is not None:
         from dispersion.plotting.lamb import figure_mode_shapes
-        from dispersion.waves.mode_shape_table import mode_shapes
+        from dispersion.answers.mode_shape_table import mode_shapes
 
         if table.frequency_khz.size != 1:
             raise InputError(f"--mode-shape needs exactly one frequency (at most 1), got "

@@ -12,7 +12,7 @@ SCENES = ("signorini-1d",)
 
 
 def _rules():
-    from dispersion.symbolic.mass_rule import RULE_NAMES
+    from dispersion.mass_rules.mass_rule import RULE_NAMES
 
     return RULE_NAMES
 

@@ -205,7 +205,7 @@ def material_from_args(args: argparse.Namespace, default: str | None = None):
     ...
     dispersion.errors.InputError: material inputs (--cl) do not form one of (--youngs-modulus, nu, --rho), (--cl, --ct), (--cl, --ct, --rho)
     """
-    from dispersion.waves.materials import material, user_material
+    from dispersion.materials.materials import material, user_material
 
     values = {key: getattr(args, opt[2:].replace("-", "_"), None)
               for key, opt in MATERIAL_OPTIONS.items()}
@@ -220,7 +220,7 @@ def material_from_args(args: argparse.Namespace, default: str | None = None):
         return material(name)
     if not given:
         return None if default is None else material(default)
-    from dispersion.waves.unit_mixups import unit_mixups
+    from dispersion.materials.unit_mixups import unit_mixups
 
     # valid, but likely not what was meant: said after the run (an error states them itself)
     args.unit_hints = [cli_words(h) for h in unit_mixups(c_L=values["c_L"], c_T=values["c_T"],
@@ -242,7 +242,7 @@ def masses_from_args(args: argparse.Namespace) -> list | None:
     in that order; None when neither is given (the command's default rules)."""
     rules = list(getattr(args, "mass", None) or ())
     if getattr(args, "mass_rule", None):
-        from dispersion.symbolic.mass_rule_file import read_rule_file
+        from dispersion.mass_rules.mass_rule_file import read_rule_file
 
         rules += [read_rule_file(path) for path in args.mass_rule]
     return rules or None

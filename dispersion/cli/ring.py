@@ -45,7 +45,7 @@ LEVELS = (0, 4)
 
 
 def _rules():
-    from dispersion.symbolic.mass_rule import RULE_NAMES
+    from dispersion.mass_rules.mass_rule import RULE_NAMES
 
     return RULE_NAMES
 
@@ -97,7 +97,7 @@ def register(sub) -> None:
 def scenario_from(args) -> Scenario:
     """The scenario the options describe (refines the mesh after setting element counts)."""
     from dispersion.cli.options import check_applies
-    from dispersion.symbolic.mass_rule import get_rule
+    from dispersion.mass_rules.mass_rule import get_rule
 
     check_applies(args, [("--gamma-s", lambda a: get_rule(a.mass).redistributes,
                           "to a singular mass rule")])

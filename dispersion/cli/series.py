@@ -16,7 +16,7 @@ _PATCH = ("mass", "contact", "gamma_s", "model", "r", "p", "n")
 
 
 def _rules():
-    from dispersion.symbolic.mass_rule import RULE_NAMES
+    from dispersion.mass_rules.mass_rule import RULE_NAMES
 
     return RULE_NAMES
 
@@ -28,14 +28,14 @@ def _formats():
 
 
 def _order_range() -> str:
-    from dispersion.waves.series_table import order_range
+    from dispersion.answers.series_table import order_range
 
     return order_range()
 
 
 def register(sub) -> None:
     from dispersion.cli.outputs import add_outputs
-    from dispersion.waves.series_table import ORDER
+    from dispersion.answers.series_table import ORDER
 
     p = sub.add_parser(
         "series", help="power-balance series of the S0/A0 branches",
@@ -82,7 +82,7 @@ def _patch_given(a) -> bool:
 
 
 def _singular(a) -> bool:
-    from dispersion.symbolic.mass_rule import get_rule
+    from dispersion.mass_rules.mass_rule import get_rule
 
     return get_rule(a.mass or defaults.MASS).redistributes
 
@@ -109,7 +109,7 @@ def run(args) -> int:
 
         write_outputs(args, errata_sheet())
         return 0
-    from dispersion.waves.series_table import ORDER, series_table
+    from dispersion.answers.series_table import ORDER, series_table
 
     patch = None
     if not args.exact:

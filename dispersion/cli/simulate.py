@@ -8,13 +8,13 @@ from dispersion.cli.options import check_applies, choice, integer, lazy_help, re
 
 
 def _rules():
-    from dispersion.symbolic.mass_rule import RULE_NAMES
+    from dispersion.mass_rules.mass_rule import RULE_NAMES
 
     return RULE_NAMES
 
 
 def _materials():
-    from dispersion.waves.materials import MATERIALS
+    from dispersion.materials.materials import MATERIALS
 
     return tuple(MATERIALS)
 
@@ -72,7 +72,7 @@ def register(sub) -> None:
 
 
 def _singular(a) -> bool:
-    from dispersion.symbolic.mass_rule import get_rule
+    from dispersion.mass_rules.mass_rule import get_rule
 
     return get_rule(a.mass).redistributes
 

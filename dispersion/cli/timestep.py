@@ -7,13 +7,13 @@ from dispersion.cli.options import check_applies, choice, integer, lazy_help, ra
 
 
 def _rules():
-    from dispersion.symbolic.mass_rule import RULE_NAMES
+    from dispersion.mass_rules.mass_rule import RULE_NAMES
 
     return RULE_NAMES
 
 
 def _models():
-    from dispersion.waves.time_integration import CRITICAL_STEP_MODELS
+    from dispersion.time_stepping.time_integration import CRITICAL_STEP_MODELS
 
     return tuple(CRITICAL_STEP_MODELS)
 
@@ -69,8 +69,8 @@ def _plate(a) -> bool:
 
 
 def _singular(a) -> bool:
-    from dispersion.symbolic.mass_rule import get_rule
-    from dispersion.waves.critical_steps import default_rules
+    from dispersion.mass_rules.mass_rule import get_rule
+    from dispersion.answers.critical_steps import default_rules
 
     names = a.mass or ([] if a.mass_rule else default_rules("plate"))
     return _plate(a) and (bool(a.mass_rule) or any(get_rule(m).redistributes for m in names))
@@ -88,7 +88,7 @@ RULES = [
 def run(args) -> int:
     from dispersion.cli.options import material_from_args, masses_from_args
     from dispersion.cli.outputs import check_outputs, warn_failures, write_outputs
-    from dispersion.waves.critical_steps import critical_steps
+    from dispersion.answers.critical_steps import critical_steps
 
     check_applies(args, RULES)
     check_outputs(args, "timestep")

@@ -38,7 +38,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from dispersion.errors import InputError
-from dispersion.symbolic.mass_rule import mass_variant
+from dispersion.mass_rules.mass_rule import mass_variant
 from dispersion.contact.material import StVenantKirchhoff
 from dispersion.contact.nurbs import RingPatch, SplineBasis1D
 from dispersion.contact.redistribution import float_redistribution
@@ -283,7 +283,7 @@ def patch_mass(disc: Discretization, rho: float, variant: str = "consistent",
                side: str = "eta1", gamma_s: float = 0.5) -> sp.csr_matrix:
     """Mass matrix on the interleaved DOFs for ``variant`` (see
     :func:`dispersion.symbolic.mass_rule.mass_variant`); singular variants redistribute ``side``."""
-    from dispersion.symbolic.mass_rule import get_rule
+    from dispersion.mass_rules.mass_rule import get_rule
 
     rule = get_rule(variant)
     M = consistent_mass(disc, rho)

@@ -45,8 +45,8 @@ import numpy as np
 
 from dispersion.defaults import GAMMA_S_FLOAT
 from dispersion.errors import InputError, check_positive, check_positive_int, check_real_in_range
-from dispersion.symbolic.bspline import SplineBasis1D
-from dispersion.symbolic.mass_rule import RULES, get_rule, mass_variant
+from dispersion.splines.bspline import SplineBasis1D
+from dispersion.mass_rules.mass_rule import RULES, get_rule, mass_variant
 from dispersion.contact.contact_problem import ContactProblem
 from dispersion.contact.newmark import History, integrate
 from dispersion.contact.newmark_scheme import Newmark
@@ -200,7 +200,7 @@ def assemble_bar(bar: Bar) -> BarAssembly:
     R = float_redistribution(n, side, bar.gamma_s) if rule.redistributes else None
     kv = None
     if not _numeric(rule):  # HRZ, nodal quadratures, user rules: the exact knot vector
-        from dispersion.symbolic.bspline import open_knot_vector
+        from dispersion.splines.bspline import open_knot_vector
 
         kv = open_knot_vector(p, bar.n_elements, 0, 1)
     Mv = mass_variant(M, rule, R, kv=kv)

@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from dispersion.errors import ConvergenceError
-from dispersion.symbolic.matrix_kind import dense
+from dispersion.splines.matrix_kind import dense
 
 if TYPE_CHECKING:
     from dispersion.contact.newmark_scheme import Newmark

@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from dispersion.contact.linear_solver import LinearSolver
-from dispersion.symbolic.matrix_kind import is_sparse
+from dispersion.splines.matrix_kind import is_sparse
 
 if TYPE_CHECKING:
     from dispersion.contact.contact_problem import ContactProblem

@@ -56,7 +56,7 @@ from dispersion.contact.contact_problem import ContactProblem
 from dispersion.contact.linear_solver import LinearSolver
 from dispersion.contact.mass_split import MassSplit
 from dispersion.contact.newmark_scheme import Newmark
-from dispersion.symbolic.matrix_kind import dense, is_sparse
+from dispersion.splines.matrix_kind import dense, is_sparse
 from dispersion.contact.semismooth_newton import Tangent, newton
 
 if TYPE_CHECKING:

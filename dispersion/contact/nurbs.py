@@ -33,7 +33,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from dispersion.symbolic.bspline import KnotVector, SplineBasis1D, open_knot_vector, refine
+from dispersion.splines.bspline import KnotVector, SplineBasis1D, open_knot_vector, refine
 from dispersion.errors import InputError, check_positive, check_positive_int
 
 __all__ = ["RingPatch", "SplineBasis1D", "quarter_ring"]

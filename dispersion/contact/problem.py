@@ -25,9 +25,9 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from dispersion.symbolic.bspline import open_knot_vector
+from dispersion.splines.bspline import open_knot_vector
 from dispersion.errors import InputError, check_positive, check_positive_int
-from dispersion.symbolic.mass_rule import get_rule
+from dispersion.mass_rules.mass_rule import get_rule
 from dispersion.contact.assembly import discretize, internal_force, patch_mass, strain_energy
 from dispersion.contact.material import StVenantKirchhoff
 from dispersion.contact.contact_problem import ContactProblem

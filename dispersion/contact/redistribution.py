@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from dispersion.errors import InputError
-from dispersion.symbolic.mass import contact_weights
+from dispersion.mass_rules.mass import contact_weights
 
 __all__ = ["float_redistribution"]
 

@@ -18,7 +18,7 @@ import numpy as np
 
 from dispersion.errors import ConvergenceError
 from dispersion.contact.linear_solver import LinearSolver
-from dispersion.symbolic.matrix_kind import dense
+from dispersion.splines.matrix_kind import dense
 
 __all__ = ["Tangent", "newton"]
 

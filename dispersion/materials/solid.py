@@ -1,10 +1,10 @@
 """A solid: an elastic law with its density, name and source (what a layer is made of).
 
-The isotropic table (:data:`dispersion.waves.materials.MATERIALS`, bulk speeds and density)
+The isotropic table (:data:`dispersion.materials.materials.MATERIALS`, bulk speeds and density)
 gives solids by :func:`as_solid`; the plies of fibre composites are solids of their own
-(:data:`dispersion.waves.materials.PLIES`).
+(:data:`dispersion.materials.materials.PLIES`).
 
->>> from dispersion.waves.materials import material
+>>> from dispersion.materials.materials import material
 >>> s = as_solid(material("steel"))
 >>> s.name, round(s.stiffness.matrix[3][3] / 1e9, 2)
 ('steel', 82.15)
@@ -31,7 +31,7 @@ class Solid:
     rho: float
     name: str = "custom"
     source: str = "user input"
-    #: The isotropic :class:`~dispersion.waves.materials.Material` this solid was made from
+    #: The isotropic :class:`~dispersion.materials.materials.Material` this solid was made from
     #: (None otherwise): a plate of one such layer is solved by the Rayleigh-Lamb
     #: calculator from the very same numbers.
     origin: object = field(default=None, compare=False, repr=False)
@@ -77,8 +77,8 @@ class Solid:
 
 def as_solid(value) -> Solid:
     """A :class:`Solid` as it is, or an isotropic
-    :class:`~dispersion.waves.materials.Material` with a density turned into one (its
-    :meth:`~dispersion.waves.materials.Material.solid`)."""
+    :class:`~dispersion.materials.materials.Material` with a density turned into one (its
+    :meth:`~dispersion.materials.materials.Material.solid`)."""
     if isinstance(value, Solid):
         return value
     if callable(getattr(value, "solid", None)):

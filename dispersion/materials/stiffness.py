@@ -19,7 +19,7 @@ material about the normal (a ply angle); :meth:`Stiffness.with_loss` makes the m
 (hysteretic damping, loss factor eta, time dependence :math:`e^{-i\\omega t}`, so
 :math:`C^* = C (1 - i\\eta)` and waves decay as they travel).
 
-The plane-strain law of the plate patch (:mod:`dispersion.symbolic.elastic_law`) is the
+The plane-strain law of the plate patch (:mod:`dispersion.materials.elastic_law`) is the
 :math:`x_1 x_3` block of this one: :meth:`Stiffness.plane_strain_law`.
 
 >>> steel = isotropic(lam=115.6e9, mu=78.99e9)
@@ -191,13 +191,13 @@ class Stiffness:
 
     def plane_strain_law(self):
         """The plane-strain law of the :math:`x_1 x_3` plane (the plate patch's x along and
-        y through the thickness): :class:`~dispersion.symbolic.elastic_law.Orthotropic` with
+        y through the thickness): :class:`~dispersion.materials.elastic_law.Orthotropic` with
         C11, C33, C13, C55, exact rationals of the floats.
 
         >>> isotropic(lam=2.0, mu=1.0).plane_strain_law().moduli()["D11"]
         4
         """
-        from dispersion.symbolic.elastic_law import Orthotropic
+        from dispersion.materials.elastic_law import Orthotropic
 
         if not (self.lossless and self.mirror_transverse()):
             raise InputError("the plane-strain law needs an undamped stiffness whose x1-x3 "

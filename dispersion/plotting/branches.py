@@ -243,7 +243,7 @@ def figure_branch_table(table):
 
     if table.material is not None:
         from dispersion.plotting.lamb import figure_dispersion
-        from dispersion.waves.units import zgv_in_units
+        from dispersion.answers.units import zgv_in_units
 
         discrete = {}
         for d, pb in zip(table.discrete, table.physical_discrete().values()):

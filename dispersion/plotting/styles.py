@@ -7,7 +7,7 @@ name, the same in every figure of a run.
 
 >>> mass_style("consistent")
 MassStyle(colour='C0', marker='o')
->>> from dispersion.symbolic.mass_rule import RULE_NAMES
+>>> from dispersion.mass_rules.mass_rule import RULE_NAMES
 >>> len({mass_style(r) for r in RULE_NAMES}) == len(RULE_NAMES)   # every rule its own
 True
 """
@@ -32,7 +32,7 @@ class MassStyle(NamedTuple):
 
 def mass_style(mass) -> MassStyle:
     """The style of ``mass`` (a rule name or a :class:`~dispersion.symbolic.mass_rule.MassRule`)."""
-    from dispersion.symbolic.mass_rule import RULE_NAMES
+    from dispersion.mass_rules.mass_rule import RULE_NAMES
 
     name = getattr(mass, "name", mass)
     if name in RULE_NAMES:

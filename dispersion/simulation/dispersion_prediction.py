@@ -70,8 +70,8 @@ class DispersionPrediction:
 
 def _branch(patch, nu, label, tau):
     """``kappa -> (Omega_tilde, d Omega_tilde / d kappa)`` arrays of the fully discrete branch."""
-    from dispersion.waves.discrete_branches import discrete_branches
-    from dispersion.waves.fully_discrete import time_frequency
+    from dispersion.discretization.discrete_branches import discrete_branches
+    from dispersion.time_stepping.fully_discrete import time_frequency
 
     def at(kappa):
         kappa = np.atleast_1d(np.asarray(kappa, dtype=float))

@@ -54,7 +54,7 @@ class NodalSpace1D:
 
     @cached_property
     def _reference(self):
-        from dispersion.symbolic.spline_mass import lobatto_rule
+        from dispersion.splines.spline_mass import lobatto_rule
 
         nodes, weights = lobatto_rule(self.p + 1)
         V = np.vander(nodes, self.p + 1, increasing=True)  # V[i, j] = x_i^j

@@ -183,7 +183,7 @@ def bloch_step(plan) -> tuple[float, float]:
     import sympy
 
     from dispersion.symbolic.plate import plate_patch
-    from dispersion.waves.timestep import patch_omega_max
+    from dispersion.time_stepping.timestep import patch_omega_max
 
     s = plan.strip
     patch = plate_patch(s.p, plan.n, "bloch", sympy.Rational(plan.r.numerator, plan.r.denominator),

@@ -106,7 +106,7 @@ def continue_signal(signal, dt: float, distance, wavenumber: Callable,
 def exact_branch(kind: str, nu: float, omega) -> tuple[np.ndarray, np.ndarray]:
     """Exact wavenumber and group velocity of S0 (``kind="S"``) or A0 at each frequency."""
     from dispersion.errors import ConvergenceError
-    from dispersion.waves.frequency import FREQUENCY_OMEGA_MIN, modes_at_frequency
+    from dispersion.continuum.frequency import FREQUENCY_OMEGA_MIN, modes_at_frequency
 
     omega = np.asarray(omega, dtype=float)
     kappa, group = np.full(omega.shape, np.nan), np.full(omega.shape, np.nan)

@@ -91,9 +91,9 @@ def check_cost(cost: RunCost, what: str, limit: int = MAX_DOF_STEPS) -> RunCost:
 
 def estimate_cost(plan) -> RunCost:
     """DOFs (exact) and steps (estimated from below) of the run of ``plan``."""
-    from dispersion.symbolic.mass_rule import get_rule
+    from dispersion.mass_rules.mass_rule import get_rule
     from dispersion.symbolic.plate import lame
-    from dispersion.waves.timestep import bar_omega_max
+    from dispersion.time_stepping.timestep import bar_omega_max
 
     s = plan.strip
     dofs = 2 * plan.n_x * plan.n

@@ -118,7 +118,7 @@ class Strip:
 
     def __post_init__(self):
         from dispersion.defaults import CONTACT_SETS
-        from dispersion.waves.materials import MATERIALS
+        from dispersion.materials.materials import MATERIALS
 
         set_ = object.__setattr__
         set_(self, "p", check_int_in_range("p", self.p, 1, 4))
@@ -195,7 +195,7 @@ def _exact_velocities(kind: str, nu: float, omega: np.ndarray):
 def _cached_velocities(kind: str, nu: float, omega: tuple):
     # every run of a sweep shares its burst: the band's roots are solved once per process
     from dispersion.errors import ConvergenceError
-    from dispersion.waves.frequency import modes_at_frequency
+    from dispersion.continuum.frequency import modes_at_frequency
 
     omega = np.array(omega)
     roots = modes_at_frequency(nu, omega, kinds=(kind,), zgv=False)
@@ -211,10 +211,10 @@ def _cached_velocities(kind: str, nu: float, omega: tuple):
 def plan_strip(strip: Strip) -> StripPlan:
     """Derive the carrier, mesh, stations, record length and strip length (module docstring)."""
     from dispersion.simulation.tone_burst import ToneBurst
-    from dispersion.symbolic.mass_rule import get_rule
-    from dispersion.waves.exact_branches import exact_fundamental
-    from dispersion.waves.frequency import FREQUENCY_OMEGA_MIN
-    from dispersion.waves.materials import MATERIALS
+    from dispersion.mass_rules.mass_rule import get_rule
+    from dispersion.continuum.exact_branches import exact_fundamental
+    from dispersion.continuum.frequency import FREQUENCY_OMEGA_MIN
+    from dispersion.materials.materials import MATERIALS
 
     mat = MATERIALS[strip.material]
     nu = float(mat.nu)

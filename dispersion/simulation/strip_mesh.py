@@ -131,8 +131,8 @@ def _exact_x_mass(rule, p: int, m: int, inverse: bool = False) -> tuple:
 
     import sympy
 
-    from dispersion.symbolic.bspline import open_knot_vector
-    from dispersion.symbolic.mass_rule import gram_space, mass_matrix
+    from dispersion.splines.bspline import open_knot_vector
+    from dispersion.mass_rules.mass_rule import gram_space, mass_matrix
 
     with warnings.catch_warnings():  # warned about once, by the thickness build of the rule
         warnings.simplefilter("ignore")
@@ -201,7 +201,7 @@ def x_mass(rule, p: int, n_elements: int, b: float, inverse: bool = False) -> sp
     >>> float(x_mass("lumped", 2, 40, 0.5).sum())        # rho * length
     20.0
     """
-    from dispersion.symbolic.mass_rule import get_rule
+    from dispersion.mass_rules.mass_rule import get_rule
 
     rule = get_rule(rule)
     scale = 1.0 / b if inverse else b
@@ -224,7 +224,7 @@ def explicit_step(rule) -> tuple[str, str]:
     ``"solve"``), else read off its stated properties: a diagonal mass divides, any other
     is solved with.
 
-    >>> from dispersion.symbolic.mass_rule import get_rule
+    >>> from dispersion.mass_rules.mass_rule import get_rule
     >>> explicit_step(get_rule("hrz")), explicit_step(get_rule("consistent"))
     (('sparse', 'diagonal'), ('sparse', 'solve'))
     """
@@ -264,7 +264,7 @@ def _thickness(plan, rule, mass_kind):
     """Thickness matrices Y and the rule's thickness mass M_y (floats), and the basis."""
     import sympy
 
-    from dispersion.symbolic.bspline import SplineBasis1D
+    from dispersion.splines.bspline import SplineBasis1D
     from dispersion.symbolic.plate import plate_patch
 
     s = plan.strip
@@ -284,8 +284,8 @@ def _thickness(plan, rule, mass_kind):
 
 def strip_mesh(plan) -> StripMesh:
     """Assemble the strip of ``plan`` (:func:`dispersion.simulation.strip.plan_strip`)."""
-    from dispersion.symbolic.bspline import SplineBasis1D
-    from dispersion.symbolic.mass_rule import get_rule
+    from dispersion.splines.bspline import SplineBasis1D
+    from dispersion.mass_rules.mass_rule import get_rule
     from dispersion.symbolic.plate import lame
 
     s = plan.strip

@@ -101,7 +101,7 @@ class WaveRun(Rendered):
         """Today's chart's model (:mod:`dispersion.studies.cost_accuracy`): steps per unit
         time x DOFs x the rule's modelled multiply-adds per DOF and step (its stated
         ``explicit_cost``, two dimensions), or None for a rule that states none."""
-        from dispersion.symbolic.mass_rule import get_rule
+        from dispersion.mass_rules.mass_rule import get_rule
 
         cost = getattr(get_rule(self.strip.mass), "explicit_cost", None)
         if cost is None:
@@ -119,7 +119,7 @@ class WaveRun(Rendered):
                 f"{self.strip.label()}")
 
     def header_lines(self) -> list[str]:
-        from dispersion.waves.materials import MATERIALS
+        from dispersion.materials.materials import MATERIALS
 
         s, pl = self.strip, self.plan
         mat = MATERIALS[s.material]

@@ -76,7 +76,7 @@ def relative_error_series(branch: str, nu, patch=None, order: int = SERIES_ORDER
     import sympy
 
     from dispersion.symbolic.power_balance import discrete_series
-    from dispersion.waves.exact_series import exact_series
+    from dispersion.continuum.exact_series import exact_series
 
     nu_q = sympy.Rational(Fraction(nu).numerator, Fraction(nu).denominator)
     d = {k: _fraction(v) for k, v in discrete_series(branch, order, patch, nu=nu_q,

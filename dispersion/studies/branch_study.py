@@ -30,21 +30,22 @@ from dataclasses import dataclass
 import numpy as np
 
 from dispersion import defaults
-from dispersion.waves.bar_dispersion import bar_dispersion
-from dispersion.waves.discrete_branches import discrete_branches, fundamental_branches
-from dispersion.waves.mode_shapes import discrete_mode_shape, discrete_modes, exact_mode_shape, mac
-from dispersion.waves.mode_shapes import pair_by_shape
+from dispersion.discretization.bar_dispersion import bar_dispersion
+from dispersion.discretization.discrete_branches import discrete_branches, fundamental_branches
+from dispersion.continuum.mode_shapes import exact_mode_shape
+from dispersion.discretization.discrete_mode_shapes import discrete_mode_shape, discrete_modes, mac
+from dispersion.discretization.discrete_mode_shapes import pair_by_shape
 from dispersion.symbolic.patch import Patch
 from dispersion.symbolic.plate import plate_patch
-from dispersion.waves.exact_branches import (
+from dispersion.continuum.exact_branches import (
     ExactBranches,
     exact_fundamental,
     mpmath_error,
     trace_branches,
     tracer_accuracy,
 )
-from dispersion.waves.units import ALUMINIUM
-from dispersion.waves.velocities import exact_velocities, zgv_points
+from dispersion.answers.units import ALUMINIUM
+from dispersion.continuum.velocities import exact_velocities, zgv_points
 
 __all__ = [
     "BRANCH_NU", "BranchesStudy", "discrete_speed", "figure2_data", "measure_branches",

@@ -109,14 +109,14 @@ def cost_accuracy(degrees=(1, 2, 3, 4), rules=None, *, nu: float = 0.3,
     """Compute the chart (module docstring); ``courant`` is the step over the critical step."""
     from dispersion.errors import InputError, check_positive_int, check_real_in_range
     from dispersion.symbolic.plate import plate_patch
-    from dispersion.waves.discrete_branches import fundamental_branches
-    from dispersion.waves.exact_branches import trace_branches
-    from dispersion.waves.fully_discrete import time_frequency
-    from dispersion.waves.timestep import patch_omega_max
+    from dispersion.discretization.discrete_branches import fundamental_branches
+    from dispersion.continuum.exact_branches import trace_branches
+    from dispersion.time_stepping.fully_discrete import time_frequency
+    from dispersion.time_stepping.timestep import patch_omega_max
 
     N = check_positive_int("elements_per_wavelength", elements_per_wavelength, minimum=2)
     courant = check_real_in_range("courant", courant, 0, 1, lo_open=True)
-    from dispersion.symbolic.mass_rule import BLOCH_RULE_NAMES, get_rule
+    from dispersion.mass_rules.mass_rule import BLOCH_RULE_NAMES, get_rule
 
     rules = BLOCH_RULE_NAMES if rules is None else rules
     if not degrees or not rules:

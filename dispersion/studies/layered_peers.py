@@ -43,10 +43,10 @@ CHROMIUM = (83.347e9, 115.39e9, 7194.0)
 _OURS = """
 import json, sys
 from dispersion.api import layered_lamb_modes
-from dispersion.continuum.layered_plate import layered_plate, laminate
+from dispersion.continuum.layered.layered_plate import layered_plate, laminate
 from dispersion.materials.solid import Solid
 from dispersion.materials.stiffness import isotropic
-from dispersion.waves.materials import ply
+from dispersion.materials.materials import ply
 case = json.load(open(sys.argv[2]))
 if case["kind"] == "bilayer":
     rows = [(Solid(isotropic(lam=l, mu=m), r, n), t) for n, (l, m, r), t in case["layers"]]
@@ -70,8 +70,8 @@ if case["kind"] == "bilayer":
                     f"{m * (1 + s) / 1e9!r} {m * (1 - s) / 1e9!r} {nu!r}")
         layup.append((n, t, 0.0))
 else:
-    from dispersion.continuum.layered_plate import laminate
-    from dispersion.waves.materials import ply
+    from dispersion.continuum.layered.layered_plate import laminate
+    from dispersion.materials.materials import ply
     solid = ply(case["ply"])
     S = np.linalg.inv(solid.stiffness.array())
     vals = [1 / S[0, 0], 1 / S[1, 1], 1 / S[5, 5], 1 / S[3, 3]]
@@ -178,12 +178,12 @@ def _safe(case):
     """SAFE alone: near-real eigenvalues of each class's pencil at every frequency."""
     import numpy as np
 
-    from dispersion.continuum.dynamic_stiffness import mode_classes
-    from dispersion.continuum.layered_plate import laminate, layered_plate
-    from dispersion.continuum.safe import elements_per_layer, safe_pencil, wavenumbers
+    from dispersion.continuum.layered.dynamic_stiffness import mode_classes
+    from dispersion.continuum.layered.layered_plate import laminate, layered_plate
+    from dispersion.continuum.layered.safe import elements_per_layer, safe_pencil, wavenumbers
     from dispersion.materials.solid import Solid
     from dispersion.materials.stiffness import isotropic
-    from dispersion.waves.materials import ply
+    from dispersion.materials.materials import ply
 
     if case["kind"] == "bilayer":
         plate = layered_plate([(Solid(isotropic(lam=lam, mu=mu), r, n), t)

@@ -27,7 +27,7 @@ from __future__ import annotations
 import time
 from dataclasses import asdict, dataclass
 
-from dispersion.waves.leading_error import bar_leading_term, plate_leading_terms
+from dispersion.discretization.leading_error import bar_leading_term, plate_leading_terms
 
 __all__ = ["OrderRow", "LumpingOrders", "lumping_orders", "measure", "RULES"]
 
@@ -108,8 +108,8 @@ def lumping_orders(degrees=(1, 2, 3, 4), rules=None, *, bar: bool = True,
                    plate: bool = True) -> LumpingOrders:
     """The table of leading error terms (module docstring)."""
     from dispersion.errors import InputError
-    from dispersion.symbolic.rule_families import approximate_dual_rule
-    from dispersion.symbolic.mass_rule import RULE_NAMES, get_rule
+    from dispersion.mass_rules.rule_families import approximate_dual_rule
+    from dispersion.mass_rules.mass_rule import RULE_NAMES, get_rule
 
     t0 = time.perf_counter()
     if rules is None:

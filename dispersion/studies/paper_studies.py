@@ -47,12 +47,12 @@ from dataclasses import dataclass
 import numpy as np
 import sympy
 
-from dispersion.waves.discrete_branches import fundamental_branches
-from dispersion.waves.timestep import critical_time_step
+from dispersion.discretization.discrete_branches import fundamental_branches
+from dispersion.time_stepping.timestep import critical_time_step
 from dispersion.symbolic.patch import as_patch
 from dispersion.symbolic.plate import plate_patch
 from dispersion.sweep import parallel_map
-from dispersion.waves.exact_branches import exact_fundamental
+from dispersion.continuum.exact_branches import exact_fundamental
 
 __all__ = [
     "NU",
@@ -132,7 +132,7 @@ def _discrete(branch, order, nu, **kwargs) -> dict[int, object]:
 
 
 def _exact(branch, order, nu) -> dict[int, object]:
-    from dispersion.waves.exact_series import exact_series
+    from dispersion.continuum.exact_series import exact_series
 
     return exact_series(branch, order, nu=nu)
 

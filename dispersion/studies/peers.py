@@ -43,8 +43,8 @@ TIMEOUT = 900
 
 _OURS = """
 import json, sys
-from dispersion.waves.materials import user_material
-from dispersion.waves.mode_table import lamb_modes
+from dispersion.materials.materials import user_material
+from dispersion.answers.mode_table import lamb_modes
 f = json.load(open(sys.argv[2]))
 m = user_material(c_L={cl}, c_T={ct}, rho={rho})
 t = lamb_modes(m, {d}, frequency_khz=f, kinds=("S", "A"), zgv=True)
@@ -269,8 +269,8 @@ def measure(quick: bool = False, executor=None, repeat: int | None = None) -> Pe
 
 def _curves(count: int) -> dict:
     """Our S, A and SH modes of the benchmark plate on ``count`` frequencies up to 3 MHz."""
-    from dispersion.waves.materials import user_material
-    from dispersion.waves.mode_table import lamb_modes
+    from dispersion.materials.materials import user_material
+    from dispersion.answers.mode_table import lamb_modes
 
     m = user_material(c_L=C_L, c_T=C_T, rho=RHO, name="aluminium")
     t = lamb_modes(m, D_MM, frequency_khz=[3.0 + 2997.0 * i / (count - 1)

@@ -178,7 +178,7 @@ def _gnu_time() -> str | None:
 def _ours_compute(order: int) -> tuple[float, dict[str, dict[int, str]]]:
     """In-process: the same work as the CLI's JSON path (flint kernel + printed strings)."""
     from dispersion.symbolic.power_balance import format_coefficient
-    from dispersion.waves.exact_series import exact_series_raw
+    from dispersion.continuum.exact_series import exact_series_raw
 
     start = time.perf_counter()
     out = {b: {k: format_coefficient(a, d) for k, a, d in exact_series_raw(b, order)}

@@ -387,7 +387,7 @@ def wave_simulation(size: str | WaveSimulationSize = "default", executor=None,
     from dispersion.studies.cost_accuracy import pareto_front
     from dispersion.simulation.wave_run import simulate
     from dispersion.sweep import parallel_map
-    from dispersion.symbolic.mass_rule import RULES
+    from dispersion.mass_rules.mass_rule import RULES
 
     if isinstance(size, str):
         size = SIZES[check_choice("size", size, tuple(SIZES))]

@@ -127,7 +127,7 @@ class Patch:
     def __post_init__(self):
         import sympy
 
-        from dispersion.symbolic.mass_rule import get_rule
+        from dispersion.mass_rules.mass_rule import get_rule
 
         p, n = check_size(self.p, self.n)
         if self.model not in defaults.PATCH_MODELS:
@@ -135,7 +135,7 @@ class Patch:
                              f"got {self.model!r}")
         rule = get_rule(self.mass)  # a registered name or a MassRule, else InputError
         if rule.basis == "lagrange":  # C0 elements: p DOFs a cell along x, n = p e + 1
-            from dispersion.symbolic.lagrange_sem import c0_elements
+            from dispersion.splines.lagrange_sem import c0_elements
 
             if self.model == "bloch":
                 raise InputError(f"mass {rule.name!r} uses C0 Lagrange elements, which carry "
@@ -183,7 +183,7 @@ class Patch:
     @property
     def singular(self) -> bool:
         """True for the singular masses (contact set and weights apply)."""
-        from dispersion.symbolic.mass_rule import get_rule
+        from dispersion.mass_rules.mass_rule import get_rule
 
         return get_rule(self.mass).redistributes
 
@@ -191,7 +191,7 @@ class Patch:
     def basis(self) -> str:
         """The discrete space through the thickness: ``"bspline"`` or ``"lagrange"`` (C0
         elements, set by the rule, :attr:`dispersion.symbolic.mass_rule.MassRule.basis`)."""
-        from dispersion.symbolic.mass_rule import get_rule
+        from dispersion.mass_rules.mass_rule import get_rule
 
         return get_rule(self.mass).basis
 
@@ -208,7 +208,7 @@ class Patch:
     @property
     def isotropic(self) -> bool:
         """True if the plate is isotropic (its law is Poisson's ratio ``nu`` alone)."""
-        from dispersion.symbolic.elastic_law import Isotropic
+        from dispersion.materials.elastic_law import Isotropic
 
         return isinstance(self.law, Isotropic)
 
@@ -264,7 +264,7 @@ class Patch:
         """
         data = dict(data)
         if isinstance(data.get("law"), dict):
-            from dispersion.symbolic.elastic_law import ElasticLaw
+            from dispersion.materials.elastic_law import ElasticLaw
 
             data["law"] = ElasticLaw.from_dict(data["law"])
         if data.get("weights"):
@@ -322,7 +322,7 @@ class Patch:
 
 def _material(nu, law):
     """``(nu, law)`` of a patch: one law, and nu its Poisson's ratio where it is isotropic."""
-    from dispersion.symbolic.elastic_law import ElasticLaw, Isotropic
+    from dispersion.materials.elastic_law import ElasticLaw, Isotropic
 
     if law is not None and not isinstance(law, ElasticLaw):
         raise InputError(f"law must be an ElasticLaw (dispersion.symbolic.elastic_law), got "

@@ -53,11 +53,11 @@ from functools import lru_cache
 import numpy as np
 import sympy
 
-from dispersion.symbolic import bspline
+from dispersion.splines import bspline
 from dispersion.errors import InputError, check_positive_int
-from dispersion.symbolic.elastic_law import ElasticLaw, Isotropic, lame
-from dispersion.symbolic.mass import contact_weights, redistribution_matrix
-from dispersion.symbolic.mass_rule import (get_rule, mass_variant, x_mass_coefficients,
+from dispersion.materials.elastic_law import ElasticLaw, Isotropic, lame
+from dispersion.mass_rules.mass import contact_weights, redistribution_matrix
+from dispersion.mass_rules.mass_rule import (get_rule, mass_variant, x_mass_coefficients,
                                            x_stiffness_factor)
 
 __all__ = [
@@ -108,7 +108,7 @@ def thickness_knot_vector(p: int, n: int, basis: str = "bspline"):
     ['-1', '-1', '-1', '0', '0', '1', '1', '1']
     """
     if basis == "lagrange":
-        from dispersion.symbolic.lagrange_sem import c0_elements, c0_knot_vector
+        from dispersion.splines.lagrange_sem import c0_elements, c0_knot_vector
 
         return c0_knot_vector(p, c0_elements(p, n), -1, 1)
     if basis != "bspline":
@@ -253,7 +253,7 @@ def x_coefficients(patch) -> dict[str, dict[int, sympy.Rational]]:
     >>> x_coefficients(plate_patch(p=1, mass="dual-lumped"))["00"]
     {-2: -1/36, -1: 1/9, 0: 5/6, 1: 1/9, 2: -1/36}
     """
-    from dispersion.symbolic.approximate_dual import bloch_product
+    from dispersion.mass_rules.approximate_dual import bloch_product
 
     c = bloch_coefficients(patch.p)
     factor = dict(getattr(patch, "x_stiffness", ((0, 1),)))
@@ -369,7 +369,7 @@ def with_nu(patch: PlatePatch, nu=None) -> PlatePatch:
 
     >>> with_nu(plate_patch(), 0.3).law
     Isotropic(nu=0.3)
-    >>> from dispersion.symbolic.elastic_law import Orthotropic
+    >>> from dispersion.materials.elastic_law import Orthotropic
     >>> with_nu(plate_patch(law=Orthotropic(3, 2, 1, 1)), 0.3)
     Traceback (most recent call last):
     ...

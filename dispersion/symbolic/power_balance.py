@@ -424,7 +424,7 @@ def first_difference(a: dict, b: dict, upto: int | None = None) -> int | None:
     Exact: the difference of the coefficients is cancelled over QQ(nu[, r]). ``upto`` ignores
     higher powers (a series derived further than asked).
 
-    >>> from dispersion.waves.exact_series import exact_series
+    >>> from dispersion.continuum.exact_series import exact_series
     >>> first_difference(discrete_series("S0", 8, model="bloch", r=2), exact_series("S0", 8))
     6
     """

@@ -1,0 +1,507 @@
+"""Every propagating Lamb and SH mode at a given frequency: the real roots in kappa, certified.
+
+At a fixed :math:`\\Omega = \\omega h / c_T` the real wavenumbers :math:`\\kappa = kh \\ge 0` of
+each symmetry class are the roots of the deflated Rayleigh-Lamb function
+:math:`G(\\kappa, \\Omega)` (:func:`dispersion.waves.deflated_frequency.deflated_with_noise`,
+sampled with a bound on its rounding error). They are found and *counted* by the argument of
+the kappa tracer (:mod:`dispersion.waves.exact_branches`), turned on its side:
+
+1. **Count at fixed kappa.** At each :math:`\\kappa` the class is a self-adjoint problem in
+   :math:`\\Omega^2`; :math:`N(\\kappa, \\Omega)`, the number of its branches below
+   :math:`\\Omega`, changes by one at each simple root, so the sign of G is
+   :math:`\\sigma(\\kappa)(-1)^{N}` with :math:`\\sigma = \\operatorname{sign} G(\\kappa, 0)`.
+2. **Both ends known.** :math:`N(0, \\Omega)` is the number of cut-offs below
+   :math:`\\Omega` (closed form, :func:`~dispersion.waves.rayleigh_lamb.cutoff_frequencies`).
+   At a :math:`\\kappa_{hi} > \\Omega` only S0 and A0 can lie below :math:`\\Omega` (no
+   higher mode is slower than :math:`c_T`: Mindlin 1960; Achenbach 1973, sec. 6.9), so
+   :math:`N(\\kappa_{hi}, \\Omega) \\in \\{0, 1\\}` is read from the sign of G; kappa_hi is
+   raised until it is 0 (S0 and A0 rise with kappa, so no root lies beyond).
+3. **Every root accounted for.** Brackets are certain sign changes on a kappa grid of
+   spacing ``step`` that also holds the kappa of every zero-group-velocity point (a branch
+   that turns, such as S1 between its ZGV point and its cut-off, gives two roots on either
+   side of it, never in one cell); three same-signed samples dipping towards zero are
+   refined as in the tracer. Walking up in kappa, each root with group velocity
+   :math:`c_g` changes the count by :math:`-\\operatorname{sign} c_g`: the count before it
+   names the branch (S_j, A_j in the tracer's order at that kappa) and the walk must end at
+   :math:`N(\\kappa_{hi}) = 0`. Whatever does not add up is listed in ``failures``.
+
+Roots are closed by the Illinois method to ``rtol`` and, where :math:`P < 0` makes G
+cosh-sized, polished on :func:`~dispersion.waves.deflated_frequency.evanescent_frequency_function`.
+SH modes come in closed form (:mod:`dispersion.waves.sh`).
+
+>>> r = modes_at_frequency(0.3, [1.0])
+>>> [(lab, round(float(k), 10)) for lab, k in zip(r.label, r.kappa)]
+[('S0', 0.5990758101), ('A0', 1.355012978), ('SH0', 1.0)]
+
+References
+----------
+R. D. Mindlin, "Waves and vibrations in isotropic, elastic plates", in *Structural
+Mechanics*, Pergamon 1960; J. D. Achenbach, *Wave propagation in elastic solids*, 1973, ch. 6;
+C. Prada, D. Clorennec, D. Royer, J. Acoust. Soc. Am. 124 (2008) 203 (backward S1, ZGV).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from dispersion.errors import InputError, check_nu, check_positive
+from dispersion.continuum.deflated_frequency import deflated_with_noise, evanescent_frequency_function
+from dispersion.continuum.illinois import illinois
+from dispersion.continuum.numeric_frequency import frequency_slope
+from dispersion.continuum.rayleigh_lamb import (cutoff_frequencies, mpmath_frequency_function,
+                                            speed_ratio_squared)
+from dispersion.continuum.sh import at_cutoff
+
+__all__ = ["FREQUENCY_OMEGA_MAX", "FREQUENCY_OMEGA_MIN", "MAX_SCAN_SAMPLES", "SLOPE_OMEGA",
+           "FrequencyRoots", "modes_at_frequency", "zgv_points_below"]
+
+#: Smallest Omega accepted. Rule: the fundamental roots must stay above kappa = 1e-3, below
+#: which the tracer itself leaves the frequency function for the series (round-off); S0 has
+#: kappa = Omega / 1.69.. there, so Omega >= 2e-3 (fd >= about 0.002 MHz mm in metals).
+FREQUENCY_OMEGA_MIN = 2e-3
+#: Largest Omega accepted. Rule: the largest Omega at which the scan was seen free of
+#: failures -- 1800 random (nu in [-0.5, 0.49], Omega <= 30) requests certified every root;
+#: from Omega = 36 on (nu = 0.45) the deflated function's cancellation at kappa ~ Omega leaves
+#: stretches within round-off (listed as failures). A scaled, cancellation-free frequency
+#: function would lift this bound. Omega = 30 is fd = 30 c_T / pi (about 30 MHz mm in metals).
+FREQUENCY_OMEGA_MAX = 30.0
+#: Largest scan of one call (kappa samples over all frequencies). Rule: the tracer's bound
+#: (about a minute of work at ~3 us per sample).
+MAX_SCAN_SAMPLES = 20_000_000
+_KAPPA_LIMIT = 300.0
+
+
+@dataclass(frozen=True)
+class FrequencyRoots:
+    """Propagating modes at each requested :math:`\\Omega` (dimensionless, units of h, c_T).
+
+    One entry per root: ``index`` (into ``omega``), ``label`` (S_j, A_j, SH_n), ``kappa``
+    and ``group`` (:math:`d\\Omega/d\\kappa = c_g/c_T`). Rows are ordered by frequency, then
+    mode number, then S, A, SH, then kappa (a backward branch has two roots with one label).
+    ``cutoffs`` maps every label with a cut-off at or below ``max(omega)`` to its Omega at
+    :math:`\\kappa = 0`; ``zgv`` lists the zero-group-velocity points (label, kappa, Omega);
+    ``failures`` holds ``(Omega, kind, reason)`` wherever a count did not certify the roots.
+    """
+
+    nu: float
+    omega: np.ndarray
+    index: np.ndarray
+    label: tuple[str, ...]
+    kappa: np.ndarray
+    group: np.ndarray
+    cutoffs: dict
+    zgv: tuple
+    failures: tuple
+    #: ``(index into omega, label)`` of every mode whose cut-off *is* the requested
+    #: frequency (:func:`dispersion.waves.sh.at_cutoff`): kappa = 0, infinite phase
+    #: velocity, not propagating, so not among the rows.
+    at_cutoff: tuple = ()
+
+    @property
+    def phase(self) -> np.ndarray:
+        """:math:`c_p / c_T = \\Omega / \\kappa` per root."""
+        return self.omega[self.index] / self.kappa
+
+
+def _check_omegas(omega) -> np.ndarray:
+    try:
+        omega = np.atleast_1d(np.asarray(omega, dtype=float))
+    except (TypeError, ValueError):
+        raise InputError("Omega must be a 1-d array of finite numbers") from None
+    if omega.ndim != 1 or omega.size == 0:
+        raise InputError("Omega must be a non-empty 1-d array")
+    bad = ~np.isfinite(omega) | (omega < FREQUENCY_OMEGA_MIN) | (omega > FREQUENCY_OMEGA_MAX)
+    if np.any(bad):
+        raise InputError(f"Omega = omega h / c_T must lie in [{FREQUENCY_OMEGA_MIN:g}, "
+                         f"{FREQUENCY_OMEGA_MAX:g}], got {omega[bad][0]!r}")
+    return omega
+
+
+def _kappa_start(nu: float, omega: np.ndarray) -> np.ndarray:
+    """A first kappa_hi: beyond A0 at low frequency (Kirchhoff, A0 lies below) and beyond
+    the Rayleigh speed at high frequency (S0 and A0 tend to it); checked, never trusted."""
+    beta = math.sqrt(2 / (3 * (1 - nu)))  # Omega ~ beta kappa^2 (eq 15)
+    return 1.3 * np.maximum(np.sqrt(omega / beta), omega) + 0.2
+
+
+def _kappa_hi(kind: str, nu: float, omega: np.ndarray, start: np.ndarray):
+    """Smallest tried kappa_hi > Omega with N(kappa_hi, Omega) = 0, and the failures."""
+    k = np.maximum(start, omega * (1 + 1e-6))
+    todo = np.arange(omega.size)
+    for _ in range(12):
+        g, e = deflated_with_noise(kind, k[todo], omega[todo], nu)
+        g0, e0 = deflated_with_noise(kind, k[todo], np.zeros(todo.size), nu)
+        sure = (np.abs(g) > e) & (np.abs(g0) > e0)
+        done = sure & (np.sign(g) == np.sign(g0))
+        todo = todo[~done]
+        if todo.size == 0:
+            return k, []
+        k[todo] *= 1.5
+        if np.any(k[todo] > _KAPPA_LIMIT):
+            break
+    return k, [(float(omega[i]), kind, "no kappa_hi <= 300 with every branch above Omega")
+               for i in todo]
+
+
+class _Scan:
+    """Samples (frequency index, kappa, G, rounding bound), sorted by (index, kappa)."""
+
+    def __init__(self, kind, omega, nu):
+        self.kind, self.omega, self.nu = kind, omega, nu
+        self.fi = np.zeros(0, int)
+        self.k = self.g = self.e = np.zeros(0)
+
+    def add(self, fi, k):
+        g, e = deflated_with_noise(self.kind, k, self.omega[fi], self.nu)
+        fi, k = np.concatenate([self.fi, fi]), np.concatenate([self.k, k])
+        g, e = np.concatenate([self.g, g]), np.concatenate([self.e, e])
+        order = np.lexsort((k, fi))
+        fi, k, g, e = fi[order], k[order], g[order], e[order]
+        keep = np.concatenate([[True], (np.diff(k) != 0) | (np.diff(fi) != 0)])
+        self.fi, self.k, self.g, self.e = fi[keep], k[keep], g[keep], e[keep]
+
+    def certain(self):
+        return np.flatnonzero(np.abs(self.g) > self.e)
+
+
+def _refine_dips(scan: _Scan, max_depth: int):
+    """Refine cells around three same-signed samples whose parabola dips to zero (as the
+    tracer does in Omega): a hidden pair of roots shows as such a dip."""
+    for _ in range(max_depth):
+        c = scan.certain()
+        fi, k, g = scan.fi[c], scan.k[c], scan.g[c]
+        if g.size < 3:
+            return
+        same = (fi[1:-1] == fi[:-2]) & (fi[1:-1] == fi[2:])
+        dip = same & (np.sign(g[:-2]) == np.sign(g[1:-1])) & (np.sign(g[2:]) == np.sign(g[1:-1]))
+        dip &= (np.abs(g[1:-1]) <= np.abs(g[:-2])) & (np.abs(g[1:-1]) <= np.abs(g[2:]))
+        j = np.flatnonzero(dip) + 1
+        if j.size:
+            k0, k1, k2 = k[j - 1], k[j], k[j + 1]
+            d01 = (g[j] - g[j - 1]) / (k1 - k0)
+            d12 = (g[j + 1] - g[j]) / (k2 - k1)
+            c2 = (d12 - d01) / (k2 - k0)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                kv = 0.5 * (k0 + k1) - d01 / (2 * c2)
+                vertex = g[j - 1] + (kv - k0) * d01 + c2 * (kv - k0) * (kv - k1)
+            suspect = ~np.isfinite(vertex) | (np.sign(vertex) != np.sign(g[j]))
+            suspect |= np.abs(vertex) < 0.5 * np.abs(g[j])
+            j = j[suspect]
+            j = j[np.minimum(k1 - k0, k2 - k1)[suspect] > 64 * np.spacing(k[j])]
+        if j.size == 0:
+            return
+        frac = np.linspace(0, 1, 9)[1:-1]
+        new = np.concatenate([(k[j - 1][:, None] + frac * (k[j] - k[j - 1])[:, None]).ravel(),
+                              (k[j][:, None] + frac * (k[j + 1] - k[j])[:, None]).ravel()])
+        scan.add(np.tile(np.repeat(fi[j], frac.size), 2), new)
+
+
+def _polish(kind, kappa, omega, nu, width: float = 1e-9):
+    """Roots with P < 0 closed again on the scaled evanescent form (no cosh-sized terms)."""
+    ev = kappa**2 - speed_ratio_squared(nu) * omega**2 > 9.0
+    if not np.any(ev):
+        return kappa
+    k, w = kappa[ev], omega[ev]
+    a, b = k * (1 - width), k * (1 + width)
+    fa = evanescent_frequency_function(kind, a, w, nu)
+    fb = evanescent_frequency_function(kind, b, w, nu)
+    ok = np.isfinite(fa) & np.isfinite(fb) & (np.sign(fa) * np.sign(fb) < 0)
+    if not np.any(ok):
+        return kappa
+    wo = w[ok]
+    roots, _, _, active = illinois(
+        lambda idx, x: evanescent_frequency_function(kind, x, wo[idx], nu),
+        a[ok], b[ok], fa[ok], fb[ok], 1e-17)
+    sub = k.copy()
+    sub[ok] = np.where(active, sub[ok], roots)
+    out = kappa.copy()
+    out[ev] = sub
+    return out
+
+
+#: Below this Omega the float slope :func:`~dispersion.waves.numeric_frequency.frequency_slope`
+#: loses about eps / Omega^2 to the trivial root of F at Omega = 0 (measured against mpmath:
+#: 2e-11 at Omega = 2e-3, 3e-12 at 1e-2, 4e-14 at 0.1); rule: where eps / Omega^2 > 1e-13
+#: the slope is taken in 30-digit arithmetic instead.
+SLOPE_OMEGA = 0.05
+
+
+def _slope_mp(kind, kappa, omega, nu) -> np.ndarray:
+    """:math:`d\\Omega/d\\kappa = -F_\\kappa / F_\\Omega` of the frequency function in mpmath."""
+    import mpmath
+
+    out = np.empty(kappa.size)
+    for i, (k, W) in enumerate(zip(kappa, omega)):
+        with mpmath.workdps(_mp_digits(float(k))):
+            m_nu = mpmath.mpf(nu)
+
+            def F(k, W):
+                return mpmath_frequency_function(kind, k, W, m_nu)
+
+            k, W = mpmath.mpf(float(k)), mpmath.mpf(float(W))
+            out[i] = float(-mpmath.diff(lambda x: F(x, W), k) / mpmath.diff(lambda x: F(k, x), W))
+    return out
+
+
+#: Relative accuracy every root in kappa is certified to (or listed in ``failures``).
+ROOT_RTOL = 1e-12
+
+
+def _mp_digits(kappa: float) -> int:
+    """Digits for the frequency function at kappa: 40, plus the cosh-sized terms that cancel
+    in the evanescent region (about kappa / ln 10 digits)."""
+    return 40 + int(abs(kappa) / 2.3)
+
+
+def _certify(kind, roots, omega, nu):
+    """Each root certified to :data:`ROOT_RTOL` relative by a sign change of the frequency
+    function at :math:`\\kappa (1 \\pm \\delta)`, :math:`\\delta` = ROOT_RTOL / 4.
+
+    First in floats (the deflated function and its rounding bound: both signs certain);
+    where that cannot decide (round-off near a cut-off, where the root in kappa is
+    ill-conditioned; cosh-sized terms at large kappa), the root is redone by the secant
+    method in mpmath (:func:`_mp_digits`) and the sign change checked there. Returns the
+    roots, a mask of those redone in mpmath, and the indices that could not be certified.
+    """
+    delta = ROOT_RTOL / 4
+    lo, hi = roots * (1 - delta), roots * (1 + delta)
+    with np.errstate(all="ignore"):
+        g_lo, n_lo = deflated_with_noise(kind, lo, omega, nu)
+        g_hi, n_hi = deflated_with_noise(kind, hi, omega, nu)
+        sure = (np.abs(g_lo) > n_lo) & (np.abs(g_hi) > n_hi) & (np.sign(g_lo) != np.sign(g_hi))
+    out, redone, bad = roots.copy(), np.zeros(roots.size, dtype=bool), []
+    for i in np.flatnonzero(~sure):
+        k0, W = float(roots[i]), float(omega[i])
+        if not (math.isfinite(k0) and k0 > 0):
+            bad.append(i)
+            continue
+        import mpmath   # only where floats cannot decide (the calculator's start-up stays lean)
+
+        with mpmath.workdps(_mp_digits(k0)):
+            m_nu, m_w = mpmath.mpf(nu), mpmath.mpf(W)
+
+            def F(k):
+                return mpmath_frequency_function(kind, k, m_w, m_nu)
+
+            try:
+                k = mpmath.findroot(F, (mpmath.mpf(k0) * (1 - mpmath.mpf(10) ** -8),
+                                        mpmath.mpf(k0) * (1 + mpmath.mpf(10) ** -8)),
+                                    solver="secant", tol=mpmath.mpf(10) ** (-2 * 16 - 4),
+                                    maxsteps=60)
+            except (ValueError, ZeroDivisionError):
+                bad.append(i)
+                continue
+            kf = float(k)
+            a, b = F(mpmath.mpf(kf) * (1 - delta)), F(mpmath.mpf(kf) * (1 + delta))
+            if mpmath.sign(a) * mpmath.sign(b) < 0 and abs(kf / k0 - 1) < 1e-4:
+                out[i], redone[i] = kf, True
+            else:
+                bad.append(i)
+    return out, redone, bad
+
+
+def _walk(n0: int, signs) -> list[int] | None:
+    """Branch indices of the roots met walking up in kappa from the count ``n0`` at kappa = 0
+    (each root changes the count by ``-sign(c_g)``); None unless it ends at zero."""
+    n, out = n0, []
+    for s in signs:
+        j = n - 1 if s > 0 else n
+        if j < 0:
+            return None
+        out.append(j)
+        n -= int(s)
+    return out if n == 0 else None
+
+
+def _class_roots(kind, nu, omega, step, rtol, max_depth, zgv_kappa):
+    """Roots of one class (``"S"`` or ``"A"``) at every Omega, labelled by the count."""
+    failures = []
+    k_hi, fails = _kappa_hi(kind, nu, omega, _kappa_start(nu, omega))
+    failures += fails
+    scan = _Scan(kind, omega, nu)
+    counts = np.ceil(k_hi / step).astype(int) + 1
+    fi = np.repeat(np.arange(omega.size), counts)
+    start = np.concatenate([[0], np.cumsum(counts)[:-1]])
+    k = (np.arange(fi.size) - start[fi]) * step
+    k = np.minimum(k, k_hi[fi])
+    extra_f, extra_k = [], []
+    for kz in zgv_kappa:
+        sel = np.flatnonzero(kz < k_hi)
+        extra_f.append(sel)
+        extra_k.append(np.full(sel.size, kz))
+    if extra_f:
+        fi, k = np.concatenate([fi, *extra_f]), np.concatenate([k, *extra_k])
+    scan.add(fi, k)
+    _refine_dips(scan, max_depth)
+    c = scan.certain()
+    sfi, sk, sg = scan.fi[c], scan.k[c], scan.g[c]
+    same = sfi[1:] == sfi[:-1]
+    change = same & (np.sign(sg[1:]) != np.sign(sg[:-1]))
+    # same sign with round-off-level samples between: two roots closer than floating point
+    hidden = same & ~change & (np.diff(c) > 1)
+    for jj in np.flatnonzero(hidden):
+        failures.append((float(omega[sfi[jj]]), kind, "two roots closer than round-off near "
+                         f"kappa={sk[jj]:.6g}"))
+    j = np.flatnonzero(change)
+    rf = sfi[j]
+
+    def f(idx, x):
+        return deflated_with_noise(kind, x, omega[rf[idx]], nu)[0]
+
+    roots, _, _, unconverged = illinois(f, sk[j], sk[j + 1], sg[j], sg[j + 1], rtol)
+    for i in np.flatnonzero(unconverged):
+        failures.append((float(omega[rf[i]]), kind, "root refinement did not converge"))
+    roots = _polish(kind, roots, omega[rf], nu)
+    roots, redone, uncertain = _certify(kind, roots, omega[rf], nu)
+    for i in uncertain:
+        failures.append((float(omega[rf[i]]), kind, f"root near kappa={roots[i]:.6g} not "
+                         f"certified to {ROOT_RTOL:.0e} relative"))
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        group = np.asarray(frequency_slope(kind, roots, omega[rf], nu), dtype=float)
+    # where the root needed mpmath the float slope loses as much: it is redone there too
+    low = np.flatnonzero((omega[rf] < SLOPE_OMEGA) | redone)
+    if low.size:
+        group[low] = _slope_mp(kind, roots[low], omega[rf][low], nu)
+    labels = [""] * roots.size
+    # to just above the top frequency: a cut-off that *is* it to rounding counts (at_cutoff)
+    cut = np.array([w for w, _ in cutoff_frequencies(kind, nu, float(omega.max()) * (1 + 1e-14))])
+    for i in range(omega.size):
+        mine = np.flatnonzero(rf == i)
+        g = group[mine]
+        if not np.all(np.isfinite(g) & (g != 0)):
+            bad = roots[mine][~(np.isfinite(g) & (g != 0))][0]
+            failures.append((float(omega[i]), kind, f"group velocity undefined at "
+                             f"kappa={bad:.6g}"))
+            walk = None
+        else:
+            # N(0+): the cut-offs below Omega; a branch whose cut-off *is* Omega (within
+            # round-off) may start just below or above it, so both counts are tried and
+            # the one whose walk adds up is kept (its root at kappa = 0 is not propagating)
+            tol = 8 * np.spacing(omega[i])
+            lo = int(np.count_nonzero(cut < omega[i] - tol))
+            hi = int(np.count_nonzero(cut <= omega[i] + tol))
+            walks = [w for w in (_walk(n0, np.sign(g)) for n0 in range(lo, hi + 1))
+                     if w is not None]
+            walk = walks[0] if len(walks) == 1 else None
+        if walk is None:
+            for r in mine:
+                labels[r] = f"{kind}?"
+            failures.append((float(omega[i]), kind, "root count does not add up to the "
+                             "branches below Omega (a root may be missing)"))
+            continue
+        for r, j in zip(mine, walk):
+            labels[r] = f"{kind}{j}"
+    # a branch whose cut-off is Omega to rounding: its root next to kappa = 0 is rounding
+    # (kappa ~ sqrt(eps)), the mode is at its cut-off (not propagating): dropped, named
+    keep = np.ones(roots.size, dtype=bool)
+    at = []
+    for r, lab in enumerate(labels):
+        j = lab[1:]
+        if j.isdigit() and int(j) < cut.size and at_cutoff(float(omega[rf[r]]), cut[int(j)]) \
+                and cut[int(j)] > 0 and roots[r] < 1e-6:
+            keep[r] = False
+            at.append((int(rf[r]), lab))
+    for i in range(omega.size):   # at the cut-off with no root found next to it: named too
+        for j, w in enumerate(cut):
+            if w > 0 and at_cutoff(float(omega[i]), w) and (i, f"{kind}{j}") not in at:
+                at.append((i, f"{kind}{j}"))
+    labels = [lab for lab, k in zip(labels, keep) if k]
+    return rf[keep], labels, roots[keep], group[keep], failures, at
+
+
+def zgv_points_below(nu: float, omega_top: float, per_unit: float = 40.0):
+    """Zero-group-velocity points of the exact branches with :math:`\\Omega \\le` omega_top.
+
+    :func:`dispersion.waves.velocities.zgv_points` on ``per_unit`` kappa samples per unit of
+    kappa up to omega_top (120 to 4000 samples): a ZGV point has :math:`c_p > c_T`, so
+    :math:`\\kappa < \\Omega`.
+
+    >>> [(p.label, round(p.kappa, 6), round(p.omega, 6)) for p in zgv_points_below(0.3, 3.0)]
+    [('S1', 0.838288, 2.730307)]
+    """
+    from dispersion.continuum.velocities import zgv_points as zgv_on_grid
+
+    count = int(min(max(per_unit * omega_top, 120), 4000))
+    return zgv_on_grid(nu, omega_top, omega_top, count + 1)
+
+
+def modes_at_frequency(nu: float, omega, *, kinds=("S", "A", "SH"), step: float = 0.02,
+                       rtol: float = 1e-15, max_depth: int = 12, zgv: bool = True,
+                       ) -> FrequencyRoots:
+    """Every propagating mode with real :math:`\\kappa > 0` at each :math:`\\Omega` in ``omega``.
+
+    Parameters
+    ----------
+    nu : float
+        Poisson's ratio in (-1, 0.5).
+    omega : array_like
+        Dimensionless frequencies :math:`\\Omega = \\omega h / c_T` in
+        [:data:`FREQUENCY_OMEGA_MIN`, :data:`FREQUENCY_OMEGA_MAX`].
+    kinds : tuple
+        Any of ``"S"``, ``"A"`` (Lamb) and ``"SH"``.
+    step, rtol, max_depth :
+        Kappa sample spacing, root tolerance, dip refinement depth (see module docstring).
+    zgv : bool
+        Find the zero-group-velocity points (their kappa join the samples; they are listed).
+
+    Returns
+    -------
+    FrequencyRoots
+    """
+    from dispersion.continuum.sh import sh_cutoffs, sh_roots
+
+    nu = float(check_nu(nu))
+    omega = _check_omegas(omega)
+    check_positive("step", step)
+    check_positive("rtol", rtol)
+    bad = [k for k in kinds if k not in ("S", "A", "SH")]
+    if bad or not kinds:
+        raise InputError(f"kinds must be a non-empty subset of S, A, SH; got {kinds!r}")
+    samples = float(np.sum(_kappa_start(nu, omega))) / step * len(kinds)
+    if samples > MAX_SCAN_SAMPLES:
+        raise InputError(f"the frequencies ask for about {samples:.3g} kappa samples; they "
+                         f"must be <= {MAX_SCAN_SAMPLES:.0e} (about a minute): fewer or lower "
+                         f"frequencies, or a larger step")
+    wmax = float(omega.max())
+    points = ()
+    if zgv and any(k in ("S", "A") for k in kinds):
+        points = tuple(zgv_points_below(nu, wmax * 1.05 + 0.5))
+    rows, failures, at_cut = [], [], []
+    for kind in kinds:
+        if kind == "SH":
+            for i, w in enumerate(omega):
+                for lab, k, g in sh_roots(float(w)):
+                    rows.append((i, lab, k, g))
+                at_cut += [(i, lab) for lab, wc in sh_cutoffs(float(w) * (1 + 1e-15))
+                           if wc > 0 and at_cutoff(float(w), wc)]
+            continue
+        zk = [p.kappa for p in points if p.label[0] == kind]
+        rf, labels, roots, group, fails, at = _class_roots(kind, nu, omega, step, rtol,
+                                                           max_depth, zk)
+        failures += fails
+        at_cut += at
+        rows += list(zip(rf.tolist(), labels, roots.tolist(), group.tolist()))
+    family = {"S": 0, "A": 1, "SH": 2}
+    def number(label):  # "S?" (an uncertified root) sorts after every numbered mode
+        digits = label.lstrip("SAH")
+        return int(digits) if digits.isdigit() else 10**9
+
+    rows.sort(key=lambda r: (r[0], number(r[1]), family[r[1].rstrip("0123456789?")], r[2]))
+    cutoffs = {}
+    top = wmax + math.pi  # the next cut-off of every family lies within pi
+    for kind in kinds:
+        found = (sh_cutoffs(top) if kind == "SH" else
+                 [(f"{kind}{j}", w) for j, (w, _) in
+                  enumerate(cutoff_frequencies(kind, nu, top))])
+        above = [lab for lab, w in found if w > wmax][:1]
+        cutoffs.update({lab: w for lab, w in found if w <= wmax or lab in above})
+    return FrequencyRoots(
+        nu=nu, omega=omega,
+        index=np.array([r[0] for r in rows], dtype=int),
+        label=tuple(r[1] for r in rows),
+        kappa=np.array([r[2] for r in rows], dtype=float),
+        group=np.array([r[3] for r in rows], dtype=float),
+        cutoffs=cutoffs, zgv=points, failures=tuple(dict.fromkeys(failures)),
+        at_cutoff=tuple(sorted(set(at_cut))))

@@ -14,7 +14,7 @@ from hypothesis import strategies as st
 from mp_layered import anisotropic_roots, group_velocity, roots_at_frequency
 from promise_search import SLOW, record
 
-from dispersion.continuum.layered.layered_modes import layered_modes
+from dispersion.continuum.layered.layered_modes import ROOT_RTOL, layered_modes
 from dispersion.continuum.layered.layered_plate import SpringInterface, laminate, layered_plate
 from dispersion.continuum.frequency import modes_at_frequency
 from dispersion.materials.materials import MATERIALS, material, ply
@@ -133,7 +133,8 @@ def test_laminate_meets_lamination_theory_at_low_frequency():
     rates = [math.log2(e1 / e2) for e1, e2 in zip(errors[0.004], errors[0.002])]
     assert 1.8 < rates[0] < 2.2 and 0.8 < rates[2] < 1.2, rates
     assert errors[0.002][0] < 1e-6
-    assert errors[0.004][1] < 1e-13 and errors[0.002][1] < 1e-13
+    # SH0 is exact: within the accuracy every root is certified to
+    assert errors[0.004][1] < ROOT_RTOL and errors[0.002][1] < ROOT_RTOL
 
 
 def _thickness_resonance(mu_mid, mu_out, rho, a, b, odd):

@@ -51,10 +51,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from dispersion.continuum.layered.stroh import system_derivatives, system_matrix
+from dispersion.continuum.layered.stroh import system_derivatives, system_matrix, system_parts
 
 __all__ = ["ModeClass", "mode_classes", "Element", "class_stack", "sublayers", "element_stiffness",
-           "count_and_det", "assemble", "det_ball", "SUBLAYER_MARGIN", "SUBLAYER_KT"]
+           "count_and_det", "assemble", "null_vector", "det_ball", "SUBLAYER_MARGIN", "SUBLAYER_KT"]
 
 #: A sublayer is at most this fraction of the thickness at which its clamped modes could reach
 #: the frequency (the rigorous bound of :func:`sublayers`): the stiffness stays far from its
@@ -194,20 +194,28 @@ def sublayers(stack, cls: ModeClass, omega_max: float, kappa_max: float) -> tupl
 
 #: Taylor terms of the matrix exponential after scaling to norm <= 1/2: the truncation
 #: 0.5^19 / 19! is below 1e-23, far under double rounding.
-_TAYLOR_TERMS = 18
+_TAYLOR_TERMS = 18   # a multiple of 3 (the Paterson-Stockmeyer chunks of _transfer)
+_TAYLOR = [1.0 / math.factorial(j) for j in range(_TAYLOR_TERMS + 1)]
 
 
-def _transfer(A: np.ndarray, t: float) -> np.ndarray:
-    """:math:`e^{A t}` for a stack of 6x6 matrices: scaling and squaring with a Taylor
-    polynomial (vectorised over the stack; scipy's expm loops over it in Python)."""
-    X = A * t
+def _transfer(A: np.ndarray, t) -> np.ndarray:
+    """:math:`e^{A t}` for a stack of 6x6 matrices (``t`` a number or an array that
+    broadcasts against the stack's leading axes): scaling and squaring with the Taylor
+    polynomial of degree :data:`_TAYLOR_TERMS`, evaluated by the Paterson-Stockmeyer scheme
+    (8 products instead of 18; vectorised over the stack, where scipy's expm loops in
+    Python)."""
+    X = A * np.asarray(t)[..., None, None]
     norm = np.max(np.sum(np.abs(X), axis=-1), axis=-1)   # infinity norm of each
     s = np.maximum(0, np.ceil(np.log2(np.maximum(norm, 1e-300) / 0.5))).astype(int)
     X = X / (2.0 ** s)[..., None, None]
     eye = np.eye(X.shape[-1])
-    E = np.broadcast_to(eye.astype(complex), X.shape).copy()
-    for n in range(_TAYLOR_TERMS, 0, -1):   # Horner: I + X/1 (I + X/2 (I + ...))
-        E = eye + (X @ E) / n
+    X2 = X @ X
+    X3 = X2 @ X
+    c = _TAYLOR
+    # sum_j X^j / j! = sum_i X3^i (c[3i] + c[3i+1] X + c[3i+2] X2), Horner in X3
+    E = np.broadcast_to(c[_TAYLOR_TERMS] * eye, X.shape)
+    for i in range(_TAYLOR_TERMS // 3 - 1, -1, -1):
+        E = c[3 * i] * eye + c[3 * i + 1] * X + c[3 * i + 2] * X2 + X3 @ E
     for q in range(int(s.max(initial=0))):
         more = s > q
         if np.all(more):
@@ -234,7 +242,7 @@ def element_stiffness(stack, element: Element, kappa, omega, derivatives: bool =
             return K, np.zeros(shape, complex), np.zeros(shape, complex)
         return K
     C, rho = stack.C[element.layer], stack.rho[element.layer]
-    A = system_matrix(C, rho, kappa, omega)
+    A = system_matrix(C, rho, kappa, omega, _parts_of(stack, element.layer))
     t = element.t
     if derivatives:
         # the derivative of e^(A t) along E is the upper right block of
@@ -256,15 +264,45 @@ def element_stiffness(stack, element: Element, kappa, omega, derivatives: bool =
     return K, _from_transfer_derivative(P, dPk), _from_transfer_derivative(P, dPw)
 
 
+def _parts_of(stack, layer: int):
+    """The layer's :func:`~dispersion.continuum.layered.stroh.system_parts` (kept by the
+    stack once computed; a stack without them gets them computed here)."""
+    parts = getattr(stack, "parts", None)
+    return None if parts is None else parts[layer]
+
+
+def _layer_stiffness(stack, layer_elements, kappa, omega, comps=(0, 1, 2)):
+    """The stiffness of several sublayers at once, ``(len(layer_elements),) + kappa.shape +
+    (2m, 2m)`` for the m displacement components ``comps`` (and their tractions): one
+    batched transfer matrix for all of them. With fewer than three components the layers
+    must not couple them to the others (a decoupled class): the exponential is then taken of
+    the smaller system, which is exact."""
+    kappa = np.asarray(kappa, dtype=complex)
+    parts = np.array([system_parts(stack.C[e.layer], stack.rho[e.layer])
+                      if _parts_of(stack, e.layer) is None else _parts_of(stack, e.layer)
+                      for e in layer_elements])
+    idx = np.array(list(comps) + [3 + c for c in comps])
+    parts = parts[..., idx[:, None], idx[None, :]]
+    lead = (len(layer_elements),) + (1,) * kappa.ndim
+    P = parts.reshape(lead + parts.shape[-3:])
+    k = kappa[None, ..., None, None]
+    w2 = np.asarray(omega, dtype=complex) ** 2
+    w2 = w2[None, ..., None, None] if w2.ndim else w2
+    A = P[..., 0, :, :] + k * (P[..., 1, :, :] + k * P[..., 2, :, :]) + w2 * P[..., 3, :, :]
+    t = np.array([e.t for e in layer_elements]).reshape(lead)
+    return _from_transfer(_transfer(A, t))
+
+
 def _from_transfer(P):
-    Puu, Put, Ptu, Ptt = P[..., :3, :3], P[..., :3, 3:], P[..., 3:, :3], P[..., 3:, 3:]
+    m = P.shape[-1] // 2
+    Puu, Put, Ptu, Ptt = P[..., :m, :m], P[..., :m, m:], P[..., m:, :m], P[..., m:, m:]
     X = np.linalg.inv(Put)
     XP = X @ Puu
     K = np.empty(P.shape, dtype=complex)
-    K[..., :3, :3] = XP
-    K[..., :3, 3:] = -X
-    K[..., 3:, :3] = Ptu - Ptt @ XP
-    K[..., 3:, 3:] = Ptt @ X
+    K[..., :m, :m] = XP
+    K[..., :m, m:] = -X
+    K[..., m:, :m] = Ptu - Ptt @ XP
+    K[..., m:, m:] = Ptt @ X
     return K
 
 
@@ -308,30 +346,35 @@ def count_and_det(stack, cls: ModeClass, elements, kappa, omega):
     """``(N, log|det K|, sign det K)`` of the class's stiffness at each ``kappa`` (1-d
     array) and one ``omega``: N the number of negative eigenvalues (undamped: the number of
     the class's modes below omega at that kappa), the determinant from the block
-    factorisation; for a damped plate N is meaningless and ``sign`` is complex."""
+    factorisation; for a damped plate N is meaningless and ``sign`` is complex.
+
+    The stiffness of every distinct sublayer is computed in one batch; the pivots of the
+    factorisation are collected and their inertia and determinants taken in one batch at
+    the end (the elimination itself runs node by node)."""
     kappa = np.atleast_1d(np.asarray(kappa, dtype=float if np.isrealobj(kappa) else complex))
     n = kappa.size
-    dofs = np.array(cls.dofs)
     chain, first, ground = _mid(stack, cls, elements)
-    first = np.array(first, dtype=int)
+    # the class's components only: a class of fewer than three is decoupled from the rest
+    m = len(cls.dofs)
+    dofs = np.arange(m)
+    first = np.array([cls.dofs.index(d) for d in first], dtype=int)
+    sel = np.array(list(cls.dofs) + [3 + d for d in cls.dofs])
     hermitian = stack.lossless and np.isrealobj(kappa)
-    count = np.zeros(n, dtype=int)
-    logdet = np.zeros(n)
-    sign = np.ones(n, dtype=float if hermitian else complex)
-    cache = {}
-
-    def stiff(e):
-        if e not in cache:
-            cache[e] = element_stiffness(stack, e, kappa, omega)
-        return cache[e]
-
+    distinct = list(dict.fromkeys(e for e, _ in chain))
+    layers = [e for e in distinct if e.layer >= 0]
+    stiff = dict(zip(layers, _layer_stiffness(stack, layers, kappa, omega, cls.dofs))) \
+        if layers else {}
+    for e in distinct:
+        if e.layer < 0:
+            stiff[e] = element_stiffness(stack, e, kappa, omega)[..., sel[:, None], sel[None, :]]
+    pivots = {}   # size -> pivot blocks, their inertia and determinants taken at the end
     S = None
     rows = first
     for e, _ in chain:
-        K = stiff(e)
-        K00 = K[:, :3, :3][:, rows[:, None], rows[None, :]]
+        K = stiff[e]
+        K00 = K[:, :m, :m][:, rows[:, None], rows[None, :]]
         if rows.size == 0:   # the first node has no unknowns (all held on the mid-plane)
-            S = K[:, 3:, 3:][:, dofs[:, None], dofs[None, :]]
+            S = K[:, m:, m:]
             rows = dofs
             continue
         if S is None:
@@ -339,13 +382,17 @@ def count_and_det(stack, cls: ModeClass, elements, kappa, omega):
         else:
             S = S + K00
         # eliminate the bottom node of this element
-        _pivot(S, hermitian, count, logdet, sign)
-        K01 = K[:, :3, 3:][:, rows[:, None], dofs[None, :]]
-        K10 = K[:, 3:, :3][:, dofs[:, None], rows[None, :]]
-        K11 = K[:, 3:, 3:][:, dofs[:, None], dofs[None, :]]
-        S = K11 - K10 @ _solve(S, K01)
+        pivots.setdefault(S.shape[-1], []).append(S)
+        K01 = K[:, :m, m:][:, rows, :]
+        K10 = K[:, m:, :m][:, :, rows]
+        S = K[:, m:, m:] - K10 @ _solve(S, K01)
         rows = dofs
-    _pivot(S, hermitian, count, logdet, sign)
+    pivots.setdefault(S.shape[-1], []).append(S)
+    count = np.zeros(n, dtype=int)
+    logdet = np.zeros(n)
+    sign = np.ones(n, dtype=float if hermitian else complex)
+    for blocks in pivots.values():
+        _pivot(np.stack(blocks), hermitian, count, logdet, sign)
     return count, logdet, sign
 
 
@@ -362,46 +409,81 @@ def _solve(S, B):
 
 
 def _pivot(S, hermitian, count, logdet, sign):
+    """Add the inertia and determinants of the pivots ``S`` (shape ``(pivots, n, m, m)``)
+    to ``count``, ``logdet`` and ``sign`` (shape ``(n,)``)."""
     if hermitian:
         lam = np.linalg.eigvalsh((S + np.conj(np.swapaxes(S, -1, -2))) / 2)
-        count += np.count_nonzero(lam < 0, axis=-1)
+        count += np.count_nonzero(lam < 0, axis=(0, -1))
         with np.errstate(divide="ignore"):
-            logdet += np.sum(np.log(np.abs(lam)), axis=-1)
-        sign *= np.prod(np.sign(lam), axis=-1)
+            logdet += np.sum(np.log(np.abs(lam)), axis=(0, -1))
+        sign *= np.prod(np.sign(lam), axis=(0, -1))
     else:
         s, ld = np.linalg.slogdet(S)
-        logdet += ld
-        sign *= s
+        logdet += np.sum(ld, axis=0)
+        sign *= np.prod(s, axis=0)
 
 
 def assemble(stack, cls: ModeClass, elements, kappa: float, omega: float,
-             derivatives: bool = False):
-    """The class's stiffness as one dense matrix at one ``(kappa, omega)`` (and its kappa and
+             derivatives: bool = False, sparse: bool = False):
+    """The class's stiffness as one matrix at one ``(kappa, omega)`` (and its kappa and
     Omega derivatives): for null vectors, group velocities and mode shapes. Unknowns: the
-    kept components at each node, bottom (mid-plane) up."""
+    kept components at each node, bottom (mid-plane) up. Dense, or with ``sparse`` a scipy
+    CSC matrix (block tridiagonal)."""
     dofs = list(cls.dofs)
     chain, first, ground = _mid(stack, cls, elements)
     sizes = [len(first)] + [len(dofs)] * len(chain)
     offsets = np.concatenate([[0], np.cumsum(sizes)])
     N = int(offsets[-1])
-    mats = [np.zeros((N, N), complex) for _ in range(3 if derivatives else 1)]
-    cache = {}
+    distinct = list(dict.fromkeys(e for e, _ in chain))
+    blocks = {}
+    for e in distinct:
+        out = element_stiffness(stack, e, np.array([kappa]), omega, derivatives)
+        blocks[e] = [M[0] for M in (out if derivatives else (out,))]
+    rows = []
+    vals = [[] for _ in range(3 if derivatives else 1)]
+    cols = []
+    sel_b = np.array(dofs, dtype=int)
     for j, (e, _) in enumerate(chain):
-        if e not in cache:
-            out = element_stiffness(stack, e, np.array([kappa]), omega, derivatives)
-            cache[e] = [m[0] for m in (out if derivatives else (out,))]
-        rows_a = first if j == 0 else dofs
-        ia = offsets[j] + np.arange(len(rows_a))
-        ib = offsets[j + 1] + np.arange(len(dofs))
-        for M, K in zip(mats, cache[e]):
-            sel_a, sel_b = np.array(rows_a, dtype=int), np.array(dofs, dtype=int)
-            M[np.ix_(ia, ia)] += K[:3, :3][np.ix_(sel_a, sel_a)]
-            M[np.ix_(ia, ib)] += K[:3, 3:][np.ix_(sel_a, sel_b)]
-            M[np.ix_(ib, ia)] += K[3:, :3][np.ix_(sel_b, sel_a)]
-            M[np.ix_(ib, ib)] += K[3:, 3:][np.ix_(sel_b, sel_b)]
+        sel_a = np.array(first if j == 0 else dofs, dtype=int)
+        local = np.concatenate([sel_a, 3 + sel_b])
+        glob = np.concatenate([offsets[j] + np.arange(sel_a.size),
+                               offsets[j + 1] + np.arange(sel_b.size)])
+        rows.append(np.repeat(glob, glob.size))
+        cols.append(np.tile(glob, glob.size))
+        for v, K in zip(vals, blocks[e]):
+            v.append(K[np.ix_(local, local)].ravel())
     if ground is not None:
-        mats[0][:len(first), :len(first)] += ground
+        g = np.arange(len(first))
+        rows.append(np.repeat(g, g.size))
+        cols.append(np.tile(g, g.size))
+        vals[0].append(np.asarray(ground, dtype=complex).ravel())
+        for v in vals[1:]:
+            v.append(np.zeros(g.size * g.size, dtype=complex))
+    import scipy.sparse as sp
+
+    r, c = np.concatenate(rows), np.concatenate(cols)
+    mats = [sp.csc_matrix((np.concatenate(v), (r, c)), shape=(N, N)) for v in vals]
+    if not sparse:
+        mats = [M.toarray() for M in mats]
     return tuple(mats) if derivatives else mats[0]
+
+
+def null_vector(K) -> np.ndarray:
+    """The null vector of a (sparse) stiffness at a root, normalised to unit length: two
+    steps of inverse iteration with a shift of 1e-12 of its largest entry (a root certified
+    to 1e-12 leaves K singular to about that)."""
+    import scipy.sparse as sp
+    from scipy.sparse.linalg import splu
+
+    K = sp.csc_matrix(K)
+    n = K.shape[0]
+    shift = 1e-12 * max(float(abs(K).max()), 1e-300)
+    lu = splu((K - shift * sp.identity(n, dtype=complex, format="csc")).tocsc())
+    v = np.cos(np.arange(n) + 0.5) + 0j    # not orthogonal to any vector by accident
+    for _ in range(2):
+        v = lu.solve(v)
+        v /= np.linalg.norm(v)
+    return v
 
 
 # ---------------------------------------------------------------- ball arithmetic

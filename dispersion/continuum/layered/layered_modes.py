@@ -41,7 +41,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from dispersion.continuum.layered.dynamic_stiffness import (ModeClass, assemble, count_and_det,
-                                                    det_ball, mode_classes, sublayers)
+                                                            det_ball, mode_classes, null_vector,
+                                                            sublayers)
 from dispersion.continuum.layered.safe import elements_per_layer, safe_pencil, wavenumbers
 from dispersion.errors import InputError
 
@@ -127,11 +128,10 @@ def _certify(stack, cls, elements, omega, k):
 
 
 def _group(stack, cls, elements, omega, k):
-    K, Kk, Kw = assemble(stack, cls, elements, k, omega, derivatives=True)
-    lam, vec = np.linalg.eigh((K + K.conj().T) / 2)
-    v = vec[:, np.argmin(np.abs(lam))]
-    num = np.real(np.conj(v) @ Kk @ v)
-    den = np.real(np.conj(v) @ Kw @ v)
+    K, Kk, Kw = assemble(stack, cls, elements, k, omega, derivatives=True, sparse=True)
+    v = null_vector((K + K.conj().T) / 2)
+    num = np.real(np.conj(v) @ (Kk @ v))
+    den = np.real(np.conj(v) @ (Kw @ v))
     return -num / den
 
 

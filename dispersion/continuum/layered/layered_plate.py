@@ -32,6 +32,7 @@ from __future__ import annotations
 import math
 import re
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
@@ -112,6 +113,14 @@ class ScaledStack:
     @property
     def lossless(self) -> bool:
         return not np.iscomplexobj(self.C) or not np.any(self.C.imag != 0)
+
+    @cached_property
+    def parts(self) -> np.ndarray:
+        """Each layer's constant parts of the system matrix, ``(L, 4, 6, 6)``
+        (:func:`~dispersion.continuum.layered.stroh.system_parts`), computed once."""
+        from dispersion.continuum.layered.stroh import system_parts
+
+        return np.array([system_parts(C, r) for C, r in zip(self.C, self.rho)])
 
 
 @dataclass(frozen=True)

@@ -32,7 +32,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["q_blocks", "system_matrix", "system_derivatives"]
+__all__ = ["q_blocks", "system_parts", "system_matrix", "system_derivatives"]
 
 # (i, a) -> Voigt index of the tensor pair
 _V = np.array([[0, 5, 4], [5, 1, 3], [4, 3, 2]])
@@ -53,18 +53,29 @@ def _parts(C):
     return Zi, Zi @ Qxz.T, Qxz @ Zi, Qxx - Qxz @ Zi @ Qxz.T
 
 
-def system_matrix(C: np.ndarray, rho: float, kappa, omega) -> np.ndarray:
-    """A of the module docstring for every ``kappa`` (array, real or complex) at ``omega``
-    (scalar or broadcastable): shape ``kappa.shape + (6, 6)``, complex."""
-    kappa = np.asarray(kappa, dtype=complex)
+def system_parts(C: np.ndarray, rho: float) -> np.ndarray:
+    """The constant parts of A: ``(4, 6, 6)`` complex, :math:`A = A_0 + \\kappa A_1 +
+    \\kappa^2 A_2 + \\Omega^2 A_3` (computed once per layer, then A costs a few additions)."""
     Zi, ZQ, QZ, R = _parts(C)
+    out = np.zeros((4, 6, 6), dtype=complex)
+    out[0, :3, 3:] = Zi
+    out[1, :3, :3] = -1j * ZQ
+    out[1, 3:, 3:] = -1j * QZ
+    out[2, 3:, :3] = R
+    out[3, 3:, :3] = -rho * np.eye(3)
+    return out
+
+
+def system_matrix(C: np.ndarray, rho: float, kappa, omega, parts=None) -> np.ndarray:
+    """A of the module docstring for every ``kappa`` (array, real or complex) at ``omega``
+    (scalar or broadcastable): shape ``kappa.shape + (6, 6)``, complex. ``parts``: the
+    layer's :func:`system_parts` when they are at hand."""
+    kappa = np.asarray(kappa, dtype=complex)
+    P = system_parts(C, rho) if parts is None else parts
     k = kappa[..., None, None]
     w2 = (np.asarray(omega, dtype=complex) ** 2)[..., None, None] if np.ndim(omega) else \
         complex(omega) ** 2
-    top = np.concatenate([np.broadcast_to(-1j * k * ZQ, k.shape[:-2] + (3, 3)),
-                          np.broadcast_to(Zi, k.shape[:-2] + (3, 3))], axis=-1)
-    bottom = np.concatenate([k**2 * R - rho * w2 * np.eye(3), -1j * k * QZ], axis=-1)
-    return np.concatenate([np.broadcast_to(top, bottom.shape), bottom], axis=-2)
+    return P[0] + k * (P[1] + k * P[2]) + w2 * P[3]
 
 
 def system_derivatives(C: np.ndarray, rho: float, kappa, omega):

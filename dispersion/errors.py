@@ -19,7 +19,6 @@ __all__ = [
     "ConvergenceError",
     "IndefiniteMassWarning",
     "check_nu",
-    "rational",
     "check_positive_int",
     "check_positive",
     "check_wavenumbers",
@@ -228,28 +227,6 @@ def check_memory(what: str, nbytes, limit: int | None = None) -> int:
         raise InputError(f"{what} would need about {nbytes / 2**30:.1f} GiB, more than the bound "
                          f"of {limit / 2**30:.1f} GiB (lower it)")
     return int(nbytes)
-
-
-def rational(name: str, value):
-    """``value`` as an exact sympy Rational (floats by their shortest decimal); finite only.
-
-    >>> rational("nu", 0.3)
-    3/10
-    """
-    import sympy
-
-    try:
-        if isinstance(value, float):
-            if not math.isfinite(value):
-                raise ValueError
-            out = sympy.Rational(repr(value))
-        else:
-            out = sympy.sympify(value)
-        if not out.is_Rational:
-            raise ValueError
-    except (TypeError, ValueError, sympy.SympifyError):
-        raise InputError(f"{name} must be a finite rational number, got {value!r}") from None
-    return out
 
 
 def check_nu(nu):

@@ -21,8 +21,9 @@ Every file and folder the toolkit writes goes through this module:
 - **Modes follow the umask.** A new file gets ``0o666 & ~umask``, a new folder
   ``0o777 & ~umask``; a replaced file or folder keeps its permission bits.
 - **Streams.** ``-`` is standard output, ``/dev/stdout`` and ``/dev/stderr`` the streams
-  themselves; a character device or named pipe is written through (a pipe nobody opens for
-  reading within :data:`PIPE_WAIT` seconds is refused, never waited on for ever).
+  themselves; a character device or named pipe of the user (or the null device) is written
+  through (a pipe nobody opens for reading within :data:`PIPE_WAIT` seconds is refused,
+  never waited on for ever); one of another user is refused like their files.
 - **Write errors are one line.** A full disk or an I/O error raises :class:`OutputError`; a
   path that cannot be written :class:`~dispersion.errors.InputError`; nothing partial stays.
 
@@ -204,6 +205,11 @@ def _stream(target, way, mode: str, kwargs):
                 raise InputError(f"{target.option} {way.shown}: no process opened this named "
                                  f"pipe for reading within {PIPE_WAIT:g} s") from None
             time.sleep(0.02)
+    st = os.fstat(fd)
+    if (st.st_dev, st.st_ino) != target.ident:  # replaced since the owner rule allowed it
+        os.close(fd)
+        raise InputError(f"{target.option} {way.shown} changed while dispersion checked it; "
+                         "nothing was written")
     flags = fcntl.fcntl(fd, fcntl.F_GETFL)
     fcntl.fcntl(fd, fcntl.F_SETFL, flags & ~os.O_NONBLOCK)
     return open(fd, mode, **kwargs), True
@@ -247,9 +253,10 @@ def atomic_write(path, mode: str = "w", *, option: str | None = None, notice=Non
         return
     text = _text(path)
     ok = False
-    with _named(printable(text), option):
-        way = ownership.open_way(text, opt, "file", create=True)
+    ways: list = []  # the cleanup record of the way there, set up before anything is made
     try:
+        with _named(printable(text), option):
+            way = ownership.open_way(text, opt, "file", create=True, register=ways.append)
         state = ownership.file_state(way.fd, way.name, way.shown, opt)
         if state.kind == "stream":
             with _named(way.shown, option):
@@ -260,9 +267,10 @@ def atomic_write(path, mode: str = "w", *, option: str | None = None, notice=Non
             return
         notice_leftovers(way.fd, printable(_folder_text(text)), notice)
         perms = state.mode if state.kind == "file" else 0o666 & ~umask()
-        with _named(way.shown, option):
-            new = NewFile(way.fd, way.name, way.shown, opt)
+        temps: list = []  # the cleanup record, before the temporary exists
         try:
+            with _named(way.shown, option):
+                new = NewFile(way.fd, way.name, way.shown, opt, register=temps.append)
             fh = open(new.fd, mode, closefd=False, **kwargs)
             with _named(way.shown, option, _FULL_ERRORS), fh:  # other errors: the body's
                 yield fh
@@ -270,11 +278,13 @@ def atomic_write(path, mode: str = "w", *, option: str | None = None, notice=Non
             with _named(way.shown, option):
                 new.commit(perms, state.gid)
         except BaseException:
-            new.discard()
+            for new in temps:
+                new.discard()
             raise
         ok = True
     finally:
-        way.close(remove_created=not ok)
+        for way in ways:
+            way.close(remove_created=not ok)
 
 
 def write_text(path, text: str, *, option: str | None = None) -> Path:
@@ -324,16 +334,19 @@ def open_folder(path, *, option: str = "--out", notice=None) -> Iterator[Path]:
     ownership.check_folder(path, option)
     text = _text(path)
     ok = False
-    with _named(printable(text), option):
-        way = ownership.open_way(text, option, "folder", create=True)
+    ways: list = []  # the cleanup record of the way there, set up before anything is made
     try:
+        with _named(printable(text), option):
+            way = ownership.open_way(text, option, "folder", create=True,
+                                     register=ways.append)
         target = ownership.folder_state(way.fd, way.name, way.shown, option)
         notice_leftovers(way.fd, printable(_folder_text(text)), notice)
         mode = target.mode if target.kind == "folder" else 0o777 & ~umask()
-        with _named(way.shown, option):
-            new = NewFolder(way.fd, way.name, way.shown, _folder_text(text), target,
-                            notice=notice)
+        temps: list = []  # the cleanup record, before the new folder exists
         try:
+            with _named(way.shown, option):
+                new = NewFolder(way.fd, way.name, way.shown, _folder_text(text), target,
+                                notice=notice, register=temps.append)
             yield Path(new.path)
             with _named(way.shown, option):
                 marker = NewFile(new.fd, MARKER, MARKER, option)
@@ -341,11 +354,13 @@ def open_folder(path, *, option: str = "--out", notice=None) -> Iterator[Path]:
                 marker.commit(0o666 & ~umask())
                 new.commit(mode, target.gid)
         except BaseException:
-            new.discard()
+            for new in temps:
+                new.discard()
             raise
         ok = True
     finally:
-        way.close(remove_created=not ok)
+        for way in ways:
+            way.close(remove_created=not ok)
 
 
 _RESERVED = re.compile(r"\.dispersion-.*|.*\.dispersion-tmp-.*", re.DOTALL)
@@ -417,14 +432,15 @@ def write_unit(files: Mapping[Path, str | bytes], *, option: str | None = None) 
                 raise InputError(f"{opt}: {state.shown} is not a regular file; write streams "
                                  "apart from the unit")
             with _named(printable(text), option):
-                way = ownership.open_way(text, opt, "file", create=True)
-            staged.append([way, None])
+                way = ownership.open_way(text, opt, "file", create=True,
+                                         register=lambda made: staged.append([made, None]))
             state = ownership.file_state(way.fd, way.name, way.shown, opt)
             notice_leftovers(way.fd, printable(_folder_text(text)))
             perms = state.mode if state.kind == "file" else 0o666 & ~umask()
             with _named(way.shown, option):
-                new = NewFile(way.fd, way.name, way.shown, opt)
-                staged[-1][1] = new
+                entry = staged[-1]
+                new = NewFile(way.fd, way.name, way.shown, opt,
+                              register=lambda made, entry=entry: entry.__setitem__(1, made))
                 _write_all(new.fd, data.encode() if isinstance(data, str) else bytes(data))
                 new.sync(perms, state.gid)
         checkpoint()
@@ -434,9 +450,10 @@ def write_unit(files: Mapping[Path, str | bytes], *, option: str | None = None) 
                 new.close()
     finally:
         for way, new in staged:
+            renamed = new is not None and new.done  # before discard, which sets done
             if new is not None:
                 new.discard()
-            way.close(remove_created=new is None or not new.done)
+            way.close(remove_created=not renamed)
     return [Path(_text(t)) for t in files]
 
 

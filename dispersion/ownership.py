@@ -10,8 +10,15 @@ is put in place (so what changed meanwhile is refused too).
 or a regular file owned by the user who runs the command (the effective uid): the user
 named it. A symbolic link (even one to a file of the user), a folder, another user's file,
 a block device or a socket is refused with one line. ``-`` is standard output;
-``/dev/stdout`` and ``/dev/stderr`` are the streams themselves; a character device or a
-named pipe (``/dev/null``, a terminal, a FIFO) is written through, never replaced.
+``/dev/stdout`` and ``/dev/stderr`` are the streams themselves; a named pipe or a character
+device of the user (a FIFO they made, their terminal) is a stream, written through and never
+replaced, and so is the null device; a named pipe or device of another user is refused like
+their files (in a shared sticky folder, a pipe planted under the name of an output would
+otherwise receive it).
+
+**Outputs never name inputs.** :func:`check_apart` refuses, before any work, an output that
+is one of the command's input files (the same ``(st_dev, st_ino)`` where both exist, so
+through ``./``, ``sub/..``, a link or a hard link; the same normalized path otherwise).
 
 **A folder** (``--out``) may be written if it is absent, an empty folder of the user, or a
 folder of the user that carries the marker :data:`MARKER` (a regular file) and holds
@@ -41,15 +48,20 @@ dispersion.errors.InputError: --out .../notes holds files that dispersion did no
 """
 from __future__ import annotations
 
+import contextlib
 import os
+import signal
 import stat
+import threading
+from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
 
 from dispersion.errors import InputError
 from dispersion.untrusted import printable
 
 __all__ = ["MARKER", "MARKER_TEXT", "STDOUT", "Target", "Way", "check_file", "check_folder",
-           "file_state", "folder_state", "tree", "open_way"]
+           "file_state", "folder_state", "tree", "open_way", "interrupts_held", "same_file",
+           "check_apart"]
 
 #: The file that marks a folder as written by dispersion (the name ``dispersion reproduce``
 #: has always used, so report folders of earlier versions stay writable).
@@ -69,6 +81,47 @@ _KINDS = ((stat.S_ISBLK, "block device"), (stat.S_ISSOCK, "socket"), (stat.S_ISF
 
 def _kind(mode: int) -> str:
     return next((name for test, name in _KINDS if test(mode)), "special file")
+
+
+@contextlib.contextmanager
+def interrupts_held() -> Iterator[None]:
+    """Ctrl-C and SIGTERM held back for the block and delivered at its end: a step that
+    creates something on disk and records it for removal is never split by an interrupt
+    (the record exists before the interrupt can unwind).
+
+    The Python handlers are set aside for the block (a signal mask would not do: a process
+    with other threads, numpy's among them, takes the signal on any of them) and a signal
+    that came meanwhile is handed to them at its end. Outside the main thread, where Python
+    runs no signal handler, a plain block.
+    """
+    signals = (signal.SIGINT, signal.SIGTERM)
+    if threading.current_thread() is not threading.main_thread() or any(
+            signal.getsignal(sig) is None for sig in signals):  # None: set outside Python
+        yield
+        return
+    caught: list[int] = []
+    previous = {sig: signal.signal(sig, lambda signum, frame: caught.append(signum))
+                for sig in signals}
+    try:
+        yield
+    finally:
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)
+        for sig in dict.fromkeys(caught):  # now, as it would have been at once
+            handler = previous[sig]
+            if callable(handler):
+                handler(sig, None)
+            elif handler == signal.SIG_DFL:
+                os.kill(os.getpid(), sig)
+
+
+def _null_device(st: os.stat_result) -> bool:
+    """True for the null device (it discards what it is given: nobody's data)."""
+    try:
+        null = os.stat(os.devnull)
+    except OSError:  # pragma: no cover - no /dev/null
+        return False
+    return stat.S_ISCHR(st.st_mode) and st.st_rdev == null.st_rdev
 
 
 def _fail(message: str):
@@ -143,11 +196,14 @@ def _parts(text: str, option: str, what: str) -> tuple[bool, list[str], str]:
     return text.startswith("/"), parts[:-1], parts[-1]
 
 
-def open_way(path, option: str, what: str, *, create: bool) -> Way | list[str]:
+def open_way(path, option: str, what: str, *, create: bool,
+             register=None) -> Way | list[str]:
     """Open the folder ``path`` lies in (following the system's resolution of the folders
     on the way); with ``create``, make the missing ones and return a :class:`Way`.
     Without ``create`` nothing is made: a :class:`Way` if the folder exists, else the
-    list of missing names (after checking that they can be made)."""
+    list of missing names (after checking that they can be made). ``register(way)``
+    records the :class:`Way` in the caller's cleanup record before an interrupt can unwind
+    (the folders it made are then removed by the caller's :meth:`Way.close`)."""
     text = _text(path, option, what)
     absolute, folders, name = _parts(text, option, what)
     shown = printable(text)
@@ -177,12 +233,20 @@ def open_way(path, option: str, what: str, *, create: bool) -> Way | list[str]:
                 if not create:
                     missing.append(part)
                     continue
-                try:
-                    os.mkdir(part, 0o777, dir_fd=fd)
-                except FileExistsError:
-                    pass
+                # made and recorded as one step: an interrupt right after the mkdir finds it
+                # in ``created`` and the unwinding removes it; a folder that appeared
+                # meanwhile is not ours, and is never removed
+                with interrupts_held():
+                    held = os.dup(fd)
+                    try:
+                        os.mkdir(part, 0o777, dir_fd=fd)
+                    except OSError as exc:
+                        os.close(held)
+                        if not isinstance(exc, FileExistsError):  # else: not ours, kept
+                            raise
+                    else:
+                        created.append((held, part))
                 new = os.open(part, flags | os.O_NOFOLLOW, dir_fd=fd)
-                created.append((os.dup(fd), part))
             except NotADirectoryError:
                 _fail(f"{option} {shown}: {here} is a file, not a folder")
             except PermissionError:
@@ -198,9 +262,15 @@ def open_way(path, option: str, what: str, *, create: bool) -> Way | list[str]:
             return missing
         if not os.access(".", os.W_OK | os.X_OK, dir_fd=fd, effective_ids=True):
             _fail(f"{option} {shown}: its folder is not writable")
-        return Way(fd, name, shown, created)
+        with interrupts_held():  # handed over as one step: the caller's record has it
+            way = Way(fd, name, shown, created)
+            if register is not None:
+                register(way)
+                fd = None  # the caller closes it now (an interrupt at the end of this block)
+        return way
     except BaseException:
-        Way(fd, name, shown, created).close(remove_created=True)
+        if fd is not None:
+            Way(fd, name, shown, created).close(remove_created=True)
         raise
 
 
@@ -217,6 +287,9 @@ def file_state(fd: int, name: str, shown: str, option: str) -> Target:
     if stat.S_ISDIR(mode):
         _fail(f"{option} must name a file, but {shown} is an existing folder")
     if stat.S_ISCHR(mode) or stat.S_ISFIFO(mode):
+        if st.st_uid != os.geteuid() and not _null_device(st):
+            _fail(f"{option} {shown} is a {_kind(mode)} of another user (uid {st.st_uid}); "
+                  "dispersion writes only to your own files and streams")
         return Target(shown, option, "stream", (st.st_dev, st.st_ino))
     if not stat.S_ISREG(mode):
         _fail(f"{option} {shown} is a {_kind(mode)}; dispersion writes only regular files")
@@ -351,3 +424,47 @@ def check_folder(path, option: str = "--out") -> Target:
         return folder_state(way.fd, way.name, way.shown, option)
     finally:
         way.close()
+
+
+def _identity(path) -> tuple:
+    """What ``path`` names: ``(st_dev, st_ino)`` of what exists there (links followed), else
+    its normalized absolute path."""
+    text = os.fspath(path)
+    try:
+        st = os.stat(text)
+        return ("file", st.st_dev, st.st_ino)
+    except (OSError, ValueError):
+        return ("path", os.path.normpath(os.path.abspath(text)))
+
+
+def same_file(a, b) -> bool:
+    """True if paths ``a`` and ``b`` name the same file or folder: the same ``(st_dev,
+    st_ino)`` where it exists (through ``./``, ``sub/..``, a link or a hard link), the same
+    normalized path otherwise.
+
+    >>> same_file("/dev/null", "/dev/../dev/./null"), same_file("/dev/null", "/dev/zero")
+    (True, False)
+    """
+    return _identity(a) == _identity(b)
+
+
+def check_apart(outputs: Mapping[str, object], inputs: Mapping[str, Iterable]) -> None:
+    """Refuse, before any work, an output that names one of the command's inputs.
+
+    ``outputs`` maps an option to its path (``-`` and None are skipped); ``inputs`` maps an
+    option (or the name of a positional argument) to its paths.
+
+    >>> check_apart({"--json": "/dev/./null"}, {"--mass-rule": ["/dev/null"]})
+    Traceback (most recent call last):
+    ...
+    dispersion.errors.InputError: --json /dev/./null is the --mass-rule file /dev/null: an output never replaces an input of its command
+    """
+    for out_option, out in outputs.items():
+        if out is None or os.fspath(out) == STDOUT:
+            continue
+        for in_option, paths in inputs.items():
+            for path in paths or ():
+                if same_file(out, path):
+                    _fail(f"{out_option} {printable(os.fspath(out))} is the {in_option} file "
+                          f"{printable(os.fspath(path))}: an output never replaces an input "
+                          "of its command")

@@ -100,7 +100,9 @@ class PatchModel:
             kappa = sympy.Symbol("kappa")
         else:
             check_finite("kappa", kappa)
-            kappa = sympy.sympify(kappa)
+            from dispersion.reader import as_sympy
+
+            kappa = as_sympy("kappa", kappa)  # a number: never text
         return x_functions(self.plate, kappa)["mx"] * mass_block(self.plate)
 
     def series(self, branch: str = "S0", order: int = 8, nu=None) -> dict[int, sympy.Expr]:

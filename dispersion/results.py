@@ -157,7 +157,7 @@ def load(path) -> dict:
     path = Path(path)
     try:
         data = json.loads(path.read_text(encoding="utf-8"))
-    except (OSError, ValueError) as exc:
+    except (OSError, ValueError, RecursionError) as exc:  # RecursionError: nested too deep
         raise DispersionError(f"cannot read result file {path}: {exc}") from None
     if not isinstance(data, dict) or "result" not in data or "section" not in data:
         raise DispersionError(f"{path} is not a dispersion result file (no section/result)")

@@ -24,6 +24,13 @@ Where ``RENAME_EXCHANGE`` is not available (not Linux, or a file system without 
 folder is put in place by two renames: ``NAME`` to ``.NAME.dispersion-tmp-HEX2``, then the
 new folder to ``NAME``. Between them (two system calls) ``NAME`` is absent; see below.
 
+**Temporaries are recorded before an interrupt can find them.** A temporary is created and
+handed to its writer's cleanup record (``register``) as one step, with Ctrl-C and SIGTERM
+held back for those few system calls (:func:`dispersion.ownership.interrupts_held`): an
+interrupt that arrives right after the ``open`` or ``mkdir`` is delivered once the record
+exists, and the unwinding removes the temporary. The writers set up the record before they
+create anything.
+
 **What a kill leaves** (SIGKILL, power loss; Ctrl-C and SIGTERM under the command line unwind
 and remove the temporaries, except that they are held back while a folder swap is finished):
 
@@ -70,7 +77,7 @@ import signal
 import stat
 import sys
 
-from dispersion.ownership import file_state, tree
+from dispersion.ownership import file_state, interrupts_held, tree
 from dispersion.untrusted import printable
 
 __all__ = ["NewFile", "NewFolder", "Fault", "FAULT_ENV", "checkpoint", "temp_name",
@@ -245,16 +252,31 @@ def notice_leftovers(fd: int, shown: str, notice=None, own: tuple[str, ...] = ()
 
 class NewFile:
     """A new file for ``name`` in the open folder ``fd``: write to :attr:`fd`, then
-    :meth:`commit` (or :meth:`discard`). ``option`` names the option in refusals."""
+    :meth:`commit` (or :meth:`discard`). ``option`` names the option in refusals;
+    ``register(self)`` records it in the writer's cleanup record as it is created (module
+    doc: an interrupt right after the ``open`` then finds it there)."""
 
-    def __init__(self, fd: int, name: str, shown: str, option: str = "output"):
+    def __init__(self, fd: int, name: str, shown: str, option: str = "output", *,
+                 register=None):
         self.folder, self.name, self.shown, self.option = fd, name, shown, option
         self.tmp = temp_name(name)
+        self.done = True  # nothing to discard until the temporary exists
+        self.fd = None
         flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | os.O_NOFOLLOW | os.O_CLOEXEC
-        self.fd = os.open(self.tmp, flags, 0o600, dir_fd=fd)
-        self._ident = _ident(os.fstat(self.fd))
-        fcntl.flock(self.fd, fcntl.LOCK_EX)  # alive: not reported as a leftover
-        self.done = False
+        with interrupts_held():
+            new = os.open(self.tmp, flags, 0o600, dir_fd=fd)  # ours: O_EXCL, a secret name
+            try:
+                checkpoint()  # the window right after the creation
+                self._ident = _ident(os.fstat(new))
+                fcntl.flock(new, fcntl.LOCK_EX)  # alive: not reported as a leftover
+            except BaseException:
+                os.close(new)
+                with contextlib.suppress(OSError):
+                    os.unlink(self.tmp, dir_fd=fd)
+                raise
+            self.fd, self.done = new, False
+            if register is not None:
+                register(self)
 
     def commit(self, mode: int, gid: int | None = None) -> None:
         """``fsync``, give mode ``mode`` (and group ``gid``), rename onto the target, unless
@@ -365,18 +387,32 @@ class NewFolder:
     """
 
     def __init__(self, fd: int, name: str, shown: str, parent_text: str, target, *,
-                 notice=None):
+                 notice=None, register=None):
         self.folder, self.name, self.shown, self.target = fd, name, shown, target
         self.notice = notice or _print_notice
         self.tmp = temp_name(name)
-        os.mkdir(self.tmp, 0o700, dir_fd=fd)
-        self.fd = _open_dir(self.tmp, fd)
-        self._ident = _ident(os.fstat(self.fd))
-        fcntl.flock(self.fd, fcntl.LOCK_EX)
         self.path = os.path.join(parent_text, self.tmp) if parent_text else self.tmp
         self.copied: dict[tuple[str, ...], tuple] = {}
         self.ignore = False
-        self.done = False
+        self.done, self.fd = True, None  # nothing to discard until the folder exists
+        with interrupts_held():  # made and recorded as one step (module doc)
+            os.mkdir(self.tmp, 0o700, dir_fd=fd)  # ours: mkdir fails on any existing name
+            try:
+                checkpoint()  # the window right after the creation
+                new = _open_dir(self.tmp, fd)
+                try:
+                    self._ident = _ident(os.fstat(new))
+                    fcntl.flock(new, fcntl.LOCK_EX)
+                except BaseException:
+                    os.close(new)
+                    raise
+            except BaseException:
+                with contextlib.suppress(OSError):
+                    os.rmdir(self.tmp, dir_fd=fd)
+                raise
+            self.fd, self.done = new, False
+            if register is not None:
+                register(self)
         try:
             if target.kind == "folder":
                 self._copy_old()
@@ -454,12 +490,8 @@ class NewFolder:
 
     def _swap(self) -> None:
         # Ctrl-C and SIGTERM wait until the folder is in place (a few system calls)
-        blocked = {signal.SIGINT, signal.SIGTERM}
-        previous = signal.pthread_sigmask(signal.SIG_BLOCK, blocked)
-        try:
+        with interrupts_held():
             self._swap_now()
-        finally:
-            signal.pthread_sigmask(signal.SIG_SETMASK, previous)
 
     def _swap_now(self) -> None:
         from dispersion.errors import InputError
@@ -494,15 +526,12 @@ class NewFolder:
     def _remove_old(self) -> None:
         """Remove, from the old version (now under :attr:`tmp`), the entries that are
         exactly those copied; keep the rest and say so. Ctrl-C and SIGTERM wait."""
-        blocked = {signal.SIGINT, signal.SIGTERM}
-        previous = signal.pthread_sigmask(signal.SIG_BLOCK, blocked)
         kept: list[str] = []
-        try:
-            self._prune(self.folder, self.tmp, (), kept)
-        except OSError as exc:
-            kept.append(f"({exc.strerror or exc})")
-        finally:
-            signal.pthread_sigmask(signal.SIG_SETMASK, previous)
+        with interrupts_held():
+            try:
+                self._prune(self.folder, self.tmp, (), kept)
+            except OSError as exc:
+                kept.append(f"({exc.strerror or exc})")
         if kept:
             self.notice(f"kept {self.shown} as it was before this run under "
                         f"{printable(self.tmp)}: {printable(kept[0], 80)}"

@@ -38,7 +38,8 @@ LAYERS = (
 #: Top-level modules of the base layer ("__init__": the lazy front door), and the old
 #: ``waves/`` package, now only the face of the shim of its old paths.
 BASE = ("__init__", "errors", "defaults", "table", "untrusted", "budget", "ownership", "staging",
-        "io", "results", "rendering", "sweep", "branch_views", "_moved", "waves")
+        "io", "results", "rendering", "sweep", "branch_views", "_moved", "waves", "reader",
+        "reader_limits")
 #: Folders with more modules than this are two folders (STYLE.md).
 MAX_MODULES = 20
 

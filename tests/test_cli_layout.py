@@ -38,6 +38,7 @@ ALLOWED = {
     "dispersion.report": "SECTIONS", "dispersion.report.series_speed": "bench tables",
     "dispersion.claims.report": "plain: text of strangers made inert",
     "dispersion.results": "dumps, envelope", "dispersion.io": "the writers",
+    "dispersion.ownership": "check_apart, same_file: no output names an input",
     # the options: numbers, units, errors
     "dispersion.errors": "InputError", "dispersion.defaults": "defaults and limits",
     "dispersion.claims.reader": "read_number (the one number grammar)",

@@ -150,6 +150,6 @@ def critical_steps(masses=None, p: int = 2, *, model: str = "plate", material="s
 
 def _exact(value):
     """A gamma_s as the exact number the patch takes (``"1/2"`` -> 1/2)."""
-    from fractions import Fraction
+    from dispersion.reader import read_number
 
-    return Fraction(value) if isinstance(value, str) else value
+    return read_number(value) if isinstance(value, str) else value

@@ -1,8 +1,8 @@
 """The practitioner's table: every propagating mode of a plate at given frequencies, in units.
 
-:func:`lamb_modes` takes a :class:`~dispersion.waves.materials.Material`, the thickness d (mm)
+:func:`lamb_modes` takes a :class:`~dispersion.materials.materials.Material`, the thickness d (mm)
 and frequencies f (kHz) or frequency-thickness products fd (MHz mm); it solves at
-:math:`\\Omega = \\pi f d / c_T` (:func:`dispersion.waves.frequency.modes_at_frequency`, every
+:math:`\\Omega = \\pi f d / c_T` (:func:`dispersion.continuum.frequency.modes_at_frequency`, every
 root certified by a count) and returns a :class:`ModeTable` of S, A and SH modes with
 
 .. math::
@@ -165,14 +165,14 @@ def lamb_modes(material: Material, thickness_mm: float, *, frequency_khz=None,
 
     Give exactly one of ``frequency_khz`` (f in kHz) and ``fd_mhz_mm`` (f d in MHz mm);
     a scalar, a list or an array. Frequencies must lie where
-    :math:`\\Omega = \\pi f d / c_T` is in [:data:`~dispersion.waves.frequency.FREQUENCY_OMEGA_MIN`,
-    :data:`~dispersion.waves.frequency.FREQUENCY_OMEGA_MAX`]; the message gives that range
+    :math:`\\Omega = \\pi f d / c_T` is in [:data:`~dispersion.continuum.frequency.FREQUENCY_OMEGA_MIN`,
+    :data:`~dispersion.continuum.frequency.FREQUENCY_OMEGA_MAX`]; the message gives that range
     in kHz for the plate.
     """
     from dispersion.continuum.frequency import modes_at_frequency
 
     if not isinstance(material, Material):
-        raise InputError(f"material must be a Material (dispersion.waves.materials), got "
+        raise InputError(f"material must be a Material (dispersion.materials.materials), got "
                          f"{type(material).__name__}")
     thickness_mm = float(check_positive("thickness", thickness_mm))
     if (frequency_khz is None) == (fd_mhz_mm is None):
@@ -205,5 +205,5 @@ def lamb_modes(material: Material, thickness_mm: float, *, frequency_khz=None,
         raise InputError(f"{name} must lie in [{lo * scale:.4g}, {hi * scale:.4g}] {unit} for "
                          f"this plate ({material.name}, d = {thickness_mm:g} mm), got "
                          f"{float(values[bad][0]):.6g} {unit}" + "".join(f"; {h}" for h in hints))
-    roots = modes_at_frequency(material.nu, omega, kinds=tuple(kinds), zgv=zgv)
+    roots = modes_at_frequency(material.nu_exact, omega, kinds=tuple(kinds), zgv=zgv)
     return ModeTable(material, thickness_mm, f_khz, roots)

@@ -7,7 +7,8 @@ of the branches through the origin, of the exact Rayleigh-Lamb equation (eqs 14-
 branches where the mass breaks the mirror), with Poisson's ratio symbolic or substituted, and
 returns a :class:`SeriesTable`. The table prints from the flint kernel alone
 (:func:`~dispersion.symbolic.power_balance.format_coefficient`): the exact series needs
-neither sympy nor numpy; LaTeX (:meth:`SeriesTable.to_latex`) parses the text with sympy.
+neither sympy nor numpy; LaTeX (:meth:`SeriesTable.to_latex`) reads the text back with the
+whitelist reader (:mod:`dispersion.reader`), never with sympy's parser.
 
 >>> t = series_table(("A0",), 6, exact=True)
 >>> t
@@ -118,15 +119,16 @@ class SeriesTable(Rendered):
     def to_latex(self) -> str:
         """Each branch as a LaTeX equation, the factored forms of the text kept."""
         import sympy
-        from sympy.parsing.sympy_parser import parse_expr
 
-        local = {"nu": sympy.Symbol("nu"), "r": sympy.Symbol("r", positive=True)}
+        from dispersion.reader import SERIES_TEXT, parse, to_sympy
+
         out = []
         for r in self.records:
             terms = list(r["coefficients"].items())
-            # parsed unevaluated: 2/(3*(nu - 1)) stays so, not 2/(3 nu - 3)
+            # read by the whitelist (records are data: a table may be built from JSON), built
+            # unevaluated: 2/(3*(nu - 1)) stays so, not 2/(3 nu - 3)
             body = " + ".join(
-                f"\\left({sympy.latex(parse_expr(c, local_dict=local, evaluate=False))}"
+                f"\\left({sympy.latex(to_sympy(parse(c, limits=SERIES_TEXT), evaluate=False))}"
                 f"\\right)\\kappa^{{{k}}}" for k, c in terms)
             last = int(terms[-1][0])
             out.append(f"% Omega_{r['branch']}^2 [{self._model()}]\n"
@@ -148,13 +150,14 @@ def series_table(branches=("S0", "A0"), order: int = ORDER, *, patch=None,
     from dispersion.materials.elastic_law import as_law
 
     branches = (branches,) if isinstance(branches, str) else tuple(branches)
-    if isinstance(nu, str):  # "3/10" as the command line reads it
-        from fractions import Fraction
+    if isinstance(nu, str):  # "3/10" as the command line reads it, by the whitelist
+        from dispersion.reader import read_number
 
         try:
-            nu = Fraction(nu)
-        except ValueError:
-            raise InputError(f"nu must be a rational number such as 3/10, got {nu!r}") from None
+            nu = read_number(nu)
+        except InputError as exc:
+            raise InputError(f"nu must be a rational number such as 3/10, got "
+                             f"{nu[:40]!r} ({exc})") from None
     if exact:
         if patch is not None:
             raise InputError("patch does not apply with exact=True (the exact Rayleigh-Lamb "

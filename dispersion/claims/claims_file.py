@@ -99,6 +99,11 @@ def read_toml(text: str, file: str = "<string>") -> dict:
     if len(text) > MAX_FILE_BYTES:
         raise InputError(f"{file}: claims text of {len(text)} characters, more than the limit "
                          f"of {MAX_FILE_BYTES}")
+    from dispersion.untrusted import check_toml
+
+    # bounded on the raw text before the parser sees it (its cost is quadratic in the depth
+    # of a dotted key)
+    check_toml(text, file, MAX_FILE_BYTES, MAX_NESTING)
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:

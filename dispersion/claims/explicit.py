@@ -46,6 +46,7 @@ import sympy
 from dispersion.claims.bar_model import BarModel
 from dispersion.claims.claim import Claim
 from dispersion.claims.claim_fields import expression
+from dispersion.reader import as_sympy
 
 __all__ = ["KINDS", "KIND_FIELDS", "step_claim", "series_claim", "task", "run", "verdict"]
 
@@ -186,6 +187,6 @@ def verdict(claim, derived) -> tuple[bool, str, str, str]:
     for (i, j), c in claim.printed[1:]:
         d = derived.get((i, j), sympy.Integer(0))
         shown.append(f"({d})*kappa^{i}*tau^{j}")
-        if sympy.cancel(sympy.sympify(c, strict=True) - d) != 0:
+        if sympy.cancel(as_sympy("printed coefficient", c) - d) != 0:
             wrong.append(f"kappa^{i}*tau^{j}: printed {c}, derived {d}")
     return not wrong, claim.written, " + ".join(shown), "; ".join(wrong)

@@ -208,11 +208,9 @@ def _expr(value, name: str):
     if isinstance(value, str):
         raise InputError(f"{name} must be a sympy expression or a number, not text (read text "
                          "with dispersion.claims.reader.read)")
-    try:
-        return sympy.sympify(value, strict=True)
-    except sympy.SympifyError:
-        raise InputError(f"{name} must be a sympy expression or a number, got "
-                         f"{type(value).__name__}") from None
+    from dispersion.reader import as_sympy
+
+    return as_sympy(name, value)  # numbers and sympy objects only: no container of text
 
 
 def describe_difference(printed, derived) -> str:

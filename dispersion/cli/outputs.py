@@ -7,7 +7,10 @@ table on a terminal, CSV when piped), and named files ``--csv FILE``, ``--json F
 ``--figure FILE`` (``-``: stdout, except for a figure). With named files nothing else goes to
 stdout unless ``--format`` is given too; two outputs never share stdout. The result renders
 itself (:class:`dispersion.rendering.Rendered`); a figure is drawn by the function the command
-names. The CSV and the figure are written as one unit (both new, or both old).
+names. The CSV and the figure are written as one unit (both new, or both old): a stream (a
+named pipe or device) cannot be part of one, so among several named outputs each must be a
+file, refused up front naming its option. No output may name an input of the command (a
+``--mass-rule`` file, a claims file), through any path, link or hard link.
 
 >>> import argparse
 >>> stdout_format(argparse.Namespace(format=None), piped="csv")   # stdout is not a terminal
@@ -16,7 +19,6 @@ names. The CSV and the figure are written as one unit (both new, or both old).
 from __future__ import annotations
 
 import io
-import os
 import sys
 
 from dispersion.errors import InputError
@@ -87,12 +89,21 @@ def check_figure(path: str, command: str, option: str = "--figure") -> None:
     require_matplotlib(f"{command} {option}")
 
 
-def check_outputs(args, command: str) -> None:
-    """Every named output checked before any work: writable, distinct, one stdout stream."""
-    from dispersion.io import check_output_file, unit_target
+#: Input files of the commands: the attribute argparse gives them, and their name in messages.
+INPUTS = (("mass_rule", "--mass-rule"), ("files", "claims"))
 
-    files = {opt: getattr(args, opt[2:], None) for opt in ("--csv", "--json", "--figure")}
+
+def check_outputs(args, command: str) -> None:
+    """Every named output checked before any work: writable, distinct, apart from every
+    input file of the command, one stdout stream, no stream among several files."""
+    from dispersion.io import check_output_file, unit_target
+    from dispersion.ownership import check_apart, same_file
+
+    files = {opt: getattr(args, opt[2:], None) for opt in ("--csv", "--json", "--figure",
+                                                            "--junit")}
     files = {opt: path for opt, path in files.items() if path is not None}
+    # an output that is an input would replace it: refused before the input is even read
+    check_apart(files, {name: getattr(args, attr, None) or () for attr, name in INPUTS})
     streams = [opt for opt, path in files.items() if path == "-"]
     if args.format is not None and files:
         streams.append("--format")
@@ -104,32 +115,39 @@ def check_outputs(args, command: str) -> None:
             check_figure(path, command)
         else:
             check_output_file(path, option=opt)
+    named = {opt: path for opt, path in files.items() if path != "-"}
     targets = {}
-    for opt, path in files.items():
-        target = None if path == "-" else unit_target(path)
+    for opt, path in named.items():
+        target = unit_target(path)
         if target is None:
+            if len(named) > 1:  # it would be written after the unit, which may be replaced
+                others = " and ".join(o for o in named if o != opt)
+                raise InputError(f"{opt} {path} is a stream (a named pipe or device), which "
+                                 f"cannot be written as one unit with {others} (all new or all "
+                                 "old): write it on its own, or to a file")
             continue
-        key = os.path.abspath(target)
-        if key in targets:
-            raise InputError(f"{targets[key]} and {opt} must name two different files, got "
-                             f"{path!r} for both")
-        targets[key] = opt
+        for other, seen in targets.items():
+            if same_file(seen, target):
+                raise InputError(f"{other} and {opt} must name two different files, got "
+                                 f"{named[other]!r} and {path!r}")
+        targets[opt] = target
 
 
-def emit(path: str, text: str) -> None:
+def emit(path: str, text: str, option: str | None = None) -> None:
     """Write ``text`` to ``path`` atomically, or to standard output for ``-``."""
     if path == "-":
         sys.stdout.write(text)
     else:
         from dispersion.io import write_text
 
-        write_text(path, text)
+        write_text(path, text, option=option)
 
 
-def write_outputs(args, result, figure=None) -> None:
+def write_outputs(args, result, figure=None, extra=()) -> None:
     """``result`` to stdout in :func:`stdout_format`, and to each named file; ``figure``
-    (a function of the result returning a Figure) for ``--figure``. The CSV, JSON and the
-    figure are one unit; a stream (``-``, a device) is written after it."""
+    (a function of the result returning a Figure) for ``--figure``; ``extra`` more
+    ``(option, path, text)`` of the command (``verify --junit``). The named files are one
+    unit; a stream (``-``, or a device or pipe named alone) is written after it."""
     from dispersion.io import unit_target, write_bytes, write_unit
     from dispersion.rendering import render
 
@@ -140,17 +158,19 @@ def write_outputs(args, result, figure=None) -> None:
     if getattr(args, "figure", None):
         buf = io.BytesIO()
         figure(result).savefig(buf, format=args.figure.rsplit(".", 1)[-1].lower(), dpi=150)
-        outputs.append((args.figure, buf.getvalue()))
+        outputs.append(("--figure", args.figure, buf.getvalue()))
     for opt, fmt in (("csv", "csv"), ("json", "json")):
         if getattr(args, opt, None):
-            outputs.append((getattr(args, opt), render(result, fmt)))
-    unit = {unit_target(p): data for p, data in outputs if unit_target(p) is not None}
+            outputs.append((f"--{opt}", getattr(args, opt), render(result, fmt)))
+    outputs += list(extra)
+    unit = {unit_target(p): (o, data) for o, p, data in outputs if unit_target(p) is not None}
     if unit:
-        write_unit(unit, option="/".join(f"--{o}" for o in ("csv", "json", "figure")
-                                         if getattr(args, o, None)))
-    for path, data in outputs:
+        write_unit({target: data for target, (_, data) in unit.items()},
+                   option="/".join(o for o, _ in unit.values()))
+    for opt, path, data in outputs:
         if unit_target(path) is None:
-            emit(path, data) if isinstance(data, str) else write_bytes(path, data)
+            emit(path, data, opt) if isinstance(data, str) else write_bytes(path, data,
+                                                                            option=opt)
 
 
 def warn_failures(result, args=None) -> None:

@@ -9,7 +9,6 @@ control sequence.
 from __future__ import annotations
 
 import sys
-from pathlib import Path
 
 from dispersion.cli.options import integer
 from dispersion.errors import InputError
@@ -50,29 +49,19 @@ def run(args) -> int:
 def _run(args) -> int:
     from dispersion.claims import junit_xml, load_claims, paper_claims_path, verify_claims
     from dispersion.cli.outputs import check_outputs, write_outputs
-    from dispersion.io import check_output_file, write_text
+    from dispersion.io import check_output_file
 
     # every option is checked before a claims file is read or a derivation starts
     paths = list(args.files) + ([paper_claims_path()] if args.paper else [])
     check_outputs(args, "verify")
-    if args.junit is not None:
-        junit = check_output_file(args.junit, option="--junit")
+    if args.junit is not None:  # checked with the others (outputs.check_outputs): apart from
+        junit = check_output_file(args.junit, option="--junit")  # the claims files, one stdout
         if junit == "-" and ("-" in (args.csv, args.json) or args.format is not None):
             raise InputError("--junit - and another output would both write to stdout")
-        if junit != "-" and any(_same_file(junit, path) for path in paths):
-            raise InputError(f"--junit must not name a claims file being verified: {junit}")
     result = verify_claims([c for path in paths for c in load_claims(path)], jobs=args.jobs)
     if args.junit == "-":
         sys.stdout.write(junit_xml(result))
-    else:
-        write_outputs(args, result)
-        if args.junit:
-            write_text(args.junit, junit_xml(result))
+    else:  # --junit FILE is one unit with --csv and --json: all new, or all old
+        write_outputs(args, result, extra=[("--junit", args.junit, junit_xml(result))]
+                      if args.junit else ())
     return 0 if result.passed else 1
-
-
-def _same_file(a, b) -> bool:
-    try:
-        return Path(a).resolve() == Path(b).resolve()
-    except (OSError, RuntimeError, ValueError):  # unresolvable: load_claims reports the input
-        return False

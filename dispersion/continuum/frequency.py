@@ -2,16 +2,16 @@
 
 At a fixed :math:`\\Omega = \\omega h / c_T` the real wavenumbers :math:`\\kappa = kh \\ge 0` of
 each symmetry class are the roots of the deflated Rayleigh-Lamb function
-:math:`G(\\kappa, \\Omega)` (:func:`dispersion.waves.deflated_frequency.deflated_with_noise`,
+:math:`G(\\kappa, \\Omega)` (:func:`dispersion.continuum.deflated_frequency.deflated_with_noise`,
 sampled with a bound on its rounding error). They are found and *counted* by the argument of
-the kappa tracer (:mod:`dispersion.waves.exact_branches`), turned on its side:
+the kappa tracer (:mod:`dispersion.continuum.exact_branches`), turned on its side:
 
 1. **Count at fixed kappa.** At each :math:`\\kappa` the class is a self-adjoint problem in
    :math:`\\Omega^2`; :math:`N(\\kappa, \\Omega)`, the number of its branches below
    :math:`\\Omega`, changes by one at each simple root, so the sign of G is
    :math:`\\sigma(\\kappa)(-1)^{N}` with :math:`\\sigma = \\operatorname{sign} G(\\kappa, 0)`.
 2. **Both ends known.** :math:`N(0, \\Omega)` is the number of cut-offs below
-   :math:`\\Omega` (closed form, :func:`~dispersion.waves.rayleigh_lamb.cutoff_frequencies`).
+   :math:`\\Omega` (closed form, :func:`~dispersion.continuum.rayleigh_lamb.cutoff_frequencies`).
    At a :math:`\\kappa_{hi} > \\Omega` only S0 and A0 can lie below :math:`\\Omega` (no
    higher mode is slower than :math:`c_T`: Mindlin 1960; Achenbach 1973, sec. 6.9), so
    :math:`N(\\kappa_{hi}, \\Omega) \\in \\{0, 1\\}` is read from the sign of G; kappa_hi is
@@ -24,10 +24,23 @@ the kappa tracer (:mod:`dispersion.waves.exact_branches`), turned on its side:
    :math:`c_g` changes the count by :math:`-\\operatorname{sign} c_g`: the count before it
    names the branch (S_j, A_j in the tracer's order at that kappa) and the walk must end at
    :math:`N(\\kappa_{hi}) = 0`. Whatever does not add up is listed in ``failures``.
+   A sample whose float sign lies within its rounding bound (kappa = 0 next to a cut-off, the
+   ZGV kappa next to a ZGV frequency) has its sign decided in ball arithmetic.
+4. **Every root certified.** Roots are closed by the Illinois method to ``rtol`` (where
+   :math:`P < 0` makes G cosh-sized, polished on
+   :func:`~dispersion.continuum.deflated_frequency.evanescent_frequency_function`) and each is
+   certified to :data:`ROOT_RTOL` by a sign change of the *exact* frequency function at
+   :math:`\\kappa (1 \\pm \\delta)`, :data:`ROOT_DELTA` (:mod:`dispersion.continuum.root_certificate`):
+   in floats with a proven rounding bound, else in ball arithmetic, else closed again in
+   ball arithmetic from its scan cell (next to a cut-off or a ZGV point the float root is
+   off); what none of these certifies is listed in ``failures``. "Exact" means at the
+   requested float :math:`\\Omega` and the exact Poisson ratio ``nu`` (a float is its binary
+   value; a material passes the rational of its speeds,
+   :attr:`~dispersion.materials.materials.Material.nu_exact`): within a relative distance
+   :math:`\\delta_c` of a cut-off a root moves by :math:`1/(2\\delta_c)` times a relative
+   change of either, so the float nearest to nu would not do.
 
-Roots are closed by the Illinois method to ``rtol`` and, where :math:`P < 0` makes G
-cosh-sized, polished on :func:`~dispersion.waves.deflated_frequency.evanescent_frequency_function`.
-SH modes come in closed form (:mod:`dispersion.waves.sh`).
+SH modes come in closed form (:mod:`dispersion.continuum.sh`).
 
 >>> r = modes_at_frequency(0.3, [1.0])
 >>> [(lab, round(float(k), 10)) for lab, k in zip(r.label, r.kappa)]
@@ -42,16 +55,21 @@ C. Prada, D. Clorennec, D. Royer, J. Acoust. Soc. Am. 124 (2008) 203 (backward S
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass
+from fractions import Fraction
 
 import numpy as np
 
 from dispersion.errors import InputError, check_nu, check_positive
 from dispersion.continuum.deflated_frequency import deflated_with_noise, evanescent_frequency_function
 from dispersion.continuum.illinois import illinois
-from dispersion.continuum.numeric_frequency import frequency_slope
-from dispersion.continuum.rayleigh_lamb import (cutoff_frequencies, mpmath_frequency_function,
-                                            speed_ratio_squared)
+from dispersion.continuum.numeric_frequency import frequency_function_bound, frequency_slope
+from dispersion.continuum.rayleigh_lamb import (arb_frequency_function, cutoff_frequencies,
+                                                mpmath_frequency_function, speed_ratio_squared)
+from dispersion.continuum.root_certificate import (arb_certified, arb_sign, exact_square,
+                                                   extremum_in_squares, float_certified,
+                                                   refine_in_squares)
 from dispersion.continuum.sh import at_cutoff
 
 __all__ = ["FREQUENCY_OMEGA_MAX", "FREQUENCY_OMEGA_MIN", "MAX_SCAN_SAMPLES", "SLOPE_OMEGA",
@@ -71,6 +89,18 @@ FREQUENCY_OMEGA_MAX = 30.0
 #: (about a minute of work at ~3 us per sample).
 MAX_SCAN_SAMPLES = 20_000_000
 _KAPPA_LIMIT = 300.0
+#: A frequency within this relative distance of a ZGV point's (as the float ZGV tracer found
+#: it) has the pair of roots next to it split at the extremum of F located in ball
+#: arithmetic (:func:`_split_zgv_pairs`), not only at the ZGV point's kappa. Rule: the float
+#: ZGV kappa was within 2e-14 relative of the 50-digit one at 20 points of random plates, and
+#: the pair's half-width is about sqrt(d) relative (d: the distance): 1e-12 keeps the pair
+#: found with a ZGV kappa a million times worse.
+ZGV_SPLIT = 1e-12
+#: Most scan samples of one class decided in ball arithmetic, per requested frequency. Rule:
+#: 122 scans (random nu and Omega, next to cut-offs, a 100-frequency sweep) left at most 2
+#: samples within the float bound per class, but 1e-16 from a ZGV frequency the dip
+#: refinement leaves up to 20 (three ZGV points, 1e-16 to 1e-14 from them); three times that.
+MAX_ARB_SAMPLES = 64
 
 
 @dataclass(frozen=True)
@@ -95,14 +125,26 @@ class FrequencyRoots:
     zgv: tuple
     failures: tuple
     #: ``(index into omega, label)`` of every mode whose cut-off *is* the requested
-    #: frequency (:func:`dispersion.waves.sh.at_cutoff`): kappa = 0, infinite phase
+    #: frequency (:func:`dispersion.continuum.sh.at_cutoff`): kappa = 0, infinite phase
     #: velocity, not propagating, so not among the rows.
     at_cutoff: tuple = ()
+    #: The exact Poisson ratio the roots are certified at (``nu`` is the float nearest to it):
+    #: a material's comes from its speeds (:attr:`~dispersion.materials.materials.Material.nu_exact`).
+    nu_exact: Fraction | None = None
 
     @property
     def phase(self) -> np.ndarray:
         """:math:`c_p / c_T = \\Omega / \\kappa` per root."""
         return self.omega[self.index] / self.kappa
+
+
+def _exact(value) -> Fraction:
+    """The exact rational value of a real number (a float's binary value, a Fraction as is)."""
+    if isinstance(value, numbers.Rational):
+        return Fraction(int(value.numerator), int(value.denominator))
+    if getattr(value, "is_Rational", False):    # sympy
+        return Fraction(int(value.p), int(value.q))
+    return Fraction(float(value))
 
 
 def _check_omegas(omega) -> np.ndarray:
@@ -165,6 +207,18 @@ class _Scan:
     def certain(self):
         return np.flatnonzero(np.abs(self.g) > self.e)
 
+    def decide_in_arb(self, ratio: Fraction):
+        """Samples whose float sign is within the rounding bound decided in ball arithmetic
+        at the exact ``ratio`` (:func:`~dispersion.continuum.root_certificate.arb_sign`): next to
+        a cut-off at kappa = 0, next to a ZGV point at its kappa. A decided sample keeps its
+        sign with a magnitude just above its bound, so it counts as certain."""
+        for i in np.flatnonzero(~(np.abs(self.g) > self.e))[:MAX_ARB_SAMPLES * self.omega.size]:
+            k = float(self.k[i])
+            sign = arb_sign(_arb_function(self.kind, float(self.omega[self.fi[i]]), ratio),
+                            exact_square(k), _arb_prec(k))
+            if sign:
+                self.g[i] = sign * max(2 * self.e[i], 1e-300)
+
 
 def _refine_dips(scan: _Scan, max_depth: int):
     """Refine cells around three same-signed samples whose parabola dips to zero (as the
@@ -221,21 +275,28 @@ def _polish(kind, kappa, omega, nu, width: float = 1e-9):
     return out
 
 
-#: Below this Omega the float slope :func:`~dispersion.waves.numeric_frequency.frequency_slope`
+#: Below this Omega the float slope :func:`~dispersion.continuum.numeric_frequency.frequency_slope`
 #: loses about eps / Omega^2 to the trivial root of F at Omega = 0 (measured against mpmath:
 #: 2e-11 at Omega = 2e-3, 3e-12 at 1e-2, 4e-14 at 0.1); rule: where eps / Omega^2 > 1e-13
 #: the slope is taken in 30-digit arithmetic instead.
 SLOPE_OMEGA = 0.05
 
 
-def _slope_mp(kind, kappa, omega, nu) -> np.ndarray:
-    """:math:`d\\Omega/d\\kappa = -F_\\kappa / F_\\Omega` of the frequency function in mpmath."""
+def _mp_nu(nu_q: Fraction):
+    import mpmath
+
+    return mpmath.mpf(nu_q.numerator) / nu_q.denominator
+
+
+def _slope_mp(kind, kappa, omega, nu_q: Fraction) -> np.ndarray:
+    """:math:`d\\Omega/d\\kappa = -F_\\kappa / F_\\Omega` of the frequency function in mpmath,
+    at the exact Poisson ratio ``nu_q``."""
     import mpmath
 
     out = np.empty(kappa.size)
     for i, (k, W) in enumerate(zip(kappa, omega)):
         with mpmath.workdps(_mp_digits(float(k))):
-            m_nu = mpmath.mpf(nu)
+            m_nu = _mp_nu(nu_q)
 
             def F(k, W):
                 return mpmath_frequency_function(kind, k, W, m_nu)
@@ -247,6 +308,9 @@ def _slope_mp(kind, kappa, omega, nu) -> np.ndarray:
 
 #: Relative accuracy every root in kappa is certified to (or listed in ``failures``).
 ROOT_RTOL = 1e-12
+#: Half-width of the certificate's bracket: a root certified at kappa lies in
+#: :math:`\\kappa (1 \\pm \\delta)` (:mod:`dispersion.continuum.root_certificate`).
+ROOT_DELTA = ROOT_RTOL / 4
 
 
 def _mp_digits(kappa: float) -> int:
@@ -255,50 +319,57 @@ def _mp_digits(kappa: float) -> int:
     return 40 + int(abs(kappa) / 2.3)
 
 
-def _certify(kind, roots, omega, nu):
-    """Each root certified to :data:`ROOT_RTOL` relative by a sign change of the frequency
-    function at :math:`\\kappa (1 \\pm \\delta)`, :math:`\\delta` = ROOT_RTOL / 4.
+def _arb_prec(kappa: float) -> int:
+    """Starting precision (bits) of the frequency function in ball arithmetic at kappa: S and
+    A roots at large kappa differ by about :math:`e^{-2\\kappa}` relative (3 bits per unit),
+    and next to a cut-off F is flat in :math:`x = \\kappa^2`, resolved to delta only with
+    :math:`\\log_2(1/x)` more bits; :func:`~dispersion.continuum.root_certificate.arb_sign` raises
+    it where a ball still holds 0."""
+    tiny = min(-2 * math.log2(kappa), 128.0) if 0 < kappa < 1 else 0.0
+    return 96 + int(3 * min(kappa, _KAPPA_LIMIT)) + int(tiny)
 
-    First in floats (the deflated function and its rounding bound: both signs certain);
-    where that cannot decide (round-off near a cut-off, where the root in kappa is
-    ill-conditioned; cosh-sized terms at large kappa), the root is redone by the secant
-    method in mpmath (:func:`_mp_digits`) and the sign change checked there. Returns the
-    roots, a mask of those redone in mpmath, and the indices that could not be certified.
+
+def _arb_function(kind, omega: float, ratio: Fraction):
+    def value(x, prec):
+        return arb_frequency_function(kind, x, omega, ratio, prec)
+    return value
+
+
+def _float_bound(kind, omega, ratio: Fraction):
+    s = float(ratio)
+    half_ulp = 0.5 * float(np.spacing(s))   # the float nearest to the rational s
+
+    def bound(k):
+        return frequency_function_bound(kind, k, omega, s, half_ulp)
+    return bound
+
+
+def _certify(kind, roots, omega, ratio: Fraction, cells):
+    """Each root certified to :data:`ROOT_RTOL` relative by a sign change of the exact
+    frequency function at the floats :math:`\\kappa (1 \\pm \\delta)`, :data:`ROOT_DELTA`
+    (:mod:`dispersion.continuum.root_certificate`), at the exact :math:`s = (c_T/c_L)^2` ``ratio``.
+
+    First in floats with a proven rounding bound; where floats cannot decide, in ball
+    arithmetic at the same float kappa; where that fails too (the float root is off: next to a
+    cut-off the root in kappa is ill-conditioned in floats, next to a ZGV point two roots merge),
+    the root is closed again in ball arithmetic from its scan cell ``cells`` (its ends' signs
+    decided there) and certified. Returns the roots, a mask of those certified in ball
+    arithmetic, and the indices that could not be certified.
     """
-    delta = ROOT_RTOL / 4
-    lo, hi = roots * (1 - delta), roots * (1 + delta)
-    with np.errstate(all="ignore"):
-        g_lo, n_lo = deflated_with_noise(kind, lo, omega, nu)
-        g_hi, n_hi = deflated_with_noise(kind, hi, omega, nu)
-        sure = (np.abs(g_lo) > n_lo) & (np.abs(g_hi) > n_hi) & (np.sign(g_lo) != np.sign(g_hi))
+    ok = float_certified(_float_bound(kind, omega, ratio), roots, ROOT_DELTA)
     out, redone, bad = roots.copy(), np.zeros(roots.size, dtype=bool), []
-    for i in np.flatnonzero(~sure):
-        k0, W = float(roots[i]), float(omega[i])
-        if not (math.isfinite(k0) and k0 > 0):
-            bad.append(i)
+    for i in np.flatnonzero(~ok):
+        F = _arb_function(kind, float(omega[i]), ratio)
+        k0 = float(roots[i])
+        if math.isfinite(k0) and k0 > 0 and arb_certified(F, k0, ROOT_DELTA, _arb_prec(k0)):
+            redone[i] = True
             continue
-        import mpmath   # only where floats cannot decide (the calculator's start-up stays lean)
-
-        with mpmath.workdps(_mp_digits(k0)):
-            m_nu, m_w = mpmath.mpf(nu), mpmath.mpf(W)
-
-            def F(k):
-                return mpmath_frequency_function(kind, k, m_w, m_nu)
-
-            try:
-                k = mpmath.findroot(F, (mpmath.mpf(k0) * (1 - mpmath.mpf(10) ** -8),
-                                        mpmath.mpf(k0) * (1 + mpmath.mpf(10) ** -8)),
-                                    solver="secant", tol=mpmath.mpf(10) ** (-2 * 16 - 4),
-                                    maxsteps=60)
-            except (ValueError, ZeroDivisionError):
-                bad.append(i)
-                continue
-            kf = float(k)
-            a, b = F(mpmath.mpf(kf) * (1 - delta)), F(mpmath.mpf(kf) * (1 + delta))
-            if mpmath.sign(a) * mpmath.sign(b) < 0 and abs(kf / k0 - 1) < 1e-4:
-                out[i], redone[i] = kf, True
-            else:
-                bad.append(i)
+        a, b = (float(c) for c in cells[i])
+        k = refine_in_squares(F, a, b, _arb_prec(max(min(abs(k0), b), 1e-300)))
+        if k is not None and k > 0 and arb_certified(F, k, ROOT_DELTA, _arb_prec(k)):
+            out[i], redone[i] = k, True
+        else:
+            bad.append(i)
     return out, redone, bad
 
 
@@ -315,8 +386,36 @@ def _walk(n0: int, signs) -> list[int] | None:
     return out if n == 0 else None
 
 
-def _class_roots(kind, nu, omega, step, rtol, max_depth, zgv_kappa):
-    """Roots of one class (``"S"`` or ``"A"``) at every Omega, labelled by the count."""
+def _split_zgv_pairs(scan: _Scan, ratio: Fraction, points) -> None:
+    """Next to a ZGV point (frequency within :data:`ZGV_SPLIT`), a ZGV sample whose sign is
+    that of both neighbours may still hide a pair of roots if the ZGV kappa lies outside it:
+    the extremum of F between them is located in ball arithmetic
+    (:func:`~dispersion.continuum.root_certificate.extremum_in_squares`) and, where its sign
+    is the other one, its kappa joins the samples (decided in ball arithmetic)."""
+    new_f, new_k = [], []
+    for kz, wz in points:
+        for i in np.flatnonzero(np.abs(scan.omega / wz - 1) <= ZGV_SPLIT):
+            j = np.flatnonzero((scan.fi == i) & (scan.k == kz))
+            if j.size == 0 or j[0] == 0 or j[0] + 1 >= scan.k.size:
+                continue
+            j = int(j[0])
+            if not (np.sign(scan.g[j - 1]) == np.sign(scan.g[j]) == np.sign(scan.g[j + 1])):
+                continue
+            F = _arb_function(scan.kind, float(scan.omega[i]), ratio)
+            prec = _arb_prec(kz) + 64
+            x = extremum_in_squares(F, kz, prec)
+            if arb_sign(F, x, prec) == -np.sign(scan.g[j]):
+                new_f.append(i)
+                new_k.append(float(x.sqrt().mid()) if x > 0 else kz)
+    if new_f:
+        scan.add(np.array(new_f), np.array(new_k))
+        scan.decide_in_arb(ratio)
+
+
+def _class_roots(kind, nu, omega, step, rtol, max_depth, zgv_points, nu_q: Fraction):
+    """Roots of one class (``"S"`` or ``"A"``) at every Omega, labelled by the count; ``nu``
+    is the float nearest to the exact ``nu_q`` the roots are certified at."""
+    ratio = speed_ratio_squared(nu_q)
     failures = []
     k_hi, fails = _kappa_hi(kind, nu, omega, _kappa_start(nu, omega))
     failures += fails
@@ -327,7 +426,7 @@ def _class_roots(kind, nu, omega, step, rtol, max_depth, zgv_kappa):
     k = (np.arange(fi.size) - start[fi]) * step
     k = np.minimum(k, k_hi[fi])
     extra_f, extra_k = [], []
-    for kz in zgv_kappa:
+    for kz, _ in zgv_points:
         sel = np.flatnonzero(kz < k_hi)
         extra_f.append(sel)
         extra_k.append(np.full(sel.size, kz))
@@ -335,6 +434,8 @@ def _class_roots(kind, nu, omega, step, rtol, max_depth, zgv_kappa):
         fi, k = np.concatenate([fi, *extra_f]), np.concatenate([k, *extra_k])
     scan.add(fi, k)
     _refine_dips(scan, max_depth)
+    scan.decide_in_arb(ratio)
+    _split_zgv_pairs(scan, ratio, zgv_points)
     c = scan.certain()
     sfi, sk, sg = scan.fi[c], scan.k[c], scan.g[c]
     same = sfi[1:] == sfi[:-1]
@@ -354,16 +455,17 @@ def _class_roots(kind, nu, omega, step, rtol, max_depth, zgv_kappa):
     for i in np.flatnonzero(unconverged):
         failures.append((float(omega[rf[i]]), kind, "root refinement did not converge"))
     roots = _polish(kind, roots, omega[rf], nu)
-    roots, redone, uncertain = _certify(kind, roots, omega[rf], nu)
+    cells = np.stack([sk[j], sk[j + 1]], axis=1)
+    roots, redone, uncertain = _certify(kind, roots, omega[rf], ratio, cells)
     for i in uncertain:
         failures.append((float(omega[rf[i]]), kind, f"root near kappa={roots[i]:.6g} not "
                          f"certified to {ROOT_RTOL:.0e} relative"))
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         group = np.asarray(frequency_slope(kind, roots, omega[rf], nu), dtype=float)
-    # where the root needed mpmath the float slope loses as much: it is redone there too
+    # where the root needed ball arithmetic the float slope loses as much: redone in mpmath
     low = np.flatnonzero((omega[rf] < SLOPE_OMEGA) | redone)
     if low.size:
-        group[low] = _slope_mp(kind, roots[low], omega[rf][low], nu)
+        group[low] = _slope_mp(kind, roots[low], omega[rf][low], nu_q)
     labels = [""] * roots.size
     # to just above the top frequency: a cut-off that *is* it to rounding counts (at_cutoff)
     cut = np.array([w for w, _ in cutoff_frequencies(kind, nu, float(omega.max()) * (1 + 1e-14))])
@@ -414,7 +516,7 @@ def _class_roots(kind, nu, omega, step, rtol, max_depth, zgv_kappa):
 def zgv_points_below(nu: float, omega_top: float, per_unit: float = 40.0):
     """Zero-group-velocity points of the exact branches with :math:`\\Omega \\le` omega_top.
 
-    :func:`dispersion.waves.velocities.zgv_points` on ``per_unit`` kappa samples per unit of
+    :func:`dispersion.continuum.velocities.zgv_points` on ``per_unit`` kappa samples per unit of
     kappa up to omega_top (120 to 4000 samples): a ZGV point has :math:`c_p > c_T`, so
     :math:`\\kappa < \\Omega`.
 
@@ -434,8 +536,9 @@ def modes_at_frequency(nu: float, omega, *, kinds=("S", "A", "SH"), step: float 
 
     Parameters
     ----------
-    nu : float
-        Poisson's ratio in (-1, 0.5).
+    nu : float or fractions.Fraction
+        Poisson's ratio in (-1, 0.5), exact: the roots are certified at its exact value (a
+        float's binary value; a material's :attr:`~dispersion.materials.materials.Material.nu_exact`).
     omega : array_like
         Dimensionless frequencies :math:`\\Omega = \\omega h / c_T` in
         [:data:`FREQUENCY_OMEGA_MIN`, :data:`FREQUENCY_OMEGA_MAX`].
@@ -452,7 +555,8 @@ def modes_at_frequency(nu: float, omega, *, kinds=("S", "A", "SH"), step: float 
     """
     from dispersion.continuum.sh import sh_cutoffs, sh_roots
 
-    nu = float(check_nu(nu))
+    nu_q = _exact(check_nu(nu))
+    nu = float(nu_q)
     omega = _check_omegas(omega)
     check_positive("step", step)
     check_positive("rtol", rtol)
@@ -477,9 +581,9 @@ def modes_at_frequency(nu: float, omega, *, kinds=("S", "A", "SH"), step: float 
                 at_cut += [(i, lab) for lab, wc in sh_cutoffs(float(w) * (1 + 1e-15))
                            if wc > 0 and at_cutoff(float(w), wc)]
             continue
-        zk = [p.kappa for p in points if p.label[0] == kind]
+        zk = [(p.kappa, p.omega) for p in points if p.label[0] == kind]
         rf, labels, roots, group, fails, at = _class_roots(kind, nu, omega, step, rtol,
-                                                           max_depth, zk)
+                                                           max_depth, zk, nu_q)
         failures += fails
         at_cut += at
         rows += list(zip(rf.tolist(), labels, roots.tolist(), group.tolist()))
@@ -504,4 +608,4 @@ def modes_at_frequency(nu: float, omega, *, kinds=("S", "A", "SH"), step: float 
         kappa=np.array([r[2] for r in rows], dtype=float),
         group=np.array([r[3] for r in rows], dtype=float),
         cutoffs=cutoffs, zgv=points, failures=tuple(dict.fromkeys(failures)),
-        at_cutoff=tuple(sorted(set(at_cut))))
+        at_cutoff=tuple(sorted(set(at_cut))), nu_exact=nu_q)

@@ -17,17 +17,17 @@ The paper's eq (13) prints :math:`(p^2 - q^2)^2` in place of :math:`(q^2 - k^2)^
 ``form="printed"`` gives that equation, for the errata.
 
 :func:`frequency_function` takes the two entire functions as arguments, so the same formula
-serves truncated power series (:mod:`dispersion.waves.exact_series`) and floating point. This
+serves truncated power series (:mod:`dispersion.continuum.exact_series`) and floating point. This
 module holds the equation and its closed-form roots at :math:`\\kappa = 0`; the forms that
 evaluate it in floating point live beside it, each named for what it holds:
 
-- :mod:`dispersion.waves.numeric_frequency`: C, S and F in floating point, and the slope
+- :mod:`dispersion.continuum.numeric_frequency`: C, S and F in floating point, and the slope
   :math:`d\\Omega/d\\kappa` of a root of F;
-- :mod:`dispersion.waves.deflated_frequency`: :math:`G = F/\\Omega^2` with its rounding bound
-  and the evanescent scaling (the kappa scan of :mod:`dispersion.waves.frequency`);
-- :mod:`dispersion.waves.scaled_frequency`: F scaled by its Mindlin bounds, with an exact root
-  count (the tracer :mod:`dispersion.waves.exact_branches`, the group velocities of
-  :mod:`dispersion.waves.velocities`).
+- :mod:`dispersion.continuum.deflated_frequency`: :math:`G = F/\\Omega^2` with its rounding bound
+  and the evanescent scaling (the kappa scan of :mod:`dispersion.continuum.frequency`);
+- :mod:`dispersion.continuum.scaled_frequency`: F scaled by its Mindlin bounds, with an exact root
+  count (the tracer :mod:`dispersion.continuum.exact_branches`, the group velocities of
+  :mod:`dispersion.continuum.velocities`).
 
 >>> import mpmath
 >>> C = lambda z: mpmath.cos(mpmath.sqrt(z))
@@ -45,8 +45,8 @@ import math
 
 from dispersion.errors import InputError, check_nu, check_real_in_range
 
-__all__ = ["OMEGA_MAX", "cutoff_frequencies", "frequency_function", "mpmath_frequency_function",
-           "speed_ratio_squared"]
+__all__ = ["OMEGA_MAX", "arb_frequency_function", "cutoff_frequencies", "frequency_function",
+           "mpmath_frequency_function", "speed_ratio_squared"]
 
 
 #: Largest Omega of :func:`cutoff_frequencies` (and so of the tracer). Rule: the cut-off list
@@ -110,6 +110,56 @@ def mpmath_frequency_function(kind: str, kappa, Omega, nu):
                            lambda z: mpmath.cos(mpmath.sqrt(z)),
                            lambda z: mpmath.sinc(mpmath.sqrt(z)))
     return mpmath.re(F)
+
+
+def _arb_C(z):
+    """:math:`C(z) = \\cos\\sqrt z` of a real ball z (``cosh`` of :math:`\\sqrt{-z}` for z < 0);
+    a ball holding 0, where the square root has no useful enclosure, by :math:`{}_0F_1`."""
+    import flint
+
+    if z.contains(0):
+        return (-z / 4).hypgeom_0f1(flint.arb(1) / 2)
+    return flint.acb(z).sqrt().cos().real
+
+
+def _arb_S(z):
+    """:math:`S(z) = \\sin\\sqrt z / \\sqrt z` of a real ball z (see :func:`_arb_C`)."""
+    import flint
+
+    if z.contains(0):
+        return (-z / 4).hypgeom_0f1(flint.arb(3) / 2)
+    return flint.acb(z).sqrt().sinc().real
+
+
+def arb_frequency_function(kind: str, kappa2, Omega, ratio, prec: int):
+    """:func:`frequency_function` as a python-flint ``arb`` ball at ``prec`` bits: an enclosure
+    of the exact F, so a ball that excludes 0 decides the sign of F.
+
+    ``kappa2`` is :math:`\\kappa^2` (an ``arb``, or a float taken as exact), ``Omega`` a float
+    (exact) and ``ratio`` :math:`s = (c_T/c_L)^2` a rational (``fractions.Fraction``, exact;
+    a float is its exact binary value). C and S are arb's cos, sinc of the complex square root
+    (``cosh``, ``sinh`` on the negative axis), and :math:`{}_0F_1` where the argument's ball
+    holds 0: every operation encloses its exact result (Johansson 2017), whatever ``prec``.
+
+    >>> from fractions import Fraction
+    >>> F = arb_frequency_function("A", 0.0, 3.141592653589793 / 2, Fraction(1, 3), 128)
+    >>> bool(abs(F) < 1e-15) and not F.contains(0)   # A1's cut-off pi/2, less a float's rounding
+    True
+
+    References
+    ----------
+    F. Johansson, Arb: efficient arbitrary-precision midpoint-radius interval arithmetic,
+    IEEE Trans. Computers 66 (2017) 1281-1292.
+    """
+    import flint
+    from fractions import Fraction
+
+    q = Fraction(ratio)
+    with flint.ctx.workprec(prec):
+        x = kappa2 if isinstance(kappa2, flint.arb) else flint.arb(float(kappa2))
+        W = flint.arb(float(Omega))
+        s = flint.arb(flint.fmpq(q.numerator, q.denominator))
+        return frequency_function(kind, x, W * W, None, _arb_C, _arb_S, ratio=s)
 
 
 def cutoff_frequencies(kind: str, nu: float, omega_max: float) -> list[tuple[float, str]]:

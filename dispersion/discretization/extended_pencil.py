@@ -23,6 +23,7 @@ import sympy
 
 from dispersion.errors import InputError
 from dispersion.discretization.pencil_frequencies import eigenvalue_error
+from dispersion.reader import as_sympy
 from dispersion.symbolic.plate import (
     PlatePatch,
     mass_block,
@@ -92,8 +93,8 @@ def _exact_terms(key: _Key):
     patch = key.patch
     k = sympy.Symbol("kappa")
     mat, xf = patch.law.rational_moduli(), x_functions(patch, k)
-    K = [(sympy.sympify(mat[m] * xf[f]), B) for m, f, B in stiffness_terms(patch)]
-    M = [(sympy.sympify(xf["mx"]), mass_block(patch))]
+    K = [(as_sympy("modulus", mat[m] * xf[f]), B) for m, f, B in stiffness_terms(patch)]
+    M = [(as_sympy("mass", xf["mx"]), mass_block(patch))]
     return {"K": K, "dK": [(c.diff(k), B) for c, B in K], "M": M,
             "dM": [(c.diff(k), B) for c, B in M]}
 

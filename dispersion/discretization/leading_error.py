@@ -27,9 +27,9 @@ def _cos_series(coeffs, K: int) -> list[Fraction]:
 
 
 def _rational(v):
-    import sympy
+    from dispersion.reader import rational
 
-    return sympy.Rational(v)
+    return rational("mass coefficient", v)
 
 
 def bar_leading_term(rule, p: int, order: int) -> tuple[int | None, str]:
@@ -67,6 +67,7 @@ def bar_leading_term(rule, p: int, order: int) -> tuple[int | None, str]:
 def plate_leading_terms(rule, p: int, order: int) -> dict[str, tuple[int | None, str]]:
     import sympy
 
+    from dispersion.reader import as_sympy
     from dispersion.symbolic.power_balance import discrete_series
     from dispersion.continuum.exact_series import exact_series
 
@@ -75,8 +76,8 @@ def plate_leading_terms(rule, p: int, order: int) -> dict[str, tuple[int | None,
         disc = discrete_series(branch, order, square_patch(rule, p))
         ex = exact_series(branch, order)
         for k in sorted(set(disc) | set(ex)):
-            diff = sympy.factor(sympy.cancel(sympy.sympify(disc.get(k, 0))
-                                             - sympy.sympify(ex.get(k, 0))))
+            diff = sympy.factor(sympy.cancel(as_sympy("coefficient", disc.get(k, 0))
+                                             - as_sympy("coefficient", ex.get(k, 0))))
             if diff != 0:
                 out[f"plate {branch}"] = (k, str(diff))
                 break

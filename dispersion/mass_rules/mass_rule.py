@@ -430,7 +430,10 @@ def x_stiffness_factor(rule, p: int) -> tuple[tuple[int, sympy.Rational], ...]:
     p = check_positive_int("degree p", p)
     if rule.x_stiffness is None:
         return ((0, sympy.Integer(1)),)
-    return tuple((L, sympy.Rational(v)) for L, v in sorted(rule.x_stiffness(p).items()) if v != 0)
+    from dispersion.reader import rational
+
+    return tuple((L, rational(f"x_stiffness of rule {rule.name!r}", v))
+                 for L, v in sorted(rule.x_stiffness(p).items()) if v != 0)
 
 
 def mass_variant(M, variant, R=None, *, kv=None, elements=None, check: bool = True):

@@ -12,8 +12,9 @@ A rule file (``dispersion timestep --mass-rule FILE.toml``, ``dispersion branche
 It may come from anyone, so it is read as the claims files are
 (:mod:`dispersion.untrusted`): a regular file only (no ``/dev/zero``, no pipe), of at most
 :data:`MAX_FILE_BYTES` bytes (checked before reading), UTF-8, a name ending in ``.toml``
-(a path is never parsed as TOML text), tables nested at most :data:`MAX_NESTING` deep,
-and then by a whitelist:
+(a path is never parsed as TOML text), tables nested at most :data:`MAX_NESTING` deep and
+at most :data:`MAX_KEYS` keys, both counted on the raw text before it is parsed
+(:func:`dispersion.untrusted.check_toml`), and then by a whitelist:
 
 - keys ``name``, ``lumped``, ``description``, ``weights`` only;
 - ``name``: 1 to 48 characters among letters, digits, space and ``. _ + - ( )``, not the
@@ -51,7 +52,8 @@ from dispersion.mass_rules.mass_check import MassProperties
 from dispersion.mass_rules.mass_rule import RULES, MassRule, MassSpace, _build_singular
 from dispersion.untrusted import load_toml, printable, read_text
 
-__all__ = ["MAX_FILE_BYTES", "MAX_NESTING", "MAX_ENTRIES", "rule_from_toml", "read_rule_file"]
+__all__ = ["MAX_FILE_BYTES", "MAX_NESTING", "MAX_ENTRIES", "MAX_KEYS", "rule_from_toml",
+           "read_rule_file"]
 
 #: Largest rule file read: a rule of 64 contact indices with 64 targets each is under 40 KiB.
 MAX_FILE_BYTES = 64 * 1024
@@ -59,6 +61,9 @@ MAX_FILE_BYTES = 64 * 1024
 MAX_NESTING = 2
 #: Most contact indices, and most targets of one index.
 MAX_ENTRIES = 64
+#: Most keys and table headers of a rule file, counted on the raw text before it is parsed:
+#: the four top keys, ``[weights]`` and its indices with their targets.
+MAX_KEYS = 8 + MAX_ENTRIES * (MAX_ENTRIES + 1)
 _KEYS = ("name", "lumped", "description", "weights")
 _NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9 ._+()-]{0,47}")
 _INDEX = re.compile(r"\s*([+-]?)([0-9]{1,4})\s*")
@@ -174,7 +179,8 @@ def read_rule_file(path) -> MassRule:
     """
     text = read_text(path, _WHAT, MAX_FILE_BYTES, suffix=".toml")
     shown = printable(os.fspath(path))
-    return _rule(load_toml(text, os.fspath(path), _WHAT, MAX_NESTING), f"file {shown}")
+    return _rule(load_toml(text, os.fspath(path), _WHAT, MAX_NESTING, MAX_FILE_BYTES,
+                           max_keys=MAX_KEYS), f"file {shown}")
 
 
 def rule_from_toml(source) -> MassRule:
@@ -190,4 +196,5 @@ def rule_from_toml(source) -> MassRule:
     if len(source) > MAX_FILE_BYTES:
         raise InputError(f"mass rule <string>: {len(source)} characters, more than the limit "
                          f"of {MAX_FILE_BYTES}")
-    return _rule(load_toml(source, "<string>", "mass rule", MAX_NESTING), "<string>")
+    return _rule(load_toml(source, "<string>", "mass rule", MAX_NESTING, MAX_FILE_BYTES,
+                           max_keys=MAX_KEYS), "<string>")

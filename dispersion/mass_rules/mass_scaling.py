@@ -57,10 +57,14 @@ SMS_BETA = Fraction(1, 2)
 def check_beta(beta) -> Fraction:
     """``beta`` as an exact rational in [0, 100] (a number or a "p/q" string), else
     :class:`InputError`."""
+    from dispersion.reader import read_number
+
     try:
         if isinstance(beta, bool):
             raise TypeError
-        b = Fraction(repr(beta) if isinstance(beta, float) else str(beta))
+        # text by the whitelist (bounded digits and exponents), never Fraction("1e999999999")
+        b = read_number(beta) if isinstance(beta, str) else \
+            Fraction(repr(beta) if isinstance(beta, float) else str(beta))
     except (TypeError, ValueError, ZeroDivisionError):
         raise InputError(f"scaling parameter beta must be a rational number, got {beta!r}") \
             from None

@@ -194,16 +194,16 @@ class ElasticLaw:
 
 
 def _exact(name: str, value):
-    from dispersion.errors import rational
+    from dispersion.reader import rational
 
     return rational(name, value)
 
 
 def _decimal(value):
     """The shortest decimal of ``float(value)`` as a sympy Rational: what a float route saw."""
-    import sympy
+    from dispersion.reader import rational
 
-    return sympy.Rational(repr(float(value)))
+    return rational("value", float(value))
 
 
 @dataclass(frozen=True)

@@ -8,7 +8,7 @@ density :math:`\\rho` (kg/m^3); Poisson's ratio follows from the speeds,
     \\nu = \\frac{c_L^2 - 2 c_T^2}{2 (c_L^2 - c_T^2)}, \\qquad
     c_T^2 = \\frac{E}{2\\rho(1+\\nu)}, \\quad c_L^2 = \\frac{E(1-\\nu)}{\\rho(1+\\nu)(1-2\\nu)},
 
-so a material fixes :math:`\\nu` for a whole computation (:mod:`dispersion.waves.units` refuses
+so a material fixes :math:`\\nu` for a whole computation (:mod:`dispersion.answers.units` refuses
 branches computed at another :math:`\\nu`). :func:`user_material` takes (E, nu, rho),
 (c_L, c_T) or (c_L, c_T, rho) and refuses every other combination.
 
@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from fractions import Fraction
 
 from dispersion.errors import InputError, as_real, check_positive
 
@@ -70,6 +71,19 @@ class Material:
     def nu(self) -> float:
         """Poisson's ratio :math:`(c_L^2 - 2 c_T^2) / (2 (c_L^2 - c_T^2))`."""
         L2, T2 = self.c_L**2, self.c_T**2
+        return (L2 - 2 * T2) / (2 * (L2 - T2))
+
+    @property
+    def nu_exact(self) -> Fraction:
+        """:attr:`nu` in exact rational arithmetic from the speeds as stored (binary floats):
+        the Poisson ratio the frequency calculator certifies its roots at. The float ``nu``
+        is within an ulp or two of it, but next to a cut-off a root in kappa moves by
+        :math:`1/(2\\delta)` times such a change (delta: the relative distance to the cut-off).
+
+        >>> MATERIALS["steel"].nu_exact
+        Fraction(291823, 1002255)
+        """
+        L2, T2 = Fraction(self.c_L) ** 2, Fraction(self.c_T) ** 2
         return (L2 - 2 * T2) / (2 * (L2 - T2))
 
     @property

@@ -39,7 +39,7 @@ from dispersion.report.index import SectionResult, render_index
 from dispersion.sweep import MAX_JOBS_PER_CPU, default_jobs, process_pool, progress_bars
 
 __all__ = ["DEFAULT_OUT", "DEFAULT_REFERENCE", "MAX_JOBS_PER_CPU", "ReproduceRun",
-           "reproduce", "measure_sections", "render_folder", "check_sections"]
+           "reproduce", "measure_sections", "render_folder", "check_sections", "check_stored"]
 
 #: Where a user's run goes, and the committed reference it is compared with (stated in
 #: :mod:`dispersion.defaults`, which the command line reads without this module).
@@ -92,6 +92,40 @@ def check_sections(names: Sequence[str]) -> list[str]:
     return names
 
 
+def _stored_patches(data):
+    """Every mapping stored under a ``"patch"`` key of a section result (iteratively)."""
+    stack = [data]
+    while stack:
+        node = stack.pop()
+        if isinstance(node, dict):
+            for key, value in node.items():
+                if key == "patch" and value is not None:
+                    yield value
+                else:
+                    stack.append(value)
+        elif isinstance(node, list):
+            stack.extend(node)
+
+
+def check_stored(folder: Path, names: Sequence[str]) -> None:
+    """Refuse, before any work, a section result in ``folder`` that is not one or whose stored
+    patches are not valid values (a report folder may come from anyone: a fork's
+    ``reports/``). Each patch is read by :meth:`~dispersion.symbolic.patch.Patch.from_dict`,
+    its numbers by the whitelist, never evaluated; the message names the file."""
+    from dispersion.symbolic.patch import Patch
+
+    for name in names:
+        path = Path(folder) / f"{name}.json"
+        if not path.is_file():
+            continue
+        env = results.load(path)
+        try:
+            for stored in _stored_patches(env["result"]):
+                Patch.from_dict(stored)
+        except InputError as exc:
+            raise InputError(f"{path}: {exc}") from None
+
+
 def measure_sections(
     folder: Path,
     names: Sequence[str],
@@ -135,7 +169,10 @@ def render_folder(folder: Path, shown: Path | None = None) -> list[SectionResult
             continue
         env = results.load(path)
         module = section_module(name)
-        markdown = module.render(env["result"], folder)
+        try:
+            markdown = module.render(env["result"], folder)
+        except InputError as exc:  # stored data refused (read by the whitelist, never run)
+            raise InputError(f"{shown or folder}/{name}.json: {exc}") from None
         headline = getattr(module, "headline", None)
         parts.append(SectionResult(name, markdown, env.get("seconds") or 0.0,
                                    headline(env["result"]) if callable(headline) else ""))
@@ -162,7 +199,11 @@ def _load_reference(reference: Path) -> dict[str, dict]:
 
 
 def _same(a: Path, b: Path) -> bool:
-    return Path(a).absolute().resolve() == Path(b).absolute().resolve()
+    """The same folder: by (st_dev, st_ino) where it exists, through ./, .., a link or a bind
+    mount (:func:`dispersion.ownership.same_file`)."""
+    from dispersion.ownership import same_file
+
+    return same_file(a, b)
 
 
 def reproduce(
@@ -249,6 +290,8 @@ def reproduce(
         from dispersion.plotting import require_matplotlib
 
         require_matplotlib("dispersion reproduce (its figures)")
+    # what will be rendered without being measured again: refused now, before any work
+    check_stored(target, [n for n in SECTIONS if render or n not in names])
     ref_envs = _load_reference(reference) if reference.is_dir() else {}
     show = sys.stderr.isatty() if progress is None else bool(progress)
     with progress_bars(show), open_report(target, notice=notice) as staged:

@@ -67,10 +67,10 @@ class KnotVector:
     p: int
 
     def __post_init__(self):
-        import sympy
+        from dispersion.reader import rational
 
         check_positive_int("degree p", self.p)
-        ks = tuple(sympy.Rational(k) for k in self.knots)
+        ks = tuple(rational("knots", k) for k in self.knots)
         if any(b < a for a, b in zip(ks, ks[1:])):
             raise InputError("knots must be non-decreasing")
         if len(ks) < 2 * self.p + 2:
@@ -116,7 +116,9 @@ def open_knot_vector(p: int, n_elements: int, a=0, b=1) -> KnotVector:
 
     p = check_positive_int("degree p", p)
     n_elements = check_positive_int("number of elements", n_elements, maximum=MAX_ELEMENTS)
-    a, b = sympy.Rational(a), sympy.Rational(b)
+    from dispersion.reader import rational
+
+    a, b = rational("interval end a", a), rational("interval end b", b)
     if not b > a:
         raise InputError(f"interval must have b > a, got [{a}, {b}]")
     inner = [a + (b - a) * sympy.Rational(i, n_elements) for i in range(1, n_elements)]
@@ -141,7 +143,9 @@ def insert_knot(kv: KnotVector, x) -> tuple[KnotVector, sympy.Matrix]:
     """
     import sympy
 
-    x = sympy.Rational(x)
+    from dispersion.reader import rational
+
+    x = rational("knot x", x)
     t, p = kv.knots, kv.p
     if not t[p] <= x <= t[kv.n]:
         raise InputError(f"knot {x} lies outside the parameter range [{t[p]}, {t[kv.n]}]")

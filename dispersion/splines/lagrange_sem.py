@@ -61,7 +61,9 @@ def c0_knot_vector(p: int, n_elements: int, a=0, b=1):
 
     p = check_positive_int("degree p", p)
     ne = check_positive_int("elements", n_elements)
-    a, b = sympy.Rational(a), sympy.Rational(b)
+    from dispersion.reader import rational
+
+    a, b = rational("interval end a", a), rational("interval end b", b)
     inner = [a + (b - a) * sympy.Rational(e, ne) for e in range(1, ne)]
     return KnotVector(tuple([a] * (p + 1) + [k for k in inner for _ in range(p)]
                             + [b] * (p + 1)), p)

@@ -52,9 +52,9 @@ SERIES_ORDER = 12
 
 
 def _fraction(x) -> Fraction:
-    import sympy
+    from dispersion.reader import rational
 
-    q = sympy.Rational(x)
+    q = rational("series coefficient", x)
     return Fraction(int(q.p), int(q.q))
 
 
@@ -78,7 +78,10 @@ def relative_error_series(branch: str, nu, patch=None, order: int = SERIES_ORDER
     from dispersion.symbolic.power_balance import discrete_series
     from dispersion.continuum.exact_series import exact_series
 
-    nu_q = sympy.Rational(Fraction(nu).numerator, Fraction(nu).denominator)
+    from dispersion.reader import read_number
+
+    nu = read_number(nu) if isinstance(nu, str) else Fraction(nu)  # text by the whitelist
+    nu_q = sympy.Rational(nu.numerator, nu.denominator)
     d = {k: _fraction(v) for k, v in discrete_series(branch, order, patch, nu=nu_q,
                                                      **patch_fields).items()}
     e = {k: _fraction(v) for k, v in exact_series(branch, order, nu=nu_q).items()}

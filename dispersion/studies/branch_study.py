@@ -99,7 +99,10 @@ def _orders(nu: float, patches=FIT_PATCHES) -> list[dict]:
 
     from dispersion.studies.asymptotic_fit import fit_in_window, relative_error_series
 
-    nu_q = Fraction(str(nu))
+    from dispersion.reader import rational
+
+    q = rational("nu", nu)  # a float by its shortest decimal; text by the whitelist
+    nu_q = Fraction(int(q.p), int(q.q))
     rows = []
     for spec in patches:
         fields = spec.as_dict()

@@ -29,7 +29,8 @@ from dataclasses import dataclass, field, fields, replace
 from typing import TYPE_CHECKING, Any
 
 from dispersion import defaults
-from dispersion.errors import InputError, check_positive_int, rational
+from dispersion.errors import InputError, check_positive_int
+from dispersion.reader import rational
 
 if TYPE_CHECKING:  # pragma: no cover
     import sympy
@@ -69,6 +70,22 @@ def aspect_ratio(r) -> sympy.Rational:
     return r
 
 
+def _weight(w):
+    """A redistribution weight: a finite number as given, text by the whitelist (never
+    evaluated)."""
+    from dispersion.errors import as_real
+
+    return rational("weight", w) if isinstance(w, str) else as_real("weight", w)
+
+
+def _index(i) -> int:
+    """A contact or neighbour index: an int, or an integer written in decimal (JSON keys)."""
+    if isinstance(i, bool) or not isinstance(i, (int, str)) or (
+            isinstance(i, str) and not i.strip().lstrip("+-").isdigit()) or len(str(i)) > 6:
+        raise TypeError
+    return int(i)
+
+
 def _freeze_weights(weights):
     """``{contact: {neighbour: weight}}`` -> a hashable, sorted tuple form (or None)."""
     if weights is None:
@@ -76,11 +93,13 @@ def _freeze_weights(weights):
     if isinstance(weights, tuple):
         return weights
     try:
-        return tuple(sorted((int(c), tuple(sorted((int(j), w) for j, w in dict(ws).items())))
+        return tuple(sorted((_index(c), tuple(sorted((_index(j), _weight(w))
+                                                     for j, w in dict(ws).items())))
                             for c, ws in dict(weights).items()))
     except (TypeError, ValueError, AttributeError):
+        shown = repr(weights)
         raise InputError("weights must map contact indices to {neighbour index: weight}, "
-                         f"got {weights!r}") from None
+                         f"got {shown if len(shown) <= 80 else shown[:77] + '...'}") from None
 
 
 @dataclass(frozen=True)
@@ -259,17 +278,29 @@ class Patch:
     def from_dict(cls, data: dict) -> Patch:
         """Inverse of :meth:`as_dict`.
 
+        Stored data (a report folder's JSON) is read as data: its numbers by the whitelist
+        (:func:`dispersion.reader.rational`), anything else refused with an
+        :class:`InputError`.
+
         >>> p = Patch(mass="singular", r="1/2"); Patch.from_dict(p.as_dict()) == p
         True
+        >>> Patch.from_dict({"r": "__import__('os').system('touch pwned') or 2"})
+        Traceback (most recent call last):
+        ...
+        dispersion.errors.InputError: aspect ratio r must be a finite rational number, got "__import__('os').system('touch pwned') or 2" (unexpected character "'" at position 12)
         """
+        if not isinstance(data, dict):
+            raise InputError(f"a stored patch must be a mapping, got {type(data).__name__}")
+        names = {f.name for f in fields(cls)}
+        unknown = sorted(str(k)[:40] for k in data if k not in names)
+        if unknown:
+            raise InputError(f"a stored patch has unknown fields {', '.join(map(repr, unknown))}"
+                             f" (fields: {', '.join(sorted(names))})")
         data = dict(data)
         if isinstance(data.get("law"), dict):
             from dispersion.materials.elastic_law import ElasticLaw
 
             data["law"] = ElasticLaw.from_dict(data["law"])
-        if data.get("weights"):
-            data["weights"] = {int(c): {int(j): w for j, w in ws.items()}
-                               for c, ws in data["weights"].items()}
         return cls(**data)
 
     # ------------------------------------------------------------------ labels

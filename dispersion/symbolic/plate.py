@@ -395,7 +395,10 @@ def dynamic_stiffness(patch: PlatePatch, kappa=None, Omega=None, nu=None) -> sym
     patch = with_nu(patch, nu)
     kappa = sympy.Symbol("kappa") if kappa is None else kappa
     Omega = sympy.Symbol("Omega") if Omega is None else Omega
-    kappa = sympy.sympify(kappa)
+    from dispersion.reader import as_sympy
+
+    # numbers and sympy objects; text (also inside a tuple or a dict) is refused, never parsed
+    kappa, Omega = as_sympy("kappa", kappa), as_sympy("Omega", Omega)
     mat, xf = patch.law.moduli(), x_functions(patch, kappa)
     K = sum((mat[m] * xf[f] * B for m, f, B in stiffness_terms(patch)), sympy.zeros(2 * patch.n))
     return K - Omega**2 * xf["mx"] * mass_block(patch)

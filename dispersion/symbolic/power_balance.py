@@ -54,14 +54,10 @@ BRANCHES = {"S0": ("S", 1), "A0": ("A", 2)}
 def __getattr__(name: str):
     # sympy symbols on demand: the flint path (exact_series_raw, the CLI's JSON) never
     # imports sympy
-    if name == "NU":
-        import sympy
+    if name in ("NU", "R_SYM"):  # defined once, by the reader of their names
+        from dispersion.reader import symbols
 
-        return sympy.Symbol("nu")
-    if name == "R_SYM":
-        import sympy
-
-        return sympy.Symbol("r", positive=True)
+        return symbols()["nu" if name == "NU" else "r"]
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 #: Highest power of kappa accepted, per kind of request (see :func:`check_request`).
@@ -430,10 +426,12 @@ def first_difference(a: dict, b: dict, upto: int | None = None) -> int | None:
     """
     import sympy
 
+    from dispersion.reader import as_sympy
+
     for k in sorted(set(a) | set(b)):
         if upto is not None and k > upto:
             break
-        if sympy.cancel(sympy.together(sympy.sympify(a.get(k, 0), strict=True)
-                                       - sympy.sympify(b.get(k, 0), strict=True))) != 0:
+        if sympy.cancel(sympy.together(as_sympy(f"coefficient {k}", a.get(k, 0))
+                                       - as_sympy(f"coefficient {k}", b.get(k, 0)))) != 0:
             return k
     return None

@@ -258,10 +258,14 @@ def fully_discrete_series(omega2: dict, order: int, beta=0) -> sympy.Expr:
     if lowest is None or lowest < 1:
         raise InputError("omega2 must be a series with a first nonzero term at kappa^k, k >= 1")
     terms = check_time_terms(order // lowest, "order // lowest power")  # dispersion.budget
-    kept = [sympy.sympify(v) for k, v in omega2.items() if k <= order and v != 0]
+    from dispersion.reader import as_sympy
+
+    # numbers and sympy expressions; text (also inside a tuple or a dict) is refused
+    omega2 = {k: as_sympy(f"omega2[{k}]", v) for k, v in omega2.items()}
+    kept = [v for k, v in omega2.items() if k <= order and v != 0]
     check_series_work(len(kept), terms, any(v.free_symbols for v in kept))
     g = time_series(max(terms, 1), beta)
-    S = sum(sympy.sympify(v) * kappa**k for k, v in omega2.items() if k <= order)
+    S = sum(v * kappa**k for k, v in omega2.items() if k <= order)
     out = sympy.Integer(0)
     for m, gm in enumerate(g, start=1):
         power = sympy.expand(S**m)

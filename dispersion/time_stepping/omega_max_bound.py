@@ -125,8 +125,10 @@ class _BallPencil:
 
         from dispersion.symbolic.plate import mass_block, stiffness_terms, x_coefficients
 
+        from dispersion.reader import rational
+
         def q(v):
-            v = sympy.Rational(v)
+            v = rational("modulus", v)
             return flint.arb(int(v.p)) / int(v.q)
 
         n2 = 2 * patch.n

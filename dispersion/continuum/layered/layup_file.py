@@ -2,8 +2,8 @@
 
 Both are data, never code: the file is read by :func:`dispersion.untrusted.read_text` (a
 regular UTF-8 file within a size limit) and :func:`dispersion.untrusted.load_toml` (depth
-bounded), every number is a TOML number or a string read by a whitelist
-(:func:`dispersion.untrusted.read_fraction`: ``0.125``, ``1/8``), every name is looked up
+bounded), every number is a TOML number or a string read by the whitelist reader
+(:func:`dispersion.reader.read_number`: ``0.125``, ``1/8``), every name is looked up
 in the tables (:func:`dispersion.materials.materials.material`, :func:`~dispersion.materials.materials.ply`).
 
 A file::
@@ -39,7 +39,7 @@ dispersion.errors.InputError: layer 2: material must be a ply (T800/913) or one 
 from __future__ import annotations
 
 from dispersion.errors import InputError
-from dispersion.untrusted import printable, read_fraction
+from dispersion.untrusted import printable
 
 __all__ = ["read_layup", "plate_from_string", "plate_from_data", "solid_by_name",
            "MAX_LAYUP_BYTES", "MAX_LAYUP_DEPTH"]
@@ -77,11 +77,13 @@ def _number(value, where: str) -> float:
     if isinstance(value, (int, float)):
         return float(value)
     if isinstance(value, str):
+        from dispersion.reader import read_number
+
         try:
-            return float(read_fraction(value, where))
-        except OverflowError:
+            return float(read_number(value))
+        except (InputError, OverflowError) as exc:
             raise InputError(f"{where} must be a number such as 0.125 or 1/8, got "
-                             f"{printable(value, 40)!r} (too large)") from None
+                             f"{printable(value, 40)!r} ({exc})") from None
     raise InputError(f"{where} must be a number, got {type(value).__name__}")
 
 
@@ -155,7 +157,8 @@ def read_layup(path):
 
     text = read_text(path, "layup file", MAX_LAYUP_BYTES, suffix=".toml")
     shown = printable(str(path))
-    return plate_from_data(load_toml(text, str(path), "layup file", MAX_LAYUP_DEPTH),
+    return plate_from_data(load_toml(text, str(path), "layup file", MAX_LAYUP_DEPTH,
+                                     MAX_LAYUP_BYTES),
                            f"layup file {shown}")
 
 

@@ -107,6 +107,9 @@ _MODULES = {
     "damped_modes": "continuum.layered.damped_modes",
     "layered_zgv": "continuum.layered.layered_zgv",
     "layered_mode_table": "answers.layered_mode_table",
+    "layered_model": "continuum.layered.layered_model",
+    # the continuum as a family of plate models (issue 33 item 2)
+    "plate_model": "continuum.plate_model", "isotropic_plate": "continuum.isotropic_plate",
 }
 _SUBMODULES = tuple(_MODULES)
 

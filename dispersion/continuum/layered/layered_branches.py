@@ -44,7 +44,7 @@ class LayeredBranches:
 def layered_branches(plate, kappa, omega_max: float, *, families=None) -> LayeredBranches:
     """Every branch of an undamped ``plate`` with :math:`\\Omega \\le` ``omega_max`` at each
     ``kappa`` (units of :meth:`~dispersion.continuum.layered.layered_plate.LayeredPlate.scaled`)."""
-    from dispersion.continuum.layered.layered_modes import OMEGA_RANGE, _group, branches_at_kappa
+    from dispersion.continuum.layered.layered_model import OMEGA_RANGE, _group, branches_at_kappa
 
     if not plate.lossless:
         raise InputError("layered_branches: the plate is damped (complex frequencies at a "

@@ -26,7 +26,7 @@ __all__ = ["zgv_points"]
 
 def _exact(stack, cls, kappa, omega_top, j):
     """``(Omega, c_g)`` of branch j of the class at kappa (None if it is above omega_top)."""
-    from dispersion.continuum.layered.layered_modes import _group, branches_at_kappa
+    from dispersion.continuum.layered.layered_model import _group, branches_at_kappa
 
     found = [w for lab, w, _ in branches_at_kappa(stack, cls, kappa, omega_top)
              if lab == cls.label(j)]

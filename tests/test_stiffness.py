@@ -76,3 +76,18 @@ def test_plane_strain_law_is_the_x1_x3_block():
     assert np.isclose(m["D11"], C[0, 0] / C[4, 4]) and np.isclose(m["D22"], C[2, 2] / C[4, 4])
     with pytest.raises(InputError):
         _PLY.rotated(30).plane_strain_law()
+
+
+def test_the_gfrp_ply_and_epoxy_give_back_their_sources_constants():
+    """The table's GFRP ply is built from engineering constants; its compliance must give them
+    back (E1 = 1/S11, E2 = 1/S22, G12 = 1/S66, nu12 = -S12 E1, nu23 = -S23 E2), and epoxy's
+    speeds must give the source's Poisson ratio 0.392 and modulus 3.941 GPa."""
+    from dispersion.materials.materials import material, ply
+
+    S = np.linalg.inv(ply("TVR380/M12R").stiffness.array())
+    E1, E2 = 1 / S[0, 0], 1 / S[1, 1]
+    assert np.allclose([E1, E2, 1 / S[5, 5], -S[0, 1] * E1, -S[1, 2] * E2],
+                       [46.43e9, 14.92e9, 5.233e9, 0.27, 0.3], rtol=1e-12)
+    epoxy = material("epoxy")
+    E = 2 * epoxy.rho * epoxy.c_T**2 * (1 + epoxy.nu)
+    assert abs(epoxy.nu - 0.392) < 5e-4 and abs(E / 3.941e9 - 1) < 5e-4

@@ -34,7 +34,7 @@ bottom up), or a layup such as ``[0/90]s`` with a ply and its thickness.
 >>> plate_from_string("steel:0.71,unobtainium:1").layers
 Traceback (most recent call last):
 ...
-dispersion.errors.InputError: layer 2: material must be a ply (T800/913) or one of aluminium, aluminium-rolled, brass, copper, glass, magnesium, nickel, pmma, stainless-steel, steel, titanium; got 'unobtainium'
+dispersion.errors.InputError: layer 2: material must be a ply (T800/913, TVR380/M12R) or one of aluminium, aluminium-rolled, brass, copper, epoxy, glass, magnesium, nickel, pmma, stainless-steel, steel, titanium; got 'unobtainium'
 """
 from __future__ import annotations
 

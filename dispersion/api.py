@@ -258,10 +258,12 @@ def layup(text, *, ply=None, ply_thickness_mm=None, direction: float = 0.0,
                              direction=direction, damping=damping)
 
 
-def layered_lamb_modes(plate, *, frequency_khz=None, fd_mhz_mm=None, families=None):
+def layered_lamb_modes(plate, *, frequency_khz=None, fd_mhz_mm=None, families=None,
+                       zgv: bool = False):
     """Every propagating mode of a layered or anisotropic plate at the given frequencies,
-    each root certified (:func:`dispersion.answers.layered_mode_table.layered_lamb_modes`;
-    ``plate`` may be a layup text as :func:`layup` reads it).
+    each root certified, with their skew angles and, with ``zgv``, the zero-group-velocity
+    points (:func:`dispersion.answers.layered_mode_table.layered_lamb_modes`; ``plate`` may
+    be a layup text as :func:`layup` reads it).
 
     >>> t = layered_lamb_modes("steel:0.71,aluminium:0.29", frequency_khz=500)
     >>> [r["mode"] for r in t.rows()]
@@ -271,4 +273,5 @@ def layered_lamb_modes(plate, *, frequency_khz=None, fd_mhz_mm=None, families=No
 
     if isinstance(plate, str):
         plate = layup(plate)
-    return _modes(plate, frequency_khz=frequency_khz, fd_mhz_mm=fd_mhz_mm, families=families)
+    return _modes(plate, frequency_khz=frequency_khz, fd_mhz_mm=fd_mhz_mm, families=families,
+                  zgv=zgv)

@@ -68,3 +68,30 @@ def test_out_of_range_frequencies_name_the_range_in_khz():
     plate = layered_plate([(material("steel"), 0.5), (material("copper"), 0.5)])
     with pytest.raises(InputError, match=r"frequency_khz must lie in \[.* kHz"):
         layered_lamb_modes(plate, frequency_khz=[1e9])
+
+
+def test_a_coupled_laminate_lists_its_skew_and_a_decoupled_one_none(capsys):
+    """Waves along the plies' axes carry their energy along the waves (skew 0 by symmetry);
+    at 30 deg the table's skew is the energy flow's (its test: test_layered_mode_shapes)."""
+    assert main(["branches", "--exact", "--layup", "[0/90]s", "--ply", "T800/913",
+                 "--ply-thickness", "0.125", "--frequency", "500", "--angle", "30",
+                 "--format", "csv"]) == 0
+    rows = _rows(capsys.readouterr().out)
+    assert any(abs(float(r["skew [deg]"])) > 1 for r in rows)
+    assert main(["branches", "--exact", "--layup", "[0/90]s", "--ply", "T800/913",
+                 "--ply-thickness", "0.125", "--frequency", "500", "--format", "csv"]) == 0
+    assert all(float(r["skew [deg]"]) == 0.0 for r in _rows(capsys.readouterr().out))
+
+
+@pytest.mark.slow
+def test_the_laminate_table_lists_its_zgv_point():
+    from dispersion.continuum.layered.layered_plate import laminate
+    from dispersion.continuum.layered.layered_zgv import zgv_points
+    from dispersion.materials.materials import ply
+
+    plate = laminate("[0/90]s", ply("T800/913"), 0.125)
+    t = layered_lamb_modes(plate, fd_mhz_mm=[1.0, 1.3], zgv=True)   # S1: ZGV at 1.24 MHz mm
+    (label, kappa, W), = zgv_points(plate, 1.05 * float(t.roots.omega.max()))
+    assert [p["mode"] for p in t.zgv()] == [label] == ["S1"]
+    assert abs(t.zgv()[0]["f [kHz]"] - t._khz(W)) < 1e-9 * t._khz(W)
+    assert any(line.startswith("ZGV S1") for line in t.header_lines())

@@ -38,7 +38,7 @@ __all__ = ["COLUMNS", "LayeredModeTable", "layered_lamb_modes"]
 
 #: Columns of :meth:`LayeredModeTable.rows` with their units (CSV headings).
 COLUMNS = ("f [kHz]", "fd [MHz mm]", "mode", "family", "k [rad/mm]", "c_p [m/s]",
-           "c_g [m/s]", "wavelength [mm]", "kappa = kh", "Omega = omega h / c_ref")
+           "c_g [m/s]", "skew [deg]", "wavelength [mm]", "kappa = kh", "Omega = omega h / c_ref")
 #: ... of a damped plate: the attenuation instead of the group velocity (not computed yet).
 DAMPED_COLUMNS = ("f [kHz]", "fd [MHz mm]", "mode", "family", "k [rad/mm]",
                   "attenuation [dB/m]", "c_p [m/s]", "wavelength [mm]", "kappa = kh",
@@ -53,6 +53,12 @@ class LayeredModeTable(Rendered):
     plate: object
     frequency_khz: np.ndarray
     roots: LayeredRoots
+    #: Skew angle of each root (degrees): the energy's flow from the waves' direction
+    #: (:func:`~dispersion.continuum.layered.layered_mode_shapes.skew_angles`); None if damped.
+    skew: np.ndarray | None = None
+    #: Zero-group-velocity points ``(label, kappa, Omega)`` up to a little above the highest
+    #: frequency, when asked for (:func:`~dispersion.continuum.layered.layered_zgv.zgv_points`).
+    zgv_points: tuple = ()
 
     @property
     def damped(self) -> bool:
@@ -91,13 +97,17 @@ class LayeredModeTable(Rendered):
             f"kappa = k h, Omega = omega h / c_ref (h = {h * 1e3:g} mm, half the thickness; "
             f"c_ref = {c:.10g} m/s, the bottom layer's shear speed sqrt((C44 + C55) / 2 rho))",
             (f"mode classes: {', '.join(self.roots.classes)}; every root certified to 1e-12 "
-             "relative (ball arithmetic) and counted (Wittrick-Williams), else a failure"
+             "relative (ball arithmetic) and counted (Wittrick-Williams), else a failure; "
+             "c_g along the waves' direction, skew: the angle of the energy's flow from it "
+             "(towards +90 deg)"
              if not self.damped else
              f"mode classes: {', '.join(self.roots.classes)}; damped: each complex root "
              "followed from the undamped plate's (its name) and certified to 1e-10 relative "
              "by the argument principle in ball arithmetic, else a failure; attenuation "
              "20 log10(e) Im k")]
         lines += [f"cut-off {lab}: {f_c:.10g} kHz" for lab, f_c in self.cutoffs_khz().items()]
+        lines += [f"ZGV {p['mode']}: f = {p['f [kHz]']:.10g} kHz, fd = {p['fd [MHz mm]']:.10g}"
+                  f" MHz mm, c_p = {p['c_p [m/s]']:.10g} m/s" for p in self.zgv()]
         return lines
 
     def columns(self) -> tuple[str, ...]:
@@ -107,10 +117,13 @@ class LayeredModeTable(Rendered):
         if self.damped:
             return ("f [kHz]", "mode", "k [rad/mm]", "attenuation [dB/m]", "c_p [m/s]",
                     "wavelength [mm]")
-        return ("f [kHz]", "mode", "k [rad/mm]", "c_p [m/s]", "c_g [m/s]", "wavelength [mm]")
+        skew = () if self.plate.decoupled else ("skew [deg]",)
+        return ("f [kHz]", "mode", "k [rad/mm]", "c_p [m/s]", "c_g [m/s]", *skew,
+                "wavelength [mm]")
 
     def json_extra(self) -> dict:
-        return {"cutoffs [kHz]": self.cutoffs_khz(), "plate": self.plate.as_dict()}
+        return {"cutoffs [kHz]": self.cutoffs_khz(), "zgv": self.zgv(),
+                "plate": self.plate.as_dict()}
 
     def inputs(self) -> dict:
         f = self.frequency_khz
@@ -144,7 +157,9 @@ class LayeredModeTable(Rendered):
                 "f [kHz]": float(f[i]), "fd [MHz mm]": float(f[i]) * self.thickness_mm * 1e-3,
                 "mode": r.label[i], "family": r.family[i], "k [rad/mm]": k,
                 "c_p [m/s]": float(r.omega[r.index[i]] / r.kappa[i]) * c,
-                "c_g [m/s]": float(r.group[i]) * c, "wavelength [mm]": 2 * math.pi / k,
+                "c_g [m/s]": float(r.group[i]) * c,
+                "skew [deg]": None if self.skew is None else float(self.skew[i]),
+                "wavelength [mm]": 2 * math.pi / k,
                 "kappa = kh": float(r.kappa[i]),
                 "Omega = omega h / c_ref": float(r.omega[r.index[i]])})
         return out
@@ -155,8 +170,15 @@ class LayeredModeTable(Rendered):
         return {lab: self._khz(w) for lab, w in self.roots.cutoffs.items() if w > 0}
 
     def zgv(self) -> list[dict]:
-        """Zero-group-velocity points (not searched for layered plates yet: none listed)."""
-        return []
+        """Zero-group-velocity points (when asked for): mode, f [kHz], fd [MHz mm], c_p [m/s],
+        wavelength [mm], as the isotropic table lists them."""
+        h, c = self._scale()
+        out = []
+        for lab, kap, W in self.zgv_points:
+            f = self._khz(W)
+            out.append({"mode": lab, "f [kHz]": f, "fd [MHz mm]": f * self.thickness_mm * 1e-3,
+                        "c_p [m/s]": W / kap * c, "wavelength [mm]": 2 * math.pi * h * 1e3 / kap})
+        return out
 
     def curves(self) -> dict[str, dict[str, np.ndarray]]:
         """Per mode, arrays ordered by k: ``f, fd, c_p, c_g, k`` (as
@@ -196,11 +218,14 @@ def _frequencies(name, raw, thickness_mm, fd):
     return values * 1e3 / thickness_mm if fd else values
 
 
-def layered_lamb_modes(plate, *, frequency_khz=None, fd_mhz_mm=None, families=None):
+def layered_lamb_modes(plate, *, frequency_khz=None, fd_mhz_mm=None, families=None,
+                       zgv: bool = False):
     """Every propagating mode of ``plate`` at each frequency: a :class:`LayeredModeTable`
     (or, for one undamped isotropic layer, the isotropic calculator's
     :class:`~dispersion.answers.mode_table.ModeTable`). Give exactly one of ``frequency_khz``
-    and ``fd_mhz_mm``; ``families`` a subset of the plate's families (S, A, SH; L, SH; M)."""
+    and ``fd_mhz_mm``; ``families`` a subset of the plate's families (S, A, SH; L, SH; M);
+    ``zgv``: also the zero-group-velocity points of an undamped layered plate up to 5 % above
+    the highest frequency (a SAFE scan in kappa closed on the exact branches: seconds)."""
     from dispersion.continuum.layered.layered_plate import LayeredPlate
 
     if not isinstance(plate, LayeredPlate):
@@ -232,6 +257,15 @@ def layered_lamb_modes(plate, *, frequency_khz=None, fd_mhz_mm=None, families=No
         from dispersion.continuum.layered.damped_modes import damped_modes
 
         return LayeredModeTable(plate, f_khz, damped_modes(plate, omega, families=families))
+    from dispersion.continuum.layered.layered_mode_shapes import skew_angles
     from dispersion.continuum.layered.layered_modes import layered_modes
 
-    return LayeredModeTable(plate, f_khz, layered_modes(plate, omega, families=families))
+    roots = layered_modes(plate, omega, families=families)
+    points = ()
+    if zgv:
+        from dispersion.continuum.layered.layered_zgv import zgv_points
+
+        fams = set(roots.family)
+        points = tuple(p for p in zgv_points(plate, 1.05 * float(omega.max()))
+                       if p[0].rstrip("0123456789") in fams)
+    return LayeredModeTable(plate, f_khz, roots, skew_angles(plate, roots), points)

@@ -24,16 +24,47 @@ from dispersion.continuum.layered.safe import elements_per_layer, frequencies, s
 __all__ = ["zgv_points"]
 
 
-def _exact(stack, cls, kappa, omega_top, j):
-    """``(Omega, c_g)`` of branch j of the class at kappa (None if it is above omega_top)."""
-    from dispersion.continuum.layered.layered_model import _group, branches_at_kappa
+def _exact(stack, cls, kappa, omega_top, j, guess=None):
+    """``(Omega, c_g)`` of branch j of the class at kappa (None if it is above omega_top).
 
-    found = [w for lab, w, _ in branches_at_kappa(stack, cls, kappa, omega_top)
-             if lab == cls.label(j)]
-    if not found:
-        return None
-    w = found[0]
+    Branch j lies where the count N(kappa, Omega) steps from j to j + 1 (the count never
+    decreases in Omega): from a ``guess`` a bracket with those counts is widened, then closed
+    on det K (Illinois in Omega); without a guess, every branch is solved
+    (:func:`~dispersion.continuum.layered.layered_model.branches_at_kappa`)."""
+    from dispersion.continuum.layered.dynamic_stiffness import count_and_det
+    from dispersion.continuum.layered.layered_model import _close, _group, branches_at_kappa
+
     elements = sublayers(stack, cls, omega_top, max(kappa, 1.0))
+    if guess is None or not 0 < guess < omega_top:
+        found = [w for lab, w, _ in branches_at_kappa(stack, cls, kappa, omega_top)
+                 if lab == cls.label(j)]
+        if not found:
+            return None
+        w = found[0]
+        return w, _group(stack, cls, elements, w, kappa)
+    kap = np.array([float(kappa)])
+
+    def count(w):
+        return int(count_and_det(stack, cls, elements, kap, np.array([w]))[0][0])
+
+    lo, hi, width = guess, guess, 1e-6 * guess
+    for _ in range(60):
+        lo, hi = max(guess - width, 1e-12), min(guess + width, omega_top)
+        n_lo, n_hi = count(lo), count(hi)
+        if n_lo <= j < n_hi:
+            break
+        width *= 4
+    else:
+        return None
+    while n_lo < j or n_hi > j + 1:        # one branch in the bracket: halve by the count
+        m = 0.5 * (lo + hi)
+        n_m = count(m)
+        if n_m <= j:
+            lo, n_lo = m, n_m
+        else:
+            hi, n_hi = m, n_m
+    w, _ = _close(stack, cls, elements, float(kappa), None, np.array([lo]), np.array([hi]))
+    w = float(w[0])
     return w, _group(stack, cls, elements, w, kappa)
 
 
@@ -50,7 +81,11 @@ def zgv_points(plate, omega_top: float, step: float = 0.02):
     for cls in mode_classes(plate):
         pencil = safe_pencil(stack, cls, elements_per_layer(stack, cls, 1.5 * omega_top,
                                                             float(kappas[-1])))
-        W = np.array([frequencies(pencil, float(k)) for k in kappas])   # (kappa, branch)
+        # the branches that reach below 1.5 omega_top anywhere on the grid: at most those
+        # below it at kappa = 0 (branches rise from their cut-offs), and a margin
+        first = frequencies(pencil, 0.0)
+        count = int(np.count_nonzero(first < 1.5 * omega_top)) + 2
+        W = np.array([frequencies(pencil, float(k), count) for k in kappas])  # (kappa, branch)
         n = W.shape[1]
         for j in range(n):
             w = W[:, j]
@@ -62,14 +97,14 @@ def zgv_points(plate, omega_top: float, step: float = 0.02):
                 a, b = float(kappas[i]), float(kappas[i + 2])
                 if min(w[i:i + 3]) > omega_top:
                     continue
-                ea, eb = _exact(stack, cls, a, omega_top * 1.2, j), _exact(stack, cls, b,
-                                                                         omega_top * 1.2, j)
+                ea = _exact(stack, cls, a, omega_top * 1.2, j, float(w[i]))
+                eb = _exact(stack, cls, b, omega_top * 1.2, j, float(w[i + 2]))
                 if ea is None or eb is None or ea[1] * eb[1] > 0:
                     continue
                 ga, gb = ea[1], eb[1]
                 for _ in range(40):   # Illinois on c_g
                     c = (a * gb - b * ga) / (gb - ga)
-                    ec = _exact(stack, cls, c, omega_top * 1.2, j)
+                    ec = _exact(stack, cls, c, omega_top * 1.2, j, ea[0])
                     if ec is None:
                         break
                     if ec[1] * ga > 0:

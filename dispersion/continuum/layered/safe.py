@@ -165,11 +165,14 @@ def wavenumbers(pencil: SafePencil, omega: float) -> np.ndarray:
     return eig(A, B, right=False)
 
 
-def frequencies(pencil: SafePencil, kappa: float) -> np.ndarray:
+def frequencies(pencil: SafePencil, kappa: float, count: int | None = None) -> np.ndarray:
     """The frequencies :math:`\\Omega \\ge 0` of the pencil at a real ``kappa``, ascending
-    (undamped plates)."""
+    (undamped plates); with ``count`` only the lowest ``count`` of them (a partial
+    eigensolver: cheaper when they are few)."""
     from scipy.linalg import eigh
 
     K = kappa**2 * pencil.K2 + 1j * kappa * pencil.K1 + pencil.K0
-    w2 = eigh(K, pencil.M, eigvals_only=True)
+    n = K.shape[0]
+    subset = None if count is None or count >= n else [0, max(count, 1) - 1]
+    w2 = eigh(K, pencil.M, eigvals_only=True, subset_by_index=subset)
     return np.sqrt(np.maximum(w2, 0.0))

@@ -34,7 +34,7 @@ DISTRIBUTION = "dispersion-iga"
 
 _API = ("Patch", "PatchModel", "patch", "series", "exact_branches", "lamb_modes", "material",
         "simulate_ring", "simulate_bar", "branch_table", "mode_shapes", "series_table",
-        "critical_steps", "figure")
+        "critical_steps", "figure", "layered_lamb_modes", "layup")
 #: Public modules by their short names (``dispersion.plate``), wherever they live in the wings.
 _MODULES = {
     "api": "api", "patch_model": "patch_model", "defaults": "defaults", "errors": "errors", "io": "io", "results": "results",
@@ -65,7 +65,8 @@ _MODULES = {
     "claim": "claims.claim", "claim_model": "claims.claim_model",
     "claim_fields": "claims.claim_fields", "claims_file": "claims.claims_file",
     "exact_model": "claims.exact_model", "bar_model": "claims.bar_model",
-    "peers": "studies.peers", "spline_mass": "splines.spline_mass",
+    "peers": "studies.peers", "layered_peers": "studies.layered_peers",
+    "spline_mass": "splines.spline_mass",
     "extended_pencil": "discretization.extended_pencil",
     "pencil_polynomial": "discretization.pencil_polynomial",
     "asymptotic_fit": "studies.asymptotic_fit",
@@ -113,6 +114,19 @@ _MODULES = {
     "mesh_step": "time_stepping.mesh_step", "positive_definite": "time_stepping.positive_definite",
     "lagrange_space": "splines.lagrange_space", "mesh_claims": "claims.mesh_claims",
     "finite_patches": "studies.finite_patches",
+    # layered and anisotropic plates (issue 36)
+    "stiffness": "materials.stiffness", "solid": "materials.solid",
+    "layered": "continuum.layered", "layered_plate": "continuum.layered.layered_plate",
+    "layup_file": "continuum.layered.layup_file", "stroh": "continuum.layered.stroh",
+    "dynamic_stiffness": "continuum.layered.dynamic_stiffness", "safe": "continuum.layered.safe",
+    "layered_modes": "continuum.layered.layered_modes",
+    "layered_branches": "continuum.layered.layered_branches",
+    "damped_modes": "continuum.layered.damped_modes",
+    "layered_zgv": "continuum.layered.layered_zgv",
+    "layered_mode_table": "answers.layered_mode_table",
+    "layered_model": "continuum.layered.layered_model",
+    # the continuum as a family of plate models (issue 33 item 2)
+    "plate_model": "continuum.plate_model", "isotropic_plate": "continuum.isotropic_plate",
 }
 _SUBMODULES = tuple(_MODULES)
 

@@ -38,7 +38,7 @@ if TYPE_CHECKING:  # pragma: no cover
 
 __all__ = ["Patch", "PatchModel", "patch", "series", "exact_branches", "lamb_modes", "material",
            "simulate_ring", "simulate_bar", "branch_table", "mode_shapes", "series_table",
-           "critical_steps", "figure"]
+           "critical_steps", "figure", "layered_lamb_modes", "layup"]
 
 
 def _fits(name: str, target, args=(), kwargs=None) -> None:
@@ -278,3 +278,51 @@ def __getattr__(name: str):
 
         return PatchModel
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def layup(text, *, ply=None, ply_thickness_mm=None, direction: float = 0.0,
+          damping: float = 0.0):
+    """A layered plate (:class:`~dispersion.continuum.layered.layered_plate.LayeredPlate`) from a TOML
+    layup file (a path ending in ``.toml``, read as untrusted data), from layers
+    ``material:thickness_mm[:angle],...`` bottom up, or from a layup such as ``[0/90]s`` with
+    a ``ply`` and its thickness (:mod:`dispersion.continuum.layered.layup_file`); ``damping`` a loss
+    factor given to every layer.
+
+    >>> [l.angle for l in layup("[0/90]s", ply="T800/913", ply_thickness_mm=0.125).layers]
+    [0.0, 90.0, 0.0]
+    """
+    from dispersion.continuum.layered.layup_file import plate_from_string, read_layup
+
+    if str(text).strip().lower().endswith(".toml"):
+        if ply is not None or ply_thickness_mm is not None:
+            raise InputError("ply and ply_thickness_mm go with a layup string such as [0/90]s, "
+                             "not with a layup file")
+        plate = read_layup(text)
+        if damping:
+            from dispersion.continuum.layered.layered_plate import Layer, LayeredPlate
+
+            plate = LayeredPlate(tuple(Layer(layer.solid.with_loss(damping), layer.thickness_mm,
+                                             layer.angle) for layer in plate.layers),
+                                 plate.interfaces, plate.direction)
+        return plate if not direction else plate.turned(direction)
+    return plate_from_string(text, ply=ply, ply_thickness_mm=ply_thickness_mm,
+                             direction=direction, damping=damping)
+
+
+def layered_lamb_modes(plate, *, frequency_khz=None, fd_mhz_mm=None, families=None,
+                       zgv: bool = False):
+    """Every propagating mode of a layered or anisotropic plate at the given frequencies,
+    each root certified, with their skew angles and, with ``zgv``, the zero-group-velocity
+    points (:func:`dispersion.answers.layered_mode_table.layered_lamb_modes`; ``plate`` may
+    be a layup text as :func:`layup` reads it).
+
+    >>> t = layered_lamb_modes("steel:0.71,aluminium:0.29", frequency_khz=500)
+    >>> [r["mode"] for r in t.rows()]
+    ['L0', 'SH0', 'L1']
+    """
+    from dispersion.answers.layered_mode_table import layered_lamb_modes as _modes
+
+    if isinstance(plate, str):
+        plate = layup(plate)
+    return _modes(plate, frequency_khz=frequency_khz, fd_mhz_mm=fd_mhz_mm, families=families,
+                  zgv=zgv)

@@ -130,8 +130,15 @@ def _wave_run():
     return simulate(Strip(p=1, travel=1, stations=2, elements_per_wavelength=3, kappa_c=1.0))
 
 
+def _layered():
+    t = dispersion.layered_lamb_modes("steel:0.5,copper:0.5", frequency_khz=[300.0])
+    return dataclasses.replace(t, roots=dataclasses.replace(
+        t.roots, failures=((0.3, "L", "a planted failure"),)))
+
+
 #: One small instance of every result type (its name -> a function building it).
 INSTANCES = {"BranchTable": _branch_table, "ModeTable": _mode_table,
+             "LayeredModeTable": _layered,
              "ModeShapeTable": _mode_shapes, "ExactBranches": _exact,
              "Velocities": _velocities, "DiscreteBranches": _discrete, "SeriesTable": _series,
              "ErrataSheet": _errata, "CriticalSteps": _steps, "CriticalStep": _step,

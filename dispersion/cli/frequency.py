@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 
+from dispersion.cli import layup
 from dispersion.cli.options import length, material_from_args, real
 from dispersion.errors import InputError
 
@@ -45,6 +46,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--fd", metavar="FD",
                    help="frequency-thickness products f d in MHz mm (lists and grids as for "
                         "--frequency)")
+    layup.add_arguments(p)
     p.add_argument("--mode-shape", metavar="MODE",
                    help="with one frequency: displacements and stresses through the thickness "
                         "of MODE (S0, a1, SH0, ...) instead of the mode table")
@@ -52,6 +54,10 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 def requested(args) -> bool:
     return args.frequency is not None or args.fd is not None
+
+
+def _layup(a) -> bool:
+    return layup.requested(a)
 
 
 def _material_given(a) -> bool:
@@ -64,9 +70,14 @@ RULES = [
     ("--frequency", lambda a: a.exact, "with --exact (the exact Rayleigh-Lamb and SH modes)"),
     ("--fd", lambda a: a.exact and a.frequency is None,
      "with --exact, instead of --frequency (one input axis)"),
-    ("--mode-shape", requested, "with --frequency or --fd"),
-    ("--thickness", _material_given, "with a material (--material, --cl/--ct or "
-                                     "--youngs-modulus/--nu/--rho)"),
+    ("--mode-shape", lambda a: requested(a) and not _layup(a),
+     "with --frequency or --fd (an isotropic plate)"),
+    ("--thickness", lambda a: _material_given(a) and not _layup(a),
+     "with a material (--material, --cl/--ct or --youngs-modulus/--nu/--rho)"),
+    ("--layup", lambda a: requested(a) and not _material_given(a),
+     "with --frequency or --fd, instead of a material"),
+    ("--modes", requested, "with --frequency or --fd"),
+    *layup.RULES,
     ("--rho", lambda a: a.cl is not None or a.ct is not None or a.youngs_modulus is not None,
      "to a user material (--cl/--ct, or --youngs-modulus/--nu)"),
     ("--nu", lambda a: a.youngs_modulus is not None or not _material_given(a),
@@ -79,17 +90,20 @@ def run(args) -> int:
     from dispersion.cli.options import frequencies
     from dispersion.cli.outputs import check_outputs, write_outputs
 
+    if _layup(args):
+        return layup.run(args)
     material = material_from_args(args)
     if material is None or args.thickness is None:
         raise InputError("--frequency/--fd need a material (--material, --cl/--ct or "
                          "--youngs-modulus/--nu/--rho) and --thickness (d in mm)")
     check_outputs(args, "branches")
+    kinds = {} if args.modes is None else {"kinds": layup.families(args)}
     if args.fd is not None:
         table = lamb_modes(material, args.thickness, fd_mhz_mm=frequencies(args.fd, "--fd",
-                                                                            units=None))
+                                                                            units=None), **kinds)
     else:
         table = lamb_modes(material, args.thickness,
-                           frequency_khz=frequencies(args.frequency, "--frequency"))
+                           frequency_khz=frequencies(args.frequency, "--frequency"), **kinds)
     if args.mode_shape is not None:
         from dispersion.plotting.lamb import figure_mode_shapes
         from dispersion.answers.mode_shape_table import mode_shapes

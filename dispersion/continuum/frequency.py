@@ -54,26 +54,21 @@ C. Prada, D. Clorennec, D. Royer, J. Acoust. Soc. Am. 124 (2008) 203 (backward S
 """
 from __future__ import annotations
 
-import math
 import numbers
 from dataclasses import dataclass
 from fractions import Fraction
 
 import numpy as np
 
-from dispersion.errors import InputError, check_nu, check_positive
-from dispersion.continuum.deflated_frequency import deflated_with_noise, evanescent_frequency_function
 from dispersion.continuum.illinois import illinois
-from dispersion.continuum.numeric_frequency import frequency_function_bound, frequency_slope
-from dispersion.continuum.rayleigh_lamb import (arb_frequency_function, cutoff_frequencies,
-                                                mpmath_frequency_function, speed_ratio_squared)
-from dispersion.continuum.root_certificate import (arb_certified, arb_sign, exact_square,
-                                                   extremum_in_squares, float_certified,
-                                                   refine_in_squares)
+from dispersion.continuum.isotropic_plate import (ROOT_DELTA, ROOT_RTOL, SLOPE_OMEGA,
+                                                  IsotropicPlate)
 from dispersion.continuum.sh import at_cutoff
+from dispersion.errors import InputError, check_nu, check_positive
 
 __all__ = ["FREQUENCY_OMEGA_MAX", "FREQUENCY_OMEGA_MIN", "MAX_SCAN_SAMPLES", "SLOPE_OMEGA",
-           "FrequencyRoots", "modes_at_frequency", "zgv_points_below"]
+           "ROOT_RTOL", "ROOT_DELTA", "FrequencyRoots", "modes_at_frequency", "modes_of",
+           "zgv_points_below"]
 
 #: Smallest Omega accepted. Rule: the fundamental roots must stay above kappa = 1e-3, below
 #: which the tracer itself leaves the frequency function for the series (round-off); S0 has
@@ -88,7 +83,6 @@ FREQUENCY_OMEGA_MAX = 30.0
 #: Largest scan of one call (kappa samples over all frequencies). Rule: the tracer's bound
 #: (about a minute of work at ~3 us per sample).
 MAX_SCAN_SAMPLES = 20_000_000
-_KAPPA_LIMIT = 300.0
 #: A frequency within this relative distance of a ZGV point's (as the float ZGV tracer found
 #: it) has the pair of roots next to it split at the extremum of F located in ball
 #: arithmetic (:func:`_split_zgv_pairs`), not only at the ZGV point's kappa. Rule: the float
@@ -161,42 +155,35 @@ def _check_omegas(omega) -> np.ndarray:
     return omega
 
 
-def _kappa_start(nu: float, omega: np.ndarray) -> np.ndarray:
-    """A first kappa_hi: beyond A0 at low frequency (Kirchhoff, A0 lies below) and beyond
-    the Rayleigh speed at high frequency (S0 and A0 tend to it); checked, never trusted."""
-    beta = math.sqrt(2 / (3 * (1 - nu)))  # Omega ~ beta kappa^2 (eq 15)
-    return 1.3 * np.maximum(np.sqrt(omega / beta), omega) + 0.2
-
-
-def _kappa_hi(kind: str, nu: float, omega: np.ndarray, start: np.ndarray):
+def _kappa_hi(model, kind: str, omega: np.ndarray, start: np.ndarray):
     """Smallest tried kappa_hi > Omega with N(kappa_hi, Omega) = 0, and the failures."""
     k = np.maximum(start, omega * (1 + 1e-6))
     todo = np.arange(omega.size)
     for _ in range(12):
-        g, e = deflated_with_noise(kind, k[todo], omega[todo], nu)
-        g0, e0 = deflated_with_noise(kind, k[todo], np.zeros(todo.size), nu)
+        g, e = model.dispersion(kind, k[todo], omega[todo])
+        g0, e0 = model.dispersion(kind, k[todo], np.zeros(todo.size))
         sure = (np.abs(g) > e) & (np.abs(g0) > e0)
         done = sure & (np.sign(g) == np.sign(g0))
         todo = todo[~done]
         if todo.size == 0:
             return k, []
         k[todo] *= 1.5
-        if np.any(k[todo] > _KAPPA_LIMIT):
+        if np.any(k[todo] > model.kappa_limit):
             break
-    return k, [(float(omega[i]), kind, "no kappa_hi <= 300 with every branch above Omega")
-               for i in todo]
+    return k, [(float(omega[i]), kind, f"no kappa_hi <= {model.kappa_limit:g} with every "
+                "branch above Omega") for i in todo]
 
 
 class _Scan:
     """Samples (frequency index, kappa, G, rounding bound), sorted by (index, kappa)."""
 
-    def __init__(self, kind, omega, nu):
-        self.kind, self.omega, self.nu = kind, omega, nu
+    def __init__(self, model, kind, omega):
+        self.model, self.kind, self.omega = model, kind, omega
         self.fi = np.zeros(0, int)
         self.k = self.g = self.e = np.zeros(0)
 
     def add(self, fi, k):
-        g, e = deflated_with_noise(self.kind, k, self.omega[fi], self.nu)
+        g, e = self.model.dispersion(self.kind, k, self.omega[fi])
         fi, k = np.concatenate([self.fi, fi]), np.concatenate([self.k, k])
         g, e = np.concatenate([self.g, g]), np.concatenate([self.e, e])
         order = np.lexsort((k, fi))
@@ -207,15 +194,13 @@ class _Scan:
     def certain(self):
         return np.flatnonzero(np.abs(self.g) > self.e)
 
-    def decide_in_arb(self, ratio: Fraction):
-        """Samples whose float sign is within the rounding bound decided in ball arithmetic
-        at the exact ``ratio`` (:func:`~dispersion.continuum.root_certificate.arb_sign`): next to
-        a cut-off at kappa = 0, next to a ZGV point at its kappa. A decided sample keeps its
-        sign with a magnitude just above its bound, so it counts as certain."""
+    def decide_exactly(self):
+        """Samples whose float sign is within the rounding bound decided by the model in
+        exact arithmetic (:meth:`~dispersion.continuum.plate_model.PlateModel.decide`): next
+        to a cut-off at kappa = 0, next to a ZGV point at its kappa. A decided sample keeps
+        its sign with a magnitude just above its bound, so it counts as certain."""
         for i in np.flatnonzero(~(np.abs(self.g) > self.e))[:MAX_ARB_SAMPLES * self.omega.size]:
-            k = float(self.k[i])
-            sign = arb_sign(_arb_function(self.kind, float(self.omega[self.fi[i]]), ratio),
-                            exact_square(k), _arb_prec(k))
+            sign = self.model.decide(self.kind, float(self.k[i]), float(self.omega[self.fi[i]]))
             if sign:
                 self.g[i] = sign * max(2 * self.e[i], 1e-300)
 
@@ -252,127 +237,6 @@ def _refine_dips(scan: _Scan, max_depth: int):
         scan.add(np.tile(np.repeat(fi[j], frac.size), 2), new)
 
 
-def _polish(kind, kappa, omega, nu, width: float = 1e-9):
-    """Roots with P < 0 closed again on the scaled evanescent form (no cosh-sized terms)."""
-    ev = kappa**2 - speed_ratio_squared(nu) * omega**2 > 9.0
-    if not np.any(ev):
-        return kappa
-    k, w = kappa[ev], omega[ev]
-    a, b = k * (1 - width), k * (1 + width)
-    fa = evanescent_frequency_function(kind, a, w, nu)
-    fb = evanescent_frequency_function(kind, b, w, nu)
-    ok = np.isfinite(fa) & np.isfinite(fb) & (np.sign(fa) * np.sign(fb) < 0)
-    if not np.any(ok):
-        return kappa
-    wo = w[ok]
-    roots, _, _, active = illinois(
-        lambda idx, x: evanescent_frequency_function(kind, x, wo[idx], nu),
-        a[ok], b[ok], fa[ok], fb[ok], 1e-17)
-    sub = k.copy()
-    sub[ok] = np.where(active, sub[ok], roots)
-    out = kappa.copy()
-    out[ev] = sub
-    return out
-
-
-#: Below this Omega the float slope :func:`~dispersion.continuum.numeric_frequency.frequency_slope`
-#: loses about eps / Omega^2 to the trivial root of F at Omega = 0 (measured against mpmath:
-#: 2e-11 at Omega = 2e-3, 3e-12 at 1e-2, 4e-14 at 0.1); rule: where eps / Omega^2 > 1e-13
-#: the slope is taken in 30-digit arithmetic instead.
-SLOPE_OMEGA = 0.05
-
-
-def _mp_nu(nu_q: Fraction):
-    import mpmath
-
-    return mpmath.mpf(nu_q.numerator) / nu_q.denominator
-
-
-def _slope_mp(kind, kappa, omega, nu_q: Fraction) -> np.ndarray:
-    """:math:`d\\Omega/d\\kappa = -F_\\kappa / F_\\Omega` of the frequency function in mpmath,
-    at the exact Poisson ratio ``nu_q``."""
-    import mpmath
-
-    out = np.empty(kappa.size)
-    for i, (k, W) in enumerate(zip(kappa, omega)):
-        with mpmath.workdps(_mp_digits(float(k))):
-            m_nu = _mp_nu(nu_q)
-
-            def F(k, W):
-                return mpmath_frequency_function(kind, k, W, m_nu)
-
-            k, W = mpmath.mpf(float(k)), mpmath.mpf(float(W))
-            out[i] = float(-mpmath.diff(lambda x: F(x, W), k) / mpmath.diff(lambda x: F(k, x), W))
-    return out
-
-
-#: Relative accuracy every root in kappa is certified to (or listed in ``failures``).
-ROOT_RTOL = 1e-12
-#: Half-width of the certificate's bracket: a root certified at kappa lies in
-#: :math:`\\kappa (1 \\pm \\delta)` (:mod:`dispersion.continuum.root_certificate`).
-ROOT_DELTA = ROOT_RTOL / 4
-
-
-def _mp_digits(kappa: float) -> int:
-    """Digits for the frequency function at kappa: 40, plus the cosh-sized terms that cancel
-    in the evanescent region (about kappa / ln 10 digits)."""
-    return 40 + int(abs(kappa) / 2.3)
-
-
-def _arb_prec(kappa: float) -> int:
-    """Starting precision (bits) of the frequency function in ball arithmetic at kappa: S and
-    A roots at large kappa differ by about :math:`e^{-2\\kappa}` relative (3 bits per unit),
-    and next to a cut-off F is flat in :math:`x = \\kappa^2`, resolved to delta only with
-    :math:`\\log_2(1/x)` more bits; :func:`~dispersion.continuum.root_certificate.arb_sign` raises
-    it where a ball still holds 0."""
-    tiny = min(-2 * math.log2(kappa), 128.0) if 0 < kappa < 1 else 0.0
-    return 96 + int(3 * min(kappa, _KAPPA_LIMIT)) + int(tiny)
-
-
-def _arb_function(kind, omega: float, ratio: Fraction):
-    def value(x, prec):
-        return arb_frequency_function(kind, x, omega, ratio, prec)
-    return value
-
-
-def _float_bound(kind, omega, ratio: Fraction):
-    s = float(ratio)
-    half_ulp = 0.5 * float(np.spacing(s))   # the float nearest to the rational s
-
-    def bound(k):
-        return frequency_function_bound(kind, k, omega, s, half_ulp)
-    return bound
-
-
-def _certify(kind, roots, omega, ratio: Fraction, cells):
-    """Each root certified to :data:`ROOT_RTOL` relative by a sign change of the exact
-    frequency function at the floats :math:`\\kappa (1 \\pm \\delta)`, :data:`ROOT_DELTA`
-    (:mod:`dispersion.continuum.root_certificate`), at the exact :math:`s = (c_T/c_L)^2` ``ratio``.
-
-    First in floats with a proven rounding bound; where floats cannot decide, in ball
-    arithmetic at the same float kappa; where that fails too (the float root is off: next to a
-    cut-off the root in kappa is ill-conditioned in floats, next to a ZGV point two roots merge),
-    the root is closed again in ball arithmetic from its scan cell ``cells`` (its ends' signs
-    decided there) and certified. Returns the roots, a mask of those certified in ball
-    arithmetic, and the indices that could not be certified.
-    """
-    ok = float_certified(_float_bound(kind, omega, ratio), roots, ROOT_DELTA)
-    out, redone, bad = roots.copy(), np.zeros(roots.size, dtype=bool), []
-    for i in np.flatnonzero(~ok):
-        F = _arb_function(kind, float(omega[i]), ratio)
-        k0 = float(roots[i])
-        if math.isfinite(k0) and k0 > 0 and arb_certified(F, k0, ROOT_DELTA, _arb_prec(k0)):
-            redone[i] = True
-            continue
-        a, b = (float(c) for c in cells[i])
-        k = refine_in_squares(F, a, b, _arb_prec(max(min(abs(k0), b), 1e-300)))
-        if k is not None and k > 0 and arb_certified(F, k, ROOT_DELTA, _arb_prec(k)):
-            out[i], redone[i] = k, True
-        else:
-            bad.append(i)
-    return out, redone, bad
-
-
 def _walk(n0: int, signs) -> list[int] | None:
     """Branch indices of the roots met walking up in kappa from the count ``n0`` at kappa = 0
     (each root changes the count by ``-sign(c_g)``); None unless it ends at zero."""
@@ -386,12 +250,12 @@ def _walk(n0: int, signs) -> list[int] | None:
     return out if n == 0 else None
 
 
-def _split_zgv_pairs(scan: _Scan, ratio: Fraction, points) -> None:
+def _split_zgv_pairs(scan: _Scan, points) -> None:
     """Next to a ZGV point (frequency within :data:`ZGV_SPLIT`), a ZGV sample whose sign is
     that of both neighbours may still hide a pair of roots if the ZGV kappa lies outside it:
-    the extremum of F between them is located in ball arithmetic
-    (:func:`~dispersion.continuum.root_certificate.extremum_in_squares`) and, where its sign
-    is the other one, its kappa joins the samples (decided in ball arithmetic)."""
+    the model locates the extremum of its function in exact arithmetic
+    (:meth:`~dispersion.continuum.plate_model.PlateModel.split_pair`) and, where its sign is
+    the other one, its kappa joins the samples (decided exactly)."""
     new_f, new_k = [], []
     for kz, wz in points:
         for i in np.flatnonzero(np.abs(scan.omega / wz - 1) <= ZGV_SPLIT):
@@ -401,25 +265,21 @@ def _split_zgv_pairs(scan: _Scan, ratio: Fraction, points) -> None:
             j = int(j[0])
             if not (np.sign(scan.g[j - 1]) == np.sign(scan.g[j]) == np.sign(scan.g[j + 1])):
                 continue
-            F = _arb_function(scan.kind, float(scan.omega[i]), ratio)
-            prec = _arb_prec(kz) + 64
-            x = extremum_in_squares(F, kz, prec)
-            if arb_sign(F, x, prec) == -np.sign(scan.g[j]):
+            x = scan.model.split_pair(scan.kind, kz, float(scan.omega[i]), np.sign(scan.g[j]))
+            if x is not None:
                 new_f.append(i)
-                new_k.append(float(x.sqrt().mid()) if x > 0 else kz)
+                new_k.append(x)
     if new_f:
         scan.add(np.array(new_f), np.array(new_k))
-        scan.decide_in_arb(ratio)
+        scan.decide_exactly()
 
 
-def _class_roots(kind, nu, omega, step, rtol, max_depth, zgv_points, nu_q: Fraction):
-    """Roots of one class (``"S"`` or ``"A"``) at every Omega, labelled by the count; ``nu``
-    is the float nearest to the exact ``nu_q`` the roots are certified at."""
-    ratio = speed_ratio_squared(nu_q)
+def _class_roots(model, kind, omega, step, rtol, max_depth, zgv_points):
+    """Roots of one class of ``model`` at every Omega, labelled by the count."""
     failures = []
-    k_hi, fails = _kappa_hi(kind, nu, omega, _kappa_start(nu, omega))
+    k_hi, fails = _kappa_hi(model, kind, omega, model.kappa_start(omega))
     failures += fails
-    scan = _Scan(kind, omega, nu)
+    scan = _Scan(model, kind, omega)
     counts = np.ceil(k_hi / step).astype(int) + 1
     fi = np.repeat(np.arange(omega.size), counts)
     start = np.concatenate([[0], np.cumsum(counts)[:-1]])
@@ -434,8 +294,8 @@ def _class_roots(kind, nu, omega, step, rtol, max_depth, zgv_points, nu_q: Fract
         fi, k = np.concatenate([fi, *extra_f]), np.concatenate([k, *extra_k])
     scan.add(fi, k)
     _refine_dips(scan, max_depth)
-    scan.decide_in_arb(ratio)
-    _split_zgv_pairs(scan, ratio, zgv_points)
+    scan.decide_exactly()
+    _split_zgv_pairs(scan, zgv_points)
     c = scan.certain()
     sfi, sk, sg = scan.fi[c], scan.k[c], scan.g[c]
     same = sfi[1:] == sfi[:-1]
@@ -449,26 +309,22 @@ def _class_roots(kind, nu, omega, step, rtol, max_depth, zgv_points, nu_q: Fract
     rf = sfi[j]
 
     def f(idx, x):
-        return deflated_with_noise(kind, x, omega[rf[idx]], nu)[0]
+        return model.dispersion(kind, x, omega[rf[idx]])[0]
 
     roots, _, _, unconverged = illinois(f, sk[j], sk[j + 1], sg[j], sg[j + 1], rtol)
     for i in np.flatnonzero(unconverged):
         failures.append((float(omega[rf[i]]), kind, "root refinement did not converge"))
-    roots = _polish(kind, roots, omega[rf], nu)
+    roots = model.polish(kind, roots, omega[rf])
     cells = np.stack([sk[j], sk[j + 1]], axis=1)
-    roots, redone, uncertain = _certify(kind, roots, omega[rf], ratio, cells)
+    roots, redone, uncertain = model.certify(kind, roots, omega[rf], cells)
     for i in uncertain:
         failures.append((float(omega[rf[i]]), kind, f"root near kappa={roots[i]:.6g} not "
                          f"certified to {ROOT_RTOL:.0e} relative"))
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        group = np.asarray(frequency_slope(kind, roots, omega[rf], nu), dtype=float)
-    # where the root needed ball arithmetic the float slope loses as much: redone in mpmath
-    low = np.flatnonzero((omega[rf] < SLOPE_OMEGA) | redone)
-    if low.size:
-        group[low] = _slope_mp(kind, roots[low], omega[rf][low], nu_q)
+    group = model.slope(kind, roots, omega[rf], redone)
     labels = [""] * roots.size
+    branch = [None] * roots.size
     # to just above the top frequency: a cut-off that *is* it to rounding counts (at_cutoff)
-    cut = np.array([w for w, _ in cutoff_frequencies(kind, nu, float(omega.max()) * (1 + 1e-14))])
+    cut = model.cutoffs(kind, float(omega.max()) * (1 + 1e-14))
     for i in range(omega.size):
         mine = np.flatnonzero(rf == i)
         g = group[mine]
@@ -494,21 +350,20 @@ def _class_roots(kind, nu, omega, step, rtol, max_depth, zgv_points, nu_q: Fract
                              "branches below Omega (a root may be missing)"))
             continue
         for r, j in zip(mine, walk):
-            labels[r] = f"{kind}{j}"
+            labels[r], branch[r] = model.label(kind, j), j
     # a branch whose cut-off is Omega to rounding: its root next to kappa = 0 is rounding
     # (kappa ~ sqrt(eps)), the mode is at its cut-off (not propagating): dropped, named
     keep = np.ones(roots.size, dtype=bool)
     at = []
-    for r, lab in enumerate(labels):
-        j = lab[1:]
-        if j.isdigit() and int(j) < cut.size and at_cutoff(float(omega[rf[r]]), cut[int(j)]) \
-                and cut[int(j)] > 0 and roots[r] < 1e-6:
+    for r, (lab, j) in enumerate(zip(labels, branch)):
+        if j is not None and j < cut.size and at_cutoff(float(omega[rf[r]]), cut[j]) \
+                and cut[j] > 0 and roots[r] < 1e-6:
             keep[r] = False
             at.append((int(rf[r]), lab))
     for i in range(omega.size):   # at the cut-off with no root found next to it: named too
         for j, w in enumerate(cut):
-            if w > 0 and at_cutoff(float(omega[i]), w) and (i, f"{kind}{j}") not in at:
-                at.append((i, f"{kind}{j}"))
+            if w > 0 and at_cutoff(float(omega[i]), w) and (i, model.label(kind, j)) not in at:
+                at.append((i, model.label(kind, j)))
     labels = [lab for lab, k in zip(labels, keep) if k]
     return rf[keep], labels, roots[keep], group[keep], failures, at
 
@@ -553,59 +408,68 @@ def modes_at_frequency(nu: float, omega, *, kinds=("S", "A", "SH"), step: float 
     -------
     FrequencyRoots
     """
-    from dispersion.continuum.sh import sh_cutoffs, sh_roots
-
     nu_q = _exact(check_nu(nu))
     nu = float(nu_q)
+    model = IsotropicPlate(nu_q)
     omega = _check_omegas(omega)
     check_positive("step", step)
     check_positive("rtol", rtol)
-    bad = [k for k in kinds if k not in ("S", "A", "SH")]
+    bad = [k for k in kinds if k not in model.classes()]
     if bad or not kinds:
         raise InputError(f"kinds must be a non-empty subset of S, A, SH; got {kinds!r}")
-    samples = float(np.sum(_kappa_start(nu, omega))) / step * len(kinds)
+    samples = float(np.sum(model.kappa_start(omega))) / step * len(kinds)
     if samples > MAX_SCAN_SAMPLES:
         raise InputError(f"the frequencies ask for about {samples:.3g} kappa samples; they "
                          f"must be <= {MAX_SCAN_SAMPLES:.0e} (about a minute): fewer or lower "
                          f"frequencies, or a larger step")
-    wmax = float(omega.max())
     points = ()
     if zgv and any(k in ("S", "A") for k in kinds):
-        points = tuple(zgv_points_below(nu, wmax * 1.05 + 0.5))
+        points = tuple(zgv_points_below(nu, float(omega.max()) * 1.05 + 0.5))
+    return modes_of(model, omega, kinds=kinds, step=step, rtol=rtol, max_depth=max_depth,
+                    zgv_points=points)
+
+
+def modes_of(model, omega, *, kinds, step: float = 0.02, rtol: float = 1e-15,
+             max_depth: int = 12, zgv_points=()) -> FrequencyRoots:
+    """Every propagating mode of the classes ``kinds`` of any plate ``model`` (a
+    :class:`~dispersion.continuum.plate_model.PlateModel`) at each checked Omega of
+    ``omega``: the calculator of :func:`modes_at_frequency`, asking the model for its
+    function, cut-offs, certificates and slopes. ``zgv_points``: the model's zero-group-
+    velocity points near the frequencies (objects with ``label``, ``kappa`` and ``omega``),
+    whose kappa join the samples."""
+    wmax = float(omega.max())
     rows, failures, at_cut = [], [], []
     for kind in kinds:
-        if kind == "SH":
+        if model.closed_form(kind):
             for i, w in enumerate(omega):
-                for lab, k, g in sh_roots(float(w)):
-                    rows.append((i, lab, k, g))
-                at_cut += [(i, lab) for lab, wc in sh_cutoffs(float(w) * (1 + 1e-15))
+                for lab, k, g in model.closed_form_roots(kind, float(w)):
+                    rows.append((i, lab, k, g, kind))
+                at_cut += [(i, model.label(kind, j)) for j, wc in
+                           enumerate(model.cutoffs(kind, float(w) * (1 + 1e-15)))
                            if wc > 0 and at_cutoff(float(w), wc)]
             continue
-        zk = [(p.kappa, p.omega) for p in points if p.label[0] == kind]
-        rf, labels, roots, group, fails, at = _class_roots(kind, nu, omega, step, rtol,
-                                                           max_depth, zk, nu_q)
+        zk = [(p.kappa, p.omega) for p in zgv_points if p.label.rstrip("0123456789") == kind]
+        rf, labels, roots, group, fails, at = _class_roots(model, kind, omega, step, rtol,
+                                                           max_depth, zk)
         failures += fails
         at_cut += at
-        rows += list(zip(rf.tolist(), labels, roots.tolist(), group.tolist()))
-    family = {"S": 0, "A": 1, "SH": 2}
+        rows += [(i, lab, k, g, kind) for i, lab, k, g in
+                 zip(rf.tolist(), labels, roots.tolist(), group.tolist())]
+    order = {k: n for n, k in enumerate(model.classes())}
+
     def number(label):  # "S?" (an uncertified root) sorts after every numbered mode
-        digits = label.lstrip("SAH")
+        digits = label.lstrip("SAHLM")
         return int(digits) if digits.isdigit() else 10**9
 
-    rows.sort(key=lambda r: (r[0], number(r[1]), family[r[1].rstrip("0123456789?")], r[2]))
+    rows.sort(key=lambda r: (r[0], number(r[1]), order[r[4]], r[2]))
     cutoffs = {}
-    top = wmax + math.pi  # the next cut-off of every family lies within pi
     for kind in kinds:
-        found = (sh_cutoffs(top) if kind == "SH" else
-                 [(f"{kind}{j}", w) for j, (w, _) in
-                  enumerate(cutoff_frequencies(kind, nu, top))])
-        above = [lab for lab, w in found if w > wmax][:1]
-        cutoffs.update({lab: w for lab, w in found if w <= wmax or lab in above})
+        cutoffs.update(dict(model.cutoff_table(kind, wmax)))
     return FrequencyRoots(
-        nu=nu, omega=omega,
+        nu=getattr(model, "nu", float("nan")), omega=omega,
         index=np.array([r[0] for r in rows], dtype=int),
         label=tuple(r[1] for r in rows),
         kappa=np.array([r[2] for r in rows], dtype=float),
         group=np.array([r[3] for r in rows], dtype=float),
-        cutoffs=cutoffs, zgv=points, failures=tuple(dict.fromkeys(failures)),
-        at_cutoff=tuple(sorted(set(at_cut))), nu_exact=nu_q)
+        cutoffs=cutoffs, zgv=tuple(zgv_points), failures=tuple(dict.fromkeys(failures)),
+        at_cutoff=tuple(sorted(set(at_cut))), nu_exact=getattr(model, "nu_q", None))

@@ -34,8 +34,10 @@ from dispersion.errors import InputError, as_real, check_positive
 __all__ = [
     "ALUMINIUM",
     "MATERIALS",
+    "PLIES",
     "Material",
     "material",
+    "ply",
     "material_from_moduli",
     "user_material",
 ]
@@ -107,6 +109,16 @@ class Material:
         """Inputs as plain data (for CSV headers and JSON)."""
         return {"name": self.name, "c_L [m/s]": self.c_L, "c_T [m/s]": self.c_T,
                 "rho [kg/m^3]": self.rho, "nu": self.nu, "source": self.source}
+
+    def solid(self):
+        """This material as a layer's :class:`~dispersion.materials.solid.Solid` (it needs a
+        density); the solid remembers this material (``origin``)."""
+        from dispersion.materials.solid import isotropic_solid
+
+        if self.rho is None:
+            raise InputError(f"material {self.name} has no density: a layer needs one "
+                             "(give rho)")
+        return isotropic_solid(self.c_L, self.c_T, self.rho, self.name, self.source, self)
 
 
 def material_from_moduli(E: float, nu: float, rho: float, name: str | None = None) -> Material:
@@ -208,6 +220,15 @@ MATERIALS: dict[str, Material] = {
     "titanium": _row("titanium", 6070.0, 3125.0, 4500.0, "Titanium"),
     "glass": _row("glass", 5640.0, 3280.0, 2320.0, "Glass, pyrex"),
     "pmma": _row("pmma", 2680.0, 1100.0, 1180.0, "Lucite"),
+    "nickel": _row("nickel", 6040.0, 3000.0, 8900.0, "Nickel"),
+    "magnesium": _row("magnesium", 5770.0, 3050.0, 1740.0, "Magnesium, annealed"),
+    # the matrix of fibre composites and the usual adhesive (not a row of the CRC table)
+    "epoxy": Material(2610.0, 1100.0, 1170.0, "epoxy",
+                      "DISPERSE's material database (B. Pavlakovic, M. Lowe, DISPERSE user's "
+                      "manual, Imperial College London), as listed by the Dispersion "
+                      "Calculator (github.com/ArminHuber/Dispersion-Calculator, "
+                      "Materials/MaterialList_Isotropic.txt, Epoxy_Disperse: E 3.941 GPa, "
+                      "nu 0.392, rho 1170 kg/m^3, i.e. c_L 2610 m/s, c_T 1100 m/s)"),
 }
 
 
@@ -217,11 +238,58 @@ def material(name: str) -> Material:
     >>> material("unobtainium")
     Traceback (most recent call last):
     ...
-    dispersion.errors.InputError: material must be one of aluminium, aluminium-rolled, brass, copper, glass, pmma, stainless-steel, steel, titanium; got 'unobtainium'
+    dispersion.errors.InputError: material must be one of aluminium, aluminium-rolled, brass, copper, epoxy, glass, magnesium, nickel, pmma, stainless-steel, steel, titanium; got 'unobtainium'
     """
     key = str(name).strip().lower().replace("_", "-").replace(" ", "-")
     key = {"aluminum": "aluminium", "stainless": "stainless-steel", "plexiglass": "pmma",
-           "acrylic": "pmma", "perspex": "pmma"}.get(key, key)
+           "acrylic": "pmma", "perspex": "pmma", "epoxy-resin": "epoxy"}.get(key, key)
     if key not in MATERIALS:
         raise InputError(f"material must be one of {', '.join(sorted(MATERIALS))}; got {name!r}")
     return MATERIALS[key]
+
+
+def _plies() -> dict:
+    """The fibre-composite plies (transversely isotropic, fibres along axis 1), built on
+    first use (the isotropic table needs no numpy)."""
+    from dispersion.materials.solid import Solid
+    from dispersion.materials.stiffness import voigt
+
+    from dispersion.materials.stiffness import transversely_isotropic
+
+    def ti(c11, c12, c22, c23, c55):   # GPa; C13 = C12, C33 = C22, C44 = (C22 - C23)/2
+        C = [[c11, c12, c12, 0, 0, 0], [c12, c22, c23, 0, 0, 0], [c12, c23, c22, 0, 0, 0],
+             [0, 0, 0, (c22 - c23) / 2, 0, 0], [0, 0, 0, 0, c55, 0], [0, 0, 0, 0, 0, c55]]
+        return voigt([[v * 1e9 for v in row] for row in C], "transversely isotropic")
+
+    return {
+        "T800/913": Solid(ti(154.0, 3.7, 9.5, 5.2, 4.2), 1550.0, "T800/913",
+                          "A. M. A. Huber, M. G. R. Sause, JASA 144 (2018) 3236, "
+                          "doi:10.1121/1.5082299 (CFRP ply, stiffness matrix as printed)"),
+        "TVR380/M12R": Solid(transversely_isotropic(E1=46.43e9, E2=14.92e9, G12=5.233e9,
+                                                    nu12=0.27, nu23=0.3), 1800.0,
+                             "TVR380/M12R",
+                             "the Dispersion Calculator's ply table (A. Huber, DLR; "
+                             "github.com/ArminHuber/Dispersion-Calculator, Materials/"
+                             "MaterialList_TransverselyIsotropic.txt, TVR380M12R_GFRP: rho "
+                             "1800 kg/m^3, E1 46.43 GPa, E2 14.92 GPa, G12 5.233 GPa, "
+                             "nu12 0.27, nu23 0.3; GFRP ply)"),
+    }
+
+
+#: Unidirectional fibre-composite plies by name (:func:`ply`); filled on first use.
+PLIES: dict = {}
+
+
+def ply(name: str):
+    """The ply ``name`` of :data:`PLIES` (a :class:`~dispersion.materials.solid.Solid`),
+    else an InputError listing them.
+
+    >>> ply("t800/913").rho
+    1550.0
+    """
+    if not PLIES:
+        PLIES.update(_plies())
+    key = {k.lower(): k for k in PLIES}.get(str(name).strip().lower())
+    if key is None:
+        raise InputError(f"ply must be one of {', '.join(sorted(PLIES))}; got {name!r}")
+    return PLIES[key]

@@ -1,0 +1,271 @@
+"""The practitioner's table of a layered or anisotropic plate: every mode at given frequencies.
+
+:func:`layered_lamb_modes` takes a :class:`~dispersion.continuum.layered.layered_plate.LayeredPlate`
+and frequencies f (kHz) or frequency-thickness products fd (MHz mm, d the total thickness);
+it solves at :math:`\\Omega = \\omega h / c_{ref}`
+(:func:`dispersion.continuum.layered.layered_modes.layered_modes`: every root found by SAFE,
+polished on the exact relation, counted and certified) and returns a
+:class:`LayeredModeTable` with
+
+.. math::
+
+    k = \\kappa / h, \\quad c_p = \\frac{\\omega}{k}, \\quad c_g = \\frac{d\\omega}{dk}, \\quad
+    \\lambda = \\frac{2\\pi}{k}.
+
+A plate of one undamped isotropic layer is the Rayleigh-Lamb plate: it is answered by the
+isotropic calculator (:func:`dispersion.answers.mode_table.lamb_modes`) from the same numbers,
+so its table is today's, byte for byte.
+
+>>> from dispersion.continuum.layered.layered_plate import layered_plate
+>>> from dispersion.materials.materials import material
+>>> plate = layered_plate([(material("steel"), 0.71), (material("aluminium"), 0.29)])
+>>> t = layered_lamb_modes(plate, frequency_khz=[500.0])
+>>> [(r["mode"], round(r["c_p [m/s]"], 1)) for r in t.rows()]
+[('L0', 1815.6), ('SH0', 3222.2), ('L1', 5423.7)]
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from dispersion.continuum.layered.layered_modes import OMEGA_RANGE, LayeredRoots
+from dispersion.errors import InputError
+from dispersion.rendering import Rendered
+
+__all__ = ["COLUMNS", "LayeredModeTable", "layered_lamb_modes"]
+
+#: Columns of :meth:`LayeredModeTable.rows` with their units (CSV headings).
+COLUMNS = ("f [kHz]", "fd [MHz mm]", "mode", "family", "k [rad/mm]", "c_p [m/s]",
+           "c_g [m/s]", "skew [deg]", "wavelength [mm]", "kappa = kh", "Omega = omega h / c_ref")
+#: ... of a damped plate: the attenuation instead of the group velocity (not computed yet).
+DAMPED_COLUMNS = ("f [kHz]", "fd [MHz mm]", "mode", "family", "k [rad/mm]",
+                  "attenuation [dB/m]", "c_p [m/s]", "wavelength [mm]", "kappa = kh",
+                  "Im kappa", "Omega = omega h / c_ref")
+
+
+@dataclass(frozen=True, repr=False)
+class LayeredModeTable(Rendered):
+    """Modes of one layered ``plate`` at the frequencies ``frequency_khz`` (``roots``: the
+    dimensionless result)."""
+
+    plate: object
+    frequency_khz: np.ndarray
+    roots: LayeredRoots
+    #: Skew angle of each root (degrees): the energy's flow from the waves' direction
+    #: (:func:`~dispersion.continuum.layered.layered_mode_shapes.skew_angles`); None if damped.
+    skew: np.ndarray | None = None
+    #: Zero-group-velocity points ``(label, kappa, Omega)`` up to a little above the highest
+    #: frequency, when asked for (:func:`~dispersion.continuum.layered.layered_zgv.zgv_points`).
+    zgv_points: tuple = ()
+
+    @property
+    def damped(self) -> bool:
+        """True for a damped plate (complex wavenumbers)."""
+        return not self.plate.lossless
+
+    @property
+    def thickness_mm(self) -> float:
+        return self.plate.total_thickness_mm
+
+    @property
+    def failures(self) -> tuple:
+        """Frequencies whose roots a count did not certify, with the reason."""
+        return tuple(f"f = {self._khz(w):.10g} kHz, class {cls}: {why}"
+                     for w, cls, why in self.roots.failures)
+
+    def _scale(self):
+        st = self.plate.scaled()
+        return st.h_m, st.c_ref
+
+    def _khz(self, Omega):
+        h, c = self._scale()
+        return float(Omega) * c / (2 * math.pi * h) / 1e3
+
+    def title(self) -> str:
+        return (f"{self.plate.label()}, d = {self.thickness_mm:g} mm"
+                + (f", waves at {self.plate.direction:g} deg" if self.plate.direction else ""))
+
+    def header_lines(self) -> list[str]:
+        f = self.frequency_khz
+        span = (f"{f.size} frequencies from {f.min():.10g} to {f.max():.10g} kHz" if f.size > 1
+                else f"f = {f[0]:.10g} kHz")
+        h, c = self._scale()
+        lines = self.plate.header_lines() + [
+            f"frequency: {span}",
+            f"kappa = k h, Omega = omega h / c_ref (h = {h * 1e3:g} mm, half the thickness; "
+            f"c_ref = {c:.10g} m/s, the bottom layer's shear speed sqrt((C44 + C55) / 2 rho))",
+            (f"mode classes: {', '.join(self.roots.classes)}; every root certified to 1e-12 "
+             "relative (ball arithmetic) and counted (Wittrick-Williams), else a failure; "
+             "c_g along the waves' direction, skew: the angle of the energy's flow from it "
+             "(towards +90 deg)"
+             if not self.damped else
+             f"mode classes: {', '.join(self.roots.classes)}; damped: each complex root "
+             "followed from the undamped plate's (its name) and certified to 1e-10 relative "
+             "by the argument principle in ball arithmetic, else a failure; attenuation "
+             "20 log10(e) Im k")]
+        lines += [f"cut-off {lab}: {f_c:.10g} kHz" for lab, f_c in self.cutoffs_khz().items()]
+        lines += [f"ZGV {p['mode']}: f = {p['f [kHz]']:.10g} kHz, fd = {p['fd [MHz mm]']:.10g}"
+                  f" MHz mm, c_p = {p['c_p [m/s]']:.10g} m/s" for p in self.zgv()]
+        return lines
+
+    def columns(self) -> tuple[str, ...]:
+        return DAMPED_COLUMNS if self.damped else COLUMNS
+
+    def text_columns(self) -> tuple[str, ...]:
+        if self.damped:
+            return ("f [kHz]", "mode", "k [rad/mm]", "attenuation [dB/m]", "c_p [m/s]",
+                    "wavelength [mm]")
+        skew = () if self.plate.decoupled else ("skew [deg]",)
+        return ("f [kHz]", "mode", "k [rad/mm]", "c_p [m/s]", "c_g [m/s]", *skew,
+                "wavelength [mm]")
+
+    def json_extra(self) -> dict:
+        return {"cutoffs [kHz]": self.cutoffs_khz(), "zgv": self.zgv(),
+                "plate": self.plate.as_dict()}
+
+    def inputs(self) -> dict:
+        f = self.frequency_khz
+        return {"plate": self.plate.as_dict(), "thickness [mm]": self.thickness_mm,
+                "frequencies": int(f.size), "f range [kHz]": [float(f.min()), float(f.max())]}
+
+    def rows(self) -> list[dict]:
+        """One dict per root, keys :data:`COLUMNS`."""
+        r = self.roots
+        h, c = self._scale()
+        h_mm = h * 1e3
+        f = self.frequency_khz[r.index]
+        out = []
+        if self.damped:
+            from dispersion.continuum.layered.damped_modes import DB_PER_NEPER
+
+            for i in range(r.kappa.size):
+                kap = complex(r.kappa[i])
+                k = kap.real / h_mm
+                out.append({
+                    "f [kHz]": float(f[i]), "fd [MHz mm]": float(f[i]) * self.thickness_mm * 1e-3,
+                    "mode": r.label[i], "family": r.family[i], "k [rad/mm]": k,
+                    "attenuation [dB/m]": DB_PER_NEPER * kap.imag / h,
+                    "c_p [m/s]": float(r.omega[r.index[i]]) / kap.real * c,
+                    "wavelength [mm]": 2 * math.pi / k, "kappa = kh": kap.real,
+                    "Im kappa": kap.imag, "Omega = omega h / c_ref": float(r.omega[r.index[i]])})
+            return out
+        for i in range(r.kappa.size):
+            k = float(r.kappa[i]) / h_mm
+            out.append({
+                "f [kHz]": float(f[i]), "fd [MHz mm]": float(f[i]) * self.thickness_mm * 1e-3,
+                "mode": r.label[i], "family": r.family[i], "k [rad/mm]": k,
+                "c_p [m/s]": float(r.omega[r.index[i]] / r.kappa[i]) * c,
+                "c_g [m/s]": float(r.group[i]) * c,
+                "skew [deg]": None if self.skew is None else float(self.skew[i]),
+                "wavelength [mm]": 2 * math.pi / k,
+                "kappa = kh": float(r.kappa[i]),
+                "Omega = omega h / c_ref": float(r.omega[r.index[i]])})
+        return out
+
+    def cutoffs_khz(self) -> dict[str, float]:
+        """Cut-off frequency (kHz) of every mode that has one up to the highest frequency,
+        and the next of each family."""
+        return {lab: self._khz(w) for lab, w in self.roots.cutoffs.items() if w > 0}
+
+    def zgv(self) -> list[dict]:
+        """Zero-group-velocity points (when asked for): mode, f [kHz], fd [MHz mm], c_p [m/s],
+        wavelength [mm], as the isotropic table lists them."""
+        h, c = self._scale()
+        out = []
+        for lab, kap, W in self.zgv_points:
+            f = self._khz(W)
+            out.append({"mode": lab, "f [kHz]": f, "fd [MHz mm]": f * self.thickness_mm * 1e-3,
+                        "c_p [m/s]": W / kap * c, "wavelength [mm]": 2 * math.pi * h * 1e3 / kap})
+        return out
+
+    def curves(self) -> dict[str, dict[str, np.ndarray]]:
+        """Per mode, arrays ordered by k: ``f, fd, c_p, c_g, k`` (as
+        :meth:`dispersion.answers.mode_table.ModeTable.curves`)."""
+        out: dict[str, dict[str, list]] = {}
+        for row in self.rows():
+            d = out.setdefault(row["mode"], {"f": [], "fd": [], "c_p": [], "c_g": [], "k": []})
+            for key, col in (("f", "f [kHz]"), ("fd", "fd [MHz mm]"), ("c_p", "c_p [m/s]"),
+                             ("c_g", "c_g [m/s]"), ("k", "k [rad/mm]")):
+                d[key].append(row.get(col, math.nan))   # damped: no c_g (nan, not drawn)
+        curves = {}
+        for lab, d in out.items():
+            order = np.argsort(d["k"])
+            curves[lab] = {key: np.asarray(v)[order] for key, v in d.items()}
+        return curves
+
+
+def _isotropic_material(solid):
+    """The isotropic :class:`~dispersion.materials.materials.Material` of an undamped isotropic
+    solid: the one it was made from, else one from its speeds."""
+    from dispersion.materials.materials import Material
+
+    if solid.origin is not None:
+        return solid.origin
+    lam, mu = solid.stiffness.lame()
+    return Material(math.sqrt((lam + 2 * mu) / solid.rho), math.sqrt(mu / solid.rho),
+                    solid.rho, solid.name, solid.source)
+
+
+def _frequencies(name, raw, thickness_mm, fd):
+    try:
+        values = np.atleast_1d(np.asarray(raw, dtype=float))
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be a number or a list of numbers, got {raw!r}") from None
+    if values.ndim != 1 or values.size == 0 or not np.all(np.isfinite(values)):
+        raise InputError(f"{name} must be a finite number or a non-empty 1-d list")
+    return values * 1e3 / thickness_mm if fd else values
+
+
+def layered_lamb_modes(plate, *, frequency_khz=None, fd_mhz_mm=None, families=None,
+                       zgv: bool = False):
+    """Every propagating mode of ``plate`` at each frequency: a :class:`LayeredModeTable`
+    (or, for one undamped isotropic layer, the isotropic calculator's
+    :class:`~dispersion.answers.mode_table.ModeTable`). Give exactly one of ``frequency_khz``
+    and ``fd_mhz_mm``; ``families`` a subset of the plate's families (S, A, SH; L, SH; M);
+    ``zgv``: also the zero-group-velocity points of an undamped layered plate up to 5 % above
+    the highest frequency (a SAFE scan in kappa closed on the exact branches: seconds)."""
+    from dispersion.continuum.layered.layered_plate import LayeredPlate
+
+    if not isinstance(plate, LayeredPlate):
+        raise InputError(f"plate must be a LayeredPlate, got {type(plate).__name__}")
+    if (frequency_khz is None) == (fd_mhz_mm is None):
+        raise InputError("give exactly one of frequency_khz (kHz) and fd_mhz_mm (MHz mm)")
+    if plate.isotropic_single():   # undamped: isotropic_single() is False for a damped layer
+        from dispersion.answers.mode_table import lamb_modes
+
+        kinds = ("S", "A", "SH") if families is None else tuple(families)
+        material = _isotropic_material(plate.layers[0].solid)
+        return lamb_modes(material, plate.total_thickness_mm, frequency_khz=frequency_khz,
+                          fd_mhz_mm=fd_mhz_mm, kinds=kinds)
+    name = "frequency_khz" if fd_mhz_mm is None else "fd_mhz_mm"
+    f_khz = _frequencies(name, frequency_khz if fd_mhz_mm is None else fd_mhz_mm,
+                         plate.total_thickness_mm, fd_mhz_mm is not None)
+    st = plate.scaled()
+    omega = 2 * math.pi * f_khz * 1e3 * st.h_m / st.c_ref
+    lo, hi = OMEGA_RANGE
+    bad = (omega < lo) | (omega > hi)
+    if np.any(bad):
+        scale = 1.0 if fd_mhz_mm is None else plate.total_thickness_mm * 1e-3
+        unit = "kHz" if fd_mhz_mm is None else "MHz mm"
+        lo_f, hi_f = (w * st.c_ref / (2 * math.pi * st.h_m) * 1e-3 * scale for w in (lo, hi))
+        raise InputError(f"{name} must lie in [{lo_f:.4g}, {hi_f:.4g}] {unit} for this plate "
+                         f"(d = {plate.total_thickness_mm:g} mm), got "
+                         f"{float(f_khz[bad][0]) * scale:.6g} {unit}")
+    if not plate.lossless:
+        from dispersion.continuum.layered.damped_modes import damped_modes
+
+        return LayeredModeTable(plate, f_khz, damped_modes(plate, omega, families=families))
+    from dispersion.continuum.layered.layered_mode_shapes import skew_angles
+    from dispersion.continuum.layered.layered_modes import layered_modes
+
+    roots = layered_modes(plate, omega, families=families)
+    points = ()
+    if zgv:
+        from dispersion.continuum.layered.layered_zgv import zgv_points
+
+        fams = set(roots.family)
+        points = tuple(p for p in zgv_points(plate, 1.05 * float(omega.max()))
+                       if p[0].rstrip("0123456789") in fams)
+    return LayeredModeTable(plate, f_khz, roots, skew_angles(plate, roots), points)

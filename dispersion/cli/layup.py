@@ -1,0 +1,85 @@
+"""``dispersion branches --exact --layup ... --frequency ...``: the layered plate's calculator.
+
+Parses the layup options, calls :func:`dispersion.api.layup` and
+:func:`dispersion.api.layered_lamb_modes`, renders the table.
+"""
+from __future__ import annotations
+
+import argparse
+
+from dispersion.cli.options import real
+from dispersion.errors import InputError
+
+#: The families ``--modes`` names.
+FAMILIES = ("S", "A", "SH", "L", "M")
+
+
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    """The options of a layered plate."""
+    p.add_argument("--layup", metavar="LAYUP",
+                   help="a layered or anisotropic plate instead of a material: a TOML file "
+                        "(FILE.toml: [[layer]] material, thickness, angle; [[interface]] "
+                        "springs), layers material:thickness_mm[:angle],... bottom up (e.g. "
+                        "steel:0.71,aluminium:0.29), or a layup such as [0/90]s with --ply "
+                        "and --ply-thickness")
+    p.add_argument("--ply", metavar="NAME",
+                   help="with a layup string such as [0/90]s: the ply (T800/913, or a table "
+                        "material)")
+    p.add_argument("--ply-thickness", type=real("--ply-thickness", 0, lo_open=True),
+                   metavar="MM", help="with --ply: the thickness of one ply in mm")
+    p.add_argument("--angle", type=real("--angle", -360, 360),
+                   help="with --layup: direction of the waves in degrees from the plate's 0 "
+                        "deg axis, in [-360, 360] (default: 0)")
+    p.add_argument("--damping", type=real("--damping", 0, 1, hi_open=True), metavar="ETA",
+                   help="with --layup: hysteretic loss factor eta of every layer, moduli "
+                        "C (1 - i eta), in [0, 1): complex wavenumbers and the attenuation in "
+                        "dB/m (default: 0)")
+    p.add_argument("--modes", metavar="FAMILIES",
+                   help="mode families to solve, comma separated: S, A, SH (symmetric plates; "
+                        "with --layup also L for the Lamb modes of an unsymmetric stack, M "
+                        "for coupled ones) (default: all)")
+
+
+def requested(args) -> bool:
+    return getattr(args, "layup", None) is not None
+
+
+#: Where the layup options apply (read by :data:`dispersion.cli.frequency.RULES`).
+RULES = [
+    ("--ply", requested, "with --layup"),
+    ("--ply-thickness", requested, "with --layup"),
+    ("--angle", requested, "with --layup"),
+    ("--damping", requested, "with --layup"),
+]
+
+
+def families(args):
+    """The families of ``--modes`` (None: all)."""
+    if args.modes is None:
+        return None
+    names = [w.strip().upper() for w in args.modes.split(",") if w.strip()]
+    bad = [w for w in names if w not in FAMILIES]
+    if bad or not names:
+        raise InputError(f"--modes must be a comma-separated list of {', '.join(FAMILIES)}, "
+                         f"got {args.modes[:40]!r}")
+    return tuple(dict.fromkeys(names))
+
+
+def run(args) -> int:
+    from dispersion.api import layered_lamb_modes, layup
+    from dispersion.cli.options import frequencies
+    from dispersion.cli.outputs import check_outputs, warn_failures, write_outputs
+    from dispersion.plotting.lamb import figure_mode_table
+
+    plate = layup(args.layup, ply=args.ply, ply_thickness_mm=args.ply_thickness,
+                  direction=0.0 if args.angle is None else args.angle,
+                  damping=0.0 if args.damping is None else args.damping)
+    check_outputs(args, "branches")
+    if args.fd is not None:
+        freq = {"fd_mhz_mm": frequencies(args.fd, "--fd", units=None)}
+    else:
+        freq = {"frequency_khz": frequencies(args.frequency, "--frequency")}
+    table = layered_lamb_modes(plate, families=families(args), **freq)
+    warn_failures(table, args)
+    write_outputs(args, table, figure_mode_table)
+    return 0

@@ -1,0 +1,65 @@
+"""Modes of layered plates through the thickness (dispersion/continuum/layered/
+layered_mode_shapes.py): against the exact isotropic shapes, the free faces, Biot's theorem
+and the angular derivative of the frequency."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from dispersion.continuum.layered.layered_branches import layered_branches
+from dispersion.continuum.layered.layered_mode_shapes import mode_shape
+from dispersion.continuum.layered.layered_plate import laminate, layered_plate
+from dispersion.continuum.mode_shapes import exact_mode_shape
+from dispersion.materials.materials import material, ply
+
+STEEL = material("steel")
+
+
+@pytest.mark.parametrize("W, label", [(1.0, "A0"), (3.0, "S1")])
+def test_one_layer_has_the_exact_rayleigh_lamb_shape(W, label):
+    s = mode_shape(layered_plate([(STEEL, 1.0)]), W, label)
+    ux, uy = exact_mode_shape(label[0], s.kappa, W, STEEL.nu, s.z)
+    ours = np.abs(s.u[[0, 2]])
+    exact = np.abs(np.array([ux, uy]))
+    assert np.allclose(ours, exact / exact.max(), atol=1e-9)
+    assert np.abs(s.u[1]).max() == 0.0            # no SH part in a Lamb mode
+
+
+CASES = [
+    (layered_plate([(STEEL, 0.71), (material("aluminium"), 0.29)]), 2.0, "L1"),
+    (laminate("[0/90]s", ply("T800/913"), 0.125, direction=30), 1.0, "A0"),
+    pytest.param(laminate("[0/90]s", ply("T800/913"), 0.125, direction=30), 1.0, "S0",
+                 marks=pytest.mark.slow),
+    pytest.param(laminate("[0/90/45/-45]", ply("T800/913"), 0.125, direction=20), 1.0, "M1",
+                 marks=pytest.mark.slow),
+]
+
+
+@pytest.mark.parametrize("plate, W, label", CASES)
+def test_energy_flows_at_the_group_velocity_from_free_faces(plate, W, label):
+    """Biot: the energy velocity along the wave is d Omega / d kappa (computed from the
+    stiffness's derivatives, another route); the tractions vanish on both faces."""
+    s = mode_shape(plate, W, label)
+    assert abs(s.energy_velocity[0] / s.group - 1) < 1e-10
+    scale = np.abs(s.stress).max()
+    faces = np.abs(s.stress[[2, 3, 4]][:, [0, -1]])
+    assert faces.max() < 1e-9 * scale
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("direction, W, label", [(30.0, 1.0, "A0"), (30.0, 1.0, "S0"),
+                                                 (20.0, 4.0, "S1")])
+def test_the_skew_is_the_angular_derivative_of_the_frequency(direction, W, label):
+    """Across the wave the energy flows at (1/kappa) dOmega/dtheta at fixed kappa (the
+    group velocity's other component), by a 4-point difference over +-2e-3 deg."""
+    s = mode_shape(laminate("[0/90]s", ply("T800/913"), 0.125, direction=direction), W, label)
+    d = 1e-3
+    W_at = []
+    for dt in (-2 * d, -d, d, 2 * d):
+        b = layered_branches(laminate("[0/90]s", ply("T800/913"), 0.125,
+                                      direction=direction + dt), [s.kappa], 1.5 * W)
+        W_at.append([w for w, lab in zip(b.omega, b.label) if lab == label][0])
+    dW = (-W_at[3] + 8 * W_at[2] - 8 * W_at[1] + W_at[0]) / (12 * math.radians(d))
+    assert abs(s.energy_velocity[1] - dW / s.kappa) < 1e-7 * abs(s.group)

@@ -84,7 +84,7 @@ def patch(*args, **fields) -> PatchModel:
     mass, contact, gamma_s, weights, nu, law: documented there, with their defaults and limits),
     checked at once (bad parameters raise :class:`InputError` here), with its matrices, series
     and branches. ``r="r"`` keeps the aspect ratio symbolic; ``law`` gives the plate another
-    material (:mod:`dispersion.symbolic.elastic_law`).
+    material (:mod:`dispersion.materials.elastic_law`).
 
     >>> from dispersion.symbolic.patch import Patch
     >>> pt = patch(mass="singular", gamma_s=0)
@@ -123,8 +123,8 @@ def series(branch: str = "S0", order: int = 8, *, exact: bool = False, nu=None,
 @_front_door
 def exact_branches(kappa, nu=defaults.NU_FLOAT, omega_max: float = 8.0, **kwargs):
     """Exact Rayleigh-Lamb branches with :math:`\\Omega \\le` ``omega_max`` on ``kappa``
-    (:func:`dispersion.waves.exact_branches.trace_branches`); ``nu`` may be an isotropic
-    :class:`~dispersion.symbolic.elastic_law.ElasticLaw` (other laws have no closed form:
+    (:func:`dispersion.continuum.exact_branches.trace_branches`); ``nu`` may be an isotropic
+    :class:`~dispersion.materials.elastic_law.ElasticLaw` (other laws have no closed form:
     refused)."""
     from dispersion.continuum.exact_branches import trace_branches
 
@@ -136,8 +136,8 @@ def exact_branches(kappa, nu=defaults.NU_FLOAT, omega_max: float = 8.0, **kwargs
 
 @_front_door
 def material(name: str):
-    """A material of the table (:data:`dispersion.waves.materials.MATERIALS`, with sources);
-    user materials: :func:`dispersion.waves.materials.user_material`."""
+    """A material of the table (:data:`dispersion.materials.materials.MATERIALS`, with sources);
+    user materials: :func:`dispersion.materials.materials.user_material`."""
     from dispersion.materials.materials import material as _material
 
     return _material(name)
@@ -147,7 +147,7 @@ def material(name: str):
 def lamb_modes(material, thickness_mm: float, *, frequency_khz=None, fd_mhz_mm=None, **kwargs):
     """Every propagating S, A and SH mode of the plate at the given frequencies (kHz) or
     frequency-thickness products (MHz mm), in physical units
-    (:func:`dispersion.waves.mode_table.lamb_modes`; ``material`` may be a table name).
+    (:func:`dispersion.answers.mode_table.lamb_modes`; ``material`` may be a table name).
 
     >>> t = lamb_modes("steel", 3.0, frequency_khz=200)
     >>> [(r["mode"], round(r["c_p [m/s]"]), round(r["c_g [m/s]"])) for r in t.rows()]
@@ -166,8 +166,8 @@ def lamb_modes(material, thickness_mm: float, *, frequency_khz=None, fd_mhz_mm=N
 def branch_table(**request):
     """``dispersion branches`` as a function: exact and discrete branches on a kappa grid, in
     units with a material, bounded as the command bounds them
-    (:func:`dispersion.waves.branch_table.branch_table`; a
-    :class:`~dispersion.waves.branch_table.BranchTable` that renders itself).
+    (:func:`dispersion.answers.branch_table.branch_table`; a
+    :class:`~dispersion.answers.branch_table.BranchTable` that renders itself).
 
     >>> t = branch_table(exact=True, count=3, kappa_max=1.0, omega_max=2.0)
     >>> t.title()
@@ -182,7 +182,7 @@ def branch_table(**request):
 @_front_door
 def mode_shapes(table, mode: str, points: int = 41):
     """Displacements and stresses through the thickness of ``mode`` of a one-frequency
-    :func:`lamb_modes` table (:func:`dispersion.waves.mode_shape_table.mode_shapes`)."""
+    :func:`lamb_modes` table (:func:`dispersion.answers.mode_shape_table.mode_shapes`)."""
     from dispersion.answers.mode_shape_table import mode_shapes as _mode_shapes
 
     return _mode_shapes(table, mode, points)
@@ -190,8 +190,8 @@ def mode_shapes(table, mode: str, points: int = 41):
 
 @_front_door
 def series_table(branches=("S0", "A0"), order: int = 8, **request):
-    """``dispersion series`` as a function (:func:`dispersion.waves.series_table.series_table`:
-    a :class:`~dispersion.waves.series_table.SeriesTable` that prints itself)."""
+    """``dispersion series`` as a function (:func:`dispersion.answers.series_table.series_table`:
+    a :class:`~dispersion.answers.series_table.SeriesTable` that prints itself)."""
     from dispersion.answers.series_table import series_table as _series_table
 
     _fits("series_table", _series_table, (branches, order), request)
@@ -200,7 +200,7 @@ def series_table(branches=("S0", "A0"), order: int = 8, **request):
 
 @_front_door
 def critical_steps(masses=None, p: int = 2, **request):
-    """``dispersion timestep`` as a function (:func:`dispersion.waves.critical_steps.critical_steps`)."""
+    """``dispersion timestep`` as a function (:func:`dispersion.answers.critical_steps.critical_steps`)."""
     from dispersion.answers.critical_steps import critical_steps as _critical_steps
 
     _fits("critical_steps", _critical_steps, (masses, p), request)
@@ -210,7 +210,7 @@ def critical_steps(masses=None, p: int = 2, **request):
 @_front_door
 def figure(result):
     """The figure of a result (the ``plots`` extra), drawn from the result alone, as the
-    command's ``--figure`` draws it: a :class:`~dispersion.waves.branch_table.BranchTable`,
+    command's ``--figure`` draws it: a :class:`~dispersion.answers.branch_table.BranchTable`,
     a :func:`lamb_modes` table, its :func:`mode_shapes`, a ring or a Signorini run.
 
     >>> fig = figure(lamb_modes("steel", 3.0, frequency_khz=[100, 200, 300]))

@@ -1,7 +1,7 @@
 """How a set of branches on a kappa grid shows itself: short reprs, HTML, a DataFrame.
 
-:class:`BranchViews` is mixed into :class:`~dispersion.waves.discrete_branches.DiscreteBranches`
-and :class:`~dispersion.waves.exact_branches.ExactBranches` (both hold ``kappa`` and
+:class:`BranchViews` is mixed into :class:`~dispersion.discretization.discrete_branches.DiscreteBranches`
+and :class:`~dispersion.continuum.exact_branches.ExactBranches` (both hold ``kappa`` and
 ``omega[label]``). A repr names the grid and the branches, never whole arrays, so a notebook
 cell or a log line stays short; ``to_dataframe()`` gives the long table (one row per kappa and
 branch) when pandas is installed (the ``dataframe`` extra).

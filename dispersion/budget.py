@@ -8,7 +8,7 @@ development machine; each bound is the largest size whose measured (fitted) cost
 inside it. The measurements are ``benchmarks/bench_request_costs.py`` (CPU seconds, the
 machine shared with other jobs: the lead re-times them on a quiet machine).
 
-1. **Exact maximum of the periodic bar** (:func:`dispersion.waves.timestep.bar_omega_max`,
+1. **Exact maximum of the periodic bar** (:func:`dispersion.time_stepping.timestep.bar_omega_max`,
    ``critical_step(model="bar")``, claims of kind ``critical_step`` on the bar, ``dispersion
    timestep --model bar``): a rational function of :math:`\\cos\\theta` of degree about p is
    maximised exactly (its critical points are algebraic numbers). Measured CPU of one call
@@ -19,8 +19,8 @@ machine shared with other jobs: the lead re-times them on a quiet machine).
    nodal-lobatto under 4 s up to p = 16. The cost grows several-fold per degree at the top.
    Bound: :data:`BAR_P_MAX` = 12, the largest p at which every registered rule of the bar
    finished within the minute (the dearest, dual-lumped, at 44 s).
-2. **Fully discrete series** (:func:`dispersion.waves.fully_discrete.fully_discrete_series`,
-   :func:`~dispersion.waves.fully_discrete.time_series`, claims of kind
+2. **Fully discrete series** (:func:`dispersion.time_stepping.fully_discrete.fully_discrete_series`,
+   :func:`~dispersion.time_stepping.fully_discrete.time_series`, claims of kind
    ``fully_discrete_series``). (a) The time series to m terms (:math:`m` = order // lowest
    power) is a sympy series of degree m. Measured for ``{2: 1}``: m = 64, 128, 256 take
    0.8, 1.7, 12.6 s (growth about m^3); m = 512 timed out at 120 s. Bound:
@@ -39,7 +39,7 @@ machine shared with other jobs: the lead re-times them on a quiet machine).
    37 s at p = 1 and order 16 about 3 to 4 s for p = 2 to 8 (order 20 timed out at 90 s
    from p = 2). Bound: order (highest power of kappa) :data:`BAR_SERIES_ORDER_MAX` = 16,
    and p at most :data:`BAR_P_MAX`.
-4. **Phases of the critical-step grid** (:func:`dispersion.waves.timestep.patch_omega_max`,
+4. **Phases of the critical-step grid** (:func:`dispersion.time_stepping.timestep.patch_omega_max`,
    ``critical_time_step``, ``critical_step``): every phase holds its stiffness and mass
    matrices and their eigenvalues, of size 2n; measured 115 KiB a phase at 2n = 48 (10^4
    phases: 1.3 GiB, 8.9 s) and 1.4 KiB at 2n = 6, about 50 bytes per phase and squared

@@ -9,7 +9,7 @@ object sits above them and hands each request to the function that owns it:
   :mod:`dispersion.symbolic.plate` (paper eq (5));
 * :meth:`PatchModel.series`: :func:`dispersion.symbolic.power_balance.discrete_series`
   (eqs 17-20);
-* :meth:`PatchModel.branches`: :func:`dispersion.waves.discrete_branches.discrete_branches`.
+* :meth:`PatchModel.branches`: :func:`dispersion.discretization.discrete_branches.discrete_branches`.
 
 The patch's own fields and labels read through (``pt.mass``, ``pt.label()``).
 
@@ -121,12 +121,12 @@ class PatchModel:
 
     def branches(self, kappa, nu=None, group: bool = False):
         """All discrete branches on the grid ``kappa``
-        (:func:`dispersion.waves.discrete_branches.discrete_branches`) of the patch and its
+        (:func:`dispersion.discretization.discrete_branches.discrete_branches`) of the patch and its
         law (``nu`` replaces an isotropic plate's Poisson's ratio; a symbolic one takes the
         default :data:`dispersion.defaults.NU`; other laws are taken as they are);
         ``group=True`` adds the
         group velocities (``DiscreteBranches.group``). The request is bounded as ``dispersion
-        branches`` bounds it (:data:`dispersion.waves.branch_table.MAX_COUNT`,
+        branches`` bounds it (:data:`dispersion.answers.branch_table.MAX_COUNT`,
         :func:`~dispersion.budget.check_discrete_branches`), before any work.
 
         >>> PatchModel(Patch(n=30)).branches(range(20000))

@@ -50,7 +50,7 @@ __all__ = ["MAX_COUNT", "MAX_OMEGA", "MAX_DISCRETE_WORK", "DISCRETE_N_MAX", "KAP
            "branch_table", "kappa_grid", "check_discrete_work"]
 
 #: Most kappa points of one request (the tracer's own scan bound applies as well:
-#: :data:`dispersion.waves.exact_branches.MAX_SAMPLES`, count * (omega_max / 0.05 + 1)).
+#: :data:`dispersion.continuum.exact_branches.MAX_SAMPLES`, count * (omega_max / 0.05 + 1)).
 MAX_COUNT = 200_000
 #: Largest Omega = omega h / c_T of a request.
 MAX_OMEGA = 200.0
@@ -245,7 +245,7 @@ class BranchTable(Rendered):
     # ------------------------------------------------------------------ figure data
 
     def physical(self):
-        """The exact branches in units (:class:`dispersion.waves.units.PhysicalBranches`)."""
+        """The exact branches in units (:class:`dispersion.answers.units.PhysicalBranches`)."""
         from dispersion.answers.units import physical_branches
 
         return physical_branches(self.kappa, self.exact.omega, self.velocities.group,
@@ -328,7 +328,7 @@ def branch_table(*, mass=None, exact: bool | None = None, masses=None,
     ----------
     mass : str, MassRule or a sequence of them, optional
         Mass rule(s) of the discrete patch, names of
-        :data:`~dispersion.symbolic.mass_rule.RULE_NAMES` or rules (default
+        :data:`~dispersion.mass_rules.mass_rule.RULE_NAMES` or rules (default
         :data:`DEFAULT_MASSES`; none with ``exact``). One name is one rule; an empty
         sequence is refused (``exact=True`` asks for the exact branches alone).
     exact : bool
@@ -341,7 +341,7 @@ def branch_table(*, mass=None, exact: bool | None = None, masses=None,
     nu : float, optional
         Poisson's ratio (default 0.3); a material fixes it instead.
     material, thickness_mm : Material or str, float, optional
-        A material (or its name in :data:`~dispersion.waves.materials.MATERIALS`) and the
+        A material (or its name in :data:`~dispersion.materials.materials.MATERIALS`) and the
         plate thickness d = 2h in mm, given together: rows in physical units and the ZGV
         points.
     kappa_min, kappa_max : float
@@ -356,7 +356,7 @@ def branch_table(*, mass=None, exact: bool | None = None, masses=None,
         (default :data:`OMEGA_MAX`).
     scheme, courant : str, float, optional
         Fully discrete branches: a Newmark member
-        (:data:`~dispersion.waves.time_integration.NEWMARK_MEMBERS`) at ``courant`` times each
+        (:data:`~dispersion.time_stepping.time_integration.NEWMARK_MEMBERS`) at ``courant`` times each
         mass's critical step of central differences (Bloch model only).
     paired : bool
         Also pair each exact branch with the discrete mode of the same shape and keep the

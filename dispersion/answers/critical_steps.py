@@ -237,7 +237,7 @@ def _name(rule) -> str:
 
 
 def _step(rule, p, **setting):
-    """:func:`~dispersion.waves.timestep.critical_step`, with an indefinite mass (warned by
+    """:func:`~dispersion.time_stepping.timestep.critical_step`, with an indefinite mass (warned by
     the rule's check, or met by the Cholesky factorization) raised as :class:`_NoStep`."""
     import warnings
 

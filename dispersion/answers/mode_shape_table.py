@@ -1,13 +1,13 @@
 """The mode shapes of one mode at one frequency: ``dispersion branches --mode-shape`` as a
 function.
 
-:func:`mode_shapes` takes a :class:`~dispersion.waves.mode_table.ModeTable` of one frequency
+:func:`mode_shapes` takes a :class:`~dispersion.answers.mode_table.ModeTable` of one frequency
 and a mode label (any letter case: ``a1`` is A1) and returns a :class:`ModeShapeTable`: the
 displacements and stresses through the thickness of every root of that mode (a backward
-branch has two), normalised as :data:`~dispersion.waves.mode_shapes.FIELD_NORMALISATION`
+branch has two), normalised as :data:`~dispersion.continuum.mode_shapes.FIELD_NORMALISATION`
 says. Lamb modes (S, A) have ``u_x, u_y, sigma_xx, sigma_yy, sigma_xy``
-(:func:`~dispersion.waves.mode_shapes.exact_mode_fields`); SH modes ``u_z, sigma_yz,
-sigma_xz`` (:func:`~dispersion.waves.sh.sh_mode_shape`). The table renders itself
+(:func:`~dispersion.continuum.mode_shapes.exact_mode_fields`); SH modes ``u_z, sigma_yz,
+sigma_xz`` (:func:`~dispersion.continuum.sh.sh_mode_shape`). The table renders itself
 (:class:`dispersion.rendering.Rendered`) and draws its figure
 (:func:`dispersion.plotting.lamb.figure_mode_shapes`).
 

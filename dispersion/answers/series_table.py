@@ -2,7 +2,7 @@
 
 :func:`series_table` derives the Taylor coefficients of :math:`\\Omega^2` in :math:`\\kappa`
 of the branches through the origin, of the exact Rayleigh-Lamb equation (eqs 14-15,
-:func:`~dispersion.waves.exact_series.exact_series_raw`) or of a discrete patch (eqs 17-20,
+:func:`~dispersion.continuum.exact_series.exact_series_raw`) or of a discrete patch (eqs 17-20,
 :func:`~dispersion.symbolic.power_balance.discrete_series_raw`: one determinant for both
 branches where the mass breaks the mirror), with Poisson's ratio symbolic or substituted, and
 returns a :class:`SeriesTable`. The table prints from the flint kernel alone

@@ -3,7 +3,7 @@
 The bar has no thickness, no aspect ratio and no contact boundary, so it is not a
 :class:`dispersion.symbolic.patch.Patch`: it holds the degree ``p`` of its B-splines and the
 mass rule, checked here once. Its frequencies are those of
-:func:`dispersion.waves.timestep.bar_omega_squared` (element length h, wave speed c).
+:func:`dispersion.time_stepping.timestep.bar_omega_squared` (element length h, wave speed c).
 
 >>> BarModel(1, "lumped").label()
 'periodic bar p=1, lumped mass'
@@ -26,7 +26,7 @@ __all__ = ["BarModel"]
 @dataclass(frozen=True)
 class BarModel:
     """The periodic bar: ``p`` in [1, :data:`dispersion.symbolic.plate.P_MAX`], a mass rule
-    of :mod:`dispersion.symbolic.mass_rule` that does not redistribute (name or rule)."""
+    of :mod:`dispersion.mass_rules.mass_rule` that does not redistribute (name or rule)."""
 
     p: int = defaults.P
     mass: str = defaults.MASS

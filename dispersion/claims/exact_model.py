@@ -1,7 +1,7 @@
 """The exact plate of a claims file: the Rayleigh-Lamb equation (``model = "rayleigh-lamb"``).
 
-It has no settings: its series are :func:`dispersion.waves.exact_series.exact_series`, its
-branches :func:`dispersion.waves.exact_branches.trace_branches`. A claim about a
+It has no settings: its series are :func:`dispersion.continuum.exact_series.exact_series`, its
+branches :func:`dispersion.continuum.exact_branches.trace_branches`. A claim about a
 discretisation holds a :class:`dispersion.symbolic.patch.Patch` (or a
 :class:`dispersion.claims.bar_model.BarModel`) instead.
 
@@ -18,7 +18,7 @@ from typing import ClassVar
 __all__ = ["EXACT", "ExactModel"]
 
 #: The claims file's name of the exact model (the Rayleigh-Lamb equation of
-#: :mod:`dispersion.waves.rayleigh_lamb`).
+#: :mod:`dispersion.continuum.rayleigh_lamb`).
 EXACT = "rayleigh-lamb"
 
 

@@ -28,12 +28,12 @@ model and the mass)::
     "kappa^4" = "-1/12"
 
 Critical steps are those of the claim's own patch, ``r`` included
-(:func:`dispersion.waves.timestep.patch_omega_max`; the ratio is to the consistent mass on
-the same patch) or of the periodic bar (:func:`dispersion.waves.timestep.critical_step`,
+(:func:`dispersion.time_stepping.timestep.patch_omega_max`; the ratio is to the consistent mass on
+the same patch) or of the periodic bar (:func:`dispersion.time_stepping.timestep.critical_step`,
 exact); the series come from
-:func:`dispersion.waves.fully_discrete.fully_discrete_series` on the semi-discrete series of
+:func:`dispersion.time_stepping.fully_discrete.fully_discrete_series` on the semi-discrete series of
 the patch (:func:`dispersion.symbolic.power_balance.discrete_series`) or of the periodic bar
-(:func:`dispersion.waves.timestep.bar_omega_squared`). Series coefficients are compared
+(:func:`dispersion.time_stepping.timestep.bar_omega_squared`). Series coefficients are compared
 exactly (the difference cancels to zero).
 """
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""``dispersion branches``: :func:`dispersion.waves.branch_table.branch_table` on the command
+"""``dispersion branches``: :func:`dispersion.answers.branch_table.branch_table` on the command
 line (a kappa grid), or with ``--frequency``/``--fd`` the Lamb-wave calculator
 (:mod:`dispersion.cli.frequency`). This module parses, calls one function and renders.
 """

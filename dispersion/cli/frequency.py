@@ -1,7 +1,7 @@
 """``dispersion branches --frequency/--fd``: the Lamb-wave calculator on the command line.
 
 Parses the frequencies and the material, calls :func:`dispersion.api.lamb_modes` (or
-:func:`dispersion.waves.mode_shape_table.mode_shapes` with ``--mode-shape``) and renders the
+:func:`dispersion.answers.mode_shape_table.mode_shapes` with ``--mode-shape``) and renders the
 result. Frequencies: ``200`` (kHz), ``200kHz``, ``0.2MHz``, ``2e5Hz``; lists ``100,200,300``;
 grids ``START:STOP:COUNT`` (COUNT points, both ends included), e.g. ``10kHz:1MHz:500``.
 """

@@ -269,15 +269,15 @@ def lazy_help(template: str, names) -> str:
     return _LazyHelp(template, names)
 
 
-#: Option of each input of :func:`dispersion.waves.materials.user_material` (E in GPa there).
+#: Option of each input of :func:`dispersion.materials.materials.user_material` (E in GPa there).
 MATERIAL_OPTIONS = {"c_L": "--cl", "c_T": "--ct", "rho": "--rho", "E": "--youngs-modulus",
                     "nu": "--nu"}
 
 
 def material_from_args(args: argparse.Namespace, default: str | None = None):
-    """The :class:`~dispersion.waves.materials.Material` of a command's options.
+    """The :class:`~dispersion.materials.materials.Material` of a command's options.
 
-    ``--material NAME`` (a row of :data:`dispersion.waves.materials.MATERIALS`), or user values
+    ``--material NAME`` (a row of :data:`dispersion.materials.materials.MATERIALS`), or user values
     ``--cl/--ct[/--rho]`` (m/s, kg/m^3) or ``--youngs-modulus/--nu/--rho`` (GPa, -, kg/m^3);
     ``--nu`` counts as a material input only beside ``--youngs-modulus`` (elsewhere it is the
     dimensionless Poisson's ratio of the run). A command without some of these options simply

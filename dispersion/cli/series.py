@@ -1,4 +1,4 @@
-"""``dispersion series``: :func:`dispersion.waves.series_table.series_table` (or, with
+"""``dispersion series``: :func:`dispersion.answers.series_table.series_table` (or, with
 ``--paper``, :func:`dispersion.claims.errata_sheet.errata_sheet`) on the command line.
 
 The exact series prints from the flint kernel alone: this module and the function it calls

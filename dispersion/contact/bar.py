@@ -2,7 +2,7 @@
 
 A bar on :math:`[0, L]` (unit area, modulus :math:`E`, density :math:`\\rho`, wave speed
 :math:`c = \\sqrt{E/\\rho}`) discretized by open uniform B-splines of degree :math:`p`
-(:mod:`dispersion.symbolic.bspline`; :math:`p = 1` is the P1 finite element), with either end free or
+(:mod:`dispersion.splines.bspline`; :math:`p = 1` is the P1 finite element), with either end free or
 clamped, a rigid wall at distance ``gap`` beyond the left or the right end, initial
 displacement and velocity fields and a body force :math:`b(x)`:
 
@@ -11,12 +11,12 @@ displacement and velocity fields and a body force :math:`b(x)`:
     \\rho u_{tt} = E u_{xx} + b, \\qquad g = \\mathrm{gap} \\pm u(x_c) \\ge 0, \\quad
     \\lambda \\ge 0, \\quad \\lambda g = 0 .
 
-The mass is any rule of :mod:`dispersion.symbolic.mass_rule` (a name or a
-:class:`~dispersion.symbolic.mass_rule.MassRule`); the singular ones redistribute
+The mass is any rule of :mod:`dispersion.mass_rules.mass_rule` (a name or a
+:class:`~dispersion.mass_rules.mass_rule.MassRule`); the singular ones redistribute
 the contact end's function onto its two neighbours (paper eqs 2-4).
 
 A bar of up to :data:`DENSE_DOFS` functions is assembled as numpy arrays on the float
-B-spline basis (:meth:`~dispersion.symbolic.bspline.SplineBasis1D.uniform`), and the rules
+B-spline basis (:meth:`~dispersion.splines.bspline.SplineBasis1D.uniform`), and the rules
 that read only the consistent mass and the redistribution (:data:`NUMERIC_RULES`) are
 applied to it in floats: such a run imports neither sympy nor scipy (issue 23: their import
 costs more than a whole small run). Larger bars are assembled sparse (scipy), and the rules

@@ -67,7 +67,7 @@ class Newmark:
 
 #: Time integrators of contact problems by name: Kane's contact-modified Newmark, standard
 #: Newmark, central differences (beta = 0, explicit, Kane's contact impulse; the same member
-#: is "central" in :data:`dispersion.waves.time_integration.NEWMARK_MEMBERS`).
+#: is "central" in :data:`dispersion.time_stepping.time_integration.NEWMARK_MEMBERS`).
 CONTACT_SCHEMES = ("kane", "standard", "central")
 #: How pages and figures name them.
 SCHEME_TEXT = {"kane": "Kane's contact-modified Newmark", "standard": "standard Newmark",

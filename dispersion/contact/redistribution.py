@@ -1,7 +1,7 @@
 """The paper's redistribution matrix in floats, for the numeric contact scenes (no sympy, no scipy).
 
-The exact matrix is :func:`dispersion.symbolic.mass.redistribution_matrix`; this is the same
-placement of the same weights (:func:`dispersion.symbolic.mass.contact_weights`) as a numpy
+The exact matrix is :func:`dispersion.mass_rules.mass.redistribution_matrix`; this is the same
+placement of the same weights (:func:`dispersion.mass_rules.mass.contact_weights`) as a numpy
 array, so that a bar or a ring does not load sympy for it (tested equal).
 """
 from __future__ import annotations
@@ -15,7 +15,7 @@ __all__ = ["float_redistribution"]
 
 
 def float_redistribution(n: int, contact: str, gamma_s: float) -> np.ndarray:
-    """Float redistribution matrix of :func:`dispersion.symbolic.mass.redistribution_matrix` across ``n``
+    """Float redistribution matrix of :func:`dispersion.mass_rules.mass.redistribution_matrix` across ``n``
     functions, contact set ``contact`` (``"top"``: index n-1, ``"bottom"``: index 0).
 
     >>> float_redistribution(3, "bottom", 0.5).tolist()

@@ -2,7 +2,7 @@
 
 :class:`BranchSet` is a ``dict`` (``label -> array``) with a ``nu`` attribute, so code that
 receives only ``branches.omega`` can still refuse to mix Poisson ratios
-(:func:`dispersion.waves.units.physical_branches`).
+(:func:`dispersion.answers.units.physical_branches`).
 
 >>> b = BranchSet({"S0": [0.0, 1.0]}, nu=0.3)
 >>> b.nu, list(b)

@@ -1,14 +1,14 @@
 """The deflated Rayleigh-Lamb function :math:`G = F / \\Omega^2` and the evanescent scaling.
 
-:func:`~dispersion.waves.rayleigh_lamb.frequency_function` F vanishes at :math:`\\Omega = 0` for
+:func:`~dispersion.continuum.rayleigh_lamb.frequency_function` F vanishes at :math:`\\Omega = 0` for
 every :math:`\\kappa`, and near that trivial root its two terms cancel: on A0 at small kappa
 (:math:`\\Omega^2 \\sim \\kappa^4`) F loses its relative accuracy. Divided by
 :math:`\\Omega^2` in exact algebra (:func:`deflated_frequency_function`) it keeps it, and
 :func:`deflated_with_noise` bounds its rounding error, so a scan knows where the sign of G
 carries information. Where :math:`P < 0` makes F grow like :math:`e^{2\\kappa}`,
 :func:`evanescent_frequency_function` divides the growth out. These are the forms the scan in
-kappa at a fixed frequency samples (:mod:`dispersion.waves.frequency`); the tracer in Omega
-uses the form scaled by its Mindlin bounds (:mod:`dispersion.waves.scaled_frequency`).
+kappa at a fixed frequency samples (:mod:`dispersion.continuum.frequency`); the tracer in Omega
+uses the form scaled by its Mindlin bounds (:mod:`dispersion.continuum.scaled_frequency`).
 
 >>> g, noise = deflated_with_noise("A", 0.05, 0.002, 0.3)
 >>> bool(abs(g) > 1e6 * noise)          # A0 at small kappa: G far above its rounding bound
@@ -62,7 +62,7 @@ def _divided_differences(P, Q):
 def deflated_frequency_function(kind: str, kappa, Omega, nu: float):
     """:math:`G = F / \\Omega^2`: the frequency function with its trivial root removed.
 
-    :func:`~dispersion.waves.rayleigh_lamb.frequency_function` vanishes at
+    :func:`~dispersion.continuum.rayleigh_lamb.frequency_function` vanishes at
     :math:`\\Omega = 0` for every :math:`\\kappa` (there P = Q and the two terms cancel). With :math:`a = Q - \\kappa^2`,
     :math:`s = (c_T/c_L)^2` and the divided difference
     :math:`D = (C(P)S(Q) - S(P)C(Q))/(P - Q) = S(P)C[P,Q] - C(P)S[P,Q]`, exact algebra gives
@@ -83,7 +83,7 @@ def deflated_frequency_function(kind: str, kappa, Omega, nu: float):
 
 
 def _float_arguments(kappa, Omega, nu: float):
-    """:func:`~dispersion.waves.numeric_frequency.plate_arguments` of float arrays, with
+    """:func:`~dispersion.continuum.numeric_frequency.plate_arguments` of float arrays, with
     :math:`a^2 = (Q - \\kappa^2)^2` in place of a."""
     k2, W2, s, P, Q, a = plate_arguments(np.asarray(kappa, dtype=float),
                                          np.asarray(Omega, dtype=float), nu)

@@ -4,15 +4,15 @@ For real :math:`\\kappa` each symmetry class is a self-adjoint eigenproblem in
 :math:`\\Omega^2`: its branches never cross (they veer), so the j-th root in increasing
 :math:`\\Omega` *is* branch :math:`S_j` (or :math:`A_j`) once no root is skipped and none is
 counted twice. The count is exact, not scanned: the scaled function
-:func:`dispersion.waves.scaled_frequency.scaled_frequency_function` decreases strictly between
-consecutive *Mindlin bounds* (:func:`dispersion.waves.scaled_frequency.mindlin_bounds`, the
+:func:`dispersion.continuum.scaled_frequency.scaled_frequency_function` decreases strictly between
+consecutive *Mindlin bounds* (:func:`dispersion.continuum.scaled_frequency.mindlin_bounds`, the
 closed-form frequencies of the plate with mixed faces) from :math:`+\\infty` to
 :math:`-\\infty`, so for :math:`\\kappa > 0` exactly one root lies in each interval between
 bounds (in the first, between 0 and the first bound). The tracer solves one bracketed,
 monotone problem per interval (Illinois on :math:`\\arctan R`, which is bounded and smooth
 across the poles) and then *certifies* each root: at :math:`\\Omega (1 \\pm 5\\cdot10^{-13})`
 (or at the bounding pole itself, whose sign is known) the function must have the expected sign
-above its rounding bound (:func:`dispersion.waves.scaled_frequency.scaled_with_noise`). A root that
+above its rounding bound (:func:`dispersion.continuum.scaled_frequency.scaled_with_noise`). A root that
 cannot be certified to ``CERTIFY_RTOL`` is still returned (the best float answer) and its kappa
 is listed in ``failures`` with the reason; nothing is dropped silently. Near-double roots
 (veering pairs, coincident cut-offs) are separated by a bound between them, so they are
@@ -21,7 +21,7 @@ resolved to round-off rather than guessed.
 At :math:`\\kappa = 0` the closed-form cut-offs are used (:func:`cutoff_frequencies`); for
 :math:`0 < \\kappa \\le` ``TINY_KAPPA`` the non-fundamental roots are their cut-offs (they
 move by :math:`O(\\kappa) < 10^{-28}` relative); S0 and A0 come from their power series
-(:func:`dispersion.waves.exact_series.exact_series`) below the kappa where the series' own error
+(:func:`dispersion.continuum.exact_series.exact_series`) below the kappa where the series' own error
 estimate (its first omitted term, doubled) falls below ``SERIES_RTOL`` (:func:`series_switch`),
 where the root of the function would lose digits and :math:`\\Omega^2` of A0 underflows below
 :math:`\\kappa \\approx 10^{-77}`.
@@ -421,7 +421,7 @@ def trace_branches(
 
 def mpmath_error(exact: ExactBranches, count: int = 20, dps: int = 40, seed: int = 0) -> float:
     """Largest relative error of ``count`` random traced roots (kappa > 0) against roots of the
-    defining equation (:func:`dispersion.waves.rayleigh_lamb.mpmath_frequency_function`) found by mpmath
+    defining equation (:func:`dispersion.continuum.rayleigh_lamb.mpmath_frequency_function`) found by mpmath
     in ``dps`` digits (:func:`mpmath.workdps`, the global precision is left alone).
 
     >>> mpmath_error(trace_branches(0.3, [0.5, 2.0], 4.0), count=3) < 1e-14

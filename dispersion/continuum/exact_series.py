@@ -1,6 +1,6 @@
 """Series of the exact Rayleigh-Lamb branches S0 and A0 through the origin (paper eqs 14-15).
 
-The characteristic function is :func:`dispersion.waves.rayleigh_lamb.frequency_function`
+The characteristic function is :func:`dispersion.continuum.rayleigh_lamb.frequency_function`
 itself, evaluated on truncated power series over QQ[g] with g = (c_T/c_L)^2, and solved
 order by order by the generic engine :func:`dispersion.symbolic.power_balance.solve_branch`.
 
@@ -75,11 +75,11 @@ def exact_series(branch: str, order: int, nu=None, form: str = "standard",
                  factor: bool = True) -> dict:
     """Series of the exact Rayleigh-Lamb branch S0 or A0 (paper eqs 14-15) to kappa^order.
 
-    The characteristic function is :func:`dispersion.waves.rayleigh_lamb.frequency_function` itself,
+    The characteristic function is :func:`dispersion.continuum.rayleigh_lamb.frequency_function` itself,
     evaluated on truncated power series over QQ[g]. ``form="printed"`` uses eq (13) as
     printed; it has no such branch and raises :class:`DispersionError`. ``nu``: a number
     substituted at the end (None: symbolic), or an isotropic
-    :class:`~dispersion.symbolic.elastic_law.ElasticLaw` (other laws have no closed form).
+    :class:`~dispersion.materials.elastic_law.ElasticLaw` (other laws have no closed form).
 
     >>> exact_series("A0", 6, nu=0)
     {4: 2/3, 6: -34/45}

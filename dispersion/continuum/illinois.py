@@ -6,9 +6,9 @@ row, which restores superlinear convergence where plain regula falsi stalls on o
 Every bracket shrinks until its relative width is at most ``rtol``, no float lies strictly
 inside it, or the function is exactly zero; the root returned is the midpoint of the final
 bracket. No scipy import: the tracers of the exact branches
-(:mod:`dispersion.waves.exact_branches`), the scan at fixed frequency
-(:mod:`dispersion.waves.frequency`) and the zero-group-velocity points
-(:mod:`dispersion.waves.velocities`) share it.
+(:mod:`dispersion.continuum.exact_branches`), the scan at fixed frequency
+(:mod:`dispersion.continuum.frequency`) and the zero-group-velocity points
+(:mod:`dispersion.continuum.velocities`) share it.
 
 >>> import numpy as np
 >>> roots, *_ = illinois(lambda idx, x: x * x - np.array([2.0, 3.0])[idx],

@@ -17,7 +17,7 @@ spans the null space of the traction-free conditions at y = 1,
     (\\kappa^2 - Q)\\Phi(1) & 2\\kappa\\Psi'(1) \\end{pmatrix}
     \\begin{pmatrix} A \\\\ B \\end{pmatrix} = 0,
 
-whose determinant is :math:`-F` of :mod:`dispersion.waves.rayleigh_lamb` (so it is singular exactly
+whose determinant is :math:`-F` of :mod:`dispersion.continuum.rayleigh_lamb` (so it is singular exactly
 on the branches). The discrete shape is the B-spline field of the control values through the
 thickness, sampled at the same points. The modal assurance criterion
 :math:`\\mathrm{MAC}(a, b) = (a^T b)^2 / (a^T a\\, b^T b)` pairs each exact branch with the

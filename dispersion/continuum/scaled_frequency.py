@@ -2,13 +2,13 @@
 are counted exactly.
 
 :func:`scaled_frequency_function` R divides
-:func:`~dispersion.waves.rayleigh_lamb.frequency_function` by the factor that carries its
+:func:`~dispersion.continuum.rayleigh_lamb.frequency_function` by the factor that carries its
 growth and its trivial root; its poles are the closed-form *Mindlin bounds*
 (:func:`mindlin_bounds`, :func:`bound_table`), between consecutive ones R falls strictly
 from :math:`+\\infty` to :math:`-\\infty`, so exactly one root lies in each interval. The
-tracer of the exact branches (:mod:`dispersion.waves.exact_branches`) counts and certifies
+tracer of the exact branches (:mod:`dispersion.continuum.exact_branches`) counts and certifies
 its roots with it (:func:`scaled_with_noise` bounds the rounding error), and the exact group
-velocities (:mod:`dispersion.waves.velocities`) are its slope :func:`scaled_slope`.
+velocities (:mod:`dispersion.continuum.velocities`) are its slope :func:`scaled_slope`.
 
 >>> b = mindlin_bounds("S", 1.0, 0.3, 4.0)       # one root between consecutive bounds
 >>> r = scaled_frequency_function("S", 1.0, [b[0] * (1 + 1e-9), b[1] * (1 - 1e-9)], 0.3)

@@ -5,8 +5,8 @@ Dimensionless, in units of the shear speed :math:`c_T`: the phase velocity is
 
 - Exact branches: implicit differentiation of the scaled Rayleigh-Lamb function,
   :math:`d\\Omega/d\\kappa = -R_\\kappa / R_\\Omega` by the complex step
-  (:func:`dispersion.waves.scaled_frequency.scaled_slope`); S0 and A0 below
-  :func:`dispersion.waves.exact_branches.series_switch` (where the series' own error estimate
+  (:func:`dispersion.continuum.scaled_frequency.scaled_slope`); S0 and A0 below
+  :func:`dispersion.continuum.exact_branches.series_switch` (where the series' own error estimate
   of the slope reaches 1e-14) from the derivative of their series. Each slope carries an error
   estimate: its sensitivity to the rounding of :math:`\\Omega` (large where a root sits
   within round-off-sized distances of a Mindlin bound, e.g. a branch leaving its cut-off, or
@@ -23,8 +23,8 @@ Dimensionless, in units of the shear speed :math:`c_T`: the phase velocity is
       \\frac{d\\Omega}{d\\kappa} = \\frac{\\phi^T (K' - \\Omega^2 M') \\phi}{2 \\Omega\\, \\phi^T M \\phi},
 
   with :math:`K', M'` by complex-step differentiation of the same x-functions that build K
-  and M (:func:`dispersion.waves.discrete_branches.pencil_derivative`). On the characteristic-
-  polynomial path (:mod:`dispersion.waves.pencil_polynomial`, every small pencil) the same
+  and M (:func:`dispersion.discretization.discrete_branches.pencil_derivative`). On the characteristic-
+  polynomial path (:mod:`dispersion.discretization.pencil_polynomial`, every small pencil) the same
   slope comes from implicit differentiation of the exact polynomial,
   :math:`d\\mu/du = -P_u / P_\\mu`, with an error bound: certified to 1e-12 relative, or the
   kappa is listed in ``DiscreteBranches.failures`` (near a zero group velocity or a double
@@ -134,7 +134,7 @@ def phase_velocity(kappa, omega) -> np.ndarray:
 
 
 def _mp_scaled(kind: str, kappa, W, nu, mp):
-    """The scaled function of :func:`dispersion.waves.scaled_frequency.scaled_frequency_function`
+    """The scaled function of :func:`dispersion.continuum.scaled_frequency.scaled_frequency_function`
     in its quotient form, in mpmath arithmetic (cot, tan of complex square roots)."""
     s = (1 - 2 * nu) / (2 * (1 - nu))
     k2, W2 = kappa**2, W**2
@@ -151,7 +151,7 @@ def slope_extended(kind: str, kappa: float, omega: float, nu: float, label_index
     """Root and group velocity of branch ``kind + label_index`` at ``kappa`` in mpmath.
 
     The root is bracketed between its two Mindlin bounds (computed in the same precision:
-    the j-th interval of :func:`dispersion.waves.scaled_frequency.mindlin_bounds`, 0 below the
+    the j-th interval of :func:`dispersion.continuum.scaled_frequency.mindlin_bounds`, 0 below the
     first) narrowed to :math:`\\Omega (1 \\pm 10^{-10})`, closed by the Anderson-Bjorck method,
     and the slope is :math:`-R_\\kappa/R_\\Omega` by mpmath's differentiation. Returns
     ``(Omega, c_g, reason)``, ``reason`` None when certified (the bracket holds one sign change).
@@ -276,15 +276,15 @@ def exact_velocities(exact: ExactBranches) -> Velocities:
 def zgv_points(nu: float, kappa_max: float, omega_max: float, count: int = 400) -> list[ZGVPoint]:
     """Zero-group-velocity points of the exact branches with :math:`0 < \\kappa \\le` kappa_max.
 
-    The branches are traced (:func:`~dispersion.waves.exact_branches.trace_branches`) on
+    The branches are traced (:func:`~dispersion.continuum.exact_branches.trace_branches`) on
     ``count`` evenly spaced kappa in [0, kappa_max] (0 left out); where the slope
-    :func:`~dispersion.waves.numeric_frequency.frequency_slope` changes sign along a branch
-    the Illinois method (:func:`~dispersion.waves.illinois.scalar_root`) finds the kappa of
+    :func:`~dispersion.continuum.numeric_frequency.frequency_slope` changes sign along a branch
+    the Illinois method (:func:`~dispersion.continuum.illinois.scalar_root`) finds the kappa of
     zero slope, the branch solved for Omega at each kappa on the deflated function
-    (:func:`~dispersion.waves.deflated_frequency.deflated_frequency_function`). ZGV points are
+    (:func:`~dispersion.continuum.deflated_frequency.deflated_frequency_function`). ZGV points are
     where a backward wave (e.g. S1 for most nu) turns; S0 and A0 rise monotonically, and the
     points at :math:`\\kappa = 0` (cut-offs, slope zero by symmetry) are not listed. The one
-    implementation behind :func:`dispersion.waves.frequency.zgv_points_below` too.
+    implementation behind :func:`dispersion.continuum.frequency.zgv_points_below` too.
 
     >>> [(p.label, round(p.kappa, 4), round(p.omega, 4)) for p in zgv_points(0.3, 2.0, 4.0)]
     [('S1', 0.8383, 2.7303)]

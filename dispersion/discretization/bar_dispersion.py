@@ -11,7 +11,7 @@ For maximally smooth B-splines on a uniform mesh of element length h, a Bloch wa
     m = \\sum_L c^{00}_L = 1 \\;\\; \\text{(row-sum lumped)},
 
 and in general :math:`m = \\sum_L a_L \\cos L\\theta` with the Bloch coefficients of any mass
-rule without a contact set (:func:`dispersion.symbolic.mass_rule.x_mass_coefficients`: HRZ,
+rule without a contact set (:func:`dispersion.mass_rules.mass_rule.x_mass_coefficients`: HRZ,
 nodal quadrature, user rules),
 
 with the Gram coefficients :math:`c^{ab}_L` of the cardinal B-spline
@@ -90,7 +90,7 @@ def bar_frequency(p: int, mass: str, theta) -> np.ndarray:
 def bar_stiffness_coefficients(mass, p: int) -> dict:
     """Bloch coefficients of the bar's stiffness symbol :math:`d(\\theta)` for rule ``mass``:
     :math:`c^{11}_L`, times the rule's x-factor for a Petrov-Galerkin rule
-    (:func:`dispersion.symbolic.mass_rule.x_stiffness_factor`; ``dual-lumped``).
+    (:func:`dispersion.mass_rules.mass_rule.x_stiffness_factor`; ``dual-lumped``).
 
     >>> bar_stiffness_coefficients("consistent", 1)
     {-1: -1, 0: 2, 1: -1}
@@ -102,7 +102,7 @@ def bar_stiffness_coefficients(mass, p: int) -> dict:
     rule = bar_rule(mass)
     if rule.basis != "bspline":
         raise InputError(f"mass {rule.name!r} uses C0 Lagrange elements: the bar has p "
-                         "branches, not one B-spline symbol (dispersion.waves.sem_bar)")
+                         "branches, not one B-spline symbol (dispersion.discretization.sem_bar)")
     factor = dict(x_stiffness_factor(rule, p))
     if factor == {0: 1}:
         return c11

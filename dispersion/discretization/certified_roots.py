@@ -1,7 +1,7 @@
 """Certified roots of the characteristic polynomial of a pencil block, vectorized over kappa.
 
 For each kappa the roots :math:`\\mu` of :math:`P(x, \\mu) = \\sum_j c_j(x) \\mu^j`
-(:mod:`dispersion.waves.pencil_polynomial`; x = u or a Taylor-shifted variable) are
+(:mod:`dispersion.discretization.pencil_polynomial`; x = u or a Taylor-shifted variable) are
 Newton-polished from guesses and *certified*: Newton-Kantorovich on the computed x with
 a-posteriori rounding bounds (:func:`_radius`) gives a disc holding exactly one root; N
 pairwise disjoint discs hold all N roots, one each. The rounding of x itself, a perturbation

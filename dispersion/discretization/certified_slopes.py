@@ -1,6 +1,6 @@
 """Group velocities of the discrete branches certified in ball arithmetic, where floats cannot.
 
-On the polynomial path (:mod:`dispersion.waves.pencil_polynomial`) a root :math:`\\mu` of
+On the polynomial path (:mod:`dispersion.discretization.pencil_polynomial`) a root :math:`\\mu` of
 :math:`P(u, \\mu)` moves with :math:`d\\mu/du = -P_u / P_\\mu`, and with
 :math:`\\Omega^2 = \\mu / m_x(u)`
 
@@ -9,7 +9,7 @@ On the polynomial path (:mod:`dispersion.waves.pencil_polynomial`) a root :math:
     \\frac{d\\Omega}{d\\kappa} = \\frac{\\mu_u m_x - \\mu m_x'}{2\\,\\Omega\\, m_x^2}\\,
     \\frac{du}{d\\kappa}.
 
-The float evaluation (:func:`~dispersion.waves.pencil_polynomial.slopes`) carries a running
+The float evaluation (:func:`~dispersion.discretization.pencil_polynomial.slopes`) carries a running
 bound that is often a few times 1e-12 relative (a slope near zero, S1 near kappa = 0; the
 mixed block of a singular mass). There, this module evaluates the same formula on the
 *exact* rational coefficients of P in python-flint balls at :data:`PRECISION` bits: u from

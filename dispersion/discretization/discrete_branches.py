@@ -2,8 +2,8 @@
 
 For each :math:`\\kappa` of a grid the pencil :math:`(K, M)` of
 :func:`dispersion.symbolic.plate.numeric_pencil` is solved in batches
-(:mod:`dispersion.waves.pencil_frequencies`; the error against the exact branches and its
-order are in :mod:`dispersion.waves.discrete_error`). Massless DOFs
+(:mod:`dispersion.discretization.pencil_frequencies`; the error against the exact branches and its
+order are in :mod:`dispersion.discretization.discrete_error`). Massless DOFs
 (singular masses, :attr:`PlatePatch.massless`) carry infinite eigenvalues and are never formed:
 
 .. math::
@@ -12,18 +12,18 @@ order are in :mod:`dispersion.waves.discrete_error`). Massless DOFs
     \\det(\\hat K - \\Omega^2 M_{rr}) = 0.
 
 Accuracy at every kappa, at full speed (issue 23). Where a block of the pencil is small
-(:data:`dispersion.waves.pencil_polynomial.MAX_BLOCK`), its characteristic polynomial
-:math:`P(u, \\mu)` is known exactly (:mod:`dispersion.waves.pencil_polynomial`: the rigid-body
+(:data:`dispersion.discretization.pencil_polynomial.MAX_BLOCK`), its characteristic polynomial
+:math:`P(u, \\mu)` is known exactly (:mod:`dispersion.discretization.pencil_polynomial`: the rigid-body
 cancellation at small kappa done once, in rational arithmetic). Its roots are Newton-polished
 from guesses interpolated between anchors (every :data:`ANCHOR_STRIDE`-th kappa solved by the
 float eigen-solver) and *certified* by an inclusion radius from a running error bound:
 :math:`\\Omega` to :data:`CERTIFIED_RTOL` relative, A0 (:math:`\\Omega^2 \\sim \\kappa^4`) and S0
 (:math:`\\kappa^2`) included. Where the polynomial cannot certify a root, the float eigenvalue
 is used if its error bound :math:`m\\epsilon \\max(\\lambda_{max}, \\|K\\| \\|M^{-1}\\|)/\\lambda`
-(the conditioning of M counts, :func:`~dispersion.waves.pencil_frequencies.eigenvalue_error`)
+(the conditioning of M counts, :func:`~dispersion.discretization.pencil_frequencies.eigenvalue_error`)
 is small enough,
 else that kappa is solved in ball arithmetic
-(:func:`~dispersion.waves.extended_pencil.extended_frequencies`), and where that
+(:func:`~dispersion.discretization.extended_pencil.extended_frequencies`), and where that
 fails too the kappa is listed in ``DiscreteBranches.failures`` with the reason: nothing
 raises from an eigen-solver. Below :data:`KAPPA_TINY` every branch follows its leading power
 law exactly to the precision of floats; a frequency that underflows is listed, not guessed.
@@ -169,7 +169,7 @@ def discrete_branches(patch: PlatePatch, nu, kappa, chunk: int = 20000,
         Called with the number of kappa points finished after each chunk.
     group : bool
         Also the group velocity :math:`d\\Omega/d\\kappa` of every branch (eigenvector
-        formula, :mod:`dispersion.waves.velocities`), in ``DiscreteBranches.group``.
+        formula, :mod:`dispersion.continuum.velocities`), in ``DiscreteBranches.group``.
 
     Never raises from an eigen-solver: what cannot be certified is listed in
     ``DiscreteBranches.failures``.

@@ -1,6 +1,6 @@
 """Discretisation error of the discrete branches against the exact ones, and its order.
 
-:func:`relative_error` compares :func:`dispersion.waves.discrete_branches.discrete_branches`
+:func:`relative_error` compares :func:`dispersion.discretization.discrete_branches.discrete_branches`
 with the exact Rayleigh-Lamb branches label by label; :func:`fitted_order` fits the rate of
 that error in kappa; :func:`predicted_error` gives the leading term from the series (core
 issue), so a test can compare one quantity computed two ways.
@@ -22,8 +22,8 @@ __all__ = ["fitted_order", "predicted_error", "relative_error"]
 def relative_error(discrete, exact) -> dict[str, np.ndarray]:
     """:math:`|\\Omega^h - \\Omega| / \\Omega` per label present in both (S0 with S0, ...).
 
-    ``discrete`` is a :class:`dispersion.waves.discrete_branches.DiscreteBranches`,
-    ``exact`` a :class:`dispersion.waves.exact_branches.ExactBranches` on the same grid.
+    ``discrete`` is a :class:`dispersion.discretization.discrete_branches.DiscreteBranches`,
+    ``exact`` a :class:`dispersion.continuum.exact_branches.ExactBranches` on the same grid.
     Points with :math:`\\Omega = 0` give NaN.
     """
     if not np.array_equal(discrete.kappa, exact.kappa):

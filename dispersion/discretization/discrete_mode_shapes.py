@@ -79,7 +79,7 @@ def discrete_modes(patch: PlatePatch, nu, kappa) -> tuple[np.ndarray, np.ndarray
     """All finite discrete modes, ascending: ``Omega (m, f)`` and control values ``(m, 2n, f)``.
 
     Frequencies where float round-off would blur them are recomputed in extended precision
-    (as in :func:`dispersion.waves.discrete_branches.discrete_branches`).
+    (as in :func:`dispersion.discretization.discrete_branches.discrete_branches`).
     """
     patch = with_nu(patch, nu)
     from dispersion.discretization.extended_pencil import refine_inaccurate
@@ -119,7 +119,7 @@ def pair_by_shape(patch: PlatePatch, nu, exact, y=SAMPLES,
     At each kappa the MAC matrix between the exact modes (traced, finite) and the discrete
     modes is built and the assignment of largest total MAC chosen
     (:func:`scipy.optimize.linear_sum_assignment`); a pair with MAC below ``mac_min`` is
-    dropped (NaN). ``exact`` is a :class:`dispersion.waves.exact_branches.ExactBranches`.
+    dropped (NaN). ``exact`` is a :class:`dispersion.continuum.exact_branches.ExactBranches`.
     """
     patch = with_nu(patch, nu)
     from scipy.optimize import linear_sum_assignment

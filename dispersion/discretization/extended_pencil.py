@@ -2,9 +2,9 @@
 
 K and M are formed from the exact matrices of :func:`dispersion.symbolic.plate.stiffness_terms`
 and the exact x-functions (the law's moduli as exact rationals,
-:meth:`~dispersion.symbolic.elastic_law.ElasticLaw.rational_moduli`) in arb ball arithmetic (python-flint), projected
+:meth:`~dispersion.materials.elastic_law.ElasticLaw.rational_moduli`) in arb ball arithmetic (python-flint), projected
 on a basis, massless DOFs condensed, and the eigenvalues of :math:`M^{-1}K` enclosed by
-:meth:`flint.acb_mat.eig`. :mod:`dispersion.waves.discrete_branches` calls it only where
+:meth:`flint.acb_mat.eig`. :mod:`dispersion.discretization.discrete_branches` calls it only where
 neither the exact characteristic polynomial nor the float eigen-solver certifies a root.
 
 References
@@ -238,7 +238,7 @@ def refine_inaccurate(patch, nu, kappa, W, basis, G=None, failures=None, error=N
     slopes there come from the eigenvector formula in the same precision. Never raises
     from the eigen-solver: a kappa where the ball solve fails twice gets NaN and an entry
     ``("omega", kappa, reason)`` in ``failures`` (a list, if given). ``error``: the float
-    eigen-solver's bound per root (:func:`~dispersion.waves.pencil_frequencies.pencil_frequencies`
+    eigen-solver's bound per root (:func:`~dispersion.discretization.pencil_frequencies.pencil_frequencies`
     with ``bounds=True``); ``rtol`` the accuracy asked of it. Work beyond
     :data:`MAX_EXTENDED_SECONDS` (estimated on the first kappa) is refused.
     """

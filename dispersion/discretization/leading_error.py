@@ -2,8 +2,8 @@
 
 * :func:`bar_leading_term`: the periodic bar, :math:`\\omega_h^2/\\omega^2 - 1 = c\\,\\theta^k +
   O(\\theta^{k+2})` (:math:`\\theta = kh`), by exact power series of the Bloch symbols
-  d / m of the rule (:func:`dispersion.waves.bar_dispersion.bar_stiffness_coefficients`,
-  :func:`dispersion.symbolic.mass_rule.x_mass_coefficients`);
+  d / m of the rule (:func:`dispersion.discretization.bar_dispersion.bar_stiffness_coefficients`,
+  :func:`dispersion.mass_rules.mass_rule.x_mass_coefficients`);
 * :func:`plate_leading_terms`: S0 and A0 of the square-element Bloch patch
   (n = max(p + 1, 3), r = 2/(n - p)): the lowest power of kappa at which the power-balance
   series differs from the exact Rayleigh-Lamb series, and the difference there (exact in nu).

@@ -10,7 +10,7 @@ vanishes on the DOFs ``massless``, the infinite eigenvalues are never formed:
 
 solved by a Cholesky reduction and numpy's batched ``eigvalsh``; :func:`eigenvalue_error`
 bounds the relative error of what it returns. The fast path of
-:mod:`dispersion.waves.discrete_branches` uses it for anchors and fallbacks.
+:mod:`dispersion.discretization.discrete_branches` uses it for anchors and fallbacks.
 
 References
 ----------

@@ -17,7 +17,7 @@ off-diagonal blocks only), and with the mass factor moved into the eigenvalue,
     P(u, \\mu) = \\det\\bigl(K(u) - \\mu M_0\\bigr) = \\sum_{j,k} a_{jk}\\, u^k \\mu^j
 
 has exact rational coefficients :math:`a_{jk}` (the moduli of the patch's law, exact
-rationals of its float data: :meth:`~dispersion.symbolic.elastic_law.ElasticLaw.rational_moduli`,
+rationals of its float data: :meth:`~dispersion.materials.elastic_law.ElasticLaw.rational_moduli`,
 nu by its shortest decimal).
 They are found by exact interpolation on a grid of rational nodes (python-flint
 ``fmpq_mat.det``), with a degree bound from the rows of the matrix, so the rigid-body
@@ -25,7 +25,7 @@ cancellation at small kappa is done in exact arithmetic, once per patch: evaluat
 floats, :math:`P` keeps its relative accuracy where :math:`\\Omega^2 \\sim \\kappa^2` (S0)
 or :math:`\\kappa^4` (A0) sits beside eigenvalues of order one.
 
-Its roots are found and certified in :mod:`dispersion.waves.certified_roots`, on the tables
+Its roots are found and certified in :mod:`dispersion.discretization.certified_roots`, on the tables
 of this module: P in u about u = 0, in :math:`v = 2 - u` about the zone edge, and centred
 Taylor tables between (:func:`taylor_centres`), so that every evaluation is well conditioned.
 
@@ -88,7 +88,7 @@ class PencilPolynomial:
     centres: int = 1
     #: The exact tables (python-flint ``fmpq_poly`` in u): ``"P"`` the coefficients of
     #: :math:`\\mu^j`, ``"mx"`` of :math:`m_x(u)`, for ball arithmetic
-    #: (:mod:`dispersion.waves.certified_slopes`); the aspect ratio r exactly.
+    #: (:mod:`dispersion.discretization.certified_slopes`); the aspect ratio r exactly.
     exact: dict | None = None
     r_exact: Fraction | None = None
 

@@ -4,7 +4,7 @@ A cell of one unit element carries its left end node and its p - 1 interior node
 wave :math:`u_{j+1} = e^{i\\theta} u_j` couples the element's right end to the next cell.
 The p x p Hermitian pencil :math:`(P^H K_e P, P^H M_e P)` (:func:`bloch_pencil`) has p
 branches; the lowest over :math:`\\theta \\in [0, \\pi]` is the acoustic one, whose exact
-series is :func:`dispersion.symbolic.lagrange_sem.acoustic_series`. The critical step of
+series is :func:`dispersion.splines.lagrange_sem.acoustic_series`. The critical step of
 central differences is :math:`2/\\omega_{max}` over every branch and phase
 (:func:`sem_bar_omega_max`): a grid refined inside, exact at a zone end (the pencil is real
 there and its characteristic polynomial is rational).

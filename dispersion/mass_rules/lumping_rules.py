@@ -1,6 +1,6 @@
 """The mass rules of the recent lumping literature, as entries of the one registry.
 
-Each entry is registered by :mod:`dispersion.symbolic.mass_rule` under its name; every rule
+Each entry is registered by :mod:`dispersion.mass_rules.mass_rule` under its name; every rule
 is written in its *Galerkin* form (a symmetric mass for the B-spline stiffness), and where the
 paper's scheme is Petrov-Galerkin the equivalence is exact (stated per rule, tested):
 
@@ -27,7 +27,7 @@ paper's scheme is Petrov-Galerkin the equivalence is exact (stated per rule, tes
 Non-symmetric pencils never reach the solvers: a Petrov-Galerkin pencil
 :math:`(S K, S M)` or :math:`(S K, I)` is the Galerkin pencil :math:`(K, M)` or
 :math:`(K, S^{-1})` multiplied from the left by the invertible S, which changes no eigenvalue;
-a user rule that is not symmetric is refused by :func:`dispersion.symbolic.mass_check.check_mass`
+a user rule that is not symmetric is refused by :func:`dispersion.mass_rules.mass_check.check_mass`
 with the reason.
 
 >>> sorted(ENTRIES)
@@ -67,7 +67,7 @@ def _no_kv(name):
 
 def _like(A, space):
     # the registry converts an exact matrix to the kind of a float space
-    # (dispersion.symbolic.mass_rule, where the entries are registered)
+    # (dispersion.mass_rules.mass_rule, where the entries are registered)
     return A
 
 

@@ -1,6 +1,6 @@
 """What a mass matrix is, measured, against what its rule states.
 
-:class:`MassProperties` are stated by a rule (:class:`dispersion.symbolic.mass_rule.MassRule`)
+:class:`MassProperties` are stated by a rule (:class:`dispersion.mass_rules.mass_rule.MassRule`)
 or measured on a matrix; :func:`check_mass` measures them and gives the verdict: a matrix that
 contradicts its rule's statement, is not symmetric, or has massless directions that are not
 zero rows (the explicit scheme condenses zero rows only) is refused with the reason; an

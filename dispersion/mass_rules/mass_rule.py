@@ -1,7 +1,7 @@
 """Mass rules: one registry of the ways to build a mass matrix, each with its stated properties.
 
 A *mass rule* turns the consistent Gram matrix :math:`\\mathbf M` of a B-spline space (and,
-for the singular rules, a redistribution :math:`\\mathbf R`, :mod:`dispersion.symbolic.mass`)
+for the singular rules, a redistribution :math:`\\mathbf R`, :mod:`dispersion.mass_rules.mass`)
 into the mass matrix an analysis uses:
 
 =====================  =================================================================
@@ -19,7 +19,7 @@ into the mass matrix an analysis uses:
 =====================  =================================================================
 
 and user rules: :func:`user_rule` (a Python callable of the :class:`MassSpace`) or
-:func:`dispersion.symbolic.mass_rule_file.rule_from_toml` (a table of redistribution weights,
+:func:`dispersion.mass_rules.mass_rule_file.rule_from_toml` (a table of redistribution weights,
 read as untrusted data). Each rule *states* its properties
 (:class:`MassProperties`); :func:`mass_matrix` builds the matrix and checks them on the space
 (:func:`check_mass`): a rule whose matrix contradicts what it states, is not symmetric, or has
@@ -135,17 +135,17 @@ class MassRule:
     #: Periodic row ``p -> {L: a_L}`` of the rule along x (None: read off its matrix).
     periodic: Callable | None = field(default=None, compare=False, repr=False)
     #: Bloch factor ``p -> {L: s_L}`` multiplying the x-stiffness symbol (Petrov-Galerkin
-    #: test functions along x, :mod:`dispersion.symbolic.lumping_rules`); None: 1.
+    #: test functions along x, :mod:`dispersion.mass_rules.lumping_rules`); None: 1.
     x_stiffness: Callable | None = field(default=None, compare=False, repr=False)
     #: How the explicit step applies stiffness and inverse mass (None: from ``states``).
     cost: ExplicitCost | None = field(default=None, compare=False, repr=False)
     #: The discrete space: ``"bspline"`` (smooth B-splines) or ``"lagrange"`` (C0 elements,
-    #: :mod:`dispersion.symbolic.lagrange_sem`): such a rule changes the stiffness too.
+    #: :mod:`dispersion.splines.lagrange_sem`): such a rule changes the stiffness too.
     basis: str = "bspline"
 
     @property
     def explicit_cost(self) -> ExplicitCost:
-        """The rule's :class:`~dispersion.symbolic.explicit_cost.ExplicitCost`: stated, or a
+        """The rule's :class:`~dispersion.mass_rules.explicit_cost.ExplicitCost`: stated, or a
         diagonal mass if it states diagonal and a solve otherwise."""
         if self.cost is not None:
             return self.cost
@@ -288,7 +288,7 @@ def literature_build(build: Callable) -> Callable:
 
 
 def literature_rule(name: str, e: dict) -> MassRule:
-    """A :class:`MassRule` from an entry of :data:`dispersion.symbolic.lumping_rules.ENTRIES`."""
+    """A :class:`MassRule` from an entry of :data:`dispersion.mass_rules.lumping_rules.ENTRIES`."""
     return MassRule(name, literature_build(e["build"]), e["states"], e["x_rule"], False,
                     e["description"], e.get("periodic"), e.get("x_stiffness"), e.get("cost"),
                     e.get("basis", "bspline"))
@@ -336,7 +336,7 @@ def _dual_member(q: int) -> MassRule:
 
 def get_rule(mass) -> MassRule:
     """The :class:`MassRule` for a registered name, a family member's name
-    (:func:`dispersion.symbolic.rule_families.family_rule`: ``dual-lumped-q1``) or a rule
+    (:func:`dispersion.mass_rules.rule_families.family_rule`: ``dual-lumped-q1``) or a rule
     object.
 
     >>> get_rule("hrz").states.diagonal
@@ -454,7 +454,7 @@ def x_stiffness_factor(rule, p: int) -> tuple[tuple[int, sympy.Rational], ...]:
     """Bloch coefficients :math:`((L, s_L), ...)` of the factor multiplying a rule's x-stiffness.
 
     1 for every Galerkin rule; the approximate-dual symbol for ``dual-lumped`` (its
-    Petrov-Galerkin test functions along x, :mod:`dispersion.symbolic.lumping_rules`).
+    Petrov-Galerkin test functions along x, :mod:`dispersion.mass_rules.lumping_rules`).
 
     >>> x_stiffness_factor("lumped", 2)
     ((0, 1),)
@@ -478,7 +478,7 @@ def mass_variant(M, variant, R=None, *, kv=None, elements=None, check: bool = Tr
     sums of M; ``"singular"``: R^T M R (eq 1 left); ``"singular-lumped"``: row sums of
     R^T M R (eq 1 right); ``"hrz"`` and the nodal quadratures need the knot vector ``kv``
     (or, HRZ, the float element matrices ``elements``). The result is checked against the
-    rule's stated properties (:func:`dispersion.symbolic.mass_rule.mass_matrix`).
+    rule's stated properties (:func:`dispersion.mass_rules.mass_rule.mass_matrix`).
     """
     import numpy as np
     rule = get_rule(variant)

@@ -186,7 +186,7 @@ def read_rule_file(path) -> MassRule:
 def rule_from_toml(source) -> MassRule:
     """A redistribution rule from TOML text, or from a file: a :class:`os.PathLike`, or a
     string of one line without ``=`` (a path: :func:`read_rule_file`). The weights go
-    through :func:`dispersion.symbolic.mass.redistribution_matrix` (sum one, in [0, 1]) on
+    through :func:`dispersion.mass_rules.mass.redistribution_matrix` (sum one, in [0, 1]) on
     every space the rule is applied to."""
     if isinstance(source, os.PathLike) or (isinstance(source, str) and "\n" not in source
                                            and "=" not in source):

@@ -1,8 +1,8 @@
 """The parameters of the literature's rule families, as rules: reproduction degree, beta.
 
 The registry holds one member of each family under its name (``dual-lumped``: full
-reproduction, ``sms``: beta = 1/2, :mod:`dispersion.symbolic.lumping_rules`); these factories
-give any other member as a :class:`~dispersion.symbolic.mass_rule.MassRule` object, accepted
+reproduction, ``sms``: beta = 1/2, :mod:`dispersion.mass_rules.lumping_rules`); these factories
+give any other member as a :class:`~dispersion.mass_rules.mass_rule.MassRule` object, accepted
 wherever a rule is (the periodic bar, the patch, claims through the API).
 
 >>> from dispersion.time_stepping.timestep import bar_omega_max
@@ -13,7 +13,7 @@ wherever a rule is (the periodic bar, the patch, claims through the API).
 
 A member of the reproduction-degree family also has a name that text can carry (a claims
 file, the CLI): ``dual-lumped-q<q>`` is read by :func:`family_rule`, through
-:func:`dispersion.symbolic.mass_rule.get_rule`, so ``mass = "dual-lumped-q1"`` works
+:func:`dispersion.mass_rules.mass_rule.get_rule`, so ``mass = "dual-lumped-q1"`` works
 wherever a registered name does.
 
 >>> family_rule("dual-lumped-q1") is approximate_dual_rule(1), family_rule("dual-lumped-qx")
@@ -31,7 +31,7 @@ __all__ = ["FAMILY_NAMES", "approximate_dual_rule", "family_rule", "sms_rule"]
 def approximate_dual_rule(q: int) -> MassRule:
     """``dual-lumped-q<q>``: approximate-dual lumping with reproduction degree ``q`` (capped at
     the degree p of the space along x; a space of degree below q is refused). For q <= 8 the
-    one object of its name (:func:`~dispersion.symbolic.mass_rule.family_rule`), so equal
+    one object of its name (:func:`~dispersion.mass_rules.mass_rule.family_rule`), so equal
     names give equal rules."""
     member = family_rule(f"dual-lumped-q{q}") if isinstance(q, int) else None
     return member or literature_rule(f"dual-lumped-q{q}", dict(approximate_dual_entry(q),

@@ -264,7 +264,7 @@ def figure2(data: Mapping, title: str = ""):
 
 
 def figure_branch_table(table):
-    """The figure of a :class:`~dispersion.waves.branch_table.BranchTable`, titled from it.
+    """The figure of a :class:`~dispersion.answers.branch_table.BranchTable`, titled from it.
 
     With a material: phase and group velocity against fd and wavenumber against f in units,
     ZGV points and cut-offs marked, every discrete branch set as markers in its mass rule's

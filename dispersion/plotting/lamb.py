@@ -2,8 +2,8 @@
 
 Drawn from plain data: ``curves`` maps a mode label to arrays ``f`` (kHz), ``fd`` (MHz mm),
 ``c_p``, ``c_g`` (m/s) and ``k`` (rad/mm) ordered along the branch
-(:meth:`dispersion.waves.mode_table.ModeTable.curves`,
-:meth:`dispersion.waves.units.PhysicalBranches.curves`); ``zgv`` is a list of dicts with
+(:meth:`dispersion.answers.mode_table.ModeTable.curves`,
+:meth:`dispersion.answers.units.PhysicalBranches.curves`); ``zgv`` is a list of dicts with
 ``mode``, ``f [kHz]``, ``fd [MHz mm]``, ``c_p [m/s]``, ``wavelength [mm]``; ``cutoffs`` maps
 labels to kHz. The title is the result's own (material, thickness, nu). S modes solid blue, A
 dashed red, SH dotted green; ZGV points black circles, cut-offs triangles on the axis.
@@ -183,10 +183,10 @@ def figure_mode_fields(fields: Sequence[Mapping], title: str):
 
 
 def figure_mode_table(table):
-    """The figure of a :class:`~dispersion.waves.mode_table.ModeTable`, titled from it."""
+    """The figure of a :class:`~dispersion.answers.mode_table.ModeTable`, titled from it."""
     return figure_dispersion(table.curves(), table.title(), table.zgv(), table.cutoffs_khz())
 
 
 def figure_mode_shapes(shapes):
-    """The figure of a :class:`~dispersion.waves.mode_shape_table.ModeShapeTable`."""
+    """The figure of a :class:`~dispersion.answers.mode_shape_table.ModeShapeTable`."""
     return figure_mode_fields(shapes.figure_data(), shapes.title())

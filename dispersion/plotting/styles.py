@@ -1,7 +1,7 @@
 """One style per mass rule in every figure, derived from the rule registry.
 
 :func:`mass_style` gives a rule its colour and marker from its place in
-:data:`dispersion.symbolic.mass_rule.RULE_NAMES`, so a rule registered tomorrow is styled in
+:data:`dispersion.mass_rules.mass_rule.RULE_NAMES`, so a rule registered tomorrow is styled in
 every plot without a table to extend; a user rule (not registered) gets a style from its
 name, the same in every figure of a run.
 
@@ -42,7 +42,7 @@ class MassStyle(NamedTuple):
 
 
 def mass_style(mass) -> MassStyle:
-    """The style of ``mass`` (a rule name or a :class:`~dispersion.symbolic.mass_rule.MassRule`)."""
+    """The style of ``mass`` (a rule name or a :class:`~dispersion.mass_rules.mass_rule.MassRule`)."""
     from dispersion.mass_rules.mass_rule import RULE_NAMES
 
     name = getattr(mass, "name", mass)

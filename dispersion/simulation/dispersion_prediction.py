@@ -2,10 +2,10 @@
 
 The strip's interior is the Bloch plate patch with the same thickness mesh (p, n), aspect
 ratio :math:`r = b/H`, mass rule and Poisson's ratio. Its semi-discrete branch
-:math:`\\Omega_h(\\kappa)` (:func:`dispersion.waves.discrete_branches.discrete_branches`, with
+:math:`\\Omega_h(\\kappa)` (:func:`dispersion.discretization.discrete_branches.discrete_branches`, with
 the group velocity :math:`c_h = d\\Omega_h/d\\kappa`) integrated by central differences with the
 run's own step :math:`\\tau` travels with the fully discrete frequency
-(:func:`dispersion.waves.fully_discrete.time_frequency`)
+(:func:`dispersion.time_stepping.fully_discrete.time_frequency`)
 
 .. math::
 

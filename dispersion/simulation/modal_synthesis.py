@@ -10,7 +10,7 @@ propagates; every other mode of its class is evanescent. A displacement recorded
     U(x, \\Omega) = \\int u(x, t) e^{-i\\Omega t} dt ,
 
 with :math:`\\kappa(\\Omega)` the exact wavenumber of the branch at each frequency of the band
-(:func:`dispersion.waves.frequency.modes_at_frequency`, certified roots): exact phase delay
+(:func:`dispersion.continuum.frequency.modes_at_frequency`, certified roots): exact phase delay
 :math:`\\kappa \\Delta x` and group delay :math:`\\Delta x\\, d\\kappa/d\\Omega` at every
 frequency, no narrow-band approximation. Numerically: the record of :math:`N` samples is
 zero-padded to a power of two of at least ``PAD`` N samples (the continuation delays it

@@ -6,7 +6,7 @@ nothing). :func:`plan_strip` derives, once, the numbers every later step reads
 
 * **carrier**: wavenumber :math:`\\kappa_c = k_c H` on the exact S0 or A0 branch, frequency
   :math:`\\Omega_c = \\Omega(\\kappa_c)`
-  (:func:`dispersion.waves.exact_branches.exact_fundamental`),
+  (:func:`dispersion.continuum.exact_branches.exact_fundamental`),
   wavelength :math:`\\lambda = 2\\pi H / \\kappa_c` (units: H the half-thickness, :math:`c_T`);
 * **mesh**: elements of length :math:`b = \\lambda / N` along the strip (N elements per
   wavelength; b/H as a fraction with a denominator of at most 1000, within 1e-6 relative)
@@ -81,7 +81,7 @@ class Strip:
     p : int
         B-spline degree along and through the strip, 1 to 4.
     mass : str
-        A rule of :data:`dispersion.symbolic.mass_rule.RULES` (its x-direction rule along the
+        A rule of :data:`dispersion.mass_rules.mass_rule.RULES` (its x-direction rule along the
         strip, the rule itself through the thickness, as in the plate patch).
     mode : str
         ``"S0"`` (symmetric end traction along x) or ``"A0"`` (antisymmetric: uniform shear
@@ -104,7 +104,7 @@ class Strip:
     stations : int
         Recording stations from the reference to the far station, 2 to 20.
     material : str
-        A material of :data:`dispersion.waves.materials.MATERIALS` (it fixes nu, and the
+        A material of :data:`dispersion.materials.materials.MATERIALS` (it fixes nu, and the
         physical units of the outputs).
     thickness_mm : float
         Plate thickness d = 2H in mm (physical units only), in (0, 1000].

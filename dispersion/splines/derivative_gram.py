@@ -1,11 +1,11 @@
 """Exact Gram matrices of B-spline derivatives, :math:`\\int N' N'^T`, for rules that need them.
 
 Selective mass scaling adds a multiple of :math:`\\int N' N'^T`
-(:mod:`dispersion.symbolic.mass_scaling`) and a C0 Lagrange element is stiffened by it
-(:mod:`dispersion.symbolic.lagrange_sem`); both sit below the plate in the import order, so
-the integrals are taken here from the basis pieces of :mod:`dispersion.symbolic.bspline`
+(:mod:`dispersion.mass_rules.mass_scaling`) and a C0 Lagrange element is stiffened by it
+(:mod:`dispersion.splines.lagrange_sem`); both sit below the plate in the import order, so
+the integrals are taken here from the basis pieces of :mod:`dispersion.splines.bspline`
 (polynomial integration, exact) and, on the uniform periodic mesh, from the cardinal
-B-spline's pieces of :mod:`dispersion.symbolic.spline_mass`.
+B-spline's pieces of :mod:`dispersion.splines.spline_mass`.
 
 >>> from dispersion.splines.bspline import open_knot_vector
 >>> derivative_gram(open_knot_vector(1, 1)).tolist()

@@ -8,7 +8,7 @@ the same functions. Two masses on it:
 * ``sem-consistent``: the Gram matrix (consistent mass of the Lagrange elements);
 * ``sem-lumped``: GLL quadrature with the p + 1 element nodes, diagonal in the nodal basis
   (the spectral element method, Maday and Patera 1989). In the Bernstein basis the same mass
-  is :func:`dispersion.symbolic.spline_mass.lobatto_matrix` of the C0 knot vector, congruent
+  is :func:`dispersion.splines.spline_mass.lobatto_matrix` of the C0 knot vector, congruent
   to the diagonal one by the collocation matrix at the GLL nodes, so every frequency is the
   same; it is derived exactly through the Lobatto error term (no irrational node is formed).
 

@@ -1,8 +1,8 @@
 """Exact mass matrices of 1D B-spline spaces: Gram, HRZ, nodal quadrature, periodic rows.
 
-The numbers behind the built-in rules of :mod:`dispersion.symbolic.mass_rule`, in exact
+The numbers behind the built-in rules of :mod:`dispersion.mass_rules.mass_rule`, in exact
 rational arithmetic (``fractions.Fraction``) from the Bezier extraction of the knot vector
-(:mod:`dispersion.symbolic.bspline`) and the Bernstein Gram integrals
+(:mod:`dispersion.splines.bspline`) and the Bernstein Gram integrals
 :math:`\\int_0^1 B_i B_j = \\binom{p}{i}\\binom{p}{j} / ((2p+1)\\binom{2p}{i+j})`:
 
 * :func:`gram_matrix` :math:`\\int N N^T`; :func:`hrz_matrix` (element diagonal scaled to

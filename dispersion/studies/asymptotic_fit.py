@@ -4,7 +4,7 @@ A fitted order of the relative error :math:`e(\\kappa) = \\Omega_h / \\Omega - 1
 leading power of kappa only where the leading term of the error dominates. The toolkit knows
 the error's series: with :math:`\\Omega_h^2 = \\sum_j d_j \\kappa^j`
 (:func:`dispersion.symbolic.power_balance.discrete_series`) and
-:math:`\\Omega^2 = \\sum_j e_j \\kappa^j` (:func:`dispersion.waves.exact_series.exact_series`),
+:math:`\\Omega^2 = \\sum_j e_j \\kappa^j` (:func:`dispersion.continuum.exact_series.exact_series`),
 
 .. math::
 

@@ -7,7 +7,7 @@ and bar; mode shapes; the speed/accuracy of the tracer and the discrete solver).
 
 - Figure 2: Bloch patch r = 1/2 (the caption's h/b = 2), p = 2, n = 3, consistent and singular
   mass (contact on top), nu = 0.3; errors of each exact branch against the discrete mode of
-  the same shape (:func:`dispersion.waves.mode_shapes.pair_by_shape`), signed.
+  the same shape (:func:`dispersion.discretization.discrete_mode_shapes.pair_by_shape`), signed.
 - Fitted orders: every mass at r = 2 and r = 1/2, least squares over 5 kappas inside the
   window where the series of the error says its leading term dominates
   (:mod:`dispersion.studies.asymptotic_fit`), with the window, the points, the residual and
@@ -15,7 +15,7 @@ and bar; mode shapes; the speed/accuracy of the tracer and the discrete solver).
 - Error per wavelength: Bloch patch with square elements (r = 2, as in the studies), signed
   relative phase-velocity error :math:`c^h_p / c_p - 1 = \\Omega^h/\\Omega - 1` of S0 and A0
   against elements per wavelength :math:`2\\pi / (\\kappa r)`; and the bar of
-  :mod:`dispersion.waves.bar_dispersion`.
+  :mod:`dispersion.discretization.bar_dispersion`.
 
 >>> BRANCH_NU
 0.3

@@ -4,18 +4,18 @@ For each degree p and mass rule, on the Bloch plate patch with square elements (
 points through the thickness, :math:`r = b/H = 2/(n - p)`, plane strain, Poisson's ratio nu):
 
 * **step**: the critical step of central differences :math:`\\tau_{crit} = 2/\\Omega_{max}`
-  (:func:`dispersion.waves.timestep.patch_omega_max`, in units :math:`H/c_T`), massless DOFs
+  (:func:`dispersion.time_stepping.timestep.patch_omega_max`, in units :math:`H/c_T`), massless DOFs
   condensed;
 * **accuracy**: the phase-velocity error of S0 and A0 at ``elements_per_wavelength``
   (:math:`\\kappa = 2\\pi / (N r)`), *fully discrete* at the largest stable step
-  (:math:`\\tau = \\tau_{crit}`, :func:`dispersion.waves.fully_discrete.time_frequency`),
+  (:math:`\\tau = \\tau_{crit}`, :func:`dispersion.time_stepping.fully_discrete.time_frequency`),
   against the exact Rayleigh-Lamb roots; the signed errors and the worse of the two;
 * **cost** (modelled): time steps per unit time times degrees of freedom per unit area times
   the work of one explicit step per DOF,
   :math:`(1/\\tau_{crit}) \\cdot 2n / (2 r) \\cdot w`, in multiply-adds
   :math:`\\cdot c_T / H^3` (all 2n DOFs of the cell counted, massless ones too: the explicit
   update of the singular masses still solves for them). The work per DOF
-  :math:`w` is the rule's :class:`~dispersion.symbolic.explicit_cost.ExplicitCost` in two
+  :math:`w` is the rule's :class:`~dispersion.mass_rules.explicit_cost.ExplicitCost` in two
   dimensions: stiffness row plus inverse mass (a diagonal, the banded approximate dual, or a
   solve with a non-diagonal mass); a dense stiffness costs every DOF of a model problem of
   :data:`MODEL_ELEMENTS` x :data:`MODEL_ELEMENTS` elements. It is a model, not a measurement:
@@ -42,7 +42,7 @@ import sympy
 __all__ = ["CostAccuracyPoint", "CostAccuracy", "cost_accuracy", "pareto_front", "measure"]
 
 #: Rules of the chart: None stands for the registry's rules that apply to the Bloch patch
-#: (:data:`dispersion.symbolic.mass_rule.BLOCH_RULE_NAMES`, read at call time; the C0
+#: (:data:`dispersion.mass_rules.mass_rule.BLOCH_RULE_NAMES`, read at call time; the C0
 #: Lagrange rules carry p DOFs a cell along x and are on the bar's charts only).
 RULES = None
 #: Elements per direction of the model problem whose DOFs a dense stiffness row couples.

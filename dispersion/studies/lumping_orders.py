@@ -4,13 +4,13 @@ For each rule and degree p, the *leading error term* of
 
 * the periodic bar (uniform B-splines, element length h, :math:`\\theta = kh`):
   :math:`\\omega_h^2 / \\omega^2 - 1 = c\\, \\theta^{k} + O(\\theta^{k+2})`, from the exact
-  rational function :func:`dispersion.waves.timestep.bar_omega_squared` expanded at
+  rational function :func:`dispersion.time_stepping.timestep.bar_omega_squared` expanded at
   :math:`\\theta = 0` (c a rational number);
 * S0 and A0 of the Bloch plate patch (plane strain, n = max(p + 1, 3) control points through
   the thickness, r = b/H = 2/(n - p), the cost-accuracy patch): the lowest power
   :math:`\\kappa^k` at which the power-balance series of :math:`\\Omega^2`
   (:func:`dispersion.symbolic.power_balance.discrete_series`) differs from the exact
-  Rayleigh-Lamb series (:func:`dispersion.waves.exact_series.exact_series`), and the
+  Rayleigh-Lamb series (:func:`dispersion.continuum.exact_series.exact_series`), and the
   difference of the coefficients there, exact in nu.
 
 A rule *keeps the order* of the consistent mass where its k is at least the consistent

@@ -1,5 +1,5 @@
 """The plate patch as one value: model, r, p, n, mass, contact, gamma_s, weights and its
-material (the elastic law, :mod:`dispersion.symbolic.elastic_law`; ``nu`` names the isotropic one).
+material (the elastic law, :mod:`dispersion.materials.elastic_law`; ``nu`` names the isotropic one).
 
 Every entry point (the API, the command line, a claims file, a report section) builds one
 :class:`Patch` at its boundary and passes it down whole; the defaults are those of
@@ -20,7 +20,7 @@ Isotropic(nu=3/10)
 A ``Patch`` is a value: it computes nothing. Its matrices, series and branches come from the
 functions that take it (:func:`dispersion.symbolic.plate.plate_patch`,
 :func:`dispersion.symbolic.power_balance.discrete_series`,
-:func:`dispersion.waves.discrete_branches.discrete_branches`), or, at the front door, from
+:func:`dispersion.discretization.discrete_branches.discrete_branches`), or, at the front door, from
 :class:`dispersion.patch_model.PatchModel` (what ``dispersion.patch()`` returns).
 """
 from __future__ import annotations
@@ -116,7 +116,7 @@ class Patch:
     r : number, ``"r"`` or None
         Aspect ratio b/h of the Bloch model (``"r"``: kept as a symbol); None for x-exact.
     mass : str or MassRule
-        A rule of :mod:`dispersion.symbolic.mass_rule` (name or a user rule object).
+        A rule of :mod:`dispersion.mass_rules.mass_rule` (name or a user rule object).
         ``"consistent"``, ``"lumped"``, ``"singular"`` or ``"singular-lumped"``.
     contact, gamma_s :
         Contact set and redistribution weight of the singular masses (ignored otherwise).
@@ -127,8 +127,8 @@ class Patch:
         keeps it symbolic in the series, and numbers use :data:`dispersion.defaults.NU` (see
         :attr:`nu_value`). Shorthand for ``law=Isotropic(nu)``; None for other laws.
     law : ElasticLaw, optional
-        The plate's material (:mod:`dispersion.symbolic.elastic_law`), carried to every
-        computation on the patch. Default: :class:`~dispersion.symbolic.elastic_law.Isotropic`
+        The plate's material (:mod:`dispersion.materials.elastic_law`), carried to every
+        computation on the patch. Default: :class:`~dispersion.materials.elastic_law.Isotropic`
         of ``nu``. Give ``nu`` or ``law``, not both.
     """
 
@@ -209,7 +209,7 @@ class Patch:
     @property
     def basis(self) -> str:
         """The discrete space through the thickness: ``"bspline"`` or ``"lagrange"`` (C0
-        elements, set by the rule, :attr:`dispersion.symbolic.mass_rule.MassRule.basis`)."""
+        elements, set by the rule, :attr:`dispersion.mass_rules.mass_rule.MassRule.basis`)."""
         from dispersion.mass_rules.mass_rule import get_rule
 
         return get_rule(self.mass).basis
@@ -356,7 +356,7 @@ def _material(nu, law):
     from dispersion.materials.elastic_law import ElasticLaw, Isotropic
 
     if law is not None and not isinstance(law, ElasticLaw):
-        raise InputError(f"law must be an ElasticLaw (dispersion.symbolic.elastic_law), got "
+        raise InputError(f"law must be an ElasticLaw (dispersion.materials.elastic_law), got "
                          f"{type(law).__name__}")
     if nu is not None:
         from dispersion.errors import check_nu

@@ -3,7 +3,7 @@
 The plate occupies :math:`-h \\le y \\le h`; units are dimensionless with :math:`h = 1`,
 shear modulus :math:`D_{66} = \\mu = 1`, :math:`\\rho = 1` (so :math:`c_T = 1`,
 :math:`\\Omega = \\omega h / c_T`, :math:`\\kappa = k h`). The material is the patch's
-elastic law (:mod:`dispersion.symbolic.elastic_law`: the plane-strain D over the shear
+elastic law (:mod:`dispersion.materials.elastic_law`: the plane-strain D over the shear
 modulus; isotropic, :math:`D_{11} = D_{22} = \\lambda + 2\\mu`, :math:`D_{12} = \\lambda`,
 or orthotropic). Through the thickness, ``n`` open B-splines of degree ``p`` carry the
 displacement; along x either
@@ -31,9 +31,9 @@ pencil is real symmetric,
         \\cdot & D_{22} m Y_{11} + D_{66} d Y_{00} \\end{bmatrix}, \\qquad
     M = m_x \\begin{bmatrix} M_y & 0 \\\\ 0 & M_y \\end{bmatrix},
 
-with :math:`M_y` the thickness mass of the chosen rule (:mod:`dispersion.symbolic.mass_rule`) and
+with :math:`M_y` the thickness mass of the chosen rule (:mod:`dispersion.mass_rules.mass_rule`) and
 :math:`m_x = \\sum_L a_L \\cos L\\theta` the Bloch sum of the rule's x-mass
-(:func:`dispersion.symbolic.mass_rule.x_mass_coefficients`: :math:`m_x = m` consistent, 1
+(:func:`dispersion.mass_rules.mass_rule.x_mass_coefficients`: :math:`m_x = m` consistent, 1
 row-sum lumped or HRZ; 1 in the x-exact model).
 
 >>> patch = plate_patch()
@@ -166,9 +166,9 @@ class PlatePatch:
     """The representative patch of the plate: basis data, mass rule, derived matrices (exact)
     and the material they are computed with.
 
-    ``mass`` is the rule's name, ``rule`` the :class:`~dispersion.symbolic.mass_rule.MassRule`
+    ``mass`` is the rule's name, ``rule`` the :class:`~dispersion.mass_rules.mass_rule.MassRule`
     itself, ``x_mass`` the Bloch coefficients ``((L, a_L), ...)`` of its mass along x,
-    ``law`` the :class:`~dispersion.symbolic.elastic_law.ElasticLaw` of its stiffness.
+    ``law`` the :class:`~dispersion.materials.elastic_law.ElasticLaw` of its stiffness.
     """
 
     p: int
@@ -185,9 +185,9 @@ class PlatePatch:
     x_mass: tuple = ()
     rule: object = field(default=None, repr=False, compare=False)
     #: Bloch factor ``((L, s_L), ...)`` of the x-stiffness (1 but for Petrov-Galerkin rules,
-    #: :func:`dispersion.symbolic.mass_rule.x_stiffness_factor`).
+    #: :func:`dispersion.mass_rules.mass_rule.x_stiffness_factor`).
     x_stiffness: tuple = ((0, 1),)
-    #: The plate's material (:mod:`dispersion.symbolic.elastic_law`): the spec's law. Every
+    #: The plate's material (:mod:`dispersion.materials.elastic_law`): the spec's law. Every
     #: function that computes on the patch reads its moduli here.
     law: ElasticLaw = field(default_factory=Isotropic)
 
@@ -333,7 +333,7 @@ def stiffness_terms(patch: PlatePatch) -> list[tuple[str, str, sympy.Matrix]]:
     """K as ``[(modulus, xfunc, B)]``: :math:`K = \\sum` modulus * xfunc(kappa) * B.
 
     ``modulus`` in {"D11", "D22", "D12", "D66"}, the entries of the plane-strain D over the
-    shear modulus (:data:`dispersion.symbolic.elastic_law.MODULI`, given by the patch's law),
+    shear modulus (:data:`dispersion.materials.elastic_law.MODULI`, given by the patch's law),
     ``xfunc`` in {"m", "s", "d"}. This single list defines K for the symbolic, series and
     numeric code paths.
 

@@ -22,7 +22,7 @@ division-free. sympy appears only at the edge, to hand out ``sympy.Expr`` coeffi
 For the discrete plate the characteristic function is :math:`\\det K_{dyn}` (paper eq 16),
 split into its symmetric/antisymmetric block when the mass keeps the mirror symmetry; for the
 exact plate it is the entire-function Rayleigh-Lamb equation, whose series
-(:mod:`dispersion.waves.exact_series`) uses :func:`solve_branch` of this module.
+(:mod:`dispersion.continuum.exact_series`) uses :func:`solve_branch` of this module.
 
 >>> discrete_series("S0", 4)[2]
 -2/(nu - 1)
@@ -208,7 +208,7 @@ def solve_branch(build, sigma: int, order: int, D0: int):
     """Coefficients (num, den) of the branch from ``build(D)`` = F mod t^(D+1).
 
     The generic engine: any characteristic function given as truncated series (the discrete
-    patch here, the exact Rayleigh-Lamb equation in :mod:`dispersion.waves.exact_series`).
+    patch here, the exact Rayleigh-Lamb equation in :mod:`dispersion.continuum.exact_series`).
     """
     N = order // 2 - sigma
     D = D0 + N

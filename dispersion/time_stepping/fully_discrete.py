@@ -81,7 +81,7 @@ class TimeScheme:
 
 
 def time_scheme(name: str = "central", beta=None, gamma=None) -> TimeScheme:
-    """A :class:`TimeScheme` by name (:data:`~dispersion.waves.time_integration.NEWMARK_MEMBERS`) or ``"newmark"`` with ``beta``, ``gamma``.
+    """A :class:`TimeScheme` by name (:data:`~dispersion.time_stepping.time_integration.NEWMARK_MEMBERS`) or ``"newmark"`` with ``beta``, ``gamma``.
 
     ``gamma >= 1/2`` and ``beta`` in [0, 1/2] (Hughes 2000, 9.3: stability needs gamma >= 1/2).
     """
@@ -191,9 +191,9 @@ def fully_discrete_error(patch, nu, kappa, courant: float,
     """Signed phase-velocity error :math:`\\tilde\\Omega / \\Omega - 1` of S0 and A0 at ``kappa``.
 
     The step is ``courant`` times the patch's central-difference critical step
-    (:func:`dispersion.waves.timestep.patch_omega_max`); :math:`\\Omega` is the exact
+    (:func:`dispersion.time_stepping.timestep.patch_omega_max`); :math:`\\Omega` is the exact
     Rayleigh-Lamb root at the same kappa (so the ratio of frequencies is the ratio of phase
-    velocities; an isotropic plate: :meth:`~dispersion.symbolic.elastic_law.ElasticLaw.poisson_ratio`).
+    velocities; an isotropic plate: :meth:`~dispersion.materials.elastic_law.ElasticLaw.poisson_ratio`).
     NaN where the step is unstable for that mode.
 
     >>> from dispersion.symbolic.plate import plate_patch

@@ -69,7 +69,7 @@ def certified_omega_max(patch, nu, omega: float, rtol: float = 1e-3, max_cells: 
     """A proven upper bound :math:`\\bar\\Omega = (1 + rtol)\\,\\Omega` on the largest frequency.
 
     The moduli of the patch's law are taken exactly
-    (:meth:`~dispersion.symbolic.elastic_law.ElasticLaw.rational_moduli`: nu by its shortest
+    (:meth:`~dispersion.materials.elastic_law.ElasticLaw.rational_moduli`: nu by its shortest
     decimal).
     Raises :class:`~dispersion.errors.ConvergenceError` when the proof does not close within
     ``max_cells`` cells or on a cell narrower than 1e-12: the message says that the proof did

@@ -3,12 +3,12 @@
 Two registries, each defined here once and read by the modules that compute with them:
 
 - :data:`NEWMARK_MEMBERS`: the named members of Newmark's family as exact ``(beta, gamma)``
-  (:func:`dispersion.waves.fully_discrete.time_scheme` turns a name into a
-  :class:`~dispersion.waves.fully_discrete.TimeScheme`). ``"central"`` is the explicit
+  (:func:`dispersion.time_stepping.fully_discrete.time_scheme` turns a name into a
+  :class:`~dispersion.time_stepping.fully_discrete.TimeScheme`). ``"central"`` is the explicit
   central-difference scheme, the same member that contact problems call ``"central"``
   (:data:`dispersion.contact.newmark_scheme.CONTACT_SCHEMES`).
 - :data:`CRITICAL_STEP_MODELS`: the discretizations whose critical step of central
-  differences :func:`dispersion.waves.timestep.critical_step` computes, with what each is.
+  differences :func:`dispersion.time_stepping.timestep.critical_step` computes, with what each is.
 
 Nothing here imports numpy or sympy: ``dispersion branches --help`` and a mistyped
 ``--scheme`` are answered without them.

@@ -83,7 +83,7 @@ def bar_omega_squared(mass, p: int) -> sympy.Expr:
     if rule.basis == "lagrange":
         raise InputError(f"mass {rule.name!r}: the C0 Lagrange bar has p branches, no single "
                          "rational omega^2(cos theta) (its acoustic series: "
-                         "dispersion.symbolic.lagrange_sem.acoustic_series)")
+                         "dispersion.splines.lagrange_sem.acoustic_series)")
     c11, a = _coefficients(rule, p)
     d = sum(v * sympy.chebyshevt(abs(L), _z) for L, v in c11.items())
     m = sum(v * sympy.chebyshevt(abs(L), _z) for L, v in a.items())
@@ -208,7 +208,7 @@ class CriticalStep(Rendered):
 def _edge_omega_max(patch, theta) -> tuple[sympy.Expr, float] | None:
     """Exact largest Omega of the condensed pencil at theta = 0 or pi (rational there).
 
-    Every entry is rational (the law's moduli, :meth:`~dispersion.symbolic.elastic_law.ElasticLaw.exact`:
+    Every entry is rational (the law's moduli, :meth:`~dispersion.materials.elastic_law.ElasticLaw.exact`:
     nu by its shortest decimal;
     the x-functions at theta = 0 or pi are integers), and the arithmetic stays in QQ: no
     float, no surd (sympy's root isolation needs a polynomial over QQ).

@@ -9,7 +9,8 @@ For a finite patch and the lattice of its cell (:mod:`.lattice_reference`, large
 * where the top mode lives: the share of its kinetic energy, :math:`\\sum_i m_i x_i^2` with
   :math:`m_i` the row sums of M (a lumped energy: every share lies in [0, 1]), on the p
   functions at each end (``boundary_share``), and the distance of its largest coefficient
-  from the nearest end, in control points (``peak``);
+  from the nearest end, in control points (``peak``); a repeated top frequency is read over
+  its whole eigenspace (summed squares, independent of the basis a solver returns);
 * ``limit``: the outliers as :math:`N \\to \\infty` (the bar). Far from the ends the rows of
   :math:`K - \\lambda M` are the lattice's Toeplitz rows :math:`\\sum_L (k_L - \\lambda m_L)
   x_{i+L} = 0` (bandwidth w), whose decaying solutions are :math:`x_j = \\sum_k c_k z_k^j`,
@@ -46,6 +47,9 @@ __all__ = ["Outliers", "outliers", "boundary_limit", "LIMIT_DIGITS", "ABOVE"]
 LIMIT_DIGITS = 20
 #: A mesh frequency counts as an outlier above omega_l (1 + ABOVE).
 ABOVE = 1e-9
+#: Relative distance within which two frequencies (or two amplitudes) are one: the top
+#: mode's layout is read over the whole space of a repeated top frequency.
+TIE = 1e-8
 
 
 @dataclass(frozen=True, repr=False)
@@ -71,20 +75,25 @@ class Outliers:
                 f"{self.ratio:.6g})")
 
 
-def _top_mode_layout(pen, x: np.ndarray) -> tuple[float, int]:
+def _top_mode_layout(pen, X: np.ndarray) -> tuple[float, int]:
+    """Share and peak of the top eigenspace spanned by the columns of ``X`` (one column: a
+    simple top frequency). Both read the squared amplitudes summed over the columns, which do
+    not depend on the basis chosen in a repeated eigenvalue's space (the solver's choice varies
+    between runs); ties of the largest amplitude (a symmetric mode) take the nearest end."""
     patch = pen.patch
-    full = pen.mode_on_mesh(x)
+    full = np.column_stack([pen.mode_on_mesh(x) for x in X.T])
     M = pen.matrices.mass
     d = patch.dofs_per_point
     per = 1 if patch.model == "bar" else patch.n
     nx = patch.n_x
-    amp = np.abs(full).reshape(nx, per * d).max(axis=1)
-    i = int(np.argmax(amp))
-    peak = min(i, nx - 1 - i)
+    sq = (full ** 2).sum(axis=1)
+    amp = sq.reshape(nx, per * d).max(axis=1)
+    top = np.flatnonzero(amp >= amp.max() * (1 - TIE))
+    peak = int(min(min(i, nx - 1 - i) for i in top))
     if M is None:
         return float("nan"), peak
     weight = np.asarray(M.sum(axis=1)).ravel()  # the row sums: a lumped kinetic energy
-    energy = (weight[:, None] * full.reshape(-1, d) ** 2).sum(axis=1).reshape(nx, per).sum(1)
+    energy = (weight[:, None] * sq.reshape(-1, d)).sum(axis=1).reshape(nx, per).sum(1)
     p = patch.p
     near = np.r_[np.arange(p), np.arange(nx - p, nx)]
     total = energy.sum()
@@ -106,7 +115,8 @@ def outliers(patch, *, limit: bool = True, spectrum=None) -> Outliers:
         s, pen = spectrum, spectrum.pencil
     lat = lattice_omega_max(patch)
     above = s.omega[s.omega > lat * (1 + ABOVE)]
-    share, peak = _top_mode_layout(pen, s.vectors[:, -1])
+    space = s.omega >= s.omega[-1] * (1 - TIE)   # the top frequency and its repeats
+    share, peak = _top_mode_layout(pen, s.vectors[:, space])
     lim: tuple = ()
     if limit and patch.model == "bar" and above.size and pen.Z is None and pen.M is not None \
             and pen.massless.size == 0:

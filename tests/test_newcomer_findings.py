@@ -150,9 +150,17 @@ def test_ctrl_c_during_start_up_of_the_process_is_one_line():
             "    return build(*a, **k)\n"
             "cli.build_parser = slow\n"
             "sys.exit(cli.main(['timestep', '--mass', 'lumped']))\n")
+    # a shell's background job inherits SIGINT ignored, and Python then installs no handler:
+    # the child starts with the default disposition, as a terminal's foreground command does
     proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                          timeout=120)
+                          timeout=120, preexec_fn=_default_sigint)
     assert (proc.returncode, proc.stderr.strip()) == (130, "dispersion: interrupted")
+
+
+def _default_sigint():
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
 
 
 def test_an_unknown_keyword_names_itself_and_the_accepted_ones():

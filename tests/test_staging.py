@@ -471,10 +471,20 @@ def _signal_after_creation(monkeypatch, k: int, sig: int) -> list:
 @pytest.mark.parametrize("writer", sorted(_WINDOW_WRITERS))
 def test_an_interrupt_right_after_each_creation_leaves_no_temporary(tmp_path, monkeypatch,
                                                                    writer, how):
-    from dispersion.cli import Terminated, _sigterm_unwinds
-
     write, files = _WINDOW_WRITERS[writer]
     sig = signal.SIGINT if how == "SIGINT" else signal.SIGTERM
+    # Python's own SIGINT handler, even where the test process inherited SIGINT ignored (a
+    # shell's background job): the interrupt a user's Ctrl-C raises
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        _interrupt_each_window(tmp_path, monkeypatch, write, files, sig, writer)
+    finally:
+        signal.signal(signal.SIGINT, previous)
+
+
+def _interrupt_each_window(tmp_path, monkeypatch, write, files, sig, writer):
+    from dispersion.cli import Terminated, _sigterm_unwinds
+
     for k in range(1, 40):
         root = tmp_path / f"k{k}"
         root.mkdir()

@@ -5,6 +5,8 @@ The graph is read from the source (ast), not from a run, so a lazy import counts
 """
 from __future__ import annotations
 
+import pytest
+
 import ast
 from pathlib import Path
 
@@ -75,6 +77,7 @@ def test_the_cycle_finder_finds_a_planted_circle():
     assert _cycles({"a": {"b"}, "b": set()}) == []
 
 
+@pytest.mark.slow  # default-run budget: a process race, a fault run or a whole-package walk
 def test_no_module_imports_one_that_imports_it_back():
     graph = _graph()
     assert len(graph) > 90 and graph["dispersion.symbolic.plate"]  # the walk saw the package
@@ -93,6 +96,7 @@ BASE = ("dispersion.errors", "dispersion.defaults", "dispersion.results", "dispe
         "dispersion.staging", "dispersion.sweep", "dispersion.testing", "dispersion.rendering")
 
 
+@pytest.mark.slow  # default-run budget: a process race, a fault run or a whole-package walk
 def test_the_simulation_wing_imports_only_the_layers_below():
     """dispersion.simulation sits on the floor of contact: symbolic and waves below it (and
     the base modules), never a wing beside or above it; no lower wing imports it."""

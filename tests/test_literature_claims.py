@@ -172,6 +172,7 @@ def _mutation(bar: bool) -> None:
     assert checked
 
 
+@pytest.mark.slow  # default-run budget: a process race, a fault run or a whole-package walk
 def test_every_bar_claim_fails_when_its_numbers_are_perturbed():
     _mutation(bar=True)
 

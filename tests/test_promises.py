@@ -2,6 +2,8 @@
 fragment is in the README, and every accuracy figure of the README's prose is registered."""
 from __future__ import annotations
 
+import pytest
+
 import ast
 import re
 from pathlib import Path
@@ -49,6 +51,7 @@ def _test_names(path: Path) -> set[str]:
             if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef))}
 
 
+@pytest.mark.slow  # default-run budget: a process race, a fault run or a whole-package walk
 def test_every_registered_test_exists_and_every_fragment_is_in_the_readme(register=REGISTER):
     promises, exempt = _tables(register)
     assert len(promises) >= 10

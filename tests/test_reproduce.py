@@ -199,6 +199,7 @@ _KILLED_RUN = textwrap.dedent("""
 """)
 
 
+@pytest.mark.slow  # default-run budget: a process race, a fault run or a whole-package walk
 def test_killed_run_keeps_old_report_and_next_run_reports_its_leftover(stubs, tmp_path, capsys):
     # issue 27: the leftover is reported in one line and left alone (never acted on)
     out = tmp_path / "rep"

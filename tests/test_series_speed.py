@@ -64,6 +64,7 @@ def test_child_runner_reports_its_own_peak_memory():
     assert big[1] > small[1] + 150  # MiB: the 200 MiB buffer, not the parent's peak
 
 
+@pytest.mark.slow  # default-run budget: a process race, a fault run or a whole-package walk
 @needs_maxima
 def test_race_against_maxima_agrees_at_kappa_8():
     (point,) = S.race((8,), timeout=120)
@@ -71,6 +72,7 @@ def test_race_against_maxima_agrees_at_kappa_8():
     assert point.maxima_compute_s is not None and point.ours_process_s is not None
 
 
+@pytest.mark.slow  # default-run budget: a process race, a fault run or a whole-package walk
 def test_race_without_maxima_reports_ours_only():
     notes = []
     (point,) = S.race((4,), timeout=120, maxima=None, notes=notes)
@@ -134,6 +136,7 @@ def test_peer_failure_names_each_way_a_peer_can_fail():
     assert "differ" in S.peer_failure(0, "", "", {"S0": {2: "-2/(nu-1)", 4: "1"}}, ours)
 
 
+@pytest.mark.slow  # default-run budget: a process race, a fault run or a whole-package walk
 def test_a_failing_peer_is_reported_and_not_timed(tmp_path):
     stub = _stub_maxima(tmp_path, _STRINGPROC_ERROR + "TIME 0.01\n")
     notes = []

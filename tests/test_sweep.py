@@ -195,6 +195,7 @@ def test_parallel_map_refuses_more_workers_than_its_bound_before_any_work(monkey
 
 # --- dask.distributed --------------------------------------------------------------------
 
+@pytest.mark.slow  # default-run budget: a process race, a fault run or a whole-package walk
 def test_parallel_map_on_a_dask_local_cluster():
     distributed = pytest.importorskip("distributed")  # the optional 'distributed' extra
     with distributed.LocalCluster(n_workers=1, threads_per_worker=2, processes=False,

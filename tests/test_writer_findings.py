@@ -341,6 +341,7 @@ def _old_folder(out: Path) -> None:
     io.write_files(out, {"history.csv": "OLD", "summary.json": "OLD"})
 
 
+@pytest.mark.slow  # default-run budget: a process race, a fault run or a whole-package walk
 def test_9_a_killed_folder_writer_leaves_all_old_or_all_new_at_once(tmp_path_factory):
     # ring/impact --out write their files with io.write_files: after a kill at any point the
     # folder is wholly old or wholly new at once, without waiting for a later run
@@ -359,6 +360,7 @@ def test_9_a_killed_folder_writer_leaves_all_old_or_all_new_at_once(tmp_path_fac
         assert point < 40
 
 
+@pytest.mark.slow  # default-run budget: a process race, a fault run or a whole-package walk
 def test_9_a_kill_between_the_renames_of_csv_and_figure_is_what_is_promised(tmp_path_factory):
     # branches --csv --figure (io.write_unit, figure first): each file whole; the state a
     # kill leaves is final: no later writer changes either file

@@ -306,6 +306,7 @@ def _check(tmp_path_factory, stubbed, capsys, case) -> None:
 @example(case=("impact --out", ["not written by dispersion"], []))
 @example(case=("verify --junit", ["another user's file"],
                [("forged stage with a foreign primary", True)]))
+@pytest.mark.slow  # default-run budget: a process race, a fault run or a whole-package walk
 @example(case=("series --json", ["absent"], [(p, True) for p in PLANTS[:5]]))
 @example(case=("bench --out", ["written, holding another user's file"], []))
 @example(case=("branches --frequency --json", ["pipe"], [("escape sequence in a name", False)]))

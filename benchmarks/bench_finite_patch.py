@@ -79,6 +79,9 @@ print(json.dumps({"cases": out}))
 """
 
 
+from previous_commit import previous_commit  # noqa: E402  (benchmarks/ is on sys.path)
+
+
 def _best(fn, repeat: int):
     best, value = None, None
     for _ in range(repeat):
@@ -125,16 +128,6 @@ def spectrum(sizes, repeat: int) -> list[dict]:
                         "ours": t_ours, "dense": t_dense,
                         "difference": float(np.max(np.abs(lam - s.omega**2)) / lam[-1])})
     return out
-
-
-def _previous_commit(ref: str | None) -> str:
-    if ref is None:
-        done = subprocess.run(["git", "-C", str(_REPO), "merge-base", "HEAD", "main"],
-                              capture_output=True, text=True, check=True)
-        ref = done.stdout.strip()
-    done = subprocess.run(["git", "-C", str(_REPO), "rev-parse", "--short", ref],
-                          capture_output=True, text=True, check=True)
-    return done.stdout.strip()
 
 
 def _run_tree(tree: str, cases, repeat: int) -> dict:
@@ -203,7 +196,7 @@ def main(argv=None) -> int:
                     "the merge base with main)")
     ap.add_argument("--out", default=None, help="folder for bench_finite_patch.{json,md}")
     args = ap.parse_args(argv)
-    commit = _previous_commit(args.previous)
+    commit = previous_commit(args.previous)
     result = {"load": [round(x, 2) for x in os.getloadavg()], "repeat": args.repeat,
               "blas_threads": os.environ.get("OPENBLAS_NUM_THREADS", "unset"),
               "scale": scale(QUICK_SCALE if args.quick else SCALE, args.repeat),

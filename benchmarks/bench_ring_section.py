@@ -53,14 +53,7 @@ print(json.dumps(out))
 """
 
 
-def _previous_commit(ref: str | None) -> str:
-    if ref is None:
-        done = subprocess.run(["git", "-C", str(_REPO), "merge-base", "HEAD", "main"],
-                              capture_output=True, text=True)
-        ref = done.stdout.strip() if done.returncode == 0 and done.stdout.strip() else "HEAD~1"
-    done = subprocess.run(["git", "-C", str(_REPO), "rev-parse", "--short", ref],
-                          capture_output=True, text=True, check=True)
-    return done.stdout.strip()
+from previous_commit import previous_commit  # noqa: E402  (benchmarks/ is on sys.path)
 
 
 def _export(commit: str, folder: Path) -> Path:
@@ -165,7 +158,7 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
     from dispersion.results import machine_facts, package_versions
 
-    commit = _previous_commit(args.previous)
+    commit = previous_commit(args.previous)
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
         head = subprocess.run(["git", "-C", str(_REPO), "rev-parse", "--short", "HEAD"],

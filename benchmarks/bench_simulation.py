@@ -83,6 +83,9 @@ print(json.dumps({"cases": out}))
 """
 
 
+from previous_commit import previous_commit  # noqa: E402  (benchmarks/ is on sys.path)
+
+
 def bare_loop(K, steps: int, repeat: int) -> float:
     """Best time of ``steps`` products ``K @ u`` (the bare limit of a sparse explicit loop)."""
     u = np.random.default_rng(0).standard_normal(K.shape[0])
@@ -121,16 +124,6 @@ def ours(cases, steps: int, repeat: int) -> list[dict]:
                      "massless_points": int(op.massless.size), "steps": steps,
                      "seconds": best, "bare_seconds": bare})
     return rows
-
-
-def _previous_commit(ref: str | None) -> str:
-    if ref is None:
-        done = subprocess.run(["git", "-C", str(_REPO), "merge-base", "HEAD", "main"],
-                              capture_output=True, text=True)
-        ref = done.stdout.strip() if done.returncode == 0 and done.stdout.strip() else "HEAD~1"
-    done = subprocess.run(["git", "-C", str(_REPO), "rev-parse", "--short", ref],
-                          capture_output=True, text=True, check=True)
-    return done.stdout.strip()
 
 
 def previous(commit: str, cases, steps: int, repeat: int) -> dict:
@@ -194,7 +187,7 @@ def main(argv=None) -> int:
 
     cases = QUICK_CASES if args.quick else CASES
     steps = 300 if args.quick else args.steps
-    commit = _previous_commit(args.previous)
+    commit = previous_commit(args.previous)
     result = {"cases": ours(cases, steps, args.repeat),
               "previous_commit": commit,
               "previous": previous(commit, cases, steps, args.repeat),

@@ -56,6 +56,9 @@ import contextlib, io, json, resource, sys, time
 spec = json.loads(sys.stdin.read())
 sys.path.insert(0, spec["tree"])
 from dispersion.cli import main
+from previous_commit import previous_commit  # noqa: E402  (benchmarks/ is on sys.path)
+
+
 def run(argv):
     err = io.StringIO()
     with contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
@@ -139,16 +142,6 @@ def corpus() -> None:
     print(f"slowest: {max(r[2] for r in rows):.3f} s\n")
 
 
-def _previous_commit(ref: str | None) -> str:
-    if ref is None:
-        done = subprocess.run(["git", "-C", str(ROOT), "merge-base", "HEAD", "main"],
-                              capture_output=True, text=True)
-        ref = done.stdout.strip() if done.returncode == 0 and done.stdout.strip() else "HEAD~1"
-    done = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", ref],
-                          capture_output=True, text=True, check=True)
-    return done.stdout.strip()
-
-
 def hostile(previous: str | None, timeout: float) -> None:
     """Part 2 (module doc)."""
     with tempfile.TemporaryDirectory() as tmp:
@@ -212,7 +205,7 @@ def run() -> None:
     ap.add_argument("--timeout", type=float, default=60.0,
                     help="seconds a previous run may take before it is killed (default 60)")
     args = ap.parse_args()
-    previous = None if args.previous is None else _previous_commit(args.previous or None)
+    previous = None if args.previous is None else previous_commit(args.previous or None)
     corpus()
     hostile(previous, args.timeout)
 

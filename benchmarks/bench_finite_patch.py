@@ -13,7 +13,7 @@ In the same run:
   difference of the two spectra beside the times;
 * **previous**: the critical step of the simulation's strips (the cases of
   ``bench_simulation.py``) as this tree computes it (the proven bound) and as the commit
-  before did (``--previous``, default the merge base with ``main``: a Lanczos estimate), the
+  before did (``--previous``, default the merge base with ``main``, HEAD~1 on main: a Lanczos estimate), the
   previous tree exported by ``git archive`` into a temporary folder and run in a subprocess.
 
 Each time is the best of ``--repeat`` runs; the machine's load average is recorded beside
@@ -193,7 +193,7 @@ def main(argv=None) -> int:
     ap.add_argument("--quick", action="store_true", help="smaller cases")
     ap.add_argument("--repeat", type=int, default=2)
     ap.add_argument("--previous", default=None, help="git ref of the commit to race (default: "
-                    "the merge base with main)")
+                    "the merge base with main, HEAD~1 on main)")
     ap.add_argument("--out", default=None, help="folder for bench_finite_patch.{json,md}")
     args = ap.parse_args(argv)
     commit = previous_commit(args.previous)

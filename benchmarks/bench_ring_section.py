@@ -7,7 +7,7 @@ Prints (and with ``--out`` writes ``bench_ring_section.json`` and ``.md``), all 
 this run:
 
 1. the section: ``python -m dispersion reproduce --sections ring --out TMP`` of this
-   checkout (A) and of ``--previous`` (B, default: the merge base with ``main``; its tree
+   checkout (A) and of ``--previous`` (B, default: the merge base with ``main``, HEAD~1 on main; its tree
    taken with ``git archive`` into a temporary folder, no worktree), alternating
    A B A B ... for ``--rounds`` rounds: wall seconds and CPU seconds of each whole process
    (its workers included), medians and the ratio previous / this;
@@ -151,7 +151,7 @@ def markdown(result: dict) -> str:
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--previous", default=None,
-                    help="git ref to race (default: the merge base with main)")
+                    help="git ref to race (default: the merge base with main, HEAD~1 on main)")
     ap.add_argument("--rounds", type=int, default=2, help="A B rounds of the section")
     ap.add_argument("--quick", action="store_true", help="race the quick section (CI's)")
     ap.add_argument("--out", default=None, help="folder for bench_ring_section.json and .md")

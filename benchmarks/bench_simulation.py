@@ -180,7 +180,7 @@ def main(argv=None) -> int:
     ap.add_argument("--steps", type=int, default=2000)
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--previous", default=None, help="git ref of the commit to race "
-                    "(default: the merge base with main)")
+                    "(default: the merge base with main, HEAD~1 on main)")
     ap.add_argument("--out", default=None, help="folder for bench_simulation.json and .md")
     args = ap.parse_args(argv)
     from dispersion.results import machine_facts, package_versions

@@ -18,7 +18,7 @@ Two parts.
    files): wall seconds of the refusal and the growth of the process's peak resident memory
    during it (``ru_maxrss`` after minus before, imports warmed up), and, here, the peak of
    Python's allocations (``tracemalloc``). With ``--previous REF`` the issue's cases run the
-   same way on the tree of ``REF`` (default: the merge base with main) in the same run, each
+   same way on the tree of ``REF`` (default: the merge base with main, HEAD~1 on main) in the same run, each
    under ``--timeout`` seconds (default 60) and a 4 GiB address-space limit, so a case that
    does not finish is reported as such, never timed.
 
@@ -201,7 +201,7 @@ def run() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--previous", nargs="?", const="", default=None,
                     help="also race the hostile cases on this git ref (default when given "
-                         "without a value: the merge base with main)")
+                         "without a value: the merge base with main, HEAD~1 on main)")
     ap.add_argument("--timeout", type=float, default=60.0,
                     help="seconds a previous run may take before it is killed (default 60)")
     args = ap.parse_args()

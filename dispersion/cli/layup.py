@@ -38,6 +38,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="mode families to solve, comma separated: S, A, SH (symmetric plates; "
                         "with --layup also L for the Lamb modes of an unsymmetric stack, M "
                         "for coupled ones) (default: all)")
+    p.add_argument("--zgv", action="store_true",
+                   help="with --layup: also the zero-group-velocity points of the plate up to "
+                        "5 %% above the highest frequency (an undamped plate; seconds)")
 
 
 def requested(args) -> bool:
@@ -50,6 +53,7 @@ RULES = [
     ("--ply-thickness", requested, "with --layup"),
     ("--angle", requested, "with --layup"),
     ("--damping", requested, "with --layup"),
+    ("--zgv", requested, "with --layup (the isotropic calculator lists its ZGV points always)"),
 ]
 
 
@@ -74,12 +78,15 @@ def run(args) -> int:
     plate = layup(args.layup, ply=args.ply, ply_thickness_mm=args.ply_thickness,
                   direction=0.0 if args.angle is None else args.angle,
                   damping=0.0 if args.damping is None else args.damping)
+    if args.zgv and not plate.lossless:
+        raise InputError("--zgv: zero-group-velocity points of a damped plate are not computed "
+                         "(its group velocity is not); drop --zgv or --damping")
     check_outputs(args, "branches")
     if args.fd is not None:
         freq = {"fd_mhz_mm": frequencies(args.fd, "--fd", units=None)}
     else:
         freq = {"frequency_khz": frequencies(args.frequency, "--frequency")}
-    table = layered_lamb_modes(plate, families=families(args), **freq)
+    table = layered_lamb_modes(plate, families=families(args), zgv=args.zgv, **freq)
     warn_failures(table, args)
     write_outputs(args, table, figure_mode_table)
     return 0

@@ -167,11 +167,10 @@ def _one_layer_case(name, eta, W, failures_allowed=True):
 
 
 def test_one_damped_layer_is_the_rayleigh_lamb_equation_at_complex_speeds():
-    # the README's example (1 mm steel, eta 0.01, 500 kHz: Omega = 2 pi 500e3 * 0.5e-3 / 3235)
-    # and 3 MHz, 20 kHz above the S1 cut-off: S0, A0, SH0; S0, S1, A0, A1, SH0, SH1
-    for f_khz in (500.0, 3000.0):
-        _one_layer_case("steel", 0.01, 2 * math.pi * f_khz * 1e3 * 0.5e-3 / 3235.0,
-                        failures_allowed=False)
+    # 1 mm steel, eta 0.01 (the README's plate) at 3 MHz, 20 kHz above the S1 cut-off:
+    # S0, S1, A0, A1, SH0, SH1 (the README's 500 kHz: an example of the slow twin)
+    _one_layer_case("steel", 0.01, 2 * math.pi * 3000e3 * 0.5e-3 / 3235.0,
+                    failures_allowed=False)
 
 
 @pytest.mark.slow
@@ -181,5 +180,6 @@ def test_one_damped_layer_is_the_rayleigh_lamb_equation_at_complex_speeds():
 @example(name="steel", eta=1e-4, W=0.1)
 @example(name="pmma", eta=0.1, W=5.0)
 @example(name="steel", eta=0.1, W=2.75)   # the backward S1 pair of the undamped plate
+@example(name="steel", eta=0.01, W=2 * math.pi * 500e3 * 0.5e-3 / 3235.0)   # the README's
 def test_one_damped_layer_is_the_rayleigh_lamb_equation_at_complex_speeds_slow(name, eta, W):
     _one_layer_case(name, eta, W)

@@ -27,9 +27,11 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                         "material)")
     p.add_argument("--ply-thickness", type=real("--ply-thickness", 0, lo_open=True),
                    metavar="MM", help="with --ply: the thickness of one ply in mm")
-    p.add_argument("--angle", type=real("--angle", -360, 360),
+    p.add_argument("--angle", metavar="DEG",
                    help="with --layup: direction of the waves in degrees from the plate's 0 "
-                        "deg axis, in [-360, 360] (default: 0)")
+                        "deg axis, in [-360, 360] (default: 0); several (a,b,c or a grid "
+                        "START:STOP:COUNT, e.g. 0:90:19) with one frequency: the slowness "
+                        "curves, every mode at each direction")
     p.add_argument("--damping", type=real("--damping", 0, 1, hi_open=True), metavar="ETA",
                    help="with --layup: hysteretic loss factor eta of every layer, moduli "
                         "C (1 - i eta), in [0, 1): complex wavenumbers and the attenuation in "
@@ -69,15 +71,60 @@ def families(args):
     return tuple(dict.fromkeys(names))
 
 
+def angles(text) -> list[float]:
+    """Directions in degrees of ``--angle``: numbers, lists ``a,b,c`` and grids
+    ``START:STOP:COUNT`` (both ends), each in [-360, 360], at most
+    :data:`~dispersion.answers.slowness_table.MAX_ANGLES`.
+
+    >>> angles("30"), angles("0:90:4"), angles("-45,0,45")
+    ([30.0], [0.0, 30.0, 60.0, 90.0], [-45.0, 0.0, 45.0])
+    """
+    from dispersion.answers.slowness_table import MAX_ANGLES
+
+    typed = real("--angle", -360, 360)
+
+    def value(text):
+        try:
+            return typed(text)
+        except argparse.ArgumentTypeError as exc:   # read after parsing: one line, exit 2
+            raise InputError(str(exc)) from None
+
+    out: list[float] = []
+    for token in str(text).split(","):
+        parts = token.split(":")
+        if len(parts) == 1:
+            out.append(value(parts[0]))
+        elif len(parts) == 3:
+            lo, hi = value(parts[0]), value(parts[1])
+            count = parts[2].strip()
+            if not (count.isdigit() and len(count) <= 4 and 2 <= int(count) <= MAX_ANGLES):
+                raise InputError(f"--angle: COUNT of START:STOP:COUNT must be an integer in "
+                                 f"[2, {MAX_ANGLES}] (both ends are included), got {count[:20]}")
+            if not hi > lo:
+                raise InputError(f"--angle: a grid START:STOP:COUNT needs STOP > START, got "
+                                 f"{token.strip()[:40]!r}")
+            n = int(count)
+            out += [lo + (hi - lo) * i / (n - 1) for i in range(n - 1)] + [hi]
+        else:
+            raise InputError(f"--angle must be numbers, lists a,b,c or grids START:STOP:COUNT "
+                             f"in degrees; got {token[:40]!r}")
+        if len(out) > MAX_ANGLES:
+            raise InputError(f"--angle must give at most {MAX_ANGLES} directions")
+    return out
+
+
 def run(args) -> int:
     from dispersion.api import layered_lamb_modes, layup
     from dispersion.cli.options import frequencies
     from dispersion.cli.outputs import check_outputs, warn_failures, write_outputs
     from dispersion.plotting.lamb import figure_mode_table
 
+    directions = [0.0] if args.angle is None else angles(args.angle)
     plate = layup(args.layup, ply=args.ply, ply_thickness_mm=args.ply_thickness,
-                  direction=0.0 if args.angle is None else args.angle,
+                  direction=directions[0] if len(directions) == 1 else 0.0,
                   damping=0.0 if args.damping is None else args.damping)
+    if len(directions) > 1:
+        return _slowness(args, plate, directions)
     if args.zgv and not plate.lossless:
         raise InputError("--zgv: zero-group-velocity points of a damped plate are not computed "
                          "(its group velocity is not); drop --zgv or --damping")
@@ -89,4 +136,28 @@ def run(args) -> int:
     table = layered_lamb_modes(plate, families=families(args), zgv=args.zgv, **freq)
     warn_failures(table, args)
     write_outputs(args, table, figure_mode_table)
+    return 0
+
+
+def _slowness(args, plate, directions) -> int:
+    """Several directions: the slowness curves at the one frequency."""
+    from dispersion.api import slowness_curves
+    from dispersion.cli.options import frequencies
+    from dispersion.cli.outputs import check_outputs, warn_failures, write_outputs
+    from dispersion.plotting.slowness import figure_slowness
+
+    if args.zgv:
+        raise InputError("--zgv applies to one direction, not with several --angle")
+    if args.fd is not None:
+        f = [v * 1e3 / plate.total_thickness_mm for v in frequencies(args.fd, "--fd",
+                                                                      units=None)]
+    else:
+        f = frequencies(args.frequency, "--frequency")
+    if len(f) != 1:
+        raise InputError(f"several --angle (slowness curves) need exactly one frequency, got "
+                         f"{len(f)}")
+    check_outputs(args, "branches")
+    table = slowness_curves(plate, f[0], directions, families=families(args))
+    warn_failures(table, args)
+    write_outputs(args, table, figure_slowness)
     return 0

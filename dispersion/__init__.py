@@ -113,6 +113,7 @@ _MODULES = {
     "outlier_removal": "discretization.finite_mesh.outlier_removal",
     "mesh_step": "time_stepping.mesh_step", "positive_definite": "time_stepping.positive_definite",
     "lagrange_space": "splines.lagrange_space", "mesh_claims": "claims.mesh_claims",
+    "nurbs": "splines.nurbs",
     "finite_patches": "studies.finite_patches",
     # layered and anisotropic plates (issue 36)
     "stiffness": "materials.stiffness", "solid": "materials.solid",
@@ -124,6 +125,8 @@ _MODULES = {
     "damped_modes": "continuum.layered.damped_modes",
     "layered_zgv": "continuum.layered.layered_zgv",
     "layered_mode_table": "answers.layered_mode_table",
+    "layered_mode_shapes": "continuum.layered.layered_mode_shapes",
+    "slowness_table": "answers.slowness_table",
     "layered_model": "continuum.layered.layered_model",
     # the continuum as a family of plate models (issue 33 item 2)
     "plate_model": "continuum.plate_model", "isotropic_plate": "continuum.isotropic_plate",

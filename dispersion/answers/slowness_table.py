@@ -38,13 +38,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from dispersion.defaults import MAX_ANGLES
 from dispersion.errors import InputError
 from dispersion.rendering import Rendered
 
 __all__ = ["COLUMNS", "MAX_ANGLES", "SlownessTable", "slowness_curves"]
 
-#: Most directions in one request (a solve of every mode at each).
-MAX_ANGLES = 361
 #: Columns of :meth:`SlownessTable.rows` with their units.
 COLUMNS = ("angle [deg]", "mode", "family", "k [rad/mm]", "c_p [m/s]", "slowness [s/km]",
            "c_g [m/s]", "skew [deg]", "c_e [m/s]", "wavelength [mm]", "kappa = kh",

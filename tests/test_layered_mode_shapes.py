@@ -90,7 +90,10 @@ def _energy_case(names, thick, W):
     for fam in ("L", "SH"):
         mine = sorted((k, c[0], c[1]) for k, c, f in zip(roots.kappa, c_e, roots.family)
                       if f == fam)
-        ref = roots_at_frequency(layers, [None], w, k_max, fam, 300)
+        for samples in (300, 1200):   # a finer scan where two roots share a coarse step
+            ref = roots_at_frequency(layers, [None], w, k_max, fam, samples)
+            if len(ref) == len(mine):
+                break
         assert len(mine) == len(ref), (fam, mine, ref)
         for (_, along, across), k_ref in zip(mine, ref):
             g = float(group_velocity(layers, [None], k_ref, w, fam)) / sc.c_ref
@@ -110,5 +113,6 @@ def test_energy_velocity_is_the_40_digit_group_velocity():
        share=st.floats(0.1, 0.9), W=st.floats(0.05, 8.0))
 @example(a="steel", b="aluminium", share=0.1, W=0.05)
 @example(a="pmma", b="steel", share=0.9, W=8.0)
+@example(a="glass", b="epoxy", share=0.6063710957794048, W=7.877284575109775)  # close roots
 def test_energy_velocity_is_the_40_digit_group_velocity_slow(a, b, share, W):
     _energy_case((a, b), (share, 1 - share), W)

@@ -34,7 +34,7 @@ DISTRIBUTION = "dispersion-iga"
 
 _API = ("Patch", "PatchModel", "patch", "series", "exact_branches", "lamb_modes", "material",
         "simulate_ring", "simulate_bar", "branch_table", "mode_shapes", "series_table",
-        "critical_steps", "figure", "layered_lamb_modes", "layup")
+        "critical_steps", "figure", "layered_lamb_modes", "layup", "slowness_curves")
 #: Public modules by their short names (``dispersion.plate``), wherever they live in the wings.
 _MODULES = {
     "api": "api", "patch_model": "patch_model", "defaults": "defaults", "errors": "errors", "io": "io", "results": "results",
@@ -126,6 +126,8 @@ _MODULES = {
     "layered_zgv": "continuum.layered.layered_zgv",
     "layered_mode_shapes": "continuum.layered.layered_mode_shapes",
     "layered_mode_table": "answers.layered_mode_table",
+    "layered_mode_shapes": "continuum.layered.layered_mode_shapes",
+    "slowness_table": "answers.slowness_table",
     "layered_model": "continuum.layered.layered_model",
     # the continuum as a family of plate models (issue 33 item 2)
     "plate_model": "continuum.plate_model", "isotropic_plate": "continuum.isotropic_plate",

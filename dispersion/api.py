@@ -38,7 +38,7 @@ if TYPE_CHECKING:  # pragma: no cover
 
 __all__ = ["Patch", "PatchModel", "patch", "series", "exact_branches", "lamb_modes", "material",
            "simulate_ring", "simulate_bar", "branch_table", "mode_shapes", "series_table",
-           "critical_steps", "figure", "layered_lamb_modes", "layup"]
+           "critical_steps", "figure", "layered_lamb_modes", "layup", "slowness_curves"]
 
 
 def _fits(name: str, target, args=(), kwargs=None) -> None:
@@ -326,3 +326,20 @@ def layered_lamb_modes(plate, *, frequency_khz=None, fd_mhz_mm=None, families=No
         plate = layup(plate)
     return _modes(plate, frequency_khz=frequency_khz, fd_mhz_mm=fd_mhz_mm, families=families,
                   zgv=zgv)
+
+
+def slowness_curves(plate, frequency_khz: float, angles, *, families=None):
+    """Every mode of an undamped layered or anisotropic plate at one frequency for waves
+    along each of ``angles`` (degrees): slowness, group velocity, skew angle and energy
+    velocity (:func:`dispersion.answers.slowness_table.slowness_curves`; ``plate`` may be a
+    layup text as :func:`layup` reads it).
+
+    >>> t = slowness_curves("steel:0.71,aluminium:0.29", 500, [0, 90])
+    >>> len(t.rows())
+    6
+    """
+    from dispersion.answers.slowness_table import slowness_curves as _curves
+
+    if isinstance(plate, str):
+        plate = layup(plate)
+    return _curves(plate, frequency_khz, angles, families=families)

@@ -49,6 +49,9 @@ REPORT_REFERENCE = "reports"
 #: room for workers that wait on I/O. :func:`dispersion.sweep.parallel_map` starts at most one
 #: per usable CPU: its calls are CPU-bound sweeps.
 MAX_JOBS_PER_CPU = 4
+#: Most directions of one slowness-curve request (every mode solved at each;
+#: :mod:`dispersion.answers.slowness_table`, ``--angle``).
+MAX_ANGLES = 361
 #: Contact sets of a singular mass through the thickness (:mod:`dispersion.mass_rules.mass`).
 CONTACT_SETS = ("top", "bottom", "both")
 #: The ends of a finite patch (:mod:`dispersion.discretization.finite_mesh.finite_patch`), here so that

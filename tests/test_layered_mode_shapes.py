@@ -7,12 +7,17 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import example, given
+from hypothesis import strategies as st
+from mp_layered import group_velocity, roots_at_frequency
+from promise_search import SLOW, record
 
 from dispersion.continuum.layered.layered_branches import layered_branches
-from dispersion.continuum.layered.layered_mode_shapes import mode_shape
+from dispersion.continuum.layered.layered_mode_shapes import energy_velocities, mode_shape
+from dispersion.continuum.layered.layered_modes import layered_modes
 from dispersion.continuum.layered.layered_plate import laminate, layered_plate
 from dispersion.continuum.mode_shapes import exact_mode_shape
-from dispersion.materials.materials import material, ply
+from dispersion.materials.materials import MATERIALS, material, ply
 
 STEEL = material("steel")
 
@@ -63,3 +68,53 @@ def test_the_skew_is_the_angular_derivative_of_the_frequency(direction, W, label
         W_at.append([w for w, lab in zip(b.omega, b.label) if lab == label][0])
     dW = (-W_at[3] + 8 * W_at[2] - 8 * W_at[1] + W_at[0]) / (12 * math.radians(d))
     assert abs(s.energy_velocity[1] - dW / s.kappa) < 1e-7 * abs(s.group)
+
+
+ENERGY_BOUND = 1e-10   # the README's promise: c_e along the waves = c_g, relative (c_ref below)
+
+
+def _energy_case(names, thick, W, samples=300):
+    """Every mode of an isotropic bilayer at Omega: the energy velocity along the waves
+    (power over energy through the thickness) against -F_k / F_omega of the Thomson-Haskell
+    transfer matrix at 40 digits (tests/mp_layered.py) at the 40-digit roots; across the
+    waves it vanishes (an isotropic stack)."""
+    mats = [material(n) for n in names]
+    plate = layered_plate(list(zip(mats, thick)))
+    roots = layered_modes(plate, [W])
+    assert not roots.failures, roots.failures
+    c_e = energy_velocities(plate, roots)
+    sc = plate.scaled()
+    layers = [(m.c_L, m.c_T, m.rho, t * 1e-3) for m, t in zip(mats, thick)]
+    w = W * sc.c_ref / sc.h_m
+    k_max = (1.3 * max(roots.kappa) + 0.5) / sc.h_m
+    for fam in ("L", "SH"):
+        # a stack that is its own mirror image names its Lamb modes S and A, else L
+        mine = sorted((k, c[0], c[1]) for k, c, f in zip(roots.kappa, c_e, roots.family)
+                      if (f == "SH") == (fam == "SH"))
+        for n in (samples, 4 * samples):   # a finer scan where two roots share a step
+            ref = roots_at_frequency(layers, [None], w, k_max, fam, n)
+            if len(ref) == len(mine):
+                break
+        assert len(mine) == len(ref), (fam, mine, ref)
+        for (_, along, across), k_ref in zip(mine, ref):
+            g = float(group_velocity(layers, [None], k_ref, w, fam)) / sc.c_ref
+            record("layered-energy-velocity", abs(along - g) / max(1.0, abs(g)), ENERGY_BOUND,
+                   names=",".join(names), omega=W, family=fam)
+            assert abs(across) <= ENERGY_BOUND * max(1.0, abs(g))
+
+
+def test_energy_velocity_is_the_40_digit_group_velocity():
+    # the bonded bilayer of GEWtool's example: L0, SH0 and L1 (the slow twin searches the rest)
+    _energy_case(("steel", "aluminium"), (0.71, 0.29), 1.2, samples=60)
+
+
+@pytest.mark.slow
+@SLOW
+@given(a=st.sampled_from(sorted(MATERIALS)), b=st.sampled_from(sorted(MATERIALS)),
+       share=st.floats(0.1, 0.9), W=st.floats(0.05, 8.0))
+@example(a="steel", b="aluminium", share=0.1, W=0.05)
+@example(a="pmma", b="steel", share=0.9, W=8.0)
+@example(a="glass", b="epoxy", share=0.6063710957794048, W=7.877284575109775)  # close roots
+@example(a="aluminium", b="aluminium", share=0.5, W=1.0)   # symmetric: S and A, not L
+def test_energy_velocity_is_the_40_digit_group_velocity_slow(a, b, share, W):
+    _energy_case((a, b), (share, 1 - share), W)

@@ -57,6 +57,10 @@ def test_laminate_by_its_layup_string(capsys):
     (["--layup", "steel:1", "--frequency", "100", "--modes", "Q"], "--modes must be"),
     (["--layup", "[0/90]s", "--frequency", "100"], "needs a ply"),
     (["--layup", "steel:1,copper:1", "--frequency", "1e9"], "frequency"),
+    (["--material", "steel", "--thickness", "1", "--frequency", "100", "--zgv"],
+     "--zgv applies"),
+    (["--layup", "steel:1", "--damping", "0.01", "--frequency", "100", "--zgv"],
+     "damped plate"),
 ])
 def test_bad_layered_requests_are_one_line_and_exit_2(capsys, argv, message):
     assert main(["branches", "--exact", *argv]) == 2
@@ -95,3 +99,20 @@ def test_the_laminate_table_lists_its_zgv_point():
     assert [p["mode"] for p in t.zgv()] == [label] == ["S1"]
     assert abs(t.zgv()[0]["f [kHz]"] - t._khz(W)) < 1e-9 * t._khz(W)
     assert any(line.startswith("ZGV S1") for line in t.header_lines())
+
+
+@pytest.mark.slow
+def test_zgv_on_the_command_line_is_the_apis(capsys):
+    """``--zgv`` lists the ZGV points that :func:`layered_zgv.zgv_points` finds (their own
+    test: the Rayleigh-Lamb calculator's for one layer), in the CSV's comments and the JSON."""
+    from dispersion.continuum.layered.layered_zgv import zgv_points
+
+    plate = layered_plate([(material("steel"), 0.71), (material("aluminium"), 0.29)])
+    assert main(["branches", "--exact", "--layup", "steel:0.71,aluminium:0.29",
+                 "--frequency", "3MHz", "--zgv", "--format", "json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    t = layered_lamb_modes(plate, frequency_khz=[3000.0])
+    points = zgv_points(plate, 1.05 * float(t.roots.omega.max()))
+    assert [p["mode"] for p in data["zgv"]] == [p[0] for p in points] and points
+    for row, (_, _, W) in zip(data["zgv"], points):
+        assert row["f [kHz]"] == pytest.approx(t._khz(W), rel=1e-12)

@@ -32,7 +32,7 @@ SLOW = {"reproduce", "bench"}  # minutes each: run by .ci/run, not by default
 #: Commands that take more than a few seconds on 2 cores (ring and impact simulate, timestep
 #: works in exact arithmetic) and options that do: the whole paper's claims, a figure.
 SLOW_COMMANDS = {"ring", "impact", "timestep"}
-SLOW_OPTIONS = {"--paper", "--figure"}
+SLOW_OPTIONS = {"--paper", "--figure", "--zgv"}   # --zgv: a layered plate's ZGV scan
 
 
 def is_slow(command: str) -> bool:

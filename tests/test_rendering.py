@@ -136,9 +136,15 @@ def _layered():
         t.roots, failures=((0.3, "L", "a planted failure"),)))
 
 
+def _slowness():
+    t = dispersion.slowness_curves("steel:0.5,copper:0.5", 300.0, [0.0, 45.0])
+    planted = dataclasses.replace(t.roots[0], failures=((0.3, "L", "a planted failure"),))
+    return dataclasses.replace(t, roots=(planted, *t.roots[1:]))
+
+
 #: One small instance of every result type (its name -> a function building it).
 INSTANCES = {"BranchTable": _branch_table, "ModeTable": _mode_table,
-             "LayeredModeTable": _layered,
+             "LayeredModeTable": _layered, "SlownessTable": _slowness,
              "ModeShapeTable": _mode_shapes, "ExactBranches": _exact,
              "Velocities": _velocities, "DiscreteBranches": _discrete, "SeriesTable": _series,
              "ErrataSheet": _errata, "CriticalSteps": _steps, "CriticalStep": _step,
@@ -189,7 +195,7 @@ def test_every_format_carries_the_failures(result):
 def test_the_planted_failures_are_there():
     # the instances above that carry failures do carry them (the test can fail both ways)
     for name in ("BranchTable", "ModeTable", "ExactBranches", "Velocities", "RingResult",
-                 "Verification"):
+                 "Verification", "SlownessTable"):
         assert failure_lines(INSTANCES[name]()), name
 
 

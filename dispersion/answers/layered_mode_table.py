@@ -59,6 +59,8 @@ class LayeredModeTable(Rendered):
     #: Zero-group-velocity points ``(label, kappa, Omega)`` up to a little above the highest
     #: frequency, when asked for (:func:`~dispersion.continuum.layered.layered_zgv.zgv_points`).
     zgv_points: tuple = ()
+    #: Omega up to which the ZGV points were searched (None: not asked for).
+    zgv_limit: float | None = None
 
     @property
     def damped(self) -> bool:
@@ -108,6 +110,8 @@ class LayeredModeTable(Rendered):
         lines += [f"cut-off {lab}: {f_c:.10g} kHz" for lab, f_c in self.cutoffs_khz().items()]
         lines += [f"ZGV {p['mode']}: f = {p['f [kHz]']:.10g} kHz, fd = {p['fd [MHz mm]']:.10g}"
                   f" MHz mm, c_p = {p['c_p [m/s]']:.10g} m/s" for p in self.zgv()]
+        if self.zgv_limit is not None and not self.zgv_points:
+            lines.append(f"ZGV points: none up to {self._khz(self.zgv_limit):.10g} kHz")
         return lines
 
     def columns(self) -> tuple[str, ...]:
@@ -122,7 +126,9 @@ class LayeredModeTable(Rendered):
                 "wavelength [mm]")
 
     def json_extra(self) -> dict:
-        return {"cutoffs [kHz]": self.cutoffs_khz(), "zgv": self.zgv(),
+        searched = ({} if self.zgv_limit is None
+                    else {"zgv searched up to [kHz]": self._khz(self.zgv_limit)})
+        return {"cutoffs [kHz]": self.cutoffs_khz(), "zgv": self.zgv(), **searched,
                 "plate": self.plate.as_dict()}
 
     def inputs(self) -> dict:
@@ -261,11 +267,12 @@ def layered_lamb_modes(plate, *, frequency_khz=None, fd_mhz_mm=None, families=No
     from dispersion.continuum.layered.layered_modes import layered_modes
 
     roots = layered_modes(plate, omega, families=families)
-    points = ()
+    points, limit = (), None
     if zgv:
         from dispersion.continuum.layered.layered_zgv import zgv_points
 
         fams = set(roots.family)
-        points = tuple(p for p in zgv_points(plate, 1.05 * float(omega.max()))
+        limit = 1.05 * float(omega.max())
+        points = tuple(p for p in zgv_points(plate, limit)
                        if p[0].rstrip("0123456789") in fams)
-    return LayeredModeTable(plate, f_khz, roots, skew_angles(plate, roots), points)
+    return LayeredModeTable(plate, f_khz, roots, skew_angles(plate, roots), points, limit)

@@ -27,9 +27,11 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                         "material)")
     p.add_argument("--ply-thickness", type=real("--ply-thickness", 0, lo_open=True),
                    metavar="MM", help="with --ply: the thickness of one ply in mm")
-    p.add_argument("--angle", type=real("--angle", -360, 360),
+    p.add_argument("--angle", metavar="DEG",
                    help="with --layup: direction of the waves in degrees from the plate's 0 "
-                        "deg axis, in [-360, 360] (default: 0)")
+                        "deg axis, in [-360, 360] (default: 0); several (a,b,c or a grid "
+                        "START:STOP:COUNT, e.g. 0:90:19) with one frequency: the slowness "
+                        "curves, every mode at each direction")
     p.add_argument("--damping", type=real("--damping", 0, 1, hi_open=True), metavar="ETA",
                    help="with --layup: hysteretic loss factor eta of every layer, moduli "
                         "C (1 - i eta), in [0, 1): complex wavenumbers and the attenuation in "
@@ -38,6 +40,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="mode families to solve, comma separated: S, A, SH (symmetric plates; "
                         "with --layup also L for the Lamb modes of an unsymmetric stack, M "
                         "for coupled ones) (default: all)")
+    p.add_argument("--zgv", action="store_true",
+                   help="with --layup: also the zero-group-velocity points of the plate up to "
+                        "5 %% above the highest frequency (an undamped plate; seconds)")
 
 
 def requested(args) -> bool:
@@ -50,6 +55,7 @@ RULES = [
     ("--ply-thickness", requested, "with --layup"),
     ("--angle", requested, "with --layup"),
     ("--damping", requested, "with --layup"),
+    ("--zgv", requested, "with --layup (the isotropic calculator lists its ZGV points always)"),
 ]
 
 
@@ -71,15 +77,47 @@ def run(args) -> int:
     from dispersion.cli.outputs import check_outputs, warn_failures, write_outputs
     from dispersion.plotting.lamb import figure_mode_table
 
+    from dispersion.cli.options import angles
+
+    directions = [0.0] if args.angle is None else angles(args.angle)
     plate = layup(args.layup, ply=args.ply, ply_thickness_mm=args.ply_thickness,
-                  direction=0.0 if args.angle is None else args.angle,
+                  direction=directions[0] if len(directions) == 1 else 0.0,
                   damping=0.0 if args.damping is None else args.damping)
+    if len(directions) > 1:
+        return _slowness(args, plate, directions)
+    if args.zgv and not plate.lossless:
+        raise InputError("--zgv: zero-group-velocity points of a damped plate are not computed "
+                         "(its group velocity is not); drop --zgv or --damping")
     check_outputs(args, "branches")
     if args.fd is not None:
         freq = {"fd_mhz_mm": frequencies(args.fd, "--fd", units=None)}
     else:
         freq = {"frequency_khz": frequencies(args.frequency, "--frequency")}
-    table = layered_lamb_modes(plate, families=families(args), **freq)
+    table = layered_lamb_modes(plate, families=families(args), zgv=args.zgv, **freq)
     warn_failures(table, args)
     write_outputs(args, table, figure_mode_table)
+    return 0
+
+
+def _slowness(args, plate, directions) -> int:
+    """Several directions: the slowness curves at the one frequency."""
+    from dispersion.api import slowness_curves
+    from dispersion.cli.options import frequencies
+    from dispersion.cli.outputs import check_outputs, warn_failures, write_outputs
+    from dispersion.plotting.slowness import figure_slowness
+
+    if args.zgv:
+        raise InputError("--zgv applies to one direction, not with several --angle")
+    if args.fd is not None:
+        f = [v * 1e3 / plate.total_thickness_mm for v in frequencies(args.fd, "--fd",
+                                                                      units=None)]
+    else:
+        f = frequencies(args.frequency, "--frequency")
+    if len(f) != 1:
+        raise InputError(f"several --angle (slowness curves) need exactly one frequency, got "
+                         f"{len(f)}")
+    check_outputs(args, "branches")
+    table = slowness_curves(plate, f[0], directions, families=families(args))
+    warn_failures(table, args)
+    write_outputs(args, table, figure_slowness)
     return 0

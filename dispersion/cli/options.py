@@ -433,6 +433,48 @@ def given(args: argparse.Namespace, dest: str) -> bool:
     return not (value is None or value is False or (isinstance(value, list) and not value))
 
 
+def angles(text) -> list[float]:
+    """Directions in degrees of ``--angle``: numbers, lists ``a,b,c`` and grids
+    ``START:STOP:COUNT`` (both ends), each in [-360, 360], at most
+    :data:`dispersion.defaults.MAX_ANGLES`.
+
+    >>> angles("30"), angles("0:90:4"), angles("-45,0,45")
+    ([30.0], [0.0, 30.0, 60.0, 90.0], [-45.0, 0.0, 45.0])
+    """
+    from dispersion.defaults import MAX_ANGLES
+
+    typed = real("--angle", -360, 360)
+
+    def value(text):
+        try:
+            return typed(text)
+        except argparse.ArgumentTypeError as exc:   # read after parsing: one line, exit 2
+            raise InputError(str(exc)) from None
+
+    out: list[float] = []
+    for token in str(text).split(","):
+        parts = token.split(":")
+        if len(parts) == 1:
+            out.append(value(parts[0]))
+        elif len(parts) == 3:
+            lo, hi = value(parts[0]), value(parts[1])
+            count = parts[2].strip()
+            if not (count.isdigit() and len(count) <= 4 and 2 <= int(count) <= MAX_ANGLES):
+                raise InputError(f"--angle: COUNT of START:STOP:COUNT must be an integer in "
+                                 f"[2, {MAX_ANGLES}] (both ends are included), got {count[:20]}")
+            if not hi > lo:
+                raise InputError(f"--angle: a grid START:STOP:COUNT needs STOP > START, got "
+                                 f"{token.strip()[:40]!r}")
+            n = int(count)
+            out += [lo + (hi - lo) * i / (n - 1) for i in range(n - 1)] + [hi]
+        else:
+            raise InputError(f"--angle must be numbers, lists a,b,c or grids START:STOP:COUNT "
+                             f"in degrees; got {token[:40]!r}")
+        if len(out) > MAX_ANGLES:
+            raise InputError(f"--angle must give at most {MAX_ANGLES} directions")
+    return out
+
+
 def check_applies(args: argparse.Namespace, rules) -> None:
     """Refuse, in one line, every option given where it does not apply.
 

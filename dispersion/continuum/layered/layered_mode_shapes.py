@@ -49,7 +49,7 @@ from dispersion.continuum.layered.dynamic_stiffness import (_mid, _transfer, ass
 from dispersion.continuum.layered.stroh import system_matrix
 from dispersion.errors import InputError
 
-__all__ = ["LayeredModeShape", "mode_shape", "mode_fields", "skew_angles",
+__all__ = ["LayeredModeShape", "mode_shape", "mode_fields", "energy_velocities", "skew_angles",
            "SAMPLES_PER_SUBLAYER", "GAUSS_PER_SUBLAYER"]
 
 #: Points drawn in each sublayer (the ends included).
@@ -199,6 +199,22 @@ def _flow(model, cls, kappa: float, omega: float):
             float(np.sum(weights * (kin + stra))), elements)
 
 
+def energy_velocities(plate, roots) -> np.ndarray:
+    """The energy velocity (n, 2) of every root of a
+    :class:`~dispersion.continuum.layered.layered_modes.LayeredRoots` of an undamped
+    ``plate``, along and across the waves (units of c_ref): power over energy through the
+    thickness, as :func:`mode_shape` gives it for one mode."""
+    from dispersion.continuum.layered.layered_model import LayeredModel
+
+    model = LayeredModel(plate)
+    out = np.empty((len(roots.label), 2))
+    for i, (lab, fam, k) in enumerate(zip(roots.label, roots.family, roots.kappa)):
+        power, energy, _ = _flow(model, _class_of(model, fam, lab), float(k),
+                                 float(roots.omega[roots.index[i]]))
+        out[i] = power / energy
+    return out
+
+
 def skew_angles(plate, roots) -> np.ndarray:
     """The skew angle (degrees) of every root of a
     :class:`~dispersion.continuum.layered.layered_modes.LayeredRoots` of ``plate``: 0 where
@@ -206,15 +222,8 @@ def skew_angles(plate, roots) -> np.ndarray:
     wave and the normal: no power crosses it), else from the energy's flow."""
     if plate.decoupled:
         return np.zeros(len(roots.label))
-    from dispersion.continuum.layered.layered_model import LayeredModel
-
-    model = LayeredModel(plate)
-    out = np.empty(len(roots.label))
-    for i, (lab, fam, k) in enumerate(zip(roots.label, roots.family, roots.kappa)):
-        power, energy, _ = _flow(model, _class_of(model, fam, lab), float(k),
-                                 float(roots.omega[roots.index[i]]))
-        out[i] = math.degrees(math.atan2(power[1], power[0]))
-    return out
+    c_e = energy_velocities(plate, roots)
+    return np.degrees(np.arctan2(c_e[:, 1], c_e[:, 0]))
 
 
 def mode_shape(plate, omega: float, label: str) -> LayeredModeShape:

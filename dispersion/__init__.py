@@ -124,7 +124,6 @@ _MODULES = {
     "layered_branches": "continuum.layered.layered_branches",
     "damped_modes": "continuum.layered.damped_modes",
     "layered_zgv": "continuum.layered.layered_zgv",
-    "layered_mode_shapes": "continuum.layered.layered_mode_shapes",
     "layered_mode_table": "answers.layered_mode_table",
     "layered_mode_shapes": "continuum.layered.layered_mode_shapes",
     "slowness_table": "answers.slowness_table",

@@ -80,8 +80,10 @@ RULES = [
     *layup.RULES,
     ("--rho", lambda a: a.cl is not None or a.ct is not None or a.youngs_modulus is not None,
      "to a user material (--cl/--ct, or --youngs-modulus/--nu)"),
-    ("--nu", lambda a: a.youngs_modulus is not None or not _material_given(a),
-     "without a material (a material fixes nu from c_L and c_T), or with --youngs-modulus"),
+    ("--nu", lambda a: not _layup(a) and (a.youngs_modulus is not None
+                                          or not _material_given(a)),
+     "without a material or a layup (a material fixes nu from c_L and c_T, a layup's layers "
+     "their own), or with --youngs-modulus"),
 ]
 
 

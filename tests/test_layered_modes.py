@@ -199,6 +199,13 @@ def _laminate_case(layup, direction, W, samples):
     ref = anisotropic_roots(layers, W * sc.c_ref / sc.h_m, (1.3 * max(ours.kappa) + 0.5)
                             / sc.h_m, samples)
     mine = sorted(ours.kappa)   # every family at once: the reference does not split them
+    # the reference's scan can step over two close roots ([0/90]s at 13 deg, Omega 6: 9 of
+    # 11 at 400 samples, found): it refines, 4x at a time up to 16x, while it counts fewer
+    # than our certified count; a root of ours it never finds still fails
+    top, more = (1.3 * max(ours.kappa) + 0.5) / sc.h_m, samples
+    while len(ref) < len(mine) and more < 16 * samples:
+        more *= 4
+        ref = anisotropic_roots(layers, W * sc.c_ref / sc.h_m, top, more)
     assert len(mine) == len(ref), (mine, [float(x * sc.h_m) for x in ref])
     err = max(abs(a / float(b * sc.h_m) - 1) for a, b in zip(mine, ref))
     record("layered-laminate", err, ROOT_BOUND, layup=layup, direction=direction, omega=W)
@@ -210,6 +217,7 @@ def _laminate_case(layup, direction, W, samples):
        direction=st.floats(0, 90), W=st.floats(0.05, 6.0))
 @example(layup="[0/90]s", direction=0.0, W=2.0)
 @example(layup="[0/90]s", direction=45.0, W=6.0)
+@example(layup="[0/90]s", direction=13.0, W=6.0)  # two close roots the scan stepped over
 def test_laminate_against_partial_waves_in_ball_arithmetic_slow(layup, direction, W):
     # an independent route: eigenvalues and eigenvectors of each layer's first-order system
     # (python-flint's eigen-solver at 160 bits), the product of the transfer matrices, the

@@ -55,36 +55,36 @@ def figure_bar_spectra(data: dict):
 def figure_removal_spectra(data: dict):
     """The outlier-removal methods (and the singular mass) at the top degree, free ends."""
     rows = data["removal_spectra"]
+
+    def title(mass):
+        p = next(r["p"] for r in rows if r["mass"] == mass)
+        return f"p = {p}, {mass} mass, free ends"
+
+    return _ratios_by_mass(rows, title, r"$\omega_h^n / \omega^n$",
+                           lambda k, r: (f"C{k}", r["method"]))
+
+
+def figure_strip_spectra(data: dict):
+    """The strip with sliding ends against the Rayleigh-Lamb modes, a line per p and mass."""
+    return _ratios_by_mass(
+        data["strip_spectra"], lambda mass: f"plate strip, sliding ends, {mass} mass",
+        r"$\omega_h^n / \omega^n$ (Rayleigh-Lamb at $\kappa = m\pi H/L$)",
+        lambda k, r: (f"C{r['p'] - 1}", f"p = {r['p']}, n = {r['n']}"))
+
+
+def _ratios_by_mass(rows, title, ylabel, line):
+    """One panel per mass of normalized spectra (``line(k, row)``: its colour and label)."""
     masses = list(dict.fromkeys(r["mass"] for r in rows))
     fig, ax = _figure(1, len(masses), (5.2 * len(masses), 4.0))
     for j, mass in enumerate(masses):
         a = ax[0][j]
         for k, r in enumerate(x for x in rows if x["mass"] == mass):
-            a.plot(r["fraction"], r["ratio"], color=f"C{k}", lw=1.2, label=r["method"])
+            color, label = line(k, r)
+            a.plot(r["fraction"], r["ratio"], color=color, lw=1.2, label=label)
         a.axhline(1.0, color="k", lw=0.5)
-        p = next(r["p"] for r in rows if r["mass"] == mass)
-        a.set_title(f"p = {p}, {mass} mass, free ends", fontsize="small")
+        a.set_title(title(mass), fontsize="small")
         a.set_xlabel("n / N")
-        a.set_ylabel(r"$\omega_h^n / \omega^n$")
-        a.grid(True, lw=0.3, alpha=0.5)
-        a.legend(fontsize="x-small")
-    return fig
-
-
-def figure_strip_spectra(data: dict):
-    """The strip with sliding ends against the Rayleigh-Lamb modes, a line per p and mass."""
-    rows = data["strip_spectra"]
-    masses = list(dict.fromkeys(r["mass"] for r in rows))
-    fig, ax = _figure(1, len(masses), (5.2 * len(masses), 4.0))
-    for j, mass in enumerate(masses):
-        a = ax[0][j]
-        for r in (x for x in rows if x["mass"] == mass):
-            a.plot(r["fraction"], r["ratio"], color=f"C{r['p'] - 1}", lw=1.2,
-                   label=f"p = {r['p']}, n = {r['n']}")
-        a.axhline(1.0, color="k", lw=0.5)
-        a.set_title(f"plate strip, sliding ends, {mass} mass", fontsize="small")
-        a.set_xlabel("n / N")
-        a.set_ylabel(r"$\omega_h^n / \omega^n$ (Rayleigh-Lamb at $\kappa = m\pi H/L$)")
+        a.set_ylabel(ylabel)
         a.grid(True, lw=0.3, alpha=0.5)
         a.legend(fontsize="x-small")
     return fig

@@ -34,7 +34,8 @@ DISTRIBUTION = "dispersion-iga"
 
 _API = ("Patch", "PatchModel", "patch", "series", "exact_branches", "lamb_modes", "material",
         "simulate_ring", "simulate_bar", "branch_table", "mode_shapes", "series_table",
-        "critical_steps", "figure", "layered_lamb_modes", "layup", "slowness_curves")
+        "critical_steps", "figure", "layered_lamb_modes", "layup", "slowness_curves",
+        "evanescent_modes")
 #: Public modules by their short names (``dispersion.plate``), wherever they live in the wings.
 _MODULES = {
     "api": "api", "patch_model": "patch_model", "defaults": "defaults", "errors": "errors", "io": "io", "results": "results",

@@ -38,7 +38,8 @@ if TYPE_CHECKING:  # pragma: no cover
 
 __all__ = ["Patch", "PatchModel", "patch", "series", "exact_branches", "lamb_modes", "material",
            "simulate_ring", "simulate_bar", "branch_table", "mode_shapes", "series_table",
-           "critical_steps", "figure", "layered_lamb_modes", "layup", "slowness_curves"]
+           "critical_steps", "figure", "layered_lamb_modes", "layup", "slowness_curves",
+           "evanescent_modes"]
 
 
 def _fits(name: str, target, args=(), kwargs=None) -> None:
@@ -326,6 +327,27 @@ def layered_lamb_modes(plate, *, frequency_khz=None, fd_mhz_mm=None, families=No
         plate = layup(plate)
     return _modes(plate, frequency_khz=frequency_khz, fd_mhz_mm=fd_mhz_mm, families=families,
                   zgv=zgv)
+
+
+def evanescent_modes(plate, *, frequency_khz=None, fd_mhz_mm=None, families=None,
+                     decay_db: float = 60.0):
+    """Every evanescent mode (imaginary and complex wavenumbers, Im k > 0) of an undamped
+    plate at the given frequencies with a decay of at most ``decay_db`` dB per plate
+    thickness, each root certified and their number counted
+    (:func:`dispersion.answers.evanescent_mode_table.evanescent_lamb_modes`; ``plate`` a
+    :class:`~dispersion.continuum.layered.layered_plate.LayeredPlate` or a layup text as
+    :func:`layup` reads it: ``"steel:3"`` is a 3 mm steel plate, the Rayleigh-Lamb plate).
+
+    >>> t = evanescent_modes("steel:1", frequency_khz=1000, decay_db=20, families=("A",))
+    >>> [r["mode"] for r in t.rows()]
+    ['A-e1']
+    """
+    from dispersion.answers.evanescent_mode_table import evanescent_lamb_modes
+
+    if isinstance(plate, str):
+        plate = layup(plate)
+    return evanescent_lamb_modes(plate, frequency_khz=frequency_khz, fd_mhz_mm=fd_mhz_mm,
+                                 families=families, decay_db=decay_db)
 
 
 def slowness_curves(plate, frequency_khz: float, angles, *, families=None):

@@ -47,6 +47,15 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="frequency-thickness products f d in MHz mm (lists and grids as for "
                         "--frequency)")
     layup.add_arguments(p)
+    p.add_argument("--evanescent", action="store_true",
+                   help="with --exact: the evanescent modes instead of the propagating ones "
+                        "(imaginary and complex k, Im k > 0, decaying towards +x; Re k >= 0): "
+                        "Re k, Im k and the decay in dB/m and dB per thickness, each root "
+                        "certified and their number counted (seconds per frequency; at most "
+                        "20 frequencies)")
+    p.add_argument("--decay-max", type=real("--decay-max", 0, 200, lo_open=True),
+                   metavar="DB", help="with --evanescent: the largest decay searched, in dB "
+                                      "per plate thickness, in (0, 200] (default: 60)")
     p.add_argument("--mode-shape", metavar="MODE",
                    help="with one frequency: displacements and stresses through the thickness "
                         "of MODE (S0, a1, SH0, ...) instead of the mode table")
@@ -70,7 +79,9 @@ RULES = [
     ("--frequency", lambda a: a.exact, "with --exact (the exact Rayleigh-Lamb and SH modes)"),
     ("--fd", lambda a: a.exact and a.frequency is None,
      "with --exact, instead of --frequency (one input axis)"),
-    ("--mode-shape", lambda a: requested(a) and not _layup(a),
+    ("--evanescent", requested, "with --frequency or --fd"),
+    ("--decay-max", lambda a: a.evanescent, "with --evanescent"),
+    ("--mode-shape", lambda a: requested(a) and not _layup(a) and not a.evanescent,
      "with --frequency or --fd (an isotropic plate)"),
     ("--thickness", lambda a: _material_given(a) and not _layup(a),
      "with a material (--material, --cl/--ct or --youngs-modulus/--nu/--rho)"),
@@ -99,6 +110,10 @@ def run(args) -> int:
         raise InputError("--frequency/--fd need a material (--material, --cl/--ct or "
                          "--youngs-modulus/--nu/--rho) and --thickness (d in mm)")
     check_outputs(args, "branches")
+    if args.evanescent:
+        from dispersion.continuum.layered.layered_plate import layered_plate
+
+        return evanescent(args, layered_plate([(material, args.thickness)]))
     kinds = {} if args.modes is None else {"kinds": layup.families(args)}
     if args.fd is not None:
         table = lamb_modes(material, args.thickness, fd_mhz_mm=frequencies(args.fd, "--fd",
@@ -120,4 +135,27 @@ def run(args) -> int:
 
     warn_failures(table, args)
     write_outputs(args, table, figure_mode_table)
+    return 0
+
+
+def evanescent(args, plate) -> int:
+    """``--evanescent``: the evanescent modes of ``plate`` (a layup, or one isotropic layer)."""
+    from dispersion.api import evanescent_modes
+    from dispersion.cli.options import frequencies
+    from dispersion.cli.outputs import check_outputs, warn_failures, write_outputs
+    from dispersion.continuum.layered.evanescent_modes import DEFAULT_DECAY
+
+    check_outputs(args, "branches")
+    if getattr(args, "figure", None):
+        raise InputError("--figure: the evanescent modes are a table (no figure yet); drop "
+                         "--figure")
+    if args.fd is not None:
+        freq = {"fd_mhz_mm": frequencies(args.fd, "--fd", units=None)}
+    else:
+        freq = {"frequency_khz": frequencies(args.frequency, "--frequency")}
+    table = evanescent_modes(plate, families=layup.families(args),
+                             decay_db=DEFAULT_DECAY if args.decay_max is None
+                             else args.decay_max, **freq)
+    warn_failures(table, args)
+    write_outputs(args, table, None)
     return 0

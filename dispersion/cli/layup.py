@@ -84,7 +84,16 @@ def run(args) -> int:
                   direction=directions[0] if len(directions) == 1 else 0.0,
                   damping=0.0 if args.damping is None else args.damping)
     if len(directions) > 1:
+        if args.evanescent:
+            raise InputError("--evanescent applies to one direction, not with several --angle")
         return _slowness(args, plate, directions)
+    if args.evanescent:
+        if args.zgv or not plate.lossless:
+            raise InputError("--evanescent: the evanescent modes of an undamped plate; drop "
+                             f"{'--zgv' if args.zgv else '--damping'}")
+        from dispersion.cli.frequency import evanescent
+
+        return evanescent(args, plate)
     if args.zgv and not plate.lossless:
         raise InputError("--zgv: zero-group-velocity points of a damped plate are not computed "
                          "(its group velocity is not); drop --zgv or --damping")

@@ -226,7 +226,8 @@ def evanescent_modes(plate, omega, *, im_max: float, families=None) -> Evanescen
     >>> from dispersion.materials.materials import material
     >>> r = evanescent_modes(layered_plate([(material("steel"), 1.0)]), [1.0], im_max=1.0,
     ...                      families=("A",))
-    >>> [(lab, kind, round(k.imag, 6)) for lab, kind, k in zip(r.label, r.kind, r.kappa)]
+    >>> [(lab, kind, round(float(k.imag), 6))
+    ...  for lab, kind, k in zip(r.label, r.kind, r.kappa)]
     [('A-e1', 'imaginary', 0.587881)]
     >>> r.failures
     ()

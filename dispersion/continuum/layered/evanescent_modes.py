@@ -19,8 +19,9 @@ For each :class:`~dispersion.continuum.layered.dynamic_stiffness.ModeClass`:
    (:func:`~dispersion.continuum.layered.safe.wavenumbers`) with :math:`0 < \\kappa'' \\le
    1.25` ``im_max``, reflected to :math:`\\kappa' \\ge 0`.
 2. **Polished** by the secant method on :math:`\\det K` in complex arithmetic (the damped
-   solver's, :mod:`~dispersion.continuum.layered.damped_modes`); one root of each set of
-   candidates that meet.
+   solver's, :mod:`~dispersion.continuum.layered.damped_modes`), then a few secant steps on
+   the 160-bit values of F below (the float determinant loses digits near
+   :math:`\\kappa = 0`); one root of each set of candidates that meet.
 3. **Certified** each: the entire function :math:`F = \\det K \\prod \\det P_{ut}`
    (:func:`~dispersion.continuum.layered.dynamic_stiffness.det_ball`, ``entire=True``) winds
    once around 0 along a 16-gon of circumradius :data:`ROOT_RTOL` :math:`|\\kappa|` around
@@ -155,6 +156,22 @@ def _F(stack, cls, elements, omega):
     return F
 
 
+def _refined(F, k, steps: int = 4):
+    """A few secant steps on the midpoints of the ball values of F (160 bits): the float
+    determinant loses digits near kappa = 0 and near other roots, the balls do not."""
+    a, b = k, k * (1 + 1e-9)
+    fa, fb = complex(F(a).mid()), complex(F(b).mid())
+    for _ in range(steps):
+        if fb == fa:
+            break
+        c = b - fb * (b - a) / (fb - fa)
+        a, fa, b = b, fb, c
+        fb = complex(F(b).mid())
+        if abs(b - a) <= 1e-14 * abs(b):
+            break
+    return b if np.isfinite(b) and abs(b - k) <= 1e-6 * abs(k) else k
+
+
 def _candidates(stack, cls, omega, im_max, k_real):
     from dispersion.continuum.layered.safe import elements_per_layer, safe_pencil, wavenumbers
 
@@ -192,6 +209,7 @@ def _class_evanescent(model, cls, omega, im_max):
     F = _F(stack, cls, elements, omega)
     kept = []
     for k in roots:
+        k = _refined(F, k)
         r = ROOT_RTOL * abs(k)
         if abs(k.real) < r:
             k = complex(0.0, k.imag)

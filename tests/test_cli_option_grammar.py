@@ -71,7 +71,7 @@ VALUES = {
         "--frequency": ["300"], "--fd": ["0.9"], "--mode-shape": ["S0"],
         "--layup": ["steel:1,copper:2"], "--ply": ["T800/913"], "--ply-thickness": ["0.125"],
         "--angle": ["30"], "--modes": ["S"], "--damping": ["0.01"],
-        "--zgv": [],
+        "--zgv": [], "--evanescent": [], "--decay-max": ["30"],
         "--format": ["json"], "--csv": ["out.csv"], "--json": ["out.json"],
         "--figure": ["out.png"], "--progress": [],
     },

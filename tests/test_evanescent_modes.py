@@ -185,3 +185,42 @@ def test_out_of_range_bounds_and_damped_plates_are_refused():
                          im_max=1.0)
     with pytest.raises(InputError, match="at most"):
         evanescent_modes(plate, [1.0] * 21, im_max=1.0)
+
+
+def test_the_table_gives_the_decay_in_db_per_metre_and_per_thickness():
+    """decay = 20 log10(e) Im k (dB/m) and times d (dB per thickness); k = kappa / h."""
+    from dispersion.api import evanescent_modes as api_modes
+
+    t = api_modes("steel:2", frequency_khz=[300.0], decay_db=30.0, families=("A",))
+    (row,) = t.rows()
+    h_m = 1e-3
+    assert row["mode"] == "A-e1" and row["kind"] == "imaginary" and row["Re k [rad/mm]"] == 0
+    assert math.isclose(row["Im k [1/mm]"], row["Im kappa"] / (h_m * 1e3), rel_tol=1e-15)
+    assert math.isclose(row["decay [dB/m]"], 20 * math.log10(math.e) * row["Im kappa"] / h_m,
+                        rel_tol=1e-14)
+    assert math.isclose(row["decay [dB/thickness]"], row["decay [dB/m]"] * 2 * h_m,
+                        rel_tol=1e-14)
+    assert row["decay [dB/thickness]"] <= 30.0
+
+
+@pytest.mark.parametrize("argv, says", [
+    (["--evanescent", "--material", "steel", "--thickness", "1", "--decay-max", "0"],
+     "--decay-max must lie in (0, 200]"),
+    (["--evanescent", "--material", "steel", "--thickness", "1", "--decay-max", "201"],
+     "--decay-max must lie in (0, 200]"),
+    (["--material", "steel", "--thickness", "1", "--decay-max", "30"],
+     "--decay-max applies only with --evanescent"),
+    (["--evanescent", "--material", "steel", "--thickness", "1", "--figure", "e.png"],
+     "--figure"),
+    (["--evanescent", "--layup", "steel:1", "--zgv"], "--zgv"),
+    (["--evanescent", "--layup", "steel:1", "--damping", "0.01"], "--damping"),
+    (["--evanescent", "--layup", "steel:1", "--angle", "0,30"], "several --angle"),
+    (["--evanescent", "--material", "steel", "--thickness", "1", "--mode-shape", "A0"],
+     "--mode-shape"),
+])
+def test_the_command_refuses_in_one_line_before_work(argv, says, capsys):
+    from dispersion.cli import main
+
+    assert main(["branches", "--exact", "--frequency", "500", *argv]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "\n" not in err and says in err, err

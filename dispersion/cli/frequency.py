@@ -81,6 +81,8 @@ RULES = [
      "with --exact, instead of --frequency (one input axis)"),
     ("--evanescent", requested, "with --frequency or --fd"),
     ("--decay-max", lambda a: a.evanescent, "with --evanescent"),
+    ("--figure", lambda a: not a.evanescent, "to the propagating modes (the evanescent modes "
+     "are a table, no figure yet)"),
     ("--mode-shape", lambda a: requested(a) and not _layup(a) and not a.evanescent,
      "with --frequency or --fd (an isotropic plate)"),
     ("--thickness", lambda a: _material_given(a) and not _layup(a),
@@ -146,9 +148,6 @@ def evanescent(args, plate) -> int:
     from dispersion.continuum.layered.evanescent_modes import DEFAULT_DECAY
 
     check_outputs(args, "branches")
-    if getattr(args, "figure", None):
-        raise InputError("--figure: the evanescent modes are a table (no figure yet); drop "
-                         "--figure")
     if args.fd is not None:
         freq = {"fd_mhz_mm": frequencies(args.fd, "--fd", units=None)}
     else:

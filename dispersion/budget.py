@@ -77,6 +77,18 @@ machine shared with other jobs: the lead re-times them on a quiet machine).
    p + 1 from p = 16 (p = 24: 57 s), linear between the measured corners; so every n the
    command accepts for its p runs at its smallest grid (count = 2) with its default rules.
 
+7. **Evanescent modes** (:func:`dispersion.continuum.layered.evanescent_modes.evanescent_modes`,
+   ``dispersion branches --exact --evanescent``): per frequency and mode class, the
+   argument of the exact function is followed around a rectangle of half-width R and height
+   2 Im kappa_max, one ball evaluation through the whole sublayer chain per sample. Work:
+   :math:`W = \\sum 8 (R + \\kappa''_{max}) / 0.25 \\times (\\text{sublayers} + 10)` over
+   frequencies and classes, R estimated before the work as 1.25 Omega s_max + 1 (s_max the
+   slowest bulk wave's slowness in the units of the plate). Measured (wall, one frequency,
+   every class, 60 dB per thickness, the machine shared): 1 mm steel at Omega 1, 10, 30:
+   1.9, 7.0, 11.4 s for W = 9.5e3, 3.7e4, 1.6e5 (the estimate is conservative at small
+   Omega, where SAFE and the propagating count dominate). Bound:
+   :data:`EVANESCENT_WORK_MAX` = 1e6 (six frequencies at Omega 30: about a minute).
+
 >>> check_bar_degree(24)
 Traceback (most recent call last):
 ...
@@ -93,7 +105,29 @@ __all__ = ["BAR_P_MAX", "TIME_TERMS_MAX", "SERIES_WORK_MAX", "SYMBOLIC_SERIES_WO
            "BAR_SERIES_ORDER_MAX", "PHASE_WORK_MAX", "DISCRETE_WORK_MAX", "DISCRETE_P_MAX",
            "DISCRETE_N_MAX", "POLYNOMIAL_N_MAX", "discrete_n_max", "check_bar_degree", "check_time_terms",
            "series_work", "check_series_work", "check_bar_series", "check_phases",
-           "check_discrete_branches", "check_jobs", "max_jobs", "check_claim"]
+           "check_discrete_branches", "check_jobs", "max_jobs", "check_claim",
+           "EVANESCENT_WORK_MAX", "check_evanescent_work"]
+
+#: Most work W of one request for evanescent modes (rule 7).
+EVANESCENT_WORK_MAX = 1_000_000
+
+
+def check_evanescent_work(work: float, frequencies: int) -> None:
+    """Rule 7: the estimated work of an evanescent-mode request.
+
+    >>> check_evanescent_work(2e6, 10)
+    Traceback (most recent call last):
+    ...
+    dispersion.errors.InputError: evanescent modes at 10 frequencies: estimated work 2e+06 is more than the limit of 1e+06 (about a minute: ball arithmetic along each class's rectangle): ask for fewer frequencies (at most 5 of these), a lower --decay-max or a lower frequency
+    """
+    if work > EVANESCENT_WORK_MAX:
+        fits = max(1, int(frequencies * EVANESCENT_WORK_MAX // work))
+        raise InputError(f"evanescent modes at {frequencies} frequencies: estimated work "
+                         f"{work:.3g} is more than the limit of {EVANESCENT_WORK_MAX:.0e} "
+                         "(about a minute: ball arithmetic along each class's rectangle): ask "
+                         f"for fewer frequencies (at most {fits} of these), a lower "
+                         "--decay-max or a lower frequency")
+
 
 #: Highest degree of the exact maximum of the periodic bar (rule 1).
 BAR_P_MAX = 12

@@ -185,6 +185,8 @@ def test_out_of_range_bounds_and_damped_plates_are_refused():
                          im_max=1.0)
     with pytest.raises(InputError, match="at most"):
         evanescent_modes(plate, [1.0] * 21, im_max=1.0)
+    with pytest.raises(InputError, match="estimated work"):   # budget rule 7, before work
+        evanescent_modes(plate, [30.0] * 7, im_max=im_max_of(60.0))
 
 
 def test_the_table_gives_the_decay_in_db_per_metre_and_per_thickness():

@@ -138,11 +138,29 @@ def _check(plate, omega, im_max):
     if not (isinstance(im_max, (int, float)) and 0 < im_max <= top):
         raise InputError(f"im_max (the bound on Im kappa) must lie in (0, {top:.6g}] "
                          f"({DECAY_RANGE[1]:g} dB per thickness), got {im_max!r}")
+    _check_work(plate, omega, im_max)
     if not half_turn_symmetric(plate.scaled()):
         raise InputError("evanescent modes need a plate unchanged by the half turn about its "
                          "normal (C14, C15, C24, C25, C34, C35, C46, C56 zero in the waves' "
                          "frame); this plate's layers are not")
     return omega
+
+
+def _check_work(plate, omega, im_max):
+    """Refuse, before any work, a request beyond :data:`dispersion.budget.EVANESCENT_WORK_MAX`
+    (the estimate of rule 7 there)."""
+    from dispersion.budget import check_evanescent_work
+    from dispersion.continuum.layered.dynamic_stiffness import _kelvin_min, mode_classes
+
+    stack = plate.scaled()
+    s_max = max(math.sqrt(2 * r / _kelvin_min(C)) for C, r in zip(stack.C, stack.rho))
+    work = 0.0
+    for w in omega:
+        R = 1.25 * float(w) * s_max + 1.0
+        for cls in mode_classes(plate):
+            chain = sum(e.count for e in sublayers(stack, cls, float(w), math.hypot(R, im_max)))
+            work += 8 * (R + im_max) / SEGMENT * (chain + 10)
+    check_evanescent_work(work, int(omega.size))
 
 
 def _F(stack, cls, elements, omega):

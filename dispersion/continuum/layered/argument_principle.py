@@ -9,8 +9,8 @@ its zeros inside (with multiplicity) is the winding number of F around 0 along t
     N = \\frac{1}{2\\pi} \\oint \\mathrm d \\arg F.
 
 F is enclosed in a ball (python-flint ``acb``) at each sample; a sample whose ball meets 0,
-or whose argument is not known to within :data:`CONE` (sin 44 deg), leaves the count
-unknown. Each edge is cut into first segments, and a segment whose two end arguments
+or whose argument is not known to within 30 degrees (:data:`CONE`), or where F cannot be
+enclosed (a pivot not proven invertible), leaves the count unknown. Each edge is cut into first segments, and a segment whose two end arguments
 differ by more than :data:`MAX_STEP` is halved, down to :data:`MAX_DEPTH` halvings (then
 the count is unknown: a zero on or very near the contour), so the argument is followed in
 steps of less than an eighth of a turn. This is the damped solver's rule
@@ -35,8 +35,8 @@ import math
 __all__ = ["winding", "regular_polygon", "CONE", "MAX_STEP", "MAX_DEPTH",
            "MAX_EVALUATIONS"]
 
-#: Largest radius of a sample's ball relative to its centre's modulus (sin 44.4 deg).
-CONE = 0.7
+#: Largest radius of a sample's ball relative to its centre's modulus (sin 30 deg).
+CONE = 0.5
 #: Largest change of the argument between neighbouring samples (an eighth of a turn).
 MAX_STEP = math.pi / 4
 #: Halvings of a first segment before its count is given up.
@@ -62,7 +62,10 @@ def winding(F, vertices, segment: float | None = None):
         evals[0] += 1
         if evals[0] > MAX_EVALUATIONS:
             raise _GiveUp
-        ball = F(z)
+        try:
+            ball = F(z)
+        except ZeroDivisionError:   # a matrix not proven invertible in ball arithmetic
+            raise _GiveUp from None
         m = complex(ball.mid())
         rho = math.hypot(float(ball.real.rad()), float(ball.imag.rad()))
         if not rho < CONE * abs(m):

@@ -15,9 +15,11 @@ its names and its roots):
    undamped mode's name; two modes that meet in one root are listed as failures.
 3. **Certified** by the argument principle: the entire function
    :math:`\\det K \\prod \\det P_{ut}` (:func:`~dispersion.continuum.layered.dynamic_stiffness.det_ball`,
-   ``entire=True``) is evaluated in ball arithmetic at :data:`CIRCLE_POINTS` points of the
-   circle :math:`|\\kappa - \\kappa_0| = ` :data:`ROOT_RTOL` :math:`|\\kappa_0|`; it winds once
-   around 0 (every ball away from 0, every step less than half a turn) exactly when one root
+   ``entire=True``) is evaluated in ball arithmetic at the :data:`CIRCLE_POINTS` vertices of
+   the polygon inscribed in the circle :math:`|\\kappa - \\kappa_0| = ` :data:`ROOT_RTOL`
+   :math:`|\\kappa_0|`, and between them wherever the argument moves by more than an eighth
+   of a turn (:func:`~dispersion.continuum.layered.argument_principle.winding`, shared with
+   the evanescent modes); it winds once around 0 (every argument certain) when one root
    lies within that distance. Else the root is listed in ``failures``; so is a damped root
    farther than :data:`MATCH` (relative) from its undamped one (the name would be a guess).
 
@@ -116,29 +118,16 @@ def _partly_damped(stack, s: float):
 
 
 def _winding(stack, cls, elements, omega, k):
-    """Turns of the entire function around 0 on the certifying circle (None if a ball
-    meets 0 or a step may exceed half a turn)."""
-    import cmath
+    """Turns of the entire function around 0 on the certifying polygon (None if a sample's
+    ball meets 0 or its argument is uncertain, or the steps do not resolve:
+    :func:`~dispersion.continuum.layered.argument_principle.winding`)."""
+    from dispersion.continuum.layered.argument_principle import regular_polygon, winding
 
-    r = ROOT_RTOL * abs(k)
-    args = []
-    for j in range(CIRCLE_POINTS):
-        z = k + r * cmath.exp(2j * math.pi * j / CIRCLE_POINTS)
-        F = det_ball(stack, cls, elements, z, omega, entire=True)
-        if F.contains(0):
-            return None
-        mid = complex(F.mid())
-        rad = float(abs(F).rad()) if hasattr(abs(F), "rad") else 0.0
-        if rad >= 0.5 * abs(mid):   # the argument is not known to within 30 degrees
-            return None
-        args.append(cmath.phase(mid))
-    total = 0.0
-    for a, b in zip(args, args[1:] + args[:1]):
-        step = (b - a + math.pi) % (2 * math.pi) - math.pi
-        if abs(step) > 0.75 * math.pi:
-            return None
-        total += step
-    return round(total / (2 * math.pi))
+    def F(z):
+        return det_ball(stack, cls, elements, z, omega, entire=True)
+
+    turns, _ = winding(F, regular_polygon(k, ROOT_RTOL * abs(k), CIRCLE_POINTS))
+    return turns
 
 
 def damped_modes(plate, omega, *, families=None) -> DampedRoots:

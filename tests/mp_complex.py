@@ -103,14 +103,17 @@ def _polished(f, z0):
 
 def roots_in_rectangle(f, re_max, im_lo, im_hi, n_re: int = 8, n_im: int = 5):
     """Zeros of ``f`` with 0 <= Re <= re_max, im_lo < Im <= im_hi: findroot (secant) from a
-    grid of n_re x n_im starts (and the mirror of each), each polished at 40 digits
-    (:func:`_polished`), the distinct ones sorted by Im."""
+    grid of starts, each polished at 40 digits (:func:`_polished`), the distinct ones sorted
+    by Im. Starts: real parts 0 and (i + 1/2) re_max / n_re, i < n_re; imaginary parts
+    im_lo + (j + 1/2) (im_hi - im_lo) / n_im, j < n_im, and im_hi 10^-m, m = 1, 2, 3 (roots
+    near kappa = 0: the flexural evanescent root at low frequency)."""
+    res = [mpmath.mpf(0)] + [re_max * (i + mpmath.mpf(1) / 2) / n_re for i in range(n_re)]
+    ims = [im_lo + (im_hi - im_lo) * (j + mpmath.mpf(1) / 2) / n_im for j in range(n_im)]
+    ims += [im_hi * mpmath.mpf(10) ** -m for m in (1, 2, 3) if im_hi * 10 ** -m > im_lo]
     found = []
-    for i in range(n_re):
-        for j in range(n_im):
-            z0 = mpmath.mpc(re_max * (i + 0.5) / n_re,
-                            im_lo + (im_hi - im_lo) * (j + 0.5) / n_im)
-            z = _polished(f, z0)
+    for x in res:
+        for y in ims:
+            z = _polished(f, mpmath.mpc(x, y))
             if z is None or not (im_lo < z.imag <= im_hi and z.real <= re_max):
                 continue
             if all(abs(z - q) > 1e-20 * abs(z) for q in found):

@@ -521,7 +521,7 @@ def _acb_expm_stiffness(stack, element: Element, kappa, omega, prec: int):
     Puu, Put, Ptu, Ptt = block(0, 0), block(0, 3), block(3, 0), block(3, 3)
     X = Put.inv()
     XP = X * Puu
-    return XP, -X, Ptu - Ptt * XP, Ptt * X, Put.det()
+    return XP, -X, Ptu - Ptt * XP, Ptt * X, Put
 
 
 def det_ball(stack, cls: ModeClass, elements, kappa, omega: float, prec: int = 160,
@@ -530,8 +530,9 @@ def det_ball(stack, cls: ModeClass, elements, kappa, omega: float, prec: int = 1
     (python-flint ``acb``, ``prec`` bits): the float data of the plate, kappa (real or
     complex) and Omega taken as exact binary numbers. Returns the ``acb`` ball (real for an
     undamped plate at a real kappa). ``entire``: times :math:`\\det P_{ut}` of every
-    sublayer, which clears the poles of K, so the product is an entire function of kappa
-    (its zeros in a disc are counted by the argument principle)."""
+    sublayer (its block of the class's components), which clears the poles of K, so the
+    product is an entire function of kappa whose zeros are the modes of the class (counted
+    in a disc or a rectangle by the argument principle)."""
     import flint
 
     old = flint.ctx.prec
@@ -548,7 +549,7 @@ def det_ball(stack, cls: ModeClass, elements, kappa, omega: float, prec: int = 1
                     ks = stack.springs[e.interface] * e.scale
                     D = flint.acb_mat([[flint.acb(float(ks[i])) if i == j else 0
                                         for j in range(3)] for i in range(3)])
-                    cache[e] = (D, -D, -D, D, flint.acb(1))
+                    cache[e] = (D, -D, -D, D, None)
                 else:
                     cache[e] = _acb_expm_stiffness(stack, e, kap, float(omega), prec)
             return cache[e]
@@ -562,9 +563,11 @@ def det_ball(stack, cls: ModeClass, elements, kappa, omega: float, prec: int = 1
         S = None
         rows = first
         for e, _ in chain:
-            K00, K01, K10, K11, dput = stiff(e)
-            if entire:
-                det *= dput
+            K00, K01, K10, K11, Put = stiff(e)
+            if entire and Put is not None:
+                # the class's block of P_ut only: its zeros are the poles of the class's K (a
+                # decoupled class's other block would add zeros that are no modes)
+                det *= sub(Put, dofs, dofs).det()
             if not rows:   # the first node has no unknowns
                 S = sub(K11, dofs, dofs)
                 rows = dofs

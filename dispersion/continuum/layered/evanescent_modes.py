@@ -17,7 +17,9 @@ For each :class:`~dispersion.continuum.layered.dynamic_stiffness.ModeClass`:
 
 1. **Candidates.** Every eigenvalue of the B-spline SAFE pencil
    (:func:`~dispersion.continuum.layered.safe.wavenumbers`) with :math:`0 < \\kappa'' \\le
-   1.25` ``im_max``, reflected to :math:`\\kappa' \\ge 0`.
+   1.25` ``im_max``, reflected to :math:`\\kappa' \\ge 0`; while the count (step 4) finds
+   more roots than the list, again with twice and four times the elements
+   (:data:`REFINEMENTS`).
 2. **Polished** by the secant method on :math:`\\det K` in complex arithmetic (the damped
    solver's, :mod:`~dispersion.continuum.layered.damped_modes`), then a few secant steps on
    the 160-bit values of F below (the float determinant loses digits near
@@ -185,16 +187,32 @@ def _refined(F, k, steps: int = 4):
     return b if np.isfinite(b) and abs(b - k) <= 1e-6 * abs(k) else k
 
 
-def _candidates(stack, cls, omega, im_max, k_real):
+def _anisotropy(stack) -> float:
+    """How much faster the fields vary through the thickness than along the waves at an
+    imaginary kappa: the largest sqrt(C_xx / C_zz) of each displacement (C11/C55, C66/C44,
+    C55/C33) over the layers (about 1.8 for an isotropic layer, 6 for a CFRP ply)."""
+    C = np.asarray(stack.C).real
+    ratios = [C[:, 0, 0] / C[:, 4, 4], C[:, 5, 5] / C[:, 3, 3], C[:, 4, 4] / C[:, 2, 2]]
+    return float(np.sqrt(np.max(ratios)))
+
+
+def _candidates(stack, cls, omega, im_max, k_real, refine: int = 1):
+    """SAFE eigenvalues with 0 < Im <= 1.25 im_max, reflected to Re >= 0; the elements
+    resolve the through-thickness wavenumber of kappa up to the rectangle's corner
+    (:func:`_anisotropy` times it), ``refine`` times more when a count asked for it."""
     from dispersion.continuum.layered.safe import elements_per_layer, safe_pencil, wavenumbers
 
-    k_guess = math.hypot(max(k_real, omega) + 2.0, im_max)
+    k_guess = math.hypot(max(k_real, omega) + 2.0, im_max) * _anisotropy(stack) * refine
     pencil = safe_pencil(stack, cls, elements_per_layer(stack, cls, omega, k_guess))
     kap = wavenumbers(pencil, omega)
     kap = kap[np.isfinite(kap)]
     kap = kap[(kap.imag > 1e-8 * np.abs(kap)) & (kap.imag <= 1.25 * im_max)]
     kap = np.abs(kap.real) + 1j * kap.imag
     return kap[np.argsort(kap.imag)]
+
+
+#: SAFE refinements tried while the count finds more roots than the list (elements x 1, 2, 4).
+REFINEMENTS = (1, 2, 4)
 
 
 def _class_evanescent(model, cls, omega, im_max):
@@ -208,33 +226,37 @@ def _class_evanescent(model, cls, omega, im_max):
     top = max(k_real, float(np.max(cand.real, initial=0.0)))
     R = 1.25 * top + 1.0
     elements = sublayers(stack, cls, omega, math.hypot(R, im_max))
-    roots = []
-    for c in cand:
-        k = complex(_secant(stack, cls, elements, omega, complex(c)))
-        if not np.isfinite(k):
-            continue
-        k = complex(abs(k.real), abs(k.imag))    # its mirror image in the listed quadrant
-        if k.imag <= 1e-9 * abs(k) or k.imag > im_max or k.real > R:
-            continue
-        if any(abs(k - q) <= 1e-7 * abs(k) for q in roots):
-            continue
-        roots.append(k)
     F = _F(stack, cls, elements, omega)
-    kept = []
-    for k in roots:
-        k = _refined(F, k)
-        r = ROOT_RTOL * abs(k)
-        if abs(k.real) < r:
-            k = complex(0.0, k.imag)
-        turns, _ = winding(F, regular_polygon(k, r))
-        if turns != 1:
-            failures.append((omega, cls.name, f"root near kappa={k:.6g}: not certified to "
-                             f"{ROOT_RTOL:.0e} (winding {turns})"))
-        kept.append(k)
-    listed = 2 * len(real) + sum(2 if k.real == 0 else 4 for k in kept)
     rect = [complex(-R, -im_max), complex(R, -im_max), complex(R, im_max),
             complex(-R, im_max)]
     counted, _ = winding(F, rect, segment=SEGMENT)
+    roots, kept, fails = [], [], []
+    for refine in REFINEMENTS:
+        if refine > 1:
+            cand = _candidates(stack, cls, omega, im_max, k_real, refine)
+        for c in cand:
+            k = complex(_secant(stack, cls, elements, omega, complex(c)))
+            if not np.isfinite(k):
+                continue
+            k = complex(abs(k.real), abs(k.imag))    # its mirror image in the listed quadrant
+            if k.imag <= 1e-9 * abs(k) or k.imag > im_max or k.real > R:
+                continue
+            k = _refined(F, k)
+            r = ROOT_RTOL * abs(k)
+            if abs(k.real) < r:
+                k = complex(0.0, k.imag)
+            if any(abs(k - q) <= 1e-7 * abs(k) for q in roots):
+                continue
+            roots.append(k)
+            turns, _ = winding(F, regular_polygon(k, r))
+            if turns != 1:
+                fails.append((omega, cls.name, f"root near kappa={k:.6g}: not certified to "
+                              f"{ROOT_RTOL:.0e} (winding {turns})"))
+            kept.append(k)
+        listed = 2 * len(real) + sum(2 if k.real == 0 else 4 for k in kept)
+        if counted is None or counted <= listed:
+            break
+    failures += fails
     if counted is None:
         failures.append((omega, cls.name, f"count of the roots with |Re kappa| <= {R:.4g}, "
                          f"|Im kappa| <= {im_max:.4g} not proven (a root on or near the "

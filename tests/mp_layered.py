@@ -181,7 +181,8 @@ def _stroh_partial_waves(C, rho, k, w, t):
 
 
 def anisotropic_function(layers, k, w):
-    """The free plate's determinant at k (1/m), w (rad/s): ``layers`` rows ``(C, rho, t)``
+    """The free plate's determinant at k (1/m, real or complex), w (rad/s): ``layers`` rows
+    ``(C, rho, t)``
     bottom up, C the 6x6 Voigt stiffness (Pa) in the wave's frame; det of the
     traction-from-displacement block of the product of the partial-wave transfer matrices
     (an mpmath number, the midpoint of its ball)."""
@@ -195,7 +196,8 @@ def anisotropic_function(layers, k, w):
         mu0, rho0 = float(layers[0][0][4][4]), float(layers[0][1])
         h0 = sum(float(t) for _, _, t in layers) / 2
         with mpmath.workdps(DPS):
-            kb = flint.acb(mpmath.nstr(mpmath.mpf(k) * h0, 45))
+            kk = mpmath.mpmathify(k) * h0    # real or complex (evanescent modes)
+            kb = flint.acb(mpmath.nstr(mpmath.re(kk), 45), mpmath.nstr(mpmath.im(kk), 45))
             wb = flint.acb(mpmath.nstr(mpmath.mpf(w) * h0 * mpmath.sqrt(rho0 / mpmath.mpf(mu0)),
                                        45))
         for bits in (160, 400, 1000):   # near-degenerate partial waves (low frequency)

@@ -13,7 +13,7 @@ import pytest
 from hypothesis import example, given
 from hypothesis import strategies as st
 from mp_complex import count_in_rectangle, is_zero_near, rayleigh_lamb, roots_in_rectangle
-from mp_layered import dispersion_function
+from mp_layered import anisotropic_function, dispersion_function
 from promise_search import SLOW, record
 
 from dispersion.continuum.layered.evanescent_modes import (DECAY_RANGE, ROOT_RTOL,
@@ -258,3 +258,35 @@ def test_a_complex_branch_leaves_the_s1_zgv_point_slow():
                              families=("S",))
     assert above.failures == ()
     assert not [k for k in above.kappa if abs(k.real - zgv.kappa) < 0.05 * zgv.kappa]
+
+
+@pytest.mark.slow
+def test_laminate_against_the_partial_wave_determinant_slow():
+    """[0/90]s of T800/913 at 1 MHz, waves along 0 and 30 deg: each listed root is a
+    40-digit zero of the free plate's 3x3 determinant of partial-wave transfer matrices
+    (python-flint's eigen-solver at 160 bits, tests/mp_layered.py: no Stroh exponential, no
+    dynamic stiffness), and that determinant's own count in [-R, R] x (im_lo, im_max] (every
+    family at once) is the number of listed roots there with their mirror images."""
+    from dispersion.api import layup
+
+    for angle in (0.0, 30.0):
+        plate = layup("[0/90]s", ply="T800/913", ply_thickness_mm=0.125, direction=angle)
+        sc = plate.scaled()
+        Omega = 2 * math.pi * 1e6 * sc.h_m / sc.c_ref
+        im_max = im_max_of(40.0)
+        r = evanescent_modes(plate, [Omega], im_max=im_max)
+        assert r.failures == (), r.failures
+        layers = [(C.matrix, layer.solid.rho, layer.thickness_mm * 1e-3)
+                  for C, layer in zip(plate.wave_frame_stiffness(), plate.layers)]
+        w = Omega * sc.c_ref / sc.h_m
+
+        def f(kap):
+            return anisotropic_function(layers, kap / sc.h_m, w)
+
+        for k in r.kappa:
+            assert is_zero_near(f, complex(k), MATCH), (angle, k)
+        R = min(r.region.values())
+        ours = [complex(k) for k in r.kappa if k.real <= R]
+        im_lo = min([0.01] + [k.imag / 2 for k in ours])
+        expected = sum(1 if k.real == 0 else 2 for k in ours)
+        assert count_in_rectangle(f, R, im_lo, im_max, first=120) == expected, angle

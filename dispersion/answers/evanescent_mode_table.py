@@ -1,9 +1,9 @@
 """The evanescent modes of a plate at given frequencies, in physical units.
 
-:func:`evanescent_lamb_modes` takes a :class:`~dispersion.continuum.layered.layered_plate.LayeredPlate`
-(one isotropic layer is the Rayleigh-Lamb plate, in the same units: :math:`\\kappa = k h`,
-h half the thickness) and frequencies f (kHz) or fd (MHz mm), solves at
-:math:`\\Omega = \\omega h / c_{ref}`
+:func:`evanescent_lamb_modes` takes a
+:class:`~dispersion.continuum.layered.layered_plate.LayeredPlate` (one isotropic layer is
+the Rayleigh-Lamb plate, in the same units: :math:`\\kappa = k h`, h half the thickness) and
+frequencies f (kHz) or fd (MHz mm), solves at :math:`\\Omega = \\omega h / c_{ref}`
 (:func:`~dispersion.continuum.layered.evanescent_modes.evanescent_modes`) and returns an
 :class:`EvanescentModeTable`: per mode :math:`k = (\\kappa' + i\\kappa'')/h`, the decay
 :math:`20\\log_{10}(e)\\,\\mathrm{Im}\\,k` in dB/m and over one plate thickness d.

@@ -10,16 +10,16 @@ its zeros inside (with multiplicity) is the winding number of F around 0 along t
 
 F is enclosed in a ball (python-flint ``acb``) at each sample; a sample whose ball meets 0,
 or whose argument is not known to within 30 degrees (:data:`CONE`), or where F cannot be
-enclosed (a pivot not proven invertible), leaves the count unknown. Each edge is cut into first segments, and a segment whose two end arguments
-differ by more than :data:`MAX_STEP` is halved, down to :data:`MAX_DEPTH` halvings (then
-the count is unknown: a zero on or very near the contour), so the argument is followed in
-steps of less than an eighth of a turn. This is the damped solver's rule
-(:mod:`~dispersion.continuum.layered.damped_modes`: 16 samples, steps below 3/4 of a half
-turn) made adaptive; like it, it reads the winding from samples: a pair of zeros closer to
-the contour than the final sample spacing, whose arguments cancel between two samples,
-is not excluded (a proof would need a bound on F' along each segment; an enclosure of F
-on a whole segment at once was tried and is far too wide through the stiffness'
-inversions).
+enclosed (a pivot not proven invertible), leaves the count unknown. Each edge is cut into
+first segments, and a segment whose two end arguments differ by more than :data:`MAX_STEP`
+is halved, down to :data:`MAX_DEPTH` halvings (then the count is unknown: a zero on or very
+near the contour), so the argument is followed in steps of less than an eighth of a turn.
+The damped solver's certificate (:mod:`~dispersion.continuum.layered.damped_modes`) is this
+function on its 16-gon (it read 16 fixed samples with steps below 3/4 of a half turn). It
+reads the winding from samples: a pair of zeros closer to the contour than the final sample spacing, whose
+arguments cancel between two samples, is not excluded (a proof would need a bound on F'
+along each segment; an enclosure of F on a whole segment at once was tried and is far too
+wide through the stiffness' inversions).
 
 References
 ----------

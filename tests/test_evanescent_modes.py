@@ -220,6 +220,7 @@ def test_the_table_gives_the_decay_in_db_per_metre_and_per_thickness():
      "--decay-max applies only with --evanescent"),
     (["--evanescent", "--material", "steel", "--thickness", "1", "--figure", "e.png"],
      "--figure"),
+    (["--evanescent", "--cl", "5960", "--ct", "3235", "--thickness", "1"], "needs --rho"),
     (["--evanescent", "--layup", "steel:1", "--zgv"], "--zgv"),
     (["--evanescent", "--layup", "steel:1", "--damping", "0.01"], "--damping"),
     (["--evanescent", "--layup", "steel:1", "--angle", "0,30"], "several --angle"),

@@ -115,6 +115,10 @@ def run(args) -> int:
     if args.evanescent:
         from dispersion.continuum.layered.layered_plate import layered_plate
 
+        if material.rho is None:
+            raise InputError("--evanescent with --cl/--ct needs --rho (density in kg/m^3: the "
+                             "evanescent solver takes the plate as one layer of a stack)")
+
         return evanescent(args, layered_plate([(material, args.thickness)]))
     kinds = {} if args.modes is None else {"kinds": layup.families(args)}
     if args.fd is not None:

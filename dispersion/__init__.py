@@ -125,6 +125,8 @@ _MODULES = {
     "layered_branches": "continuum.layered.layered_branches",
     "damped_modes": "continuum.layered.damped_modes",
     "layered_zgv": "continuum.layered.layered_zgv",
+    "argument_principle": "continuum.layered.argument_principle",
+    "evanescent_mode_table": "answers.evanescent_mode_table",
     "layered_mode_table": "answers.layered_mode_table",
     "layered_mode_shapes": "continuum.layered.layered_mode_shapes",
     "slowness_table": "answers.slowness_table",

@@ -329,22 +329,33 @@ def layered_lamb_modes(plate, *, frequency_khz=None, fd_mhz_mm=None, families=No
                   zgv=zgv)
 
 
-def evanescent_modes(plate, *, frequency_khz=None, fd_mhz_mm=None, families=None,
-                     decay_db: float = 60.0):
+def evanescent_modes(plate, *, thickness_mm=None, frequency_khz=None, fd_mhz_mm=None,
+                     families=None, decay_db: float = 60.0):
     """Every evanescent mode (imaginary and complex wavenumbers, Im k > 0) of an undamped
     plate at the given frequencies with a decay of at most ``decay_db`` dB per plate
-    thickness, each root certified and their number counted
-    (:func:`dispersion.answers.evanescent_mode_table.evanescent_lamb_modes`; ``plate`` a
-    :class:`~dispersion.continuum.layered.layered_plate.LayeredPlate` or a layup text as
-    :func:`layup` reads it: ``"steel:3"`` is a 3 mm steel plate, the Rayleigh-Lamb plate).
+    thickness (in (0, 200]), each root certified and their number counted
+    (:func:`dispersion.answers.evanescent_mode_table.evanescent_lamb_modes`). ``plate``: a
+    :class:`~dispersion.continuum.layered.layered_plate.LayeredPlate`, a layup text as
+    :func:`layup` reads it (``"steel:3"`` is a 3 mm steel plate), or an isotropic material
+    (a table name or a :class:`~dispersion.materials.materials.Material` with a density)
+    with ``thickness_mm``.
 
     >>> t = evanescent_modes("steel:1", frequency_khz=1000, decay_db=20, families=("A",))
     >>> [r["mode"] for r in t.rows()]
     ['A-e1']
     """
     from dispersion.answers.evanescent_mode_table import evanescent_lamb_modes
+    from dispersion.continuum.layered.layered_plate import LayeredPlate, layered_plate
 
-    if isinstance(plate, str):
+    if thickness_mm is not None:
+        if isinstance(plate, LayeredPlate):
+            raise InputError("thickness_mm goes with a material, not with a layered plate")
+        mat = globals()["material"](plate) if isinstance(plate, str) else plate
+        if getattr(mat, "rho", 1.0) is None:
+            raise InputError("--evanescent with --cl/--ct needs --rho (density in kg/m^3: the "
+                             "evanescent solver takes the plate as one layer of a stack)")
+        plate = layered_plate([(mat, thickness_mm)])
+    elif isinstance(plate, str):
         plate = layup(plate)
     return evanescent_lamb_modes(plate, frequency_khz=frequency_khz, fd_mhz_mm=fd_mhz_mm,
                                  families=families, decay_db=decay_db)

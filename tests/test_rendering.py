@@ -136,6 +136,13 @@ def _layered():
         t.roots, failures=((0.3, "L", "a planted failure"),)))
 
 
+def _evanescent():
+    t = dispersion.evanescent_modes("steel:1", frequency_khz=[300.0], decay_db=20.0,
+                                    families=("A",))
+    return dataclasses.replace(t, roots=dataclasses.replace(
+        t.roots, failures=((0.3, "A", "a planted failure"),)))
+
+
 def _slowness():
     t = dispersion.slowness_curves("steel:0.5,copper:0.5", 300.0, [0.0, 45.0])
     planted = dataclasses.replace(t.roots[0], failures=((0.3, "L", "a planted failure"),))
@@ -145,6 +152,7 @@ def _slowness():
 #: One small instance of every result type (its name -> a function building it).
 INSTANCES = {"BranchTable": _branch_table, "ModeTable": _mode_table,
              "LayeredModeTable": _layered, "SlownessTable": _slowness,
+             "EvanescentModeTable": _evanescent,
              "ModeShapeTable": _mode_shapes, "ExactBranches": _exact,
              "Velocities": _velocities, "DiscreteBranches": _discrete, "SeriesTable": _series,
              "ErrataSheet": _errata, "CriticalSteps": _steps, "CriticalStep": _step,

@@ -113,13 +113,9 @@ def run(args) -> int:
                          "--youngs-modulus/--nu/--rho) and --thickness (d in mm)")
     check_outputs(args, "branches")
     if args.evanescent:
-        from dispersion.continuum.layered.layered_plate import layered_plate
+        from dispersion.cli import evanescent
 
-        if material.rho is None:
-            raise InputError("--evanescent with --cl/--ct needs --rho (density in kg/m^3: the "
-                             "evanescent solver takes the plate as one layer of a stack)")
-
-        return evanescent(args, layered_plate([(material, args.thickness)]))
+        return evanescent.run(args, material, args.thickness)
     kinds = {} if args.modes is None else {"kinds": layup.families(args)}
     if args.fd is not None:
         table = lamb_modes(material, args.thickness, fd_mhz_mm=frequencies(args.fd, "--fd",
@@ -143,22 +139,3 @@ def run(args) -> int:
     write_outputs(args, table, figure_mode_table)
     return 0
 
-
-def evanescent(args, plate) -> int:
-    """``--evanescent``: the evanescent modes of ``plate`` (a layup, or one isotropic layer)."""
-    from dispersion.api import evanescent_modes
-    from dispersion.cli.options import frequencies
-    from dispersion.cli.outputs import check_outputs, warn_failures, write_outputs
-    from dispersion.continuum.layered.evanescent_modes import DEFAULT_DECAY
-
-    check_outputs(args, "branches")
-    if args.fd is not None:
-        freq = {"fd_mhz_mm": frequencies(args.fd, "--fd", units=None)}
-    else:
-        freq = {"frequency_khz": frequencies(args.frequency, "--frequency")}
-    table = evanescent_modes(plate, families=layup.families(args),
-                             decay_db=DEFAULT_DECAY if args.decay_max is None
-                             else args.decay_max, **freq)
-    warn_failures(table, args)
-    write_outputs(args, table, None)
-    return 0

@@ -91,9 +91,9 @@ def run(args) -> int:
         if args.zgv or not plate.lossless:
             raise InputError("--evanescent: the evanescent modes of an undamped plate; drop "
                              f"{'--zgv' if args.zgv else '--damping'}")
-        from dispersion.cli.frequency import evanescent
+        from dispersion.cli import evanescent
 
-        return evanescent(args, plate)
+        return evanescent.run(args, plate)
     if args.zgv and not plate.lossless:
         raise InputError("--zgv: zero-group-velocity points of a damped plate are not computed "
                          "(its group velocity is not); drop --zgv or --damping")

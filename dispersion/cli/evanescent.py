@@ -1,0 +1,28 @@
+"""``dispersion branches --exact --evanescent``: the evanescent modes of a plate (one isotropic
+layer or a layup) at the frequencies of ``--frequency``/``--fd``.
+
+Calls :func:`dispersion.api.evanescent_modes` and renders the table (no figure yet).
+"""
+from __future__ import annotations
+
+from dispersion.cli import layup
+
+
+def run(args, plate, thickness_mm=None) -> int:
+    """The evanescent modes of ``plate`` (a layered plate, or an isotropic material with
+    ``thickness_mm``)."""
+    from dispersion.api import evanescent_modes
+    from dispersion.cli.options import frequencies
+    from dispersion.cli.outputs import check_outputs, warn_failures, write_outputs
+
+    check_outputs(args, "branches")
+    if args.fd is not None:
+        freq = {"fd_mhz_mm": frequencies(args.fd, "--fd", units=None)}
+    else:
+        freq = {"frequency_khz": frequencies(args.frequency, "--frequency")}
+    bound = {} if args.decay_max is None else {"decay_db": args.decay_max}
+    table = evanescent_modes(plate, thickness_mm=thickness_mm, families=layup.families(args),
+                             **bound, **freq)
+    warn_failures(table, args)
+    write_outputs(args, table, None)
+    return 0

@@ -320,7 +320,8 @@ def lamb_energy_velocity(kind: str, k0, w, cL, cT, rho, h):
     :math:`\\lambda + 2\\mu = \\rho c_L^2`, :math:`\\mu = \\rho c_T^2` (complex when
     damped); the strain energy takes :math:`\\tfrac14\\operatorname{Re}(\\bar\\varepsilon^T C
     \\varepsilon)` and the power :math:`-\\tfrac12\\operatorname{Re}(\\sigma_{1j}\\bar v_j)`,
-    :math:`v = -i\\omega u`; both integrated by mpmath's quadrature (tanh-sinh)."""
+    :math:`v = -i\\omega u`; both integrated at once (power + i energy) by mpmath's
+    tanh-sinh quadrature."""
     with mpmath.workdps(DPS):
         I = mpmath.mpc(0, 1)
         w, cL, cT, rho, h = (mpmath.mpmathify(x) for x in (w, cL, cT, rho, h))
@@ -331,42 +332,35 @@ def lamb_energy_velocity(kind: str, k0, w, cL, cT, rho, h):
         q = mpmath.sqrt(w**2 / cT**2 - k**2)
         M, mu = rho * cL**2, rho * cT**2
         lam = M - 2 * mu
-        if kind == "S":
-            def phi(z, n):     # n-th derivative
-                return [mpmath.cos(p * z), -p * mpmath.sin(p * z), -p**2 * mpmath.cos(p * z)][n]
+        sym = kind == "S"
 
-            def psi0(z, n):
-                return [mpmath.sin(q * z), q * mpmath.cos(q * z), -q**2 * mpmath.sin(q * z)][n]
-        else:
-            def phi(z, n):
-                return [mpmath.sin(p * z), p * mpmath.cos(p * z), -p**2 * mpmath.sin(p * z)][n]
+        def parts(z):
+            """phi, phi', phi'' and psi / B, its derivatives (one sine and cosine each)."""
+            cp, sp, cq, sq = mpmath.cos(p * z), mpmath.sin(p * z), mpmath.cos(q * z), \
+                mpmath.sin(q * z)
+            if sym:     # phi = cos pz, psi = B sin qz
+                return (cp, -p * sp, -p**2 * cp), (sq, q * cq, -q**2 * sq)
+            return (sp, p * cp, -p**2 * sp), (cq, -q * sq, -q**2 * cq)
 
-            def psi0(z, n):
-                return [mpmath.cos(q * z), -q * mpmath.sin(q * z), -q**2 * mpmath.cos(q * z)][n]
         # sigma_33(h) = mu ((k^2 - q^2) phi + 2 i k psi') = 0
-        B = -(k**2 - q**2) * phi(h, 0) / (2 * I * k * psi0(h, 1))
+        (ph, _, _), (_, gh, _) = parts(h)
+        B = -(k**2 - q**2) * ph / (2 * I * k * gh)
+        cc = mpmath.conj
 
-        def fields(z):
-            f0, f1, f2 = (phi(z, n) for n in range(3))
-            g0, g1, g2 = (B * psi0(z, n) for n in range(3))
+        def integrand(z):
+            """power + i energy (both real: one quadrature for the two)."""
+            (f0, f1, f2), (g0, g1, g2) = parts(z)
+            g0, g1, g2 = B * g0, B * g1, B * g2
             u1, u3 = I * k * f0 - g1, f1 + I * k * g0
             du1, du3 = I * k * f1 - g2, f2 + I * k * g1
             e11, e33, g13 = I * k * u1, du3, du1 + I * k * u3     # g13 = 2 eps_13
             s11, s33, s13 = M * e11 + lam * e33, lam * e11 + M * e33, mu * g13
-            return u1, u3, e11, e33, g13, s11, s33, s13
-
-        def energy(z):
-            u1, u3, e11, e33, g13, _, _, _ = fields(z)
             kin = rho * w**2 * (abs(u1) ** 2 + abs(u3) ** 2) / 4
-            cc = mpmath.conj
-            strain = mpmath.re(cc(e11) * (M * e11 + lam * e33) + cc(e33) * (lam * e11 + M * e33)
-                               + cc(g13) * mu * g13) / 4
-            return kin + strain
-
-        def power(z):
-            u1, u3, _, _, _, s11, _, s13 = fields(z)
+            strain = mpmath.re(cc(e11) * s11 + cc(e33) * s33 + cc(g13) * s13) / 4
             v1, v3 = -I * w * u1, -I * w * u3
-            return -mpmath.re(s11 * mpmath.conj(v1) + s13 * mpmath.conj(v3)) / 2
+            power = -mpmath.re(s11 * cc(v1) + s13 * cc(v3)) / 2
+            return power + I * (kin + strain)
 
-        c_e = mpmath.quad(power, [-h, 0, h]) / mpmath.quad(energy, [-h, 0, h])
+        total = mpmath.quad(integrand, [-h, h])
+        c_e = mpmath.re(total) / mpmath.im(total)
         return k, c_e

@@ -234,9 +234,12 @@ def layered_mode_shapes(table, mode: str) -> ModeShapeTable:
                      f"{along}")
     notes += [f"{label} has a further root at k = {complex(r.kappa[i]).real / h_mm:.10g} "
               f"rad/mm (not shown)" for i in mine[1:]]
-    z = s.z * h_mm
     bounds = np.concatenate([[0.0], np.cumsum([layer.thickness_mm for layer in plate.layers])])
     bounds -= bounds[-1] / 2
+    z = s.z * h_mm
+    # the faces and interfaces where the sublayers' sums of thicknesses round next to them
+    near = np.abs(z[:, None] - bounds[None, :]) <= 1e-12 * h_mm
+    z = np.where(near.any(axis=1), bounds[np.argmax(near, axis=1)], z)
     layers = tuple((f"{n + 1}: {layer.describe()}", float(bounds[n]), float(bounds[n + 1]))
                    for n, layer in enumerate(plate.layers))
     notes += [f"amplitude: the largest displacement component {AMPLITUDE_UM:g} um, real where "

@@ -7,7 +7,10 @@ displacements and stresses through the thickness of every root of that mode (a b
 branch has two), normalised as :data:`~dispersion.continuum.mode_shapes.FIELD_NORMALISATION`
 says. Lamb modes (S, A) have ``u_x, u_y, sigma_xx, sigma_yy, sigma_xy``
 (:func:`~dispersion.continuum.mode_shapes.exact_mode_fields`); SH modes ``u_z, sigma_yz,
-sigma_xz`` (:func:`~dispersion.continuum.sh.sh_mode_shape`). The table renders itself
+sigma_xz`` (:func:`~dispersion.continuum.sh.sh_mode_shape`). A layered plate's table
+(:func:`layered_mode_shapes`) has every displacement and stress of a mode, real and imaginary
+parts, its energy densities and power flow, in physical units, on the samples of each
+sublayer, with the layers. The table renders itself
 (:class:`dispersion.rendering.Rendered`) and draws its figure
 (:func:`dispersion.plotting.lamb.figure_mode_shapes`).
 

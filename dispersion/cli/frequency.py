@@ -49,7 +49,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     layup.add_arguments(p)
     p.add_argument("--mode-shape", metavar="MODE",
                    help="with one frequency: displacements and stresses through the thickness "
-                        "of MODE (S0, a1, SH0, ...) instead of the mode table")
+                        "of MODE (S0, a1, SH0, ...) instead of the mode table; with --layup "
+                        "also the energy densities and power flow, in physical units, with the "
+                        "interfaces")
 
 
 def requested(args) -> bool:

@@ -1,7 +1,8 @@
 """``dispersion branches --exact --layup ... --frequency ...``: the layered plate's calculator.
 
 Parses the layup options, calls :func:`dispersion.api.layup` and
-:func:`dispersion.api.layered_lamb_modes`, renders the table.
+:func:`dispersion.api.layered_lamb_modes`, renders the table (with ``--mode-shape``: one mode
+through the thickness, :func:`dispersion.answers.mode_shape_table.mode_shapes`).
 """
 from __future__ import annotations
 

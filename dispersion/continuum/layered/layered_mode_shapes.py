@@ -25,6 +25,12 @@ plane: along the wave it is the group velocity :math:`d\\Omega/d\\kappa` (Biot's
 test), across it it gives the **skew angle** :math:`\\psi = \\arctan(c_{e2} / c_{e1})`, by
 which the energy of an anisotropic plate's wave leaves the wave's direction.
 
+A **damped** plate (complex moduli, complex :math:`\\kappa` at a real :math:`\\Omega`) has
+no group velocity; the same ratio, taken at :math:`x = 0` where the decaying wave's amplitude
+is the mode's, is its energy velocity (Bernard, Lowe and Deschamps 2001), and the strain
+energy :math:`\\tfrac14 \\operatorname{Re}(\\bar\\varepsilon^T C \\varepsilon)` keeps the
+storage part of the moduli. As the loss vanishes it tends to the group velocity.
+
 >>> from dispersion.continuum.layered.layered_plate import laminate
 >>> from dispersion.materials.materials import ply
 >>> s = mode_shape(laminate("[0/90]s", ply("T800/913"), 0.125, direction=30), 1.0, "A0")
@@ -35,7 +41,8 @@ References
 ----------
 B. A. Auld, *Acoustic fields and waves in solids*, vol. 1, 2nd ed., Krieger 1990, ch. 5
 (Poynting's theorem, energy velocity); M. A. Biot, Phys. Rev. 105 (1957) 1129 (energy and
-group velocity); A. H. Nayfeh, *Wave propagation in layered anisotropic media*, Elsevier 1995.
+group velocity); A. Bernard, M. J. S. Lowe, M. Deschamps, "Guided waves energy velocity in
+absorbing and non-absorbing plates", J. Acoust. Soc. Am. 110 (2001) 186; A. H. Nayfeh, *Wave propagation in layered anisotropic media*, Elsevier 1995.
 """
 from __future__ import annotations
 

@@ -228,14 +228,20 @@ def test_bilayer_shape_is_the_40_digit_transfer_matrix_shape():
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("names, thick, W, label, eta", [
-    (("steel", "aluminium"), (0.71, 0.29), 0.05, "L0", 0.0),
-    (("pmma", "steel"), (0.9, 0.1), 6.0, "L2", 0.0),
-    (("glass", "epoxy"), (0.5, 0.5), 3.0, "L1", 0.02),
-    (("steel", "aluminium"), (0.71, 0.29), 2.0, "L0", 0.1),
-])
-def test_bilayer_shape_is_the_40_digit_transfer_matrix_shape_slow(names, thick, W, label, eta):
-    _bilayer_shape_case(names, thick, W, label, eta)
+@SLOW
+@given(a=st.sampled_from(sorted(MATERIALS)), b=st.sampled_from(sorted(MATERIALS)),
+       share=st.floats(0.1, 0.9), W=st.floats(0.05, 6.0), j=st.integers(0, 6),
+       eta=st.sampled_from([0.0, 0.0, 0.02, 0.1]))
+@example(a="steel", b="aluminium", share=0.71, W=0.05, j=0, eta=0.0)
+@example(a="pmma", b="steel", share=0.9, W=6.0, j=2, eta=0.0)
+@example(a="glass", b="epoxy", share=0.5, W=3.0, j=1, eta=0.02)
+@example(a="steel", b="aluminium", share=0.1, W=2.0, j=0, eta=0.1)
+def test_bilayer_shape_is_the_40_digit_transfer_matrix_shape_slow(a, b, share, W, j, eta):
+    # the j-th Lamb mode (L, or S and A of a symmetric stack: both in the Lamb family) of
+    # the undamped twin's list, at its damped root when eta > 0
+    plate = layered_plate([(material(a), share), (material(b), 1 - share)])
+    labels = [lab for lab in layered_modes(plate, [W]).label if not lab.startswith("SH")]
+    _bilayer_shape_case((a, b), (share, 1 - share), W, labels[j % len(labels)], eta)
 
 
 # --------------------------------------- the energy velocity of damped plates (issue 36)

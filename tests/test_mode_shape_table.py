@@ -29,7 +29,8 @@ def _check_table(rows, springs=None):
     interface between two layers."""
     z = _col(rows, "z [mm]")
     layer = _col(rows, "layer")
-    t = np.array([_col(rows, f"{p} {c} [MPa]") for c in ("s33", "s23", "s13") for p in ("Re", "Im")])
+    t = np.array([_col(rows, f"{p} {c} [MPa]") for c in ("s33", "s23", "s13")
+                  for p in ("Re", "Im")])
     u = np.array([_col(rows, f"{p} {c} [um]") for c in ("u1", "u2", "u3") for p in ("Re", "Im")])
     big_t = max(np.abs([_col(rows, k) for k in rows[0] if k.endswith("[MPa]")]).max(), 1e-300)
     assert np.abs(t[:, [0, -1]]).max() < 1e-9 * big_t

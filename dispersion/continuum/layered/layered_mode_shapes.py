@@ -42,7 +42,8 @@ References
 B. A. Auld, *Acoustic fields and waves in solids*, vol. 1, 2nd ed., Krieger 1990, ch. 5
 (Poynting's theorem, energy velocity); M. A. Biot, Phys. Rev. 105 (1957) 1129 (energy and
 group velocity); A. Bernard, M. J. S. Lowe, M. Deschamps, "Guided waves energy velocity in
-absorbing and non-absorbing plates", J. Acoust. Soc. Am. 110 (2001) 186; A. H. Nayfeh, *Wave propagation in layered anisotropic media*, Elsevier 1995.
+absorbing and non-absorbing plates", J. Acoust. Soc. Am. 110 (2001) 186; A. H. Nayfeh,
+*Wave propagation in layered anisotropic media*, Elsevier 1995.
 """
 from __future__ import annotations
 
@@ -56,8 +57,8 @@ from dispersion.continuum.layered.dynamic_stiffness import (_mid, _transfer, ass
 from dispersion.continuum.layered.stroh import system_matrix
 from dispersion.errors import InputError
 
-__all__ = ["LayeredModeShape", "mode_shape", "root_shape", "mode_fields", "energy_velocities", "skew_angles",
-           "SAMPLES_PER_SUBLAYER", "GAUSS_PER_SUBLAYER"]
+__all__ = ["LayeredModeShape", "mode_shape", "root_shape", "mode_fields", "energy_velocities",
+           "skew_angles", "SAMPLES_PER_SUBLAYER", "GAUSS_PER_SUBLAYER"]
 
 #: Points drawn in each sublayer (the ends included).
 SAMPLES_PER_SUBLAYER = 9

@@ -319,3 +319,30 @@ def test_damped_energy_velocity_meets_the_group_velocity_as_the_loss_vanishes(pl
         s = shape(damped, damped_modes(damped, [W], families=(family,)))
         assert abs(s.energy_velocity[0] / s0.group - 1) <= eta
         assert abs(s.energy_velocity[1] - s0.energy_velocity[1]) <= eta * abs(s0.group)
+
+
+def _sh0_case(name, eta, W):
+    from dispersion.continuum.layered.damped_modes import damped_modes
+    from dispersion.continuum.layered.layered_mode_shapes import energy_velocities
+
+    plate = layered_plate([(material(name), 1.0)], damping=eta)
+    roots = damped_modes(plate, [W], families=("SH",))
+    i = list(roots.label).index("SH0")
+    c_e = energy_velocities(plate, roots)[i]
+    c_p = W / complex(roots.kappa[i]).real
+    record("layered-damped-energy-velocity", abs(c_e[0] / c_p - 1), 1e-12, material=name,
+           eta=eta, omega=W, mode="SH0")
+    assert abs(c_e[1]) <= 1e-12 * c_p
+
+
+@pytest.mark.slow
+@SLOW
+@given(name=st.sampled_from(sorted(MATERIALS)), eta=st.floats(1e-4, 0.3), W=st.floats(0.1, 5.0))
+@example(name="steel", eta=1e-4, W=0.1)
+@example(name="pmma", eta=0.3, W=5.0)
+def test_damped_sh0_carries_its_energy_at_the_phase_velocity_slow(name, eta, W):
+    """SH0 of a uniformly damped isotropic plate is a homogeneous plane shear wave, whose
+    energy velocity is its phase velocity omega / Re k (closed form: with s = sqrt(1 - i
+    eta), c_e = 2 Re(s) |s|^2 c_T / (|s|^2 + 1) and c_p = |s|^2 c_T / Re(s), equal since
+    2 Re(s)^2 = |s|^2 + 1; Bernard, Lowe and Deschamps 2001, bulk waves)."""
+    _sh0_case(name, eta, W)

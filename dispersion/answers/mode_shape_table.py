@@ -226,6 +226,8 @@ def layered_mode_shapes(table, mode: str) -> ModeShapeTable:
         fields.update({"e_kin [J/m^3]": s.kinetic * e, "e_str [J/m^3]": s.strain * e,
                        "P1 [W/m^2]": s.flow[0] * e * st.c_ref,
                        "P2 [W/m^2]": s.flow[1] * e * st.c_ref})
+        # + 0.0: no "-0.0" in the tables (a vanishing field's rounded sign means nothing)
+        fields = {key: val + 0.0 if key != "layer" else val for key, val in fields.items()}
         kap = complex(s.kappa)
         shapes.append(ModeShape(float(table.frequency_khz[r.index[i]]), kap.real / h_mm,
                                 fields))

@@ -4,7 +4,7 @@ Run:  python benchmarks/bench_layered_peers.py [--quick] [--repeat N] [--out DIR
 
 The measurement is :func:`dispersion.studies.layered_peers.measure` (its docstring says what
 is compared and how); this prints one table per plate and, with ``--out``, writes
-``layered_peers.json``.
+``bench_layered_peers.json`` and ``bench_layered_peers.md`` as one unit.
 """
 from __future__ import annotations
 
@@ -12,7 +12,7 @@ import argparse
 import time
 from pathlib import Path
 
-from dispersion.io import write_text
+from dispersion.io import write_files
 from dispersion.results import dumps, envelope, jsonable
 from dispersion.studies.layered_peers import measure
 
@@ -42,17 +42,21 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="8 frequencies per plate")
     parser.add_argument("--repeat", type=int, default=1, help="runs per tool (best kept)")
-    parser.add_argument("--out", type=Path, help="folder for layered_peers.json")
+    parser.add_argument("--out", type=Path, help="folder for bench_layered_peers.{json,md}")
     args = parser.parse_args()
     t0 = time.perf_counter()
     result = measure(quick=args.quick, repeat=args.repeat)
     data = jsonable(result)
-    print(render(data))
+    text = render(data)
+    print(text)
     if args.out:
         args.out.mkdir(parents=True, exist_ok=True)
-        write_text(args.out / "layered_peers.json",
-                   dumps(envelope("layered_peers", result, seconds=time.perf_counter() - t0,
-                                  inputs={"quick": args.quick})))
+        doc = dumps(envelope("layered_peers", result, seconds=time.perf_counter() - t0,
+                             inputs={"quick": args.quick, "repeat": args.repeat}))
+        write_files(args.out, {"bench_layered_peers.json": doc, "bench_layered_peers.md":
+                               "# Layered plates side by side\n\n`python benchmarks/"
+                               "bench_layered_peers.py --repeat " + str(args.repeat)
+                               + " --out reports`\n\n" + text})
 
 
 if __name__ == "__main__":

@@ -8,7 +8,8 @@ In the same run:
   Lanczos estimate, verified band Cholesky, bisection on the inertia) of meshes of about 1e5
   DOFs: bars and plane-strain strips (assembly timed apart);
 * **spectrum**: every frequency of the lumped and the consistent bar of N = 250 .. 2000
-  elements by the route the toolkit takes (LAPACK's banded solver for a diagonal mass) against
+  elements by the route the toolkit takes (LAPACK's banded solvers: ``dsbevd`` for a diagonal
+  mass, ``dsbgvd`` for the consistent one) against
   the dense generalized solver (:func:`scipy.linalg.eigh` on the whole matrices), the largest
   difference of the two spectra beside the times;
 * **previous**: the critical step of the simulation's strips (the cases of

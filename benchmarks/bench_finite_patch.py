@@ -80,7 +80,8 @@ print(json.dumps({"cases": out}))
 """
 
 
-from previous_commit import previous_commit  # noqa: E402  (benchmarks/ is on sys.path)
+from report_page import publish  # noqa: E402  (benchmarks/ is on sys.path)
+from previous_commit import previous_commit  # noqa: E402
 
 
 def _best(fn, repeat: int):
@@ -205,13 +206,7 @@ def main(argv=None) -> int:
               "previous_commit": commit,
               "previous": previous(commit, QUICK_STRIPS if args.quick else STRIPS,
                                    args.repeat)}
-    text = markdown(result)
-    print(text)
-    if args.out:
-        from dispersion.io import write_files
-
-        write_files(Path(args.out), {"bench_finite_patch.json": json.dumps(result, indent=1),
-                                     "bench_finite_patch.md": text})
+    publish(args.out, "bench_finite_patch", json.dumps(result, indent=1), markdown(result))
     return 0
 
 

@@ -12,7 +12,8 @@ import argparse
 import time
 from pathlib import Path
 
-from dispersion.io import write_files
+from report_page import publish  # (benchmarks/ is on sys.path)
+
 from dispersion.results import dumps, envelope, jsonable
 from dispersion.studies.layered_peers import measure
 
@@ -47,16 +48,11 @@ def main() -> None:
     t0 = time.perf_counter()
     result = measure(quick=args.quick, repeat=args.repeat)
     data = jsonable(result)
-    text = render(data)
-    print(text)
-    if args.out:
-        args.out.mkdir(parents=True, exist_ok=True)
-        doc = dumps(envelope("layered_peers", result, seconds=time.perf_counter() - t0,
-                             inputs={"quick": args.quick, "repeat": args.repeat}))
-        write_files(args.out, {"bench_layered_peers.json": doc, "bench_layered_peers.md":
-                               "# Layered plates side by side\n\n`python benchmarks/"
-                               "bench_layered_peers.py --repeat " + str(args.repeat)
-                               + " --out reports`\n\n" + text})
+    doc = dumps(envelope("layered_peers", result, seconds=time.perf_counter() - t0,
+                         inputs={"quick": args.quick, "repeat": args.repeat}))
+    publish(args.out, "bench_layered_peers", doc,
+            f"`python benchmarks/bench_layered_peers.py --repeat {args.repeat}"
+            f"{' --quick' if args.quick else ''} --out DIR`\n\n" + render(data))
 
 
 if __name__ == "__main__":

@@ -8,7 +8,8 @@ In the same run:
   Lanczos estimate, verified band Cholesky, bisection on the inertia) of meshes of about 1e5
   DOFs: bars and plane-strain strips (assembly timed apart);
 * **spectrum**: every frequency of the lumped and the consistent bar of N = 250 .. 2000
-  elements by the route the toolkit takes (LAPACK's banded solver for a diagonal mass) against
+  elements by the route the toolkit takes (LAPACK's banded solvers: ``dsbevd`` for a diagonal
+  mass, ``dsbgvd`` for the consistent one) against
   the dense generalized solver (:func:`scipy.linalg.eigh` on the whole matrices), the largest
   difference of the two spectra beside the times;
 * **previous**: the critical step of the simulation's strips (the cases of
@@ -79,7 +80,8 @@ print(json.dumps({"cases": out}))
 """
 
 
-from previous_commit import previous_commit  # noqa: E402  (benchmarks/ is on sys.path)
+from report_page import publish  # noqa: E402  (benchmarks/ is on sys.path)
+from previous_commit import previous_commit  # noqa: E402
 
 
 def _best(fn, repeat: int):
@@ -204,13 +206,7 @@ def main(argv=None) -> int:
               "previous_commit": commit,
               "previous": previous(commit, QUICK_STRIPS if args.quick else STRIPS,
                                    args.repeat)}
-    text = markdown(result)
-    print(text)
-    if args.out:
-        from dispersion.io import write_files
-
-        write_files(Path(args.out), {"bench_finite_patch.json": json.dumps(result, indent=1),
-                                     "bench_finite_patch.md": text})
+    publish(args.out, "bench_finite_patch", json.dumps(result, indent=1), markdown(result))
     return 0
 
 

@@ -34,6 +34,8 @@ import sys
 import tempfile
 from pathlib import Path
 
+from report_page import publish  # (benchmarks/ is on sys.path)
+
 _REPO = Path(__file__).resolve().parents[1]
 
 #: (name, plate spec, frequencies). Plate specs: ("laminate", layup, ply, ply mm, direction)
@@ -208,14 +210,9 @@ def main(argv=None) -> int:
               "previous": _best_of(prev_runs), "repeat": args.repeat, "rounds": args.rounds,
               "machine": machine_facts()["processor"], "machine_facts": machine_facts(),
               "versions": package_versions()}
-    text = markdown(result)
-    print(text)
-    if args.out:
-        from dispersion.io import write_files
-        from dispersion.results import dumps
+    from dispersion.results import dumps
 
-        write_files(args.out, {"bench_layered.json": dumps(result),
-                               "bench_layered.md": text}, option="--out")
+    publish(args.out, "bench_layered", dumps(result), markdown(result))
     return 0
 
 

@@ -4,7 +4,7 @@ Run:  python benchmarks/bench_layered_peers.py [--quick] [--repeat N] [--out DIR
 
 The measurement is :func:`dispersion.studies.layered_peers.measure` (its docstring says what
 is compared and how); this prints one table per plate and, with ``--out``, writes
-``layered_peers.json``.
+``bench_layered_peers.json`` and ``bench_layered_peers.md`` as one unit.
 """
 from __future__ import annotations
 
@@ -12,7 +12,8 @@ import argparse
 import time
 from pathlib import Path
 
-from dispersion.io import write_text
+from report_page import publish  # (benchmarks/ is on sys.path)
+
 from dispersion.results import dumps, envelope, jsonable
 from dispersion.studies.layered_peers import measure
 
@@ -42,17 +43,16 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="8 frequencies per plate")
     parser.add_argument("--repeat", type=int, default=1, help="runs per tool (best kept)")
-    parser.add_argument("--out", type=Path, help="folder for layered_peers.json")
+    parser.add_argument("--out", type=Path, help="folder for bench_layered_peers.{json,md}")
     args = parser.parse_args()
     t0 = time.perf_counter()
     result = measure(quick=args.quick, repeat=args.repeat)
     data = jsonable(result)
-    print(render(data))
-    if args.out:
-        args.out.mkdir(parents=True, exist_ok=True)
-        write_text(args.out / "layered_peers.json",
-                   dumps(envelope("layered_peers", result, seconds=time.perf_counter() - t0,
-                                  inputs={"quick": args.quick})))
+    doc = dumps(envelope("layered_peers", result, seconds=time.perf_counter() - t0,
+                         inputs={"quick": args.quick, "repeat": args.repeat}))
+    publish(args.out, "bench_layered_peers", doc,
+            f"`python benchmarks/bench_layered_peers.py --repeat {args.repeat}"
+            f"{' --quick' if args.quick else ''} --out DIR`\n\n" + render(data))
 
 
 if __name__ == "__main__":

@@ -53,7 +53,8 @@ print(json.dumps(out))
 """
 
 
-from previous_commit import previous_commit  # noqa: E402  (benchmarks/ is on sys.path)
+from report_page import publish  # noqa: E402  (benchmarks/ is on sys.path)
+from previous_commit import previous_commit  # noqa: E402
 
 
 def _export(commit: str, folder: Path) -> Path:
@@ -176,13 +177,7 @@ def main(argv=None) -> int:
               "rounds": args.rounds, "quick": args.quick, "section": section,
               "single": one, "machine": machine_facts()["processor"],
               "machine_facts": machine_facts(), "versions": package_versions()}
-    text = markdown(result)
-    print(text)
-    if args.out:
-        from dispersion.io import write_files
-
-        write_files(args.out, {"bench_ring_section.json": json.dumps(result, indent=1),
-                               "bench_ring_section.md": text}, option="--out")
+    publish(args.out, "bench_ring_section", json.dumps(result, indent=1), markdown(result))
     return 0
 
 

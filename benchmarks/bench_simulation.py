@@ -83,7 +83,8 @@ print(json.dumps({"cases": out}))
 """
 
 
-from previous_commit import previous_commit  # noqa: E402  (benchmarks/ is on sys.path)
+from report_page import publish  # noqa: E402  (benchmarks/ is on sys.path)
+from previous_commit import previous_commit  # noqa: E402
 
 
 def bare_loop(K, steps: int, repeat: int) -> float:
@@ -193,14 +194,9 @@ def main(argv=None) -> int:
               "previous": previous(commit, cases, steps, args.repeat),
               "repeat": args.repeat, "machine": machine_facts()["processor"],
               "machine_facts": machine_facts(), "versions": package_versions()}
-    text = markdown(result)
-    print(text)
-    if args.out:
-        from dispersion.io import write_files
-        from dispersion.results import dumps
+    from dispersion.results import dumps
 
-        write_files(args.out, {"bench_simulation.json": dumps(result),
-                               "bench_simulation.md": text}, option="--out")
+    publish(args.out, "bench_simulation", dumps(result), markdown(result))
     return 0
 
 

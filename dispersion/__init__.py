@@ -108,6 +108,7 @@ _MODULES = {
     "direction_mass": "discretization.finite_mesh.direction_mass",
     "mesh_pencil": "discretization.finite_mesh.mesh_pencil",
     "mesh_spectrum": "discretization.finite_mesh.mesh_spectrum",
+    "banded_pencil": "discretization.finite_mesh.banded_pencil",
     "normalized_spectrum": "discretization.finite_mesh.normalized_spectrum",
     "lattice_reference": "discretization.finite_mesh.lattice_reference",
     "outlier_numbers": "discretization.finite_mesh.outlier_numbers",

@@ -254,3 +254,115 @@ def damped_root(layers_of_eta, springs, w, k0, family: str, eta: float, steps: i
                                 k, solver="secant", tol=mpmath.mpf(10) ** (-2 * DPS + 10),
                                 maxsteps=100, verify=False)
         return k
+
+
+# ---------------------------------------------------------------- fields through the thickness
+
+def lamb_states(layers, k, w, zs):
+    """The state :math:`(u_1, u_3, \\sigma_{13}, \\sigma_{33})` of the Lamb mode at the root
+    ``(k, w)`` of :func:`dispersion_function` (perfect interfaces) at the heights ``zs``
+    (m, from the bottom face up), by the layers' closed-form transfer matrices at 40 digits:
+    the bottom face is free, so its state is :math:`(u, 0)` with :math:`u` the null vector
+    of the plate's stress-from-displacement block; inside layer i the state is carried from
+    the layer's bottom by :math:`D(z - z_i) D(0)^{-1}`. Unnormalised (a list of 4-lists)."""
+    with mpmath.workdps(DPS):
+        k, w = mpmath.mpmathify(k), mpmath.mpmathify(w)
+        rows = [tuple(mpmath.mpmathify(x) for x in row) for row in layers]
+
+        def layer_transfer(row, t):
+            cL, cT, rho, _ = row
+            return _layer_lamb(k, w, cL, cT, rho * cT**2, t)
+
+        T = mpmath.eye(4)
+        for row in rows:
+            T = layer_transfer(row, row[3]) * T
+        # (T[2:, :2]) u = 0: the null vector of the 2x2 block (its larger row gives it)
+        a, b = (T[2, 0], T[2, 1]) if abs(T[2, 0]) + abs(T[2, 1]) >= abs(T[3, 0]) + abs(T[3, 1]) \
+            else (T[3, 0], T[3, 1])
+        state = mpmath.matrix([b, -a, 0, 0])
+        bottoms, s, z0 = [], state, mpmath.mpf(0)
+        for row in rows:
+            bottoms.append((z0, s))
+            s = layer_transfer(row, row[3]) * s
+            z0 += row[3]
+        out = []
+        for z in zs:
+            z = mpmath.mpmathify(z)
+            i = max(j for j, (zb, _) in enumerate(bottoms) if zb <= z or j == 0)
+            zb, sb = bottoms[i]
+            v = layer_transfer(rows[i], z - zb) * sb
+            out.append([v[j] for j in range(4)])
+        return out
+
+
+def rayleigh_lamb(kind: str, k, w, cL, cT, h):
+    """The Rayleigh-Lamb function of the S or A modes of a plate of half-thickness h
+    (speeds may be complex: a damped plate), in the form without poles:
+    S: :math:`(k^2 - q^2)^2 \\cos ph \\sin qh + 4k^2pq \\sin ph \\cos qh`,
+    A: :math:`(k^2 - q^2)^2 \\sin ph \\cos qh + 4k^2pq \\cos ph \\sin qh` (Achenbach 1973,
+    sec. 6.11)."""
+    p = mpmath.sqrt(w**2 / cL**2 - k**2)
+    q = mpmath.sqrt(w**2 / cT**2 - k**2)
+    a = (k**2 - q**2) ** 2
+    if kind == "S":
+        return a * mpmath.cos(p * h) * mpmath.sin(q * h) \
+            + 4 * k**2 * p * q * mpmath.sin(p * h) * mpmath.cos(q * h)
+    return a * mpmath.sin(p * h) * mpmath.cos(q * h) \
+        + 4 * k**2 * p * q * mpmath.cos(p * h) * mpmath.sin(q * h)
+
+
+def lamb_energy_velocity(kind: str, k0, w, cL, cT, rho, h):
+    """``(k, c_e)``: the root of :func:`rayleigh_lamb` near ``k0`` (complex secant at 40
+    digits) and its energy velocity (m/s), time-averaged power over time-averaged energy
+    through the thickness at x = 0 (Bernard, Lowe and Deschamps, JASA 110 (2001) 186), from
+    the textbook partial waves of a plate of half-thickness h: S modes
+    :math:`\\varphi = \\cos pz`, :math:`\\psi = B \\sin qz`; A modes :math:`\\varphi = \\sin
+    pz`, :math:`\\psi = B \\cos qz` (B from :math:`\\sigma_{33}(h) = 0`);
+    :math:`u_1 = ik\\varphi - \\psi'`, :math:`u_3 = \\varphi' + ik\\psi`, moduli
+    :math:`\\lambda + 2\\mu = \\rho c_L^2`, :math:`\\mu = \\rho c_T^2` (complex when
+    damped); the strain energy takes :math:`\\tfrac14\\operatorname{Re}(\\bar\\varepsilon^T C
+    \\varepsilon)` and the power :math:`-\\tfrac12\\operatorname{Re}(\\sigma_{1j}\\bar v_j)`,
+    :math:`v = -i\\omega u`; both integrated at once (power + i energy) by mpmath's
+    tanh-sinh quadrature."""
+    with mpmath.workdps(DPS):
+        I = mpmath.mpc(0, 1)
+        w, cL, cT, rho, h = (mpmath.mpmathify(x) for x in (w, cL, cT, rho, h))
+        k = mpmath.findroot(lambda x: rayleigh_lamb(kind, x, w, cL, cT, h), mpmath.mpmathify(k0),
+                            solver="secant", tol=mpmath.mpf(10) ** (-2 * DPS + 10),
+                            maxsteps=200, verify=False)
+        p = mpmath.sqrt(w**2 / cL**2 - k**2)
+        q = mpmath.sqrt(w**2 / cT**2 - k**2)
+        M, mu = rho * cL**2, rho * cT**2
+        lam = M - 2 * mu
+        sym = kind == "S"
+
+        def parts(z):
+            """phi, phi', phi'' and psi / B, its derivatives (one sine and cosine each)."""
+            cp, sp, cq, sq = mpmath.cos(p * z), mpmath.sin(p * z), mpmath.cos(q * z), \
+                mpmath.sin(q * z)
+            if sym:     # phi = cos pz, psi = B sin qz
+                return (cp, -p * sp, -p**2 * cp), (sq, q * cq, -q**2 * sq)
+            return (sp, p * cp, -p**2 * sp), (cq, -q * sq, -q**2 * cq)
+
+        # sigma_33(h) = mu ((k^2 - q^2) phi + 2 i k psi') = 0
+        (ph, _, _), (_, gh, _) = parts(h)
+        B = -(k**2 - q**2) * ph / (2 * I * k * gh)
+        cc = mpmath.conj
+
+        def integrand(z):
+            """power + i energy (both real: one quadrature for the two)."""
+            (f0, f1, f2), (g0, g1, g2) = parts(z)
+            g0, g1, g2 = B * g0, B * g1, B * g2
+            u1, u3 = I * k * f0 - g1, f1 + I * k * g0
+            du1, du3 = I * k * f1 - g2, f2 + I * k * g1
+            e11, e33, g13 = I * k * u1, du3, du1 + I * k * u3     # g13 = 2 eps_13
+            s11, s33, s13 = M * e11 + lam * e33, lam * e11 + M * e33, mu * g13
+            kin = rho * w**2 * (abs(u1) ** 2 + abs(u3) ** 2) / 4
+            strain = mpmath.re(cc(e11) * s11 + cc(e33) * s33 + cc(g13) * s13) / 4
+            v1, v3 = -I * w * u1, -I * w * u3
+            power = -mpmath.re(s11 * cc(v1) + s13 * cc(v3)) / 2
+            return power + I * (kin + strain)
+
+        total = mpmath.quad(integrand, [-h, h])
+        c_e = mpmath.re(total) / mpmath.im(total)
+        return k, c_e

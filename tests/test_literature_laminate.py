@@ -30,6 +30,9 @@ of layers and not on the material (measured: 6.2317 vs 6.2578, 8.5269 vs 8.5625,
 6.5455, 10.6111 vs 10.679, 6.5954 vs 6.6458, 11.5340 vs 11.6245). No reading of his material
 data tried (shear moduli swapped, nu23 = 0.49, nu21 for nu12) brings them together. The values
 are listed in :data:`NOOR_1973` and the comparison is printed by the slow test, not asserted.
+Two entries of the reproduced table are the same five digits, 8.5625 ([0/90] at E1/E2 = 40 and
+[0/90]_5 at 10), where ours are 8.5269 and 8.4970: the secondary source may carry transcription
+errors, and Noor's own table is not in reach here to check against.
 """
 from __future__ import annotations
 

@@ -39,10 +39,12 @@ __all__ = ["COLUMNS", "LayeredModeTable", "layered_lamb_modes"]
 #: Columns of :meth:`LayeredModeTable.rows` with their units (CSV headings).
 COLUMNS = ("f [kHz]", "fd [MHz mm]", "mode", "family", "k [rad/mm]", "c_p [m/s]",
            "c_g [m/s]", "skew [deg]", "wavelength [mm]", "kappa = kh", "Omega = omega h / c_ref")
-#: ... of a damped plate: the attenuation instead of the group velocity (not computed yet).
+#: ... of a damped plate: the attenuation, and the energy velocity instead of the group
+#: velocity (which a complex wavenumber does not have): power over energy through the
+#: thickness at x = 0 (Bernard, Lowe and Deschamps 2001).
 DAMPED_COLUMNS = ("f [kHz]", "fd [MHz mm]", "mode", "family", "k [rad/mm]",
-                  "attenuation [dB/m]", "c_p [m/s]", "wavelength [mm]", "kappa = kh",
-                  "Im kappa", "Omega = omega h / c_ref")
+                  "attenuation [dB/m]", "c_p [m/s]", "c_e [m/s]", "skew [deg]",
+                  "wavelength [mm]", "kappa = kh", "Im kappa", "Omega = omega h / c_ref")
 
 
 @dataclass(frozen=True, repr=False)
@@ -61,6 +63,9 @@ class LayeredModeTable(Rendered):
     zgv_points: tuple = ()
     #: Omega up to which the ZGV points were searched (None: not asked for).
     zgv_limit: float | None = None
+    #: A damped plate's energy velocity (n, 2) along and across the waves (units of c_ref;
+    #: :func:`~dispersion.continuum.layered.layered_mode_shapes.energy_velocities`).
+    energy_velocity: np.ndarray | None = None
 
     @property
     def damped(self) -> bool:
@@ -106,7 +111,10 @@ class LayeredModeTable(Rendered):
              f"mode classes: {', '.join(self.roots.classes)}; damped: each complex root "
              "followed from the undamped plate's (its name) and certified to 1e-10 relative "
              "by the argument principle in ball arithmetic, else a failure; attenuation "
-             "20 log10(e) Im k")]
+             "20 log10(e) Im k; c_e: the energy velocity along the waves, time-averaged "
+             "power over time-averaged energy through the thickness at x = 0 (Bernard, Lowe "
+             "and Deschamps 2001; c_g as the loss vanishes), skew: the angle of that power "
+             "from the waves' direction (towards +90 deg)")]
         lines += [f"cut-off {lab}: {f_c:.10g} kHz" for lab, f_c in self.cutoffs_khz().items()]
         lines += [f"ZGV {p['mode']}: f = {p['f [kHz]']:.10g} kHz, fd = {p['fd [MHz mm]']:.10g}"
                   f" MHz mm, c_p = {p['c_p [m/s]']:.10g} m/s" for p in self.zgv()]
@@ -119,8 +127,9 @@ class LayeredModeTable(Rendered):
 
     def text_columns(self) -> tuple[str, ...]:
         if self.damped:
+            skew = () if self.plate.decoupled else ("skew [deg]",)
             return ("f [kHz]", "mode", "k [rad/mm]", "attenuation [dB/m]", "c_p [m/s]",
-                    "wavelength [mm]")
+                    "c_e [m/s]", *skew, "wavelength [mm]")
         skew = () if self.plate.decoupled else ("skew [deg]",)
         return ("f [kHz]", "mode", "k [rad/mm]", "c_p [m/s]", "c_g [m/s]", *skew,
                 "wavelength [mm]")
@@ -154,6 +163,7 @@ class LayeredModeTable(Rendered):
                     "mode": r.label[i], "family": r.family[i], "k [rad/mm]": k,
                     "attenuation [dB/m]": DB_PER_NEPER * kap.imag / h,
                     "c_p [m/s]": float(r.omega[r.index[i]]) / kap.real * c,
+                    **self._energy(i, c),
                     "wavelength [mm]": 2 * math.pi / k, "kappa = kh": kap.real,
                     "Im kappa": kap.imag, "Omega = omega h / c_ref": float(r.omega[r.index[i]])})
             return out
@@ -169,6 +179,14 @@ class LayeredModeTable(Rendered):
                 "kappa = kh": float(r.kappa[i]),
                 "Omega = omega h / c_ref": float(r.omega[r.index[i]])})
         return out
+
+    def _energy(self, i: int, c: float) -> dict:
+        """A damped root's ``c_e [m/s]`` and ``skew [deg]`` (0 for a decoupled plate)."""
+        if self.energy_velocity is None:
+            return {"c_e [m/s]": None, "skew [deg]": None}
+        along, across = self.energy_velocity[i]
+        skew = 0.0 if self.plate.decoupled else math.degrees(math.atan2(across, along))
+        return {"c_e [m/s]": float(along) * c, "skew [deg]": skew}
 
     def cutoffs_khz(self) -> dict[str, float]:
         """Cut-off frequency (kHz) of every mode that has one up to the highest frequency,
@@ -261,8 +279,11 @@ def layered_lamb_modes(plate, *, frequency_khz=None, fd_mhz_mm=None, families=No
                          f"{float(f_khz[bad][0]) * scale:.6g} {unit}")
     if not plate.lossless:
         from dispersion.continuum.layered.damped_modes import damped_modes
+        from dispersion.continuum.layered.layered_mode_shapes import energy_velocities
 
-        return LayeredModeTable(plate, f_khz, damped_modes(plate, omega, families=families))
+        roots = damped_modes(plate, omega, families=families)
+        return LayeredModeTable(plate, f_khz, roots,
+                                energy_velocity=energy_velocities(plate, roots))
     from dispersion.continuum.layered.layered_mode_shapes import skew_angles
     from dispersion.continuum.layered.layered_modes import layered_modes
 

@@ -7,7 +7,10 @@ displacements and stresses through the thickness of every root of that mode (a b
 branch has two), normalised as :data:`~dispersion.continuum.mode_shapes.FIELD_NORMALISATION`
 says. Lamb modes (S, A) have ``u_x, u_y, sigma_xx, sigma_yy, sigma_xy``
 (:func:`~dispersion.continuum.mode_shapes.exact_mode_fields`); SH modes ``u_z, sigma_yz,
-sigma_xz`` (:func:`~dispersion.continuum.sh.sh_mode_shape`). The table renders itself
+sigma_xz`` (:func:`~dispersion.continuum.sh.sh_mode_shape`). A layered plate's table
+(:func:`layered_mode_shapes`) has every displacement and stress of a mode, real and imaginary
+parts, its energy densities and power flow, in physical units, on the samples of each
+sublayer, with the layers. The table renders itself
 (:class:`dispersion.rendering.Rendered`) and draws its figure
 (:func:`dispersion.plotting.lamb.figure_mode_shapes`).
 
@@ -33,7 +36,8 @@ import numpy as np
 from dispersion.errors import InputError
 from dispersion.rendering import Rendered
 
-__all__ = ["LAMB_FIELDS", "SH_FIELDS", "ModeShape", "ModeShapeTable", "mode_shapes"]
+__all__ = ["LAMB_FIELDS", "SH_FIELDS", "LAYERED_FIELDS", "AMPLITUDE_UM", "ModeShape",
+           "ModeShapeTable", "mode_shapes", "layered_mode_shapes"]
 
 #: Fields of a Lamb (S, A) mode and of an SH mode, in the order of the columns.
 LAMB_FIELDS = ("u_x", "u_y", "sigma_xx", "sigma_yy", "sigma_xy")
@@ -54,15 +58,31 @@ class ModeShape:
 
 @dataclass(frozen=True, repr=False)  # Rendered: short repr; rows, CSV, JSON from the fields
 class ModeShapeTable(Rendered):
-    """Fields through the thickness of every root labelled ``mode`` in ``table``."""
+    """Fields through the thickness of every root labelled ``mode`` in ``table``.
+
+    An isotropic plate's table leaves the last fields at their defaults. A layered plate's
+    (:func:`mode_shapes` of a
+    :class:`~dispersion.answers.layered_mode_table.LayeredModeTable`) names its ``fields``
+    (columns with units), its ``notes`` (header lines: amplitude, energy velocity), the
+    ``layers`` ``(name, z_bottom_mm, z_top_mm)`` bottom up, the through-thickness ``axis``,
+    the columns of the text table ``text_fields`` and the figure's ``panels`` ``(x label,
+    fields)``."""
 
     table: object
     mode: str
     y_mm: np.ndarray
     shapes: tuple[ModeShape, ...]
+    fields: tuple = ()
+    notes: tuple = ()
+    layers: tuple = ()
+    axis: str = "y [mm]"
+    text_fields: tuple = ()
+    panels: tuple = ()
 
     @property
     def field_names(self) -> tuple[str, ...]:
+        if self.fields:
+            return self.fields
         return SH_FIELDS if self.mode.startswith("SH") else LAMB_FIELDS
 
     def title(self) -> str:
@@ -70,31 +90,50 @@ class ModeShapeTable(Rendered):
         return f"{self.mode} mode shape, {self.table.title()}, f = {f:.6g} kHz"
 
     def header_lines(self) -> list[str]:
+        if self.layers:
+            head = [line for line in self.table.header_lines()
+                    if line.startswith(("layer", "interface", "thickness"))]
+        else:
+            head = [line for line in self.table.header_lines()
+                    if line.startswith(("material", "thickness"))]
+        head += [f"root {i + 1}: {s.name(self.mode)}" for i, s in enumerate(self.shapes)]
+        if self.notes:
+            return head + list(self.notes)
         from dispersion.continuum.mode_shapes import FIELD_NORMALISATION
 
-        head = [line for line in self.table.header_lines()
-                if line.startswith(("material", "thickness"))]
-        head += [f"root {i + 1}: {s.name(self.mode)}" for i, s in enumerate(self.shapes)]
         head += [f"normalisation: {FIELD_NORMALISATION} (h = {self.table.h_mm:g} mm)",
                  "u: displacement amplitude; sigma: stress amplitude (x along the plate, "
                  "y through the thickness, z across)"]
         return head
 
     def columns(self) -> tuple[str, ...]:
-        return ("f [kHz]", "k [rad/mm]", "y [mm]", *self.field_names)
+        return ("f [kHz]", "k [rad/mm]", self.axis, *self.field_names)
+
+    def text_columns(self) -> tuple[str, ...]:
+        if not self.text_fields:
+            return self.columns()
+        return (self.axis, *self.text_fields)
 
     def rows(self) -> list[dict]:
         out = []
         for s in self.shapes:
             for j, y in enumerate(self.y_mm):
-                row = {"f [kHz]": s.f_khz, "k [rad/mm]": s.k_per_mm, "y [mm]": float(y)}
-                row.update({key: float(s.fields[key][j]) for key in self.field_names})
+                row = {"f [kHz]": s.f_khz, "k [rad/mm]": s.k_per_mm, self.axis: float(y)}
+                row.update({key: np.asarray(s.fields[key])[j].item()
+                            for key in self.field_names})
                 out.append(row)
         return out
 
+    def json_extra(self) -> dict:
+        if not self.layers:
+            return {}
+        return {"layers": [{"name": n, "z from [mm]": lo, "z to [mm]": hi}
+                           for n, lo, hi in self.layers]}
+
     def figure_data(self) -> list[dict]:
-        """Per root: ``name``, ``y [mm]`` and the field arrays (the figure's input)."""
-        return [{"name": s.name(self.mode), "y [mm]": self.y_mm, **s.fields}
+        """Per root: ``name``, the axis (``y [mm]``, a layered plate's ``z [mm]``) and the
+        field arrays (the figure's input)."""
+        return [{"name": s.name(self.mode), self.axis: self.y_mm, **s.fields}
                 for s in self.shapes]
 
 
@@ -111,13 +150,17 @@ def _label(table, mode: str) -> str:
 
 def mode_shapes(table, mode: str, points: int = 41) -> ModeShapeTable:
     """Displacements and stresses of ``mode`` at the one frequency of ``table`` on ``points``
-    evenly spaced y through the thickness (see the module docstring)."""
+    evenly spaced y through the thickness (see the module docstring); a layered plate's
+    table (:class:`~dispersion.answers.layered_mode_table.LayeredModeTable`): see
+    :func:`layered_mode_shapes` (``points`` does not apply: each sublayer's own samples)."""
     from dispersion.continuum.mode_shapes import exact_mode_fields
     from dispersion.continuum.sh import sh_mode_shape
 
     if table.frequency_khz.size != 1:
         raise InputError(f"mode shapes need exactly one frequency, got "
                          f"{table.frequency_khz.size}")
+    if hasattr(table, "plate"):
+        return layered_mode_shapes(table, mode)
     if isinstance(points, bool) or not isinstance(points, int) or not 2 <= points <= 10_001:
         raise InputError(f"points must be an integer in [2, 10001], got {points!r}")
     label = _label(table, mode)
@@ -135,3 +178,93 @@ def mode_shapes(table, mode: str, points: int = 41) -> ModeShapeTable:
         shapes.append(ModeShape(float(table.frequency_khz[r.index[i]]), kappa / table.h_mm,
                                 fields))
     return ModeShapeTable(table, label, y * table.h_mm, tuple(shapes))
+
+
+#: The amplitude of a layered plate's mode in its table: the largest displacement component
+#: (real where it is largest). Stresses scale with it, energy and power with its square.
+AMPLITUDE_UM = 1.0
+#: Columns of a layered plate's mode (u in um, stresses in MPa, energies in J/m^3, power in
+#: W/m^2): the real part (the field at x = 0, t = 0) and the imaginary part (a quarter period
+#: later, up to its sign) of each amplitude.
+_U = ("u1", "u2", "u3")
+_S = ("s11", "s22", "s33", "s23", "s13", "s12")
+LAYERED_FIELDS = ("layer", *(f"{p} {c} [um]" for c in _U for p in ("Re", "Im")),
+                  *(f"{p} {c} [MPa]" for c in _S for p in ("Re", "Im")),
+                  "e_kin [J/m^3]", "e_str [J/m^3]", "P1 [W/m^2]", "P2 [W/m^2]")
+
+
+def layered_mode_shapes(table, mode: str) -> ModeShapeTable:
+    """The mode ``mode`` of a :class:`~dispersion.answers.layered_mode_table.LayeredModeTable`
+    at its one frequency through the thickness
+    (:func:`~dispersion.continuum.layered.layered_mode_shapes.root_shape`), in physical
+    units for an amplitude of :data:`AMPLITUDE_UM`: displacements (x1 along the waves, x2
+    across, x3 through the thickness), the six stresses, the time-averaged kinetic and
+    strain energy densities and the power flow density along (P1) and across (P2) the
+    waves; the energy velocity and skew angle in the header. ``z`` from the mid-plane; a
+    point on an interface appears once in each layer (the in-plane stresses jump there)."""
+    from dispersion.continuum.layered.layered_mode_shapes import root_shape
+
+    label = _label(table, mode)
+    plate, r = table.plate, table.roots
+    st = plate.scaled()
+    h_mm = st.h_m * 1e3
+    a = AMPLITUDE_UM * 1e-6 / st.h_m                 # the amplitude in units of h
+    shapes, notes = [], []
+    mine = [i for i, lab in enumerate(r.label) if lab == label]
+    # each root samples its own sublayers: one root per table (a second root of one name,
+    # a backward wave, is named in the header)
+    for i in mine[:1]:
+        s = root_shape(plate, r, i)
+        u = s.u * AMPLITUDE_UM
+        sig = s.stress * st.mu_ref * a / 1e6
+        fields = {"layer": s.layer + 1}
+        for j, c in enumerate(_U):
+            fields[f"Re {c} [um]"], fields[f"Im {c} [um]"] = u[j].real, u[j].imag
+        for j, c in enumerate(_S):
+            fields[f"Re {c} [MPa]"], fields[f"Im {c} [MPa]"] = sig[j].real, sig[j].imag
+        e = st.mu_ref * a**2
+        fields.update({"e_kin [J/m^3]": s.kinetic * e, "e_str [J/m^3]": s.strain * e,
+                       "P1 [W/m^2]": s.flow[0] * e * st.c_ref,
+                       "P2 [W/m^2]": s.flow[1] * e * st.c_ref})
+        # + 0.0: no "-0.0" in the tables (a vanishing field's rounded sign means nothing)
+        fields = {key: val + 0.0 if key != "layer" else val for key, val in fields.items()}
+        kap = complex(s.kappa)
+        shapes.append(ModeShape(float(table.frequency_khz[r.index[i]]), kap.real / h_mm,
+                                fields))
+        c_e = s.energy_velocity * st.c_ref
+        along = (f"c_g = {s.group * st.c_ref:.10g} m/s" if s.group is not None else
+                 f"Im k = {kap.imag / h_mm:.10g} rad/mm")
+        notes.append(f"root {len(shapes)}: energy velocity c_e = {c_e[0]:.10g} m/s along the "
+                     f"waves, {c_e[1]:.10g} m/s across (skew {s.skew_degrees:.6g} deg); "
+                     f"{along}")
+    notes += [f"{label} has a further root at k = {complex(r.kappa[i]).real / h_mm:.10g} "
+              f"rad/mm (not shown)" for i in mine[1:]]
+    bounds = np.concatenate([[0.0], np.cumsum([layer.thickness_mm for layer in plate.layers])])
+    bounds -= bounds[-1] / 2
+    z = s.z * h_mm
+    # the faces and interfaces where the sublayers' sums of thicknesses round next to them
+    near = np.abs(z[:, None] - bounds[None, :]) <= 1e-12 * h_mm
+    z = np.where(near.any(axis=1), bounds[np.argmax(near, axis=1)], z)
+    layers = tuple((f"{n + 1}: {layer.describe()}", float(bounds[n]), float(bounds[n + 1]))
+                   for n, layer in enumerate(plate.layers))
+    notes += [f"amplitude: the largest displacement component {AMPLITUDE_UM:g} um, real where "
+              "it is largest; Re: the field at x = 0, t = 0, Im: a quarter period later "
+              "(u e^(i(k x - omega t)))",
+              "x1 along the waves, x2 across, x3 (z) through the thickness from the mid-plane; "
+              "s: stress; e_kin, e_str: time-averaged kinetic and strain energy densities; "
+              "P1, P2: time-averaged power flow density along and across the waves"
+              + ("; damped: the time averages at x = 0 (the wave decays along x1), c_e the "
+                 "power over the energy through the thickness (Bernard, Lowe and Deschamps "
+                 "2001)" if table.damped else ""),
+              "interfaces at z = " + ", ".join(f"{b:.6g}" for b in bounds[1:-1]) + " mm"
+              if len(bounds) > 2 else "one layer"]
+    panels = (("displacement [um] (Re solid, Im dashed)",
+               tuple(k for k in LAYERED_FIELDS if k.endswith("[um]"))),
+              ("stress [MPa] (Re solid, Im dashed)",
+               tuple(k for k in LAYERED_FIELDS if k.endswith("[MPa]"))),
+              ("energy density [J/m^3]", ("e_kin [J/m^3]", "e_str [J/m^3]")),
+              ("power flow density [W/m^2]", ("P1 [W/m^2]", "P2 [W/m^2]")))
+    text = ("layer", *(k for k in LAYERED_FIELDS if k.endswith("[um]")), "e_kin [J/m^3]",
+            "e_str [J/m^3]", "P1 [W/m^2]")
+    return ModeShapeTable(table, label, z, tuple(shapes), LAYERED_FIELDS, tuple(notes), layers,
+                          "z [mm]", text, panels)

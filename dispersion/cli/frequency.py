@@ -58,7 +58,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                                       "per plate thickness, in (0, 200] (default: 60)")
     p.add_argument("--mode-shape", metavar="MODE",
                    help="with one frequency: displacements and stresses through the thickness "
-                        "of MODE (S0, a1, SH0, ...) instead of the mode table")
+                        "of MODE (S0, a1, SH0, ...) instead of the mode table; with --layup "
+                        "also the energy densities and power flow, in physical units, with the "
+                        "interfaces")
 
 
 def requested(args) -> bool:
@@ -83,8 +85,8 @@ RULES = [
     ("--decay-max", lambda a: a.evanescent, "with --evanescent"),
     ("--figure", lambda a: not a.evanescent, "to the propagating modes (the evanescent modes "
      "are a table, no figure yet)"),
-    ("--mode-shape", lambda a: requested(a) and not _layup(a) and not a.evanescent,
-     "with --frequency or --fd (an isotropic plate)"),
+    ("--mode-shape", lambda a: requested(a) and not a.evanescent,
+     "with --frequency or --fd (a propagating mode, not with --evanescent)"),
     ("--thickness", lambda a: _material_given(a) and not _layup(a),
      "with a material (--material, --cl/--ct or --youngs-modulus/--nu/--rho)"),
     ("--layup", lambda a: requested(a) and not _material_given(a),

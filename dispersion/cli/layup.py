@@ -1,7 +1,8 @@
 """``dispersion branches --exact --layup ... --frequency ...``: the layered plate's calculator.
 
 Parses the layup options, calls :func:`dispersion.api.layup` and
-:func:`dispersion.api.layered_lamb_modes`, renders the table.
+:func:`dispersion.api.layered_lamb_modes`, renders the table (with ``--mode-shape``: one mode
+through the thickness, :func:`dispersion.answers.mode_shape_table.mode_shapes`).
 """
 from __future__ import annotations
 
@@ -102,8 +103,17 @@ def run(args) -> int:
         freq = {"fd_mhz_mm": frequencies(args.fd, "--fd", units=None)}
     else:
         freq = {"frequency_khz": frequencies(args.frequency, "--frequency")}
+    count = len(next(iter(freq.values())))
+    if args.mode_shape is not None and count != 1:
+        raise InputError(f"--mode-shape needs exactly one frequency (at most 1), got {count}")
     table = layered_lamb_modes(plate, families=families(args), zgv=args.zgv, **freq)
     warn_failures(table, args)
+    if args.mode_shape is not None:
+        from dispersion.answers.mode_shape_table import mode_shapes
+        from dispersion.plotting.lamb import figure_mode_shapes
+
+        write_outputs(args, mode_shapes(table, args.mode_shape), figure_mode_shapes)
+        return 0
     write_outputs(args, table, figure_mode_table)
     return 0
 
@@ -117,6 +127,8 @@ def _slowness(args, plate, directions) -> int:
 
     if args.zgv:
         raise InputError("--zgv applies to one direction, not with several --angle")
+    if args.mode_shape is not None:
+        raise InputError("--mode-shape applies to one direction, not with several --angle")
     if args.fd is not None:
         f = [v * 1e3 / plate.total_thickness_mm for v in frequencies(args.fd, "--fd",
                                                                       units=None)]

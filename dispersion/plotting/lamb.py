@@ -155,17 +155,23 @@ def _fd_per_khz(curves: Mapping) -> float | None:
     return None
 
 
-def figure_mode_fields(fields: Sequence[Mapping], title: str):
+def figure_mode_fields(fields: Sequence[Mapping], title: str, panels: Sequence = (),
+                       layers: Sequence = (), axis: str = "y [mm]"):
     """Displacements and stresses through the thickness, one column of panels per root.
 
-    Each entry of ``fields`` has ``"name"`` (caption of the root), ``"y [mm]"`` and any of
-    the displacement (``u_*``) and stress (``sigma_*``) arrays.
+    Each entry of ``fields`` has ``"name"`` (caption of the root), ``axis`` and any of
+    the displacement (``u_*``) and stress (``sigma_*``) arrays. With ``panels`` (``(x
+    label, keys)`` each): one row of panels per root, a panel per entry, a key ``Im ...``
+    dashed in the colour of its ``Re ...``, fields that vanish left out; ``layers`` ``(name,
+    z_bottom, z_top)``: the interfaces drawn as grey lines, each layer named at its middle.
     """
     n = len(fields)
+    if panels:
+        return _figure_panels(fields, title, panels, layers, axis)
     fig = new_figure(figsize=(4.2 * max(n, 1), 6.0))
     axs = np.atleast_2d(fig.subplots(2, max(n, 1), squeeze=False))
     for j, fl in enumerate(fields):
-        y = fl["y [mm]"]
+        y = fl[axis]
         for key, val in fl.items():
             if key.startswith("u_"):
                 axs[0, j].plot(val, y, label=key)
@@ -175,9 +181,44 @@ def figure_mode_fields(fields: Sequence[Mapping], title: str):
         axs[0, j].set_xlabel("displacement / max |u|")
         axs[1, j].set_xlabel("stress / (mu max|u| / h)")
         for ax in axs[:, j]:
-            ax.set_ylabel("y [mm]")
+            ax.set_ylabel(axis)
             ax.axvline(0.0, color="0.7", lw=0.6)
             ax.legend(fontsize="small")
+    fig.suptitle(title, fontsize="medium")
+    return fig
+
+
+def _figure_panels(fields, title, panels, layers, axis):
+    n = len(fields)
+    fig = new_figure(figsize=(3.4 * len(panels), 4.6 * max(n, 1)))
+    axs = np.atleast_2d(fig.subplots(max(n, 1), len(panels), squeeze=False, sharey=True))
+    for i, fl in enumerate(fields):
+        z = np.asarray(fl[axis], float)
+        for ax, (xlabel, keys) in zip(axs[i], panels):
+            top = max((np.max(np.abs(fl[k])) for k in keys), default=0.0)
+            colours = {}
+            for key in keys:
+                val = np.asarray(fl[key], float)
+                if top == 0 or np.max(np.abs(val)) <= 1e-9 * top:
+                    continue        # a field that vanishes (u2 of a Lamb mode)
+                part, _, rest = key.partition(" ")
+                name = rest.rsplit(" [", 1)[0] if part in ("Re", "Im") else key.rsplit(" [", 1)[0]
+                first = name not in colours      # its first line drawn carries its name
+                if first:
+                    colours[name] = f"C{len(colours)}"
+                ax.plot(val, z, color=colours[name], lw=1.1, ls="--" if part == "Im" else "-",
+                        label=name if first else None)
+            ax.set_xlabel(xlabel, fontsize="small")
+            ax.axvline(0.0, color="0.7", lw=0.6)
+            for _, lo, hi in layers[1:]:
+                ax.axhline(lo, color="0.5", lw=0.8, ls=":")
+            if ax.lines:
+                ax.legend(fontsize="x-small", loc="best")
+        axs[i, 0].set_ylabel(axis)
+        axs[i, 0].set_title(fl["name"], fontsize="small", loc="left")
+        for name, lo, hi in layers:
+            axs[i, -1].annotate(name, (1.02, (lo + hi) / 2), xycoords=("axes fraction", "data"),
+                                fontsize="x-small", va="center")
     fig.suptitle(title, fontsize="medium")
     return fig
 
@@ -189,4 +230,5 @@ def figure_mode_table(table):
 
 def figure_mode_shapes(shapes):
     """The figure of a :class:`~dispersion.answers.mode_shape_table.ModeShapeTable`."""
-    return figure_mode_fields(shapes.figure_data(), shapes.title())
+    return figure_mode_fields(shapes.figure_data(), shapes.title(), shapes.panels,
+                              shapes.layers, shapes.axis)

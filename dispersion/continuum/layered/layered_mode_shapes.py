@@ -25,6 +25,12 @@ plane: along the wave it is the group velocity :math:`d\\Omega/d\\kappa` (Biot's
 test), across it it gives the **skew angle** :math:`\\psi = \\arctan(c_{e2} / c_{e1})`, by
 which the energy of an anisotropic plate's wave leaves the wave's direction.
 
+A **damped** plate (complex moduli, complex :math:`\\kappa` at a real :math:`\\Omega`) has
+no group velocity; the same ratio, taken at :math:`x = 0` where the decaying wave's amplitude
+is the mode's, is its energy velocity (Bernard, Lowe and Deschamps 2001), and the strain
+energy :math:`\\tfrac14 \\operatorname{Re}(\\bar\\varepsilon^T C \\varepsilon)` keeps the
+storage part of the moduli. As the loss vanishes it tends to the group velocity.
+
 >>> from dispersion.continuum.layered.layered_plate import laminate
 >>> from dispersion.materials.materials import ply
 >>> s = mode_shape(laminate("[0/90]s", ply("T800/913"), 0.125, direction=30), 1.0, "A0")
@@ -35,7 +41,9 @@ References
 ----------
 B. A. Auld, *Acoustic fields and waves in solids*, vol. 1, 2nd ed., Krieger 1990, ch. 5
 (Poynting's theorem, energy velocity); M. A. Biot, Phys. Rev. 105 (1957) 1129 (energy and
-group velocity); A. H. Nayfeh, *Wave propagation in layered anisotropic media*, Elsevier 1995.
+group velocity); A. Bernard, M. J. S. Lowe, M. Deschamps, "Guided waves energy velocity in
+absorbing and non-absorbing plates", J. Acoust. Soc. Am. 110 (2001) 186; A. H. Nayfeh,
+*Wave propagation in layered anisotropic media*, Elsevier 1995.
 """
 from __future__ import annotations
 
@@ -49,8 +57,8 @@ from dispersion.continuum.layered.dynamic_stiffness import (_mid, _transfer, ass
 from dispersion.continuum.layered.stroh import system_matrix
 from dispersion.errors import InputError
 
-__all__ = ["LayeredModeShape", "mode_shape", "mode_fields", "energy_velocities", "skew_angles",
-           "SAMPLES_PER_SUBLAYER", "GAUSS_PER_SUBLAYER"]
+__all__ = ["LayeredModeShape", "mode_shape", "root_shape", "mode_fields", "energy_velocities",
+           "skew_angles", "SAMPLES_PER_SUBLAYER", "GAUSS_PER_SUBLAYER"]
 
 #: Points drawn in each sublayer (the ends included).
 SAMPLES_PER_SUBLAYER = 9
@@ -72,11 +80,14 @@ class LayeredModeShape:
     the time-averaged energy densities; ``power`` (2,) the power through the thickness along
     and across the wave (per unit width); ``energy`` its integrated energy;
     ``energy_velocity`` (2,) along and across; ``group`` :math:`d\\Omega/d\\kappa` of the
-    root."""
+    root (None for a damped plate, whose complex ``kappa`` has no group velocity);
+    ``layer`` (n,) the layer (from the bottom, 0-based) each point lies in (a point on an
+    interface appears twice, once in each layer); ``flow`` (2, n) the power flow density
+    along and across the wave."""
 
     plate: object
     label: str
-    kappa: float
+    kappa: complex
     omega: float
     z: np.ndarray
     u: np.ndarray
@@ -86,7 +97,9 @@ class LayeredModeShape:
     power: np.ndarray
     energy: float
     energy_velocity: np.ndarray
-    group: float
+    group: float | None
+    layer: np.ndarray
+    flow: np.ndarray
 
     @property
     def skew_degrees(self) -> float:
@@ -113,7 +126,8 @@ def mode_fields(stack, cls, elements, kappa: float, omega: float, samples: np.nd
     the state (6, n) of the class's mode at (kappa, Omega), unnormalised, for the class's
     stack (for a half class: from the mid-plane up)."""
     K = assemble(stack, cls, elements, kappa, omega, sparse=True)
-    v = null_vector((K + K.conj().T) / 2)
+    # undamped: K is Hermitian (its part, round-off off); damped: complex symmetric, as is
+    v = null_vector((K + K.conj().T) / 2 if stack.lossless else K)
     chain, first, _ = _mid(stack, cls, elements)
     dofs = list(cls.dofs)
     sizes = [len(first)] + [len(dofs)] * len(chain)
@@ -143,16 +157,17 @@ def mode_fields(stack, cls, elements, kappa: float, omega: float, samples: np.nd
     return np.concatenate(zs), np.concatenate(xis).T, np.concatenate(layers)
 
 
-def _mirror(cls, z, xi, layer):
+def _mirror(cls, z, xi, layer, n_layers: int):
     """The lower half of a symmetric class: components held on the mid-plane are odd in z
     (their tractions even), the others even (their tractions odd); the stack is its own
-    mirror image, so each point below lies in a layer of the same law."""
+    mirror image, so each point below lies in a layer of the same law (layer n's mirror
+    image is layer n_layers - 1 - n)."""
     odd = np.array([1.0 if d not in cls.mid_fixed else -1.0 for d in range(3)])
     sign = np.concatenate([odd, -odd])
     keep = z > 0
     return (np.concatenate([-z[keep][::-1], z]),
             np.concatenate([(xi[:, keep] * sign[:, None])[:, ::-1], xi], axis=1),
-            np.concatenate([layer[keep][::-1], layer]))
+            np.concatenate([n_layers - 1 - layer[keep][::-1], layer]))
 
 
 def _class_of(model, family: str, label: str):
@@ -183,11 +198,15 @@ def _densities(stack, kappa, omega, xi, lay):
     return sig, kin, stra, p1, p2
 
 
-def _flow(model, cls, kappa: float, omega: float):
+def _flow(model, cls, kappa, omega: float):
     """``(power (2,), energy)`` through the thickness (Gauss-Legendre in every sublayer) of
-    the unnormalised mode, and the sublayers used."""
+    the unnormalised mode, and the sublayers used. A damped plate (complex ``kappa``): the
+    time averages at x = 0, where the wave's amplitude is the mode's (Bernard, Lowe and
+    Deschamps 2001); the strain energy takes the real part of the moduli (the imaginary
+    part dissipates: :math:`\\bar\\varepsilon^T C'' \\varepsilon` is real, so
+    :math:`\\operatorname{Re}(\\bar\\varepsilon^T C \\varepsilon)` is the stored part)."""
     stack = model.stack
-    elements = model.elements(cls.name, omega, kappa)
+    elements = model.elements(cls.name, omega, abs(kappa))
     g, w = np.polynomial.legendre.leggauss(GAUSS_PER_SUBLAYER)
     z, xi, lay = mode_fields(stack, cls, elements, kappa, omega, (g + 1) / 2)
     weights = np.concatenate([w / 2 * e.t for e, _ in _mid(stack, cls, elements)[0]
@@ -199,17 +218,24 @@ def _flow(model, cls, kappa: float, omega: float):
             float(np.sum(weights * (kin + stra))), elements)
 
 
+def _wavenumber(k):
+    """A root's kappa: real for an undamped plate, complex for a damped one."""
+    k = complex(k)
+    return k.real if k.imag == 0 else k
+
+
 def energy_velocities(plate, roots) -> np.ndarray:
     """The energy velocity (n, 2) of every root of a
     :class:`~dispersion.continuum.layered.layered_modes.LayeredRoots` of an undamped
-    ``plate``, along and across the waves (units of c_ref): power over energy through the
-    thickness, as :func:`mode_shape` gives it for one mode."""
+    ``plate`` or a :class:`~dispersion.continuum.layered.damped_modes.DampedRoots` of a
+    damped one, along and across the waves (units of c_ref): power over energy through the
+    thickness at x = 0, as :func:`mode_shape` gives it for one mode."""
     from dispersion.continuum.layered.layered_model import LayeredModel
 
     model = LayeredModel(plate)
     out = np.empty((len(roots.label), 2))
     for i, (lab, fam, k) in enumerate(zip(roots.label, roots.family, roots.kappa)):
-        power, energy, _ = _flow(model, _class_of(model, fam, lab), float(k),
+        power, energy, _ = _flow(model, _class_of(model, fam, lab), _wavenumber(k),
                                  float(roots.omega[roots.index[i]]))
         out[i] = power / energy
     return out
@@ -228,18 +254,34 @@ def skew_angles(plate, roots) -> np.ndarray:
 
 def mode_shape(plate, omega: float, label: str) -> LayeredModeShape:
     """The mode ``label`` (as :func:`~dispersion.continuum.layered.layered_modes.layered_modes`
-    names it) of an undamped ``plate`` at the dimensionless frequency ``omega``, through the
-    thickness, with its energy velocity (see the module docstring)."""
-    from dispersion.continuum.layered.layered_model import LayeredModel
-    from dispersion.continuum.layered.layered_modes import layered_modes
+    names it) of ``plate`` at the dimensionless frequency ``omega``, through the thickness,
+    with its energy velocity (see the module docstring); a damped plate's mode at its
+    complex wavenumber (:func:`~dispersion.continuum.layered.damped_modes.damped_modes`)."""
+    if plate.lossless:
+        from dispersion.continuum.layered.layered_modes import layered_modes
 
-    roots = layered_modes(plate, [omega])
+        roots = layered_modes(plate, [omega])
+    else:
+        from dispersion.continuum.layered.damped_modes import damped_modes
+
+        roots = damped_modes(plate, [omega])
     rows = [i for i, lab in enumerate(roots.label) if lab == label]
     if not rows:
         raise InputError(f"mode must be one of {', '.join(roots.label)} at Omega = {omega:g}; "
                          f"got {label!r}")
-    i = rows[0]
-    kappa, group = float(roots.kappa[i]), float(roots.group[i])
+    return root_shape(plate, roots, rows[0])
+
+
+def root_shape(plate, roots, i: int) -> LayeredModeShape:
+    """The mode of root ``i`` of ``roots`` (a
+    :class:`~dispersion.continuum.layered.layered_modes.LayeredRoots` or
+    :class:`~dispersion.continuum.layered.damped_modes.DampedRoots` of ``plate``) through
+    the thickness."""
+    from dispersion.continuum.layered.layered_model import LayeredModel
+
+    label, omega = roots.label[i], float(roots.omega[roots.index[i]])
+    kappa = _wavenumber(roots.kappa[i])
+    group = float(roots.group[i]) if hasattr(roots, "group") else None
     model = LayeredModel(plate)
     stack = model.stack
     cls = _class_of(model, roots.family[i], label)
@@ -247,11 +289,11 @@ def mode_shape(plate, omega: float, label: str) -> LayeredModeShape:
     z, xi, lay = mode_fields(stack, cls, elements, kappa, omega,
                              np.linspace(0, 1, SAMPLES_PER_SUBLAYER))
     if cls.half:
-        z, xi, lay = _mirror(cls, z, xi, lay)
-    sig, kin, stra, _, _ = _densities(stack, kappa, omega, xi, lay)
+        z, xi, lay = _mirror(cls, z, xi, lay, len(stack.rho))
+    sig, kin, stra, p1, p2 = _densities(stack, kappa, omega, xi, lay)
     big = np.argmax(np.abs(xi[:3]).max(axis=1))
     norm = 1 / xi[big, np.argmax(np.abs(xi[big]))]     # largest component real and 1
     n2 = abs(norm) ** 2
     return LayeredModeShape(plate, label, kappa, omega, z, xi[:3] * norm, sig * norm,
                             kin * n2, stra * n2, power * n2, energy * n2, power / energy,
-                            group)
+                            group, lay, np.array([p1, p2]) * n2)

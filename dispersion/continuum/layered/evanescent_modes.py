@@ -59,7 +59,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from dispersion.continuum.layered.argument_principle import regular_polygon, winding
-from dispersion.continuum.layered.damped_modes import DB_PER_NEPER, _secant
+from dispersion.continuum.layered.damped_modes import DB_PER_NEPER, _secant, refined_on_balls
 from dispersion.continuum.layered.dynamic_stiffness import det_ball, sublayers
 from dispersion.errors import InputError
 
@@ -171,22 +171,6 @@ def _F(stack, cls, elements, omega):
     return F
 
 
-def _refined(F, k, steps: int = 4):
-    """A few secant steps on the midpoints of the ball values of F (160 bits): the float
-    determinant loses digits near kappa = 0 and near other roots, the balls do not."""
-    a, b = k, k * (1 + 1e-9)
-    fa, fb = complex(F(a).mid()), complex(F(b).mid())
-    for _ in range(steps):
-        if fb == fa:
-            break
-        c = b - fb * (b - a) / (fb - fa)
-        a, fa, b = b, fb, c
-        fb = complex(F(b).mid())
-        if abs(b - a) <= 1e-14 * abs(b):
-            break
-    return b if np.isfinite(b) and abs(b - k) <= 1e-6 * abs(k) else k
-
-
 def _anisotropy(stack) -> float:
     """How much faster the fields vary through the thickness than along the waves at an
     imaginary kappa: the largest sqrt(C_xx / C_zz) of each displacement (C11/C55, C66/C44,
@@ -241,7 +225,7 @@ def _class_evanescent(model, cls, omega, im_max):
             k = complex(abs(k.real), abs(k.imag))    # its mirror image in the listed quadrant
             if k.imag <= 1e-9 * abs(k) or k.imag > im_max or k.real > R:
                 continue
-            k = _refined(F, k)
+            k = refined_on_balls(F, k)
             r = ROOT_RTOL * abs(k)
             if abs(k.real) < r:
                 k = complex(0.0, k.imag)

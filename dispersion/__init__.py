@@ -131,6 +131,7 @@ _MODULES = {
     "layered_mode_table": "answers.layered_mode_table",
     "layered_mode_shapes": "continuum.layered.layered_mode_shapes",
     "slowness_table": "answers.slowness_table",
+    "plate_table": "answers.plate_table",
     "layered_model": "continuum.layered.layered_model",
     # the continuum as a family of plate models (issue 33 item 2)
     "plate_model": "continuum.plate_model", "isotropic_plate": "continuum.isotropic_plate",

@@ -22,6 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from dispersion.answers.plate_table import PlateTable
 from dispersion.continuum.layered.evanescent_modes import (DB_PER_NEPER, DECAY_RANGE,
                                                           DEFAULT_DECAY, EvanescentRoots,
                                                           im_max_of)
@@ -37,7 +38,7 @@ COLUMNS = ("f [kHz]", "fd [MHz mm]", "mode", "family", "kind", "Re k [rad/mm]",
 
 
 @dataclass(frozen=True, repr=False)
-class EvanescentModeTable(Rendered):
+class EvanescentModeTable(PlateTable, Rendered):
     """Evanescent modes of one ``plate`` at the frequencies ``frequency_khz`` (``roots``:
     the dimensionless result), searched up to ``decay_db`` dB per thickness."""
 
@@ -46,37 +47,16 @@ class EvanescentModeTable(Rendered):
     roots: EvanescentRoots
     decay_db: float
 
-    @property
-    def thickness_mm(self) -> float:
-        return self.plate.total_thickness_mm
-
-    @property
-    def failures(self) -> tuple:
-        """Frequencies whose roots or count were not certified, with the reason."""
-        return tuple(f"f = {self._khz(w):.10g} kHz, class {cls}: {why}"
-                     for w, cls, why in self.roots.failures)
-
-    def _scale(self):
-        st = self.plate.scaled()
-        return st.h_m, st.c_ref
-
-    def _khz(self, Omega):
-        h, c = self._scale()
-        return float(Omega) * c / (2 * math.pi * h) / 1e3
-
     def title(self) -> str:
         return (f"evanescent modes, {self.plate.label()}, d = {self.thickness_mm:g} mm"
                 + (f", waves at {self.plate.direction:g} deg" if self.plate.direction else ""))
 
     def header_lines(self) -> list[str]:
-        f = self.frequency_khz
-        span = (f"{f.size} frequencies from {f.min():.10g} to {f.max():.10g} kHz" if f.size > 1
-                else f"f = {f[0]:.10g} kHz")
         h, c = self._scale()
         r = self.roots
         R = max(r.region.values(), default=0.0)
         return self.plate.header_lines() + [
-            f"frequency: {span}",
+            self._span(),
             f"kappa = k h, Omega = omega h / c_ref (h = {h * 1e3:g} mm, half the thickness; "
             f"c_ref = {c:.10g} m/s)",
             f"searched: 0 < Im kappa <= {r.im_max:.10g} (decay <= {self.decay_db:g} dB per "

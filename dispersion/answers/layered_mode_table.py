@@ -30,6 +30,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from dispersion.answers.plate_table import PlateTable
 from dispersion.continuum.layered.layered_modes import OMEGA_RANGE, LayeredRoots
 from dispersion.errors import InputError
 from dispersion.rendering import Rendered
@@ -48,7 +49,7 @@ DAMPED_COLUMNS = ("f [kHz]", "fd [MHz mm]", "mode", "family", "k [rad/mm]",
 
 
 @dataclass(frozen=True, repr=False)
-class LayeredModeTable(Rendered):
+class LayeredModeTable(PlateTable, Rendered):
     """Modes of one layered ``plate`` at the frequencies ``frequency_khz`` (``roots``: the
     dimensionless result)."""
 
@@ -72,35 +73,14 @@ class LayeredModeTable(Rendered):
         """True for a damped plate (complex wavenumbers)."""
         return not self.plate.lossless
 
-    @property
-    def thickness_mm(self) -> float:
-        return self.plate.total_thickness_mm
-
-    @property
-    def failures(self) -> tuple:
-        """Frequencies whose roots a count did not certify, with the reason."""
-        return tuple(f"f = {self._khz(w):.10g} kHz, class {cls}: {why}"
-                     for w, cls, why in self.roots.failures)
-
-    def _scale(self):
-        st = self.plate.scaled()
-        return st.h_m, st.c_ref
-
-    def _khz(self, Omega):
-        h, c = self._scale()
-        return float(Omega) * c / (2 * math.pi * h) / 1e3
-
     def title(self) -> str:
         return (f"{self.plate.label()}, d = {self.thickness_mm:g} mm"
                 + (f", waves at {self.plate.direction:g} deg" if self.plate.direction else ""))
 
     def header_lines(self) -> list[str]:
-        f = self.frequency_khz
-        span = (f"{f.size} frequencies from {f.min():.10g} to {f.max():.10g} kHz" if f.size > 1
-                else f"f = {f[0]:.10g} kHz")
         h, c = self._scale()
         lines = self.plate.header_lines() + [
-            f"frequency: {span}",
+            self._span(),
             f"kappa = k h, Omega = omega h / c_ref (h = {h * 1e3:g} mm, half the thickness; "
             f"c_ref = {c:.10g} m/s, the bottom layer's shear speed sqrt((C44 + C55) / 2 rho))",
             (f"mode classes: {', '.join(self.roots.classes)}; every root certified to 1e-12 "

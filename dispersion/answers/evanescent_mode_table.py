@@ -17,12 +17,11 @@ frequencies f (kHz) or fd (MHz mm), solves at :math:`\\Omega = \\omega h / c_{re
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
 
-from dispersion.answers.plate_table import PlateTable
+from dispersion.answers.plate_table import PlateTable, plate_frequencies
 from dispersion.continuum.layered.evanescent_modes import (DB_PER_NEPER, DECAY_RANGE,
                                                           DEFAULT_DECAY, EvanescentRoots,
                                                           im_max_of)
@@ -115,9 +114,7 @@ def evanescent_lamb_modes(plate, *, frequency_khz=None, fd_mhz_mm=None, families
     most ``decay_db`` dB per plate thickness (in (0, 200], default 60): an
     :class:`EvanescentModeTable`. Give exactly one of ``frequency_khz`` and ``fd_mhz_mm``;
     ``families`` a subset of the plate's families (S, A, SH; L, SH; M)."""
-    from dispersion.answers.layered_mode_table import _frequencies
     from dispersion.continuum.layered.evanescent_modes import evanescent_modes
-    from dispersion.continuum.layered.layered_modes import OMEGA_RANGE
     from dispersion.continuum.layered.layered_plate import LayeredPlate
 
     if not isinstance(plate, LayeredPlate):
@@ -129,19 +126,6 @@ def evanescent_lamb_modes(plate, *, frequency_khz=None, fd_mhz_mm=None, families
             lo_d < decay_db <= hi_d):
         raise InputError(f"--decay-max (dB per plate thickness) must lie in ({lo_d:g}, "
                          f"{hi_d:g}], got {decay_db!r}")
-    name = "frequency_khz" if fd_mhz_mm is None else "fd_mhz_mm"
-    f_khz = _frequencies(name, frequency_khz if fd_mhz_mm is None else fd_mhz_mm,
-                         plate.total_thickness_mm, fd_mhz_mm is not None)
-    st = plate.scaled()
-    omega = 2 * math.pi * f_khz * 1e3 * st.h_m / st.c_ref
-    lo, hi = OMEGA_RANGE
-    bad = (omega < lo) | (omega > hi)
-    if np.any(bad):
-        scale = 1.0 if fd_mhz_mm is None else plate.total_thickness_mm * 1e-3
-        unit = "kHz" if fd_mhz_mm is None else "MHz mm"
-        lo_f, hi_f = (w * st.c_ref / (2 * math.pi * st.h_m) * 1e-3 * scale for w in (lo, hi))
-        raise InputError(f"{name} must lie in [{lo_f:.4g}, {hi_f:.4g}] {unit} for this plate "
-                         f"(d = {plate.total_thickness_mm:g} mm), got "
-                         f"{float(f_khz[bad][0]) * scale:.6g} {unit}")
+    f_khz, omega = plate_frequencies(plate, frequency_khz, fd_mhz_mm)
     roots = evanescent_modes(plate, omega, im_max=im_max_of(decay_db), families=families)
     return EvanescentModeTable(plate, f_khz, roots, float(decay_db))

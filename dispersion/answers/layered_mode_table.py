@@ -30,8 +30,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from dispersion.answers.plate_table import PlateTable
-from dispersion.continuum.layered.layered_modes import OMEGA_RANGE, LayeredRoots
+from dispersion.answers.plate_table import PlateTable, plate_frequencies
+from dispersion.continuum.layered.layered_modes import LayeredRoots
 from dispersion.errors import InputError
 from dispersion.rendering import Rendered
 
@@ -212,16 +212,6 @@ def _isotropic_material(solid):
                     solid.rho, solid.name, solid.source)
 
 
-def _frequencies(name, raw, thickness_mm, fd):
-    try:
-        values = np.atleast_1d(np.asarray(raw, dtype=float))
-    except (TypeError, ValueError):
-        raise InputError(f"{name} must be a number or a list of numbers, got {raw!r}") from None
-    if values.ndim != 1 or values.size == 0 or not np.all(np.isfinite(values)):
-        raise InputError(f"{name} must be a finite number or a non-empty 1-d list")
-    return values * 1e3 / thickness_mm if fd else values
-
-
 def layered_lamb_modes(plate, *, frequency_khz=None, fd_mhz_mm=None, families=None,
                        zgv: bool = False):
     """Every propagating mode of ``plate`` at each frequency: a :class:`LayeredModeTable`
@@ -243,20 +233,7 @@ def layered_lamb_modes(plate, *, frequency_khz=None, fd_mhz_mm=None, families=No
         material = _isotropic_material(plate.layers[0].solid)
         return lamb_modes(material, plate.total_thickness_mm, frequency_khz=frequency_khz,
                           fd_mhz_mm=fd_mhz_mm, kinds=kinds)
-    name = "frequency_khz" if fd_mhz_mm is None else "fd_mhz_mm"
-    f_khz = _frequencies(name, frequency_khz if fd_mhz_mm is None else fd_mhz_mm,
-                         plate.total_thickness_mm, fd_mhz_mm is not None)
-    st = plate.scaled()
-    omega = 2 * math.pi * f_khz * 1e3 * st.h_m / st.c_ref
-    lo, hi = OMEGA_RANGE
-    bad = (omega < lo) | (omega > hi)
-    if np.any(bad):
-        scale = 1.0 if fd_mhz_mm is None else plate.total_thickness_mm * 1e-3
-        unit = "kHz" if fd_mhz_mm is None else "MHz mm"
-        lo_f, hi_f = (w * st.c_ref / (2 * math.pi * st.h_m) * 1e-3 * scale for w in (lo, hi))
-        raise InputError(f"{name} must lie in [{lo_f:.4g}, {hi_f:.4g}] {unit} for this plate "
-                         f"(d = {plate.total_thickness_mm:g} mm), got "
-                         f"{float(f_khz[bad][0]) * scale:.6g} {unit}")
+    f_khz, omega = plate_frequencies(plate, frequency_khz, fd_mhz_mm)
     if not plate.lossless:
         from dispersion.continuum.layered.damped_modes import damped_modes
         from dispersion.continuum.layered.layered_mode_shapes import energy_velocities

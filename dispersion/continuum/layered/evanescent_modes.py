@@ -117,25 +117,15 @@ def half_turn_symmetric(stack) -> bool:
 
 
 def _check(plate, omega, im_max):
-    from dispersion.continuum.layered.layered_modes import OMEGA_RANGE
+    from dispersion.continuum.layered.layered_modes import checked_omega
 
     if not plate.lossless:
         raise InputError("evanescent modes: the plate is damped (its modes are all complex: "
                          "use the damped solver); drop the damping")
-    try:
-        omega = np.atleast_1d(np.asarray(omega, dtype=float))
-    except (TypeError, ValueError):
-        raise InputError("Omega must be a number or a list of numbers") from None
-    if omega.ndim != 1 or omega.size == 0 or not np.all(np.isfinite(omega)):
-        raise InputError("Omega must be a non-empty 1-d list of finite numbers")
+    omega = checked_omega(omega)
     if omega.size > MAX_FREQUENCIES:
         raise InputError(f"evanescent modes: at most {MAX_FREQUENCIES} frequencies a request "
                          f"(seconds of ball arithmetic each), got {omega.size}")
-    lo, hi = OMEGA_RANGE
-    bad = (omega < lo) | (omega > hi)
-    if np.any(bad):
-        raise InputError(f"Omega = omega h / c_ref must lie in [{lo:g}, {hi:g}], got "
-                         f"{omega[bad][0]!r}")
     top = im_max_of(DECAY_RANGE[1])
     if not (isinstance(im_max, (int, float)) and 0 < im_max <= top):
         raise InputError(f"im_max (the bound on Im kappa) must lie in (0, {top:.6g}] "
@@ -270,17 +260,11 @@ def evanescent_modes(plate, omega, *, im_max: float, families=None) -> Evanescen
     ()
     """
     from dispersion.continuum.layered.layered_model import LayeredModel
+    from dispersion.continuum.layered.layered_modes import chosen_classes
 
     omega = _check(plate, omega, im_max)
     model = LayeredModel(plate)
-    classes = [model.mode_class(n) for n in model.classes()]
-    if families is not None:
-        known = sorted({c.family for c in classes})
-        unknown = [f for f in families if f not in known]
-        if unknown or not families:
-            raise InputError(f"families must be a non-empty subset of {', '.join(known)} for "
-                             f"this plate; got {', '.join(map(str, families)) or 'none'}")
-        classes = [c for c in classes if c.family in families]
+    classes = chosen_classes(model, families)
     rows, failures, region, counts = [], [], {}, {}
     for i, w in enumerate(omega):
         by_family = {}

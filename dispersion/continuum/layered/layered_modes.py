@@ -44,7 +44,7 @@ from dispersion.continuum.layered.layered_model import (  # noqa: F401 (names of
     KAPPA_LIMIT, MAX_HALVINGS, OMEGA_RANGE, ROOT_RTOL, LayeredModel, _group, branches_at_kappa)
 from dispersion.errors import InputError
 
-__all__ = ["LayeredRoots", "layered_modes", "ROOT_RTOL", "OMEGA_RANGE", "KAPPA_LIMIT"]
+__all__ = ["LayeredRoots", "layered_modes", "checked_omega", "chosen_classes", "ROOT_RTOL", "OMEGA_RANGE", "KAPPA_LIMIT"]
 
 
 @dataclass(frozen=True)
@@ -145,17 +145,23 @@ def _class_roots(model, name: str, omega: float):
     return roots, labels, groups, failures
 
 
-def layered_modes(plate, omega, *, families=None) -> LayeredRoots:
-    """Every propagating mode of ``plate`` (a
-    :class:`~dispersion.continuum.layered.layered_plate.LayeredPlate`, undamped) at each
-    dimensionless frequency in ``omega`` (:math:`\\Omega = \\omega h / c_{ref}`, see
-    :meth:`~dispersion.continuum.layered.layered_plate.LayeredPlate.scaled`), each root certified or
-    listed in ``failures``. ``families``: a subset of the plate's families (S, A, SH, L, M) to
-    solve (default: all).
-    """
-    if not plate.lossless:
-        raise InputError("layered_modes: the plate is damped; its wavenumbers are complex "
-                         "(use the damped solver)")
+def chosen_classes(model, families) -> list:
+    """The mode classes of ``model`` (a :class:`LayeredModel`) whose family is in
+    ``families`` (all for None); a family the plate does not have is refused by name."""
+    classes = [model.mode_class(n) for n in model.classes()]
+    if families is not None:
+        known = sorted({c.family for c in classes})
+        unknown = [f for f in families if f not in known]
+        if unknown or not families:
+            raise InputError(f"families must be a non-empty subset of {', '.join(known)} for "
+                             f"this plate; got {', '.join(map(str, families)) or 'none'}")
+        classes = [c for c in classes if c.family in families]
+    return classes
+
+
+def checked_omega(omega) -> np.ndarray:
+    """``omega`` as a non-empty 1-d float array inside :data:`OMEGA_RANGE`, else an
+    :class:`~dispersion.errors.InputError` naming the first value outside."""
     try:
         omega = np.atleast_1d(np.asarray(omega, dtype=float))
     except (TypeError, ValueError):
@@ -167,15 +173,23 @@ def layered_modes(plate, omega, *, families=None) -> LayeredRoots:
     if np.any(bad):
         raise InputError(f"Omega = omega h / c_ref must lie in [{lo:g}, {hi:g}], got "
                          f"{omega[bad][0]!r}")
+    return omega
+
+
+def layered_modes(plate, omega, *, families=None) -> LayeredRoots:
+    """Every propagating mode of ``plate`` (a
+    :class:`~dispersion.continuum.layered.layered_plate.LayeredPlate`, undamped) at each
+    dimensionless frequency in ``omega`` (:math:`\\Omega = \\omega h / c_{ref}`, see
+    :meth:`~dispersion.continuum.layered.layered_plate.LayeredPlate.scaled`), each root certified or
+    listed in ``failures``. ``families``: a subset of the plate's families (S, A, SH, L, M) to
+    solve (default: all).
+    """
+    if not plate.lossless:
+        raise InputError("layered_modes: the plate is damped; its wavenumbers are complex "
+                         "(use the damped solver)")
+    omega = checked_omega(omega)
     model = LayeredModel(plate)
-    classes = [model.mode_class(n) for n in model.classes()]
-    if families is not None:
-        known = sorted({c.family for c in classes})
-        unknown = [f for f in families if f not in known]
-        if unknown or not families:
-            raise InputError(f"families must be a non-empty subset of {', '.join(known)} for "
-                             f"this plate; got {', '.join(map(str, families)) or 'none'}")
-        classes = [c for c in classes if c.family in families]
+    classes = chosen_classes(model, families)
     rows, failures = [], []
     for i, w in enumerate(omega):
         for cls in classes:

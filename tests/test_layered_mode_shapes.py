@@ -238,9 +238,14 @@ def test_bilayer_shape_is_the_40_digit_transfer_matrix_shape():
 @example(a="steel", b="aluminium", share=0.1, W=2.0, j=0, eta=0.1)
 def test_bilayer_shape_is_the_40_digit_transfer_matrix_shape_slow(a, b, share, W, j, eta):
     # the j-th Lamb mode (L, or S and A of a symmetric stack: both in the Lamb family) of
-    # the undamped twin's list, at its damped root when eta > 0
-    plate = layered_plate([(material(a), share), (material(b), 1 - share)])
-    labels = [lab for lab in layered_modes(plate, [W]).label if not lab.startswith("SH")]
+    # the undamped twin's list, at its damped root when eta > 0; a mode the damped solver
+    # lists as a failure (its root moved far from the undamped one: near a cut-off) has no
+    # shape to compare (the README's promise: listed, never returned)
+    from dispersion.continuum.layered.damped_modes import damped_modes
+
+    plate = layered_plate([(material(a), share), (material(b), 1 - share)], damping=eta)
+    roots = damped_modes(plate, [W]) if eta else layered_modes(plate, [W])
+    labels = [lab for lab in roots.label if not lab.startswith("SH")]
     _bilayer_shape_case((a, b), (share, 1 - share), W, labels[j % len(labels)], eta)
 
 

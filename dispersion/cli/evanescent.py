@@ -5,14 +5,12 @@ Calls :func:`dispersion.api.evanescent_modes` and renders the table (no figure y
 """
 from __future__ import annotations
 
-from dispersion.cli import layup
-
 
 def run(args, plate, thickness_mm=None) -> int:
     """The evanescent modes of ``plate`` (a layered plate, or an isotropic material with
     ``thickness_mm``)."""
     from dispersion.api import evanescent_modes
-    from dispersion.cli.options import frequencies
+    from dispersion.cli.options import families, frequencies
     from dispersion.cli.outputs import check_outputs, warn_failures, write_outputs
 
     check_outputs(args, "branches")
@@ -21,7 +19,7 @@ def run(args, plate, thickness_mm=None) -> int:
     else:
         freq = {"frequency_khz": frequencies(args.frequency, "--frequency")}
     bound = {} if args.decay_max is None else {"decay_db": args.decay_max}
-    table = evanescent_modes(plate, thickness_mm=thickness_mm, families=layup.families(args),
+    table = evanescent_modes(plate, thickness_mm=thickness_mm, families=families(args),
                              **bound, **freq)
     warn_failures(table, args)
     write_outputs(args, table, None)

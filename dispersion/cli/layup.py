@@ -8,11 +8,8 @@ from __future__ import annotations
 
 import argparse
 
-from dispersion.cli.options import real
+from dispersion.cli.options import families, real
 from dispersion.errors import InputError
-
-#: The families ``--modes`` names.
-FAMILIES = ("S", "A", "SH", "L", "M")
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
@@ -58,18 +55,6 @@ RULES = [
     ("--damping", requested, "with --layup"),
     ("--zgv", requested, "with --layup (the isotropic calculator lists its ZGV points always)"),
 ]
-
-
-def families(args):
-    """The families of ``--modes`` (None: all)."""
-    if args.modes is None:
-        return None
-    names = [w.strip().upper() for w in args.modes.split(",") if w.strip()]
-    bad = [w for w in names if w not in FAMILIES]
-    if bad or not names:
-        raise InputError(f"--modes must be a comma-separated list of {', '.join(FAMILIES)}, "
-                         f"got {args.modes[:40]!r}")
-    return tuple(dict.fromkeys(names))
 
 
 def run(args) -> int:

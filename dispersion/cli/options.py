@@ -524,3 +524,19 @@ def cli_words(message: str, options: dict | None = None) -> str:
         elif re.match(rf"{re.escape(name)}(?![\w])", message):
             message = option + message[len(name):]
     return message
+
+
+#: The mode families ``--modes`` names (S, A, SH of a symmetric plate; L, M of a layered one).
+FAMILIES = ("S", "A", "SH", "L", "M")
+
+
+def families(args):
+    """The families of ``--modes`` (None: all)."""
+    if args.modes is None:
+        return None
+    names = [w.strip().upper() for w in args.modes.split(",") if w.strip()]
+    bad = [w for w in names if w not in FAMILIES]
+    if bad or not names:
+        raise InputError(f"--modes must be a comma-separated list of {', '.join(FAMILIES)}, "
+                         f"got {args.modes[:40]!r}")
+    return tuple(dict.fromkeys(names))

@@ -121,7 +121,9 @@ def _outputs(args: list[str], root: Path) -> set[str]:
         path = Path(os.path.abspath(root / raw))
         paths = {path, Path(os.path.realpath(path))}
         if opt == "--out":
-            paths |= {p / name for p in set(paths) for name in _OUT_FILES[args[0]]}
+            # the files the command writes, and the marker of a folder dispersion wrote
+            paths |= {p / name for p in set(paths)
+                      for name in (*_OUT_FILES[args[0]], ".dispersion-report")}
         for p in paths:
             try:
                 allowed.add(str(p.relative_to(root)))

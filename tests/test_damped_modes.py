@@ -32,11 +32,15 @@ def test_sh0_of_a_damped_plate_is_the_closed_form():
     assert k.imag > 0   # the wave decays along +x
 
 
-def _case(names, thick, etas, W, samples=300):
+def _case(names, thick, etas, W, samples=300, failures_allowed=False):
+    """Every damped root against the 40-digit transfer matrix; with ``failures_allowed`` a
+    mode the code lists as a failure (its root moved far from the undamped one, near a
+    cut-off at large loss: the README's "or listed") counts as present, never as missing."""
     mats = [material(n) for n in names]
     plate = layered_plate([(m.solid().with_loss(e), t) for m, t, e in zip(mats, thick, etas)])
     ours = damped_modes(plate, [W])
-    assert not ours.failures, ours.failures
+    assert failures_allowed or not ours.failures, ours.failures
+    listed = {why.replace(":", " ").split()[0] for _, _, why in ours.failures}
     sc = plate.scaled()
     w = W * sc.c_ref / sc.h_m
 
@@ -55,7 +59,9 @@ def _case(names, thick, etas, W, samples=300):
                 if lab.startswith("SH") == (fam == "SH")}
         ref0 = roots_at_frequency(undamped, springs, w,
                                   (1.3 * max(start_of.values()) + 0.5) / sc.h_m, fam, samples)
-        assert len(ref0) == len(mine), (fam, mine, ref0)
+        named = [lab for lab in listed if lab.startswith("SH") == (fam == "SH")
+                 and lab not in mine]   # listed without a row (a row may also be listed)
+        assert len(ref0) == len(mine) + len(named), (fam, mine, named, ref0)
         for lab, k in mine.items():
             # the 40-digit root of the undamped plate with this name, continued as the loss
             # grows (the reference's own homotopy)
@@ -77,8 +83,9 @@ def test_damped_plate_against_the_40_digit_transfer_matrix():
 @given(a=st.sampled_from(sorted(MATERIALS)), b=st.sampled_from(sorted(MATERIALS)),
        share=st.floats(0.2, 0.8), W=st.floats(0.1, 5.0), eta=st.floats(1e-4, 0.1))
 @example(a="steel", b="pmma", share=0.6, W=4.0, eta=0.1)
+@example(a="aluminium", b="aluminium", share=0.8, W=3.0, eta=0.0625)   # L3 listed (CI draw)
 def test_damped_plate_against_the_40_digit_transfer_matrix_slow(a, b, share, W, eta):
-    _case((a, b), (share, 1 - share), (eta, eta / 3), W, 300)
+    _case((a, b), (share, 1 - share), (eta, eta / 3), W, 300, failures_allowed=True)
 
 
 def test_attenuation_in_db_per_metre_is_twenty_log10_e_times_im_k(capsys):

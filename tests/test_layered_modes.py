@@ -67,7 +67,14 @@ def _haskell_case(names, thick, springs, W, samples):
         # a stack that is its own mirror image (a == b, share 0.5) names its Lamb modes S, A
         mine = sorted((k, g) for k, g, f in zip(ours.kappa, ours.group, ours.family)
                       if (f == "SH") == (fam == "SH"))
-        ref = roots_at_frequency(layers, mp_springs, w, k_max, fam, samples)
+        # the reference's sign-change scan steps over roots closer than its spacing (steel on
+        # stainless steel: pairs 5e-3 apart): it refines while it finds fewer than ours, up
+        # to 64 times; a root of ours it never finds, or one too many, still fails
+        n = samples
+        ref = roots_at_frequency(layers, mp_springs, w, k_max, fam, n)
+        while len(ref) < len(mine) and n < 64 * samples:
+            n *= 4
+            ref = roots_at_frequency(layers, mp_springs, w, k_max, fam, n)
         assert len(mine) == len(ref), (fam, mine, ref)
         err = max((abs(a / float(b * sc.h_m) - 1) for (a, _), b in zip(mine, ref)), default=0.0)
         record("layered-haskell", err, ROOT_BOUND, names=",".join(names), omega=W, family=fam)
@@ -91,6 +98,8 @@ def test_bilayer_against_a_40_digit_transfer_matrix():
        spring=st.one_of(st.none(), st.floats(1e13, 1e16)))
 @example(a="steel", b="aluminium", share=0.71, W=4.0, spring=5e14)
 @example(a="pmma", b="steel", share=0.5, W=6.0, spring=None)
+@example(a="steel", b="stainless-steel", share=0.7729732377262142, W=5.084930709444274,
+         spring=1e16)   # close pairs (a CI draw)
 def test_bilayer_against_a_40_digit_transfer_matrix_slow(a, b, share, W, spring):
     springs = (None,) if spring is None else ((spring, spring / 2),)
     _haskell_case((a, b), (share, 1 - share), springs, W, 400)

@@ -46,6 +46,14 @@ def _compare(ours, reference_f, family, R, im_max, case):
         counted = count_in_rectangle(f, R, im_lo, im_max)
         inside = [z for z in found if z.imag > im_lo]
         expected = sum(1 if abs(z.real) < 1e-30 else 2 for z in inside)
+        # the grid of starts refines (x2, up to 8x) while the reference's own count finds
+        # more roots than its list (titanium/epoxy 0.797, Omega 5.41, 92.7 dB: 2 of 4)
+        n_re, n_im = 8, 5
+        while counted != expected and n_re < 64:
+            n_re, n_im = 2 * n_re, 2 * n_im
+            found = roots_in_rectangle(f, R, mpmath.mpf("1e-12"), im_max, n_re, n_im)
+            inside = [z for z in found if z.imag > im_lo]
+            expected = sum(1 if abs(z.real) < 1e-30 else 2 for z in inside)
         assert counted == expected, (f"{family}: the 40-digit grid search found {expected} "
                                      f"roots (with mirrors), the count says {counted}: {case}")
         mp_roots += found
@@ -134,6 +142,8 @@ def test_bilayer_roots_are_zeros_of_the_40_digit_transfer_matrix():
        share=st.floats(0.1, 0.9), Omega=st.floats(0.05, 6.0), decay=st.floats(1.0, 100.0))
 @example(lower="steel", upper="aluminium", share=0.1, Omega=0.05, decay=100.0)
 @example(lower="steel", upper="aluminium", share=0.9, Omega=6.0, decay=1.0)
+@example(lower="titanium", upper="epoxy", share=0.7966841231493176, Omega=5.4073443418034985,
+         decay=92.71726224419108)   # the reference's grid missed two roots (a CI draw)
 def test_bilayer_against_the_40_digit_transfer_matrix_slow(lower, upper, share, Omega, decay):
     _bilayer_case(lower, upper, share, Omega, decay)
 

@@ -71,6 +71,40 @@ def test_a_bilayer_mode_through_the_thickness(tmp_path, capsys):
     assert [d["name"] for d in doc["layers"]] == ["1: 0.71 mm steel", "2: 0.29 mm aluminium"]
 
 
+def test_a_backward_pair_lists_both_roots(tmp_path):
+    """S1 of 1 mm of aluminium (two 0.5 mm layers) at 2950 kHz, between its ZGV point
+    (2857 kHz) and its cut-off (3130 kHz, tests/test_frequency.py): both roots of the name,
+    each on its own points and checked as one table; the backward one's energy flows against
+    its phase (c_e = c_g < 0, skew 180 deg), the forward one's along it."""
+    from dispersion.answers.mode_shape_table import mode_shapes
+    from dispersion.api import layered_lamb_modes, layup
+    from dispersion.plotting.lamb import figure_mode_shapes
+
+    out = tmp_path / "s1.csv"
+    argv = ["branches", "--exact", "--layup", "aluminium:0.5,aluminium:0.5", "--frequency",
+            "2950", "--mode-shape", "s1", "--csv", str(out)]
+    assert main(argv) == 0
+    text = out.read_text()
+    rows = _rows(text)
+    ks = sorted({r["k [rad/mm]"] for r in rows}, key=float)
+    assert len(ks) == 2 and "further root" not in text
+    for k in ks:
+        _check_table([r for r in rows if r["k [rad/mm]"] == k])
+    notes = [line for line in text.splitlines() if "energy velocity c_e" in line]
+    c_e = [float(line.split("c_e = ")[1].split()[0]) for line in notes]
+    c_g = [float(line.split("c_g = ")[1].split()[0]) for line in notes]
+    assert c_e[0] < 0 < c_e[1] and np.allclose(c_e, c_g, rtol=1e-9)
+    assert "skew 180 deg" in notes[0] and "skew 0 deg" in notes[1]
+    table = layered_lamb_modes(layup("aluminium:0.5,aluminium:0.5"), frequency_khz=[2950.0])
+    shapes = mode_shapes(table, "S1")
+    mine = [complex(k).real / (table.plate.scaled().h_m * 1e3)
+            for k, lab in zip(table.roots.kappa, table.roots.label) if lab == "S1"]
+    assert [s.k_per_mm for s in shapes.shapes] == pytest.approx(sorted(mine), rel=1e-15)
+    fig = figure_mode_shapes(shapes)     # a row of panels per root, titled by its k
+    titles = [ax.get_title(loc="left") for ax in fig.axes if ax.get_title(loc="left")]
+    assert titles == [s.name("S1") for s in shapes.shapes]
+
+
 def test_an_unknown_mode_is_refused_naming_the_known_ones(tmp_path, capsys):
     assert main([*BILAYER, "--mode-shape", "S9", "--csv", str(tmp_path / "x.csv")]) == 2
     err = capsys.readouterr().err

@@ -46,11 +46,18 @@ SH_FIELDS = ("u_z", "sigma_yz", "sigma_xz")
 
 @dataclass(frozen=True)
 class ModeShape:
-    """One root of the mode: its frequency (kHz), wavenumber (rad/mm) and fields on ``y``."""
+    """One root of the mode: its frequency (kHz), wavenumber (rad/mm) and fields on ``y``;
+    ``y_mm``: its own points through the thickness where they are not the table's (a
+    layered plate's root samples its own sublayers)."""
 
     f_khz: float
     k_per_mm: float
     fields: dict
+    y_mm: np.ndarray | None = None
+
+    def points(self, table_y: np.ndarray) -> np.ndarray:
+        """Its points through the thickness (mm)."""
+        return table_y if self.y_mm is None else self.y_mm
 
     def name(self, mode: str) -> str:
         return f"{mode}, f = {self.f_khz:.6g} kHz, k = {self.k_per_mm:.6g} rad/mm"
@@ -112,12 +119,14 @@ class ModeShapeTable(Rendered):
     def text_columns(self) -> tuple[str, ...]:
         if not self.text_fields:
             return self.columns()
+        if len(self.shapes) > 1:    # the roots of a backward pair: k tells them apart
+            return ("k [rad/mm]", self.axis, *self.text_fields)
         return (self.axis, *self.text_fields)
 
     def rows(self) -> list[dict]:
         out = []
         for s in self.shapes:
-            for j, y in enumerate(self.y_mm):
+            for j, y in enumerate(s.points(self.y_mm)):
                 row = {"f [kHz]": s.f_khz, "k [rad/mm]": s.k_per_mm, self.axis: float(y)}
                 row.update({key: np.asarray(s.fields[key])[j].item()
                             for key in self.field_names})
@@ -133,7 +142,7 @@ class ModeShapeTable(Rendered):
     def figure_data(self) -> list[dict]:
         """Per root: ``name``, the axis (``y [mm]``, a layered plate's ``z [mm]``) and the
         field arrays (the figure's input)."""
-        return [{"name": s.name(self.mode), self.axis: self.y_mm, **s.fields}
+        return [{"name": s.name(self.mode), self.axis: s.points(self.y_mm), **s.fields}
                 for s in self.shapes]
 
 
@@ -209,12 +218,17 @@ def layered_mode_shapes(table, mode: str) -> ModeShapeTable:
     st = plate.scaled()
     h_mm = st.h_m * 1e3
     a = AMPLITUDE_UM * 1e-6 / st.h_m                 # the amplitude in units of h
+    bounds = np.concatenate([[0.0], np.cumsum([layer.thickness_mm for layer in plate.layers])])
+    bounds -= bounds[-1] / 2
     shapes, notes = [], []
-    mine = [i for i, lab in enumerate(r.label) if lab == label]
-    # each root samples its own sublayers: one root per table (a second root of one name,
-    # a backward wave, is named in the header)
-    for i in mine[:1]:
+    # every root of the name (two: a backward wave and its forward twin), each on the points
+    # of its own sublayers
+    for i in (i for i, lab in enumerate(r.label) if lab == label):
         s = root_shape(plate, r, i)
+        z = s.z * h_mm
+        # the faces and interfaces where the sublayers' sums of thicknesses round next to them
+        near = np.abs(z[:, None] - bounds[None, :]) <= 1e-12 * h_mm
+        z = np.where(near.any(axis=1), bounds[np.argmax(near, axis=1)], z)
         u = s.u * AMPLITUDE_UM
         sig = s.stress * st.mu_ref * a / 1e6
         fields = {"layer": s.layer + 1}
@@ -230,21 +244,13 @@ def layered_mode_shapes(table, mode: str) -> ModeShapeTable:
         fields = {key: val + 0.0 if key != "layer" else val for key, val in fields.items()}
         kap = complex(s.kappa)
         shapes.append(ModeShape(float(table.frequency_khz[r.index[i]]), kap.real / h_mm,
-                                fields))
+                                fields, z))
         c_e = s.energy_velocity * st.c_ref
         along = (f"c_g = {s.group * st.c_ref:.10g} m/s" if s.group is not None else
                  f"Im k = {kap.imag / h_mm:.10g} rad/mm")
         notes.append(f"root {len(shapes)}: energy velocity c_e = {c_e[0]:.10g} m/s along the "
                      f"waves, {c_e[1]:.10g} m/s across (skew {s.skew_degrees:.6g} deg); "
                      f"{along}")
-    notes += [f"{label} has a further root at k = {complex(r.kappa[i]).real / h_mm:.10g} "
-              f"rad/mm (not shown)" for i in mine[1:]]
-    bounds = np.concatenate([[0.0], np.cumsum([layer.thickness_mm for layer in plate.layers])])
-    bounds -= bounds[-1] / 2
-    z = s.z * h_mm
-    # the faces and interfaces where the sublayers' sums of thicknesses round next to them
-    near = np.abs(z[:, None] - bounds[None, :]) <= 1e-12 * h_mm
-    z = np.where(near.any(axis=1), bounds[np.argmax(near, axis=1)], z)
     layers = tuple((f"{n + 1}: {layer.describe()}", float(bounds[n]), float(bounds[n + 1]))
                    for n, layer in enumerate(plate.layers))
     notes += [f"amplitude: the largest displacement component {AMPLITUDE_UM:g} um, real where "
@@ -266,5 +272,6 @@ def layered_mode_shapes(table, mode: str) -> ModeShapeTable:
               ("power flow density [W/m^2]", ("P1 [W/m^2]", "P2 [W/m^2]")))
     text = ("layer", *(k for k in LAYERED_FIELDS if k.endswith("[um]")), "e_kin [J/m^3]",
             "e_str [J/m^3]", "P1 [W/m^2]")
-    return ModeShapeTable(table, label, z, tuple(shapes), LAYERED_FIELDS, tuple(notes), layers,
+    return ModeShapeTable(table, label, shapes[0].y_mm, tuple(shapes), LAYERED_FIELDS,
+                          tuple(notes), layers,
                           "z [mm]", text, panels)

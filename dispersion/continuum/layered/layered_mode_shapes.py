@@ -161,11 +161,12 @@ def _mirror(cls, z, xi, layer, n_layers: int):
     """The lower half of a symmetric class: components held on the mid-plane are odd in z
     (their tractions even), the others even (their tractions odd); the stack is its own
     mirror image, so each point below lies in a layer of the same law (layer n's mirror
-    image is layer n_layers - 1 - n)."""
+    image is layer n_layers - 1 - n). With an even number of layers the mid-plane is an
+    interface, sampled from both sides like every other."""
     odd = np.array([1.0 if d not in cls.mid_fixed else -1.0 for d in range(3)])
     sign = np.concatenate([odd, -odd])
-    keep = z > 0
-    return (np.concatenate([-z[keep][::-1], z]),
+    keep = z > 0 if n_layers % 2 else z >= 0
+    return (np.concatenate([-z[keep][::-1] + 0.0, z]),
             np.concatenate([(xi[:, keep] * sign[:, None])[:, ::-1], xi], axis=1),
             np.concatenate([n_layers - 1 - layer[keep][::-1], layer]))
 

@@ -1,7 +1,8 @@
 """``dispersion branches --exact --evanescent``: the evanescent modes of a plate (one isotropic
 layer or a layup) at the frequencies of ``--frequency``/``--fd``.
 
-Calls :func:`dispersion.api.evanescent_modes` and renders the table (no figure yet).
+Calls :func:`dispersion.api.evanescent_modes`, renders the table and draws its figure
+(:func:`dispersion.plotting.evanescent.figure_evanescent`).
 """
 from __future__ import annotations
 
@@ -22,5 +23,11 @@ def run(args, plate, thickness_mm=None) -> int:
     table = evanescent_modes(plate, thickness_mm=thickness_mm, families=families(args),
                              **bound, **freq)
     warn_failures(table, args)
-    write_outputs(args, table, None)
+    write_outputs(args, table, _figure)
     return 0
+
+
+def _figure(table):
+    from dispersion.plotting.evanescent import figure_evanescent
+
+    return figure_evanescent(table)

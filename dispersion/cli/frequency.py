@@ -83,8 +83,6 @@ RULES = [
      "with --exact, instead of --frequency (one input axis)"),
     ("--evanescent", requested, "with --frequency or --fd"),
     ("--decay-max", lambda a: a.evanescent, "with --evanescent"),
-    ("--figure", lambda a: not a.evanescent, "to the propagating modes (the evanescent modes "
-     "are a table, no figure yet)"),
     ("--mode-shape", lambda a: requested(a) and not a.evanescent,
      "with --frequency or --fd (a propagating mode, not with --evanescent)"),
     ("--thickness", lambda a: _material_given(a) and not _layup(a),

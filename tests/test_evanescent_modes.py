@@ -97,6 +97,7 @@ def test_one_isotropic_layer_against_the_40_digit_rayleigh_lamb_equations():
 @example(nu=0.25, Omega=1.8, decay=60.0)
 @example(nu=0.31, Omega=30.0 / 8, decay=DECAY_RANGE[1])
 @example(nu=0.0, Omega=2e-3, decay=173.34340880055274)   # a CI draw: S0's pair at +-0.0014
+@example(nu=0.0, Omega=2e-3, decay=2.0)   # A0's four roots 0.055 below the count's top edge
 def test_one_isotropic_layer_against_the_40_digit_rayleigh_lamb_equations_slow(nu, Omega,
                                                                                  decay):
     _isotropic_case(nu, Omega, decay)

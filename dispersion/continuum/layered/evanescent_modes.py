@@ -36,7 +36,11 @@ For each :class:`~dispersion.continuum.layered.dynamic_stiffness.ModeClass`:
    (4 of a complex root, 2 of an imaginary one) plus the propagating roots :math:`\\pm\\kappa`
    of the counted calculator (:func:`~dispersion.continuum.layered.layered_modes.layered_modes`).
    :math:`R` = 1.25 times the largest real part met (propagating roots and polished
-   candidates) + 1. A root on the rectangle, a segment not proven, or a count that differs
+   candidates) + 1. The first samples along the rectangle are at most :data:`SEGMENT`
+   apart and at most half the distance to the nearest root known beforehand (the
+   propagating roots and the SAFE candidates, with their mirror images:
+   :func:`~dispersion.continuum.layered.argument_principle.graded_polygon`), so that
+   known roots near the contour cannot alias a whole turn. A root on the rectangle, a segment not proven, or a count that differs
    goes to ``failures`` with both numbers: the class's list at that frequency is then not
    certified complete.
 
@@ -58,7 +62,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from dispersion.continuum.layered.argument_principle import regular_polygon, winding
+from dispersion.continuum.layered.argument_principle import (graded_polygon,
+                                                             regular_polygon, winding)
 from dispersion.continuum.layered.damped_modes import DB_PER_NEPER, _secant, refined_on_balls
 from dispersion.continuum.layered.dynamic_stiffness import det_ball, sublayers
 from dispersion.errors import InputError
@@ -203,7 +208,9 @@ def _class_evanescent(model, cls, omega, im_max):
     F = _F(stack, cls, elements, omega)
     rect = [complex(-R, -im_max), complex(R, -im_max), complex(R, im_max),
             complex(-R, im_max)]
-    counted, _ = winding(F, rect, segment=SEGMENT)
+    known = [s * k for k in real for s in (1, -1)] + \
+        [complex(sr * c.real, si * c.imag) for c in cand for sr in (1, -1) for si in (1, -1)]
+    counted, _ = winding(F, graded_polygon(rect, known, SEGMENT))
     roots, kept, fails = [], [], []
     for refine in REFINEMENTS:
         if refine > 1:

@@ -35,6 +35,7 @@ ALLOWED = {
     "dispersion.plotting": "require_matplotlib", "dispersion.plotting.branches": "figures",
     "dispersion.plotting.lamb": "figures", "dispersion.plotting.ring": "figures",
     "dispersion.plotting.wave_simulation": "figures", "dispersion.plotting.slowness": "figures",
+    "dispersion.plotting.evanescent": "figures",
     "dispersion.report": "SECTIONS", "dispersion.report.series_speed": "bench tables",
     "dispersion.claims.report": "plain: text of strangers made inert",
     "dispersion.results": "dumps, envelope", "dispersion.io": "the writers",

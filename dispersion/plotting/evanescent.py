@@ -25,11 +25,9 @@ from collections.abc import Sequence
 import numpy as np
 
 from dispersion.plotting import new_figure
+from dispersion.plotting.slowness import _COLOUR, _MARKER   # one colour per family
 
 __all__ = ["figure_evanescent", "figure_evanescent_rows"]
-
-_COLOUR = {"S": "C0", "A": "C3", "SH": "C2", "L": "k", "M": "k"}
-_MARKER = {"S": "o", "A": "s", "SH": "^", "L": "o", "M": "D"}
 
 
 def figure_evanescent_rows(rows: Sequence, title: str, axis: str = "f [kHz]",
